@@ -1,0 +1,183 @@
+//! Forward kinematics and the geometric Jacobian.
+//!
+//! Algorithms are free functions on an immutable [`Model`] and a mutable
+//! [`Data`] workspace sized once by [`Data::new`]; after that they allocate
+//! nothing. Poses are in the world frame (the frame in which the model's base
+//! transform is given); Jacobian rows are `[vx, vy, vz, wx, wy, wz]`: the
+//! linear velocity of the end-effector origin and the angular velocity.
+//!
+//! ```
+//! use armkit::kinematics::{forward_kinematics, jacobian, Data, JacobianFrame};
+//! let model = armkit::robots::by_name("ur5").unwrap();
+//! let mut data = Data::new(&model);
+//! let q = [0.1, -1.2, 1.0, -0.5, 1.5, 0.3];
+//! let pose = forward_kinematics(&model, &mut data, &q).unwrap();
+//! assert!(pose.translation.norm() < 1.5);
+//! let j = jacobian(&model, &mut data, &q, JacobianFrame::World).unwrap();
+//! assert_eq!(j.shape(), (6, 6));
+//! ```
+
+mod measures;
+
+pub use measures::{condition_number, manipulability, singular_values, smallest_singular_value};
+
+use crate::error::{Error, Result};
+use crate::math::{sin_cos, Matrix6xX, Pose, Vector3};
+use crate::model::Model;
+
+/// The frame in whose axes a Jacobian is expressed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum JacobianFrame {
+    /// World axes, velocity of the end-effector origin: Robotics Toolbox
+    /// `jacob0`, Pinocchio `LOCAL_WORLD_ALIGNED`.
+    World,
+    /// End-effector axes, velocity of its origin: Robotics Toolbox `jacobe`,
+    /// Pinocchio `LOCAL`.
+    EndEffector,
+}
+
+/// Workspace for the kinematics algorithms, sized for one model.
+///
+/// Holds the results of the last call: every joint frame, the end-effector
+/// pose and the Jacobian. Create it once per model and thread.
+#[derive(Clone, Debug)]
+pub struct Data {
+    dof: usize,
+    effective_positions: Vec<f64>,
+    joint_frames: Vec<Pose>,
+    end_effector: Pose,
+    jacobian: Matrix6xX<f64>,
+}
+
+impl Data {
+    /// A workspace for `model`.
+    pub fn new(model: &Model) -> Self {
+        let dof = model.dof();
+        Data {
+            dof,
+            effective_positions: vec![0.0; dof],
+            joint_frames: vec![Pose::identity(); dof],
+            end_effector: Pose::identity(),
+            jacobian: Matrix6xX::zeros(dof),
+        }
+    }
+
+    /// World pose of each joint's frame after its motion, from the last
+    /// forward kinematics: origin on the joint axis, z along the axis. For a
+    /// modified-DH model these are the DH frames; for a standard-DH model,
+    /// joint j's frame is DH frame j-1 turned by the joint.
+    pub fn joint_frames(&self) -> &[Pose] {
+        &self.joint_frames
+    }
+
+    /// World pose of the end-effector (tool) frame from the last forward kinematics.
+    pub fn end_effector_pose(&self) -> &Pose {
+        &self.end_effector
+    }
+
+    /// The Jacobian from the last call to [`jacobian`] (6 x dof).
+    pub fn jacobian(&self) -> &Matrix6xX<f64> {
+        &self.jacobian
+    }
+
+    /// Joint positions the chain was evaluated at, after any coupling (e.g.
+    /// the gantry's `d3' = d3 + w(d2)`); equal to `q` for uncoupled models.
+    pub fn effective_positions(&self) -> &[f64] {
+        &self.effective_positions
+    }
+
+    fn check_model(&self, model: &Model) -> Result<()> {
+        if self.dof != model.dof() {
+            return Err(Error::DimensionMismatch {
+                what: "data (workspace made for another model)",
+                expected: model.dof(),
+                got: self.dof,
+            });
+        }
+        Ok(())
+    }
+}
+
+/// Forward kinematics: every joint frame and the end-effector pose, in the
+/// world frame, for joint positions `q` (rad or m, one per joint).
+///
+/// Returns the end-effector pose. Errors: `q` of the wrong size or not
+/// finite, or `data` made for another model. Limits are not checked here
+/// (see [`Model::check_limits`]). Allocates nothing.
+pub fn forward_kinematics<'d>(model: &Model, data: &'d mut Data, q: &[f64]) -> Result<&'d Pose> {
+    data.check_model(model)?;
+    model.check_joint_positions(q)?;
+    data.effective_positions.copy_from_slice(q);
+    if let Some(coupling) = model.coupling() {
+        let (offset, _) = coupling.law.offset_and_slope(q[coupling.source]);
+        data.effective_positions[coupling.target] += offset;
+    }
+    let mut frame = Pose::identity();
+    for (j, placement) in model.joint_placements().iter().enumerate() {
+        frame = &frame * placement;
+        let value = data.effective_positions[j];
+        if model.joints()[j].kind.is_rotational() {
+            rotate_about_local_z(&mut frame, value);
+        } else {
+            frame.translation += frame.rotation.column(2) * value;
+        }
+        data.joint_frames[j] = frame;
+    }
+    data.end_effector = &frame * model.end_effector_placement();
+    Ok(&data.end_effector)
+}
+
+/// `frame = frame * Rz(angle)`: mixes the first two rotation columns.
+#[inline(always)]
+fn rotate_about_local_z(frame: &mut Pose, angle: f64) {
+    let (s, c) = sin_cos(angle);
+    let x = frame.rotation.column(0).into_owned();
+    let y = frame.rotation.column(1).into_owned();
+    frame.rotation.set_column(0, &(x * c + y * s));
+    frame.rotation.set_column(1, &(y * c - x * s));
+}
+
+/// Forward kinematics, then the geometric Jacobian (6 x dof) of the
+/// end-effector frame, rows `[v; w]`, in the axes of `frame`.
+///
+/// Column j is `[z_j x (p_e - p_j); z_j]` for a rotational joint and
+/// `[z_j; 0]` for a prismatic one (`z_j`, `p_j` the joint's axis and origin,
+/// `p_e` the end-effector origin). With a coupling, `J = J0 M` (seed 000,
+/// eq 10). Allocates nothing.
+pub fn jacobian<'d>(
+    model: &Model,
+    data: &'d mut Data,
+    q: &[f64],
+    frame: JacobianFrame,
+) -> Result<&'d Matrix6xX<f64>> {
+    forward_kinematics(model, data, q)?;
+    let end = data.end_effector.translation;
+    for (j, joint_frame) in data.joint_frames.iter().enumerate() {
+        let axis: Vector3<f64> = joint_frame.rotation.column(2).into_owned();
+        let mut column = data.jacobian.column_mut(j);
+        if model.joints()[j].kind.is_rotational() {
+            let linear = axis.cross(&(end - joint_frame.translation));
+            column.fixed_rows_mut::<3>(0).copy_from(&linear);
+            column.fixed_rows_mut::<3>(3).copy_from(&axis);
+        } else {
+            column.fixed_rows_mut::<3>(0).copy_from(&axis);
+            column.fixed_rows_mut::<3>(3).fill(0.0);
+        }
+    }
+    if let Some(coupling) = model.coupling() {
+        // J0 M: column(source) += slope * column(target).
+        let (_, slope) = coupling.law.offset_and_slope(q[coupling.source]);
+        let target = data.jacobian.column(coupling.target).into_owned();
+        data.jacobian.column_mut(coupling.source).axpy(slope, &target, 1.0);
+    }
+    if frame == JacobianFrame::EndEffector {
+        let rt = data.end_effector.rotation.transpose();
+        for mut column in data.jacobian.column_iter_mut() {
+            let linear = rt * column.fixed_rows::<3>(0);
+            let angular = rt * column.fixed_rows::<3>(3);
+            column.fixed_rows_mut::<3>(0).copy_from(&linear);
+            column.fixed_rows_mut::<3>(3).copy_from(&angular);
+        }
+    }
+    Ok(&data.jacobian)
+}

@@ -1,0 +1,39 @@
+//! # armkit
+//!
+//! Kinematics, redundancy resolution, trajectory planning and model-predictive
+//! motion planning of serial robot manipulators, from 4-DOF arms to a 9-DOF
+//! gantry with a flexible beam and free-floating space manipulators.
+//!
+//! Conventions, everywhere unless an item says otherwise:
+//! * `f64`, SI units: metres, radians, seconds, kilograms, newtons.
+//! * Poses are [`math::Pose`] (rotation matrix + translation) in the world frame,
+//!   the frame in which a model's base transform is given.
+//! * Twists and Jacobian rows are `[vx, vy, vz, wx, wy, wz]` (linear first).
+//! * Roll-pitch-yaw is URDF's: `R = Rz(yaw) Ry(pitch) Rx(roll)`.
+//!
+//! The layout follows Pinocchio: an immutable [`model::Model`], a
+//! [`kinematics::Data`] workspace sized once, and algorithms as free functions
+//! `f(&Model, &mut Data, q)` that allocate nothing on their hot path.
+//!
+//! ```
+//! use armkit::kinematics::{forward_kinematics, Data};
+//! let model = armkit::robots::by_name("puma560").unwrap();
+//! let mut data = Data::new(&model);
+//! let pose = forward_kinematics(&model, &mut data, &[0.0; 6]).unwrap();
+//! println!("{:?}", pose.translation);
+//! ```
+
+#![warn(missing_docs)]
+
+pub mod beam;
+#[cfg(feature = "io")]
+pub mod description;
+pub mod error;
+pub mod kinematics;
+pub mod math;
+pub mod model;
+pub mod robots;
+
+pub use error::{Error, Result};
+pub use kinematics::{forward_kinematics, jacobian, Data, JacobianFrame};
+pub use model::Model;

@@ -1,0 +1,339 @@
+//! Building a [`Model`] from joints with any axis, checked.
+
+use super::{DhConvention, DhLink, Joint, JointKind, JointLimits, LinkInertia, Model};
+use crate::error::{Error, Result};
+use crate::math::{rotation_z_to, Pose, Vector3};
+
+/// One moving joint as a URDF describes it.
+///
+/// The joint frame sits at `origin` in the parent link's frame; the joint
+/// rotates about (or slides along) `axis`, a unit vector in the joint frame;
+/// the child link's frame is the joint frame after the motion. Limits are in
+/// rad (m for prismatic joints); `inertia` is in the child link's frame.
+#[derive(Clone, Debug, PartialEq)]
+pub struct JointSpec {
+    /// Joint name.
+    pub name: String,
+    /// How it moves.
+    pub kind: JointKind,
+    /// Joint frame in the parent link frame.
+    pub origin: Pose,
+    /// Motion axis in the joint frame (normalized at build time; must be non-zero).
+    pub axis: Vector3<f64>,
+    /// Limits; continuous joints must leave the position limits infinite.
+    pub limits: JointLimits,
+    /// Mass properties of the child link, in the child link frame.
+    pub inertia: Option<LinkInertia>,
+}
+
+impl JointSpec {
+    fn new(name: impl Into<String>, kind: JointKind, limits: JointLimits) -> Self {
+        JointSpec {
+            name: name.into(),
+            kind,
+            origin: Pose::identity(),
+            axis: Vector3::z(),
+            limits,
+            inertia: None,
+        }
+    }
+
+    /// A revolute joint about z with the given position limits (rad).
+    pub fn revolute(name: impl Into<String>, lower: f64, upper: f64) -> Self {
+        Self::new(name, JointKind::Revolute, JointLimits::position(lower, upper))
+    }
+
+    /// A continuous (unlimited, wrapping) revolute joint about z.
+    pub fn continuous(name: impl Into<String>) -> Self {
+        Self::new(name, JointKind::Continuous, JointLimits::UNLIMITED)
+    }
+
+    /// A prismatic joint along z with the given position limits (m).
+    pub fn prismatic(name: impl Into<String>, lower: f64, upper: f64) -> Self {
+        Self::new(name, JointKind::Prismatic, JointLimits::position(lower, upper))
+    }
+
+    /// Sets the joint frame's placement in the parent link frame.
+    pub fn with_origin(mut self, origin: Pose) -> Self {
+        self.origin = origin;
+        self
+    }
+
+    /// Sets the motion axis (in the joint frame).
+    pub fn with_axis(mut self, axis: Vector3<f64>) -> Self {
+        self.axis = axis;
+        self
+    }
+
+    /// Sets the velocity limit magnitude (rad/s or m/s).
+    pub fn with_velocity_limit(mut self, velocity: f64) -> Self {
+        self.limits.velocity = Some(velocity);
+        self
+    }
+
+    /// Sets the acceleration limit magnitude (rad/s^2 or m/s^2).
+    pub fn with_acceleration_limit(mut self, acceleration: f64) -> Self {
+        self.limits.acceleration = Some(acceleration);
+        self
+    }
+
+    /// Sets the child link's mass properties (child link frame).
+    pub fn with_inertia(mut self, inertia: LinkInertia) -> Self {
+        self.inertia = Some(inertia);
+        self
+    }
+}
+
+#[derive(Clone, Debug)]
+enum Element {
+    Joint(JointSpec),
+    Fixed(Pose),
+}
+
+/// Assembles a [`Model`] from moving joints and fixed transforms, base to tip.
+///
+/// ```
+/// use armkit::math::{Pose, Vector3};
+/// use armkit::model::{JointSpec, ModelBuilder};
+/// let model = ModelBuilder::new("slider-crank")
+///     .joint(JointSpec::prismatic("slide", 0.0, 0.5).with_axis(Vector3::new(1.0, 1.0, 0.0)))
+///     .fixed(Pose::trans_z(0.1))
+///     .joint(JointSpec::continuous("spin"))
+///     .build()
+///     .unwrap();
+/// assert_eq!(model.dof(), 2);
+/// ```
+#[derive(Clone, Debug)]
+pub struct ModelBuilder {
+    name: String,
+    base: Pose,
+    tool: Pose,
+    elements: Vec<Element>,
+    dh: Option<(DhConvention, Vec<DhLink>)>,
+}
+
+impl ModelBuilder {
+    /// An empty chain named `name`, identity base and tool.
+    pub fn new(name: impl Into<String>) -> Self {
+        ModelBuilder {
+            name: name.into(),
+            base: Pose::identity(),
+            tool: Pose::identity(),
+            elements: Vec::new(),
+            dh: None,
+        }
+    }
+
+    /// Sets the base transform (robot base frame in the world frame).
+    pub fn base(mut self, base: Pose) -> Self {
+        self.base = base;
+        self
+    }
+
+    /// Sets the tool transform (end-effector frame in the last link frame).
+    pub fn tool(mut self, tool: Pose) -> Self {
+        self.tool = tool;
+        self
+    }
+
+    /// Appends a moving joint.
+    pub fn joint(mut self, joint: JointSpec) -> Self {
+        self.elements.push(Element::Joint(joint));
+        self
+    }
+
+    /// Appends a fixed transform (a fixed joint).
+    pub fn fixed(mut self, placement: Pose) -> Self {
+        self.elements.push(Element::Fixed(placement));
+        self
+    }
+
+    pub(super) fn dh_source(mut self, convention: DhConvention, links: Vec<DhLink>) -> Self {
+        self.dh = Some((convention, links));
+        self
+    }
+
+    /// Validates every element and folds the chain into a [`Model`].
+    ///
+    /// Errors name the link (its 0-based position among the moving joints)
+    /// and the field: non-finite numbers, a lower limit above the upper one,
+    /// a zero axis, a non-positive velocity limit, bad mass properties, an
+    /// empty chain, or a base or tool that is not a rigid transform.
+    pub fn build(self) -> Result<Model> {
+        let structure_error = |reason: String| Error::InvalidModelStructure {
+            model: self.name.clone(),
+            reason,
+        };
+        check_transform(&self.base).map_err(|r| structure_error(format!("base: {r}")))?;
+        check_transform(&self.tool).map_err(|r| structure_error(format!("tool: {r}")))?;
+
+        let mut joints = Vec::new();
+        let mut placements = Vec::new();
+        // Transform accumulated since the last joint's motion frame.
+        let mut pending = self.base;
+        for element in &self.elements {
+            match element {
+                Element::Fixed(placement) => {
+                    check_transform(placement).map_err(|reason| Error::InvalidModel {
+                        link: joints.len(),
+                        name: format!("fixed after joint {}", joints.len()),
+                        field: "origin".into(),
+                        reason,
+                    })?;
+                    pending = pending * *placement;
+                }
+                Element::Joint(spec) => {
+                    let link = joints.len();
+                    validate_joint(spec).map_err(|(field, reason)| Error::InvalidModel {
+                        link,
+                        name: spec.name.clone(),
+                        field: field.into(),
+                        reason,
+                    })?;
+                    // Rotate the joint frame so that its axis becomes local z;
+                    // the child link frame is then the motion frame times
+                    // align', which the next element picks up through `pending`.
+                    let align = Pose::from_rotation(rotation_z_to(&spec.axis.normalize()));
+                    placements.push(pending * spec.origin * align);
+                    let unalign = align.inverse();
+                    pending = unalign;
+                    joints.push(Joint {
+                        name: spec.name.clone(),
+                        kind: spec.kind,
+                        limits: spec.limits,
+                        inertia: spec.inertia.map(|i| i.transformed(&align.inverse())),
+                    });
+                }
+            }
+        }
+        if joints.is_empty() {
+            return Err(structure_error(
+                "the chain has no moving joint (an empty chain)".into(),
+            ));
+        }
+        Ok(Model {
+            name: self.name,
+            joints,
+            placements,
+            tail: pending * self.tool,
+            base: self.base,
+            tool: self.tool,
+            coupling: None,
+            dh: self.dh,
+        })
+    }
+}
+
+fn check_transform(pose: &Pose) -> std::result::Result<(), String> {
+    Pose::from_matrix4(&pose.to_matrix4()).map(|_| ())
+}
+
+fn validate_joint(spec: &JointSpec) -> std::result::Result<(), (&'static str, String)> {
+    check_transform(&spec.origin).map_err(|r| ("origin", r))?;
+    let axis_norm = spec.axis.norm();
+    if !(axis_norm.is_finite() && axis_norm > 1e-12) {
+        return Err(("axis", format!("must be a finite non-zero vector, got {:?}", spec.axis.as_slice())));
+    }
+    let limits = &spec.limits;
+    if limits.lower.is_nan() || limits.upper.is_nan() {
+        return Err(("qlim", "position limits must not be NaN".into()));
+    }
+    if limits.lower > limits.upper {
+        return Err((
+            "qlim",
+            format!("lower limit {} is above upper limit {}", limits.lower, limits.upper),
+        ));
+    }
+    if spec.kind == JointKind::Continuous && limits.is_bounded() {
+        return Err(("qlim", "a continuous joint has no position limits".into()));
+    }
+    for (field, value) in [("vlim", limits.velocity), ("alim", limits.acceleration)] {
+        if let Some(v) = value {
+            if !(v.is_finite() && v > 0.0) {
+                return Err((field, format!("must be finite and > 0, got {v}")));
+            }
+        }
+    }
+    if let Some(inertia) = &spec.inertia {
+        inertia.validate()?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn empty_chain_is_an_error() {
+        let err = ModelBuilder::new("nothing").build().unwrap_err();
+        assert!(err.to_string().contains("empty chain"), "{err}");
+    }
+
+    #[test]
+    fn inverted_limits_name_link_and_field() {
+        let err = ModelBuilder::new("r")
+            .joint(JointSpec::revolute("a", -1.0, 1.0))
+            .joint(JointSpec::revolute("b", 1.0, -1.0))
+            .build()
+            .unwrap_err();
+        let text = err.to_string();
+        assert!(text.contains("link 1") && text.contains("`b`") && text.contains("qlim"), "{text}");
+    }
+
+    #[test]
+    fn zero_axis_and_bad_velocity_are_errors() {
+        let err = ModelBuilder::new("r")
+            .joint(JointSpec::revolute("a", -1.0, 1.0).with_axis(Vector3::zeros()))
+            .build()
+            .unwrap_err();
+        assert!(err.to_string().contains("axis"), "{err}");
+        let err = ModelBuilder::new("r")
+            .joint(JointSpec::revolute("a", -1.0, 1.0).with_velocity_limit(-2.0))
+            .build()
+            .unwrap_err();
+        assert!(err.to_string().contains("vlim"), "{err}");
+    }
+
+    #[test]
+    fn non_finite_origin_and_bad_base_are_errors() {
+        let err = ModelBuilder::new("r")
+            .joint(JointSpec::revolute("a", -1.0, 1.0).with_origin(Pose::trans_x(f64::NAN)))
+            .build()
+            .unwrap_err();
+        assert!(err.to_string().contains("origin"), "{err}");
+        let mut base = Pose::identity();
+        base.rotation[(0, 0)] = 3.0;
+        let err = ModelBuilder::new("r")
+            .base(base)
+            .joint(JointSpec::revolute("a", -1.0, 1.0))
+            .build()
+            .unwrap_err();
+        assert!(err.to_string().contains("base"), "{err}");
+    }
+
+    #[test]
+    fn bad_inertia_is_an_error() {
+        let inertia = LinkInertia::point_mass(-1.0, Vector3::zeros());
+        let err = ModelBuilder::new("r")
+            .joint(JointSpec::revolute("a", -1.0, 1.0).with_inertia(inertia))
+            .build()
+            .unwrap_err();
+        assert!(err.to_string().contains("mass"), "{err}");
+        let mut inertia = LinkInertia::point_mass(1.0, Vector3::zeros());
+        inertia.inertia[(0, 0)] = -1.0;
+        let err = ModelBuilder::new("r")
+            .joint(JointSpec::revolute("a", -1.0, 1.0).with_inertia(inertia))
+            .build()
+            .unwrap_err();
+        assert!(err.to_string().contains("positive semi-definite"), "{err}");
+    }
+
+    #[test]
+    fn continuous_joint_with_limits_is_an_error() {
+        let mut spec = JointSpec::continuous("c");
+        spec.limits = JointLimits::position(-1.0, 1.0);
+        let err = ModelBuilder::new("r").joint(spec).build().unwrap_err();
+        assert!(err.to_string().contains("continuous"), "{err}");
+    }
+}

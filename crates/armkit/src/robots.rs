@@ -1,0 +1,360 @@
+//! Built-in robots: published arms and the three seed robots.
+//!
+//! | name | DOF | model | source |
+//! | --- | --- | --- | --- |
+//! | `puma560` | 6 | standard DH | Corke, Robotics Toolbox `models.DH.Puma560` |
+//! | `ur5` | 6 | standard DH | Universal Robots' published DH, RTB `models.DH.UR5` |
+//! | `panda` | 7 | modified DH + tool | Franka Emika's published DH, RTB `models.DH.Panda` |
+//! | `stanford` | 6 (RRPRRR) | standard DH | Scheinman's Stanford arm, RTB `models.DH.Stanford` |
+//! | `arm4` | 4 | standard DH | seed 002's 4-DOF arm, our dimensions |
+//! | `space6r` | 6 | standard DH | seed 004's 6R space arm, PUMA-like, paper's lengths |
+//! | `gantry9` | 9 (PPP + 6R) | modified DH | seed 000's gantry, our dimensions |
+//!
+//! The published arms reproduce the Robotics Toolbox tables exactly (checked
+//! against `tests/data/reference_*_dh.json`). The seed robots' tables are not
+//! printed (or are garbled) in the papers; each builder's documentation gives
+//! every length and limit we chose, and why.
+//!
+//! ```
+//! for name in armkit::robots::names() {
+//!     let model = armkit::robots::by_name(name).unwrap();
+//!     assert!(model.dof() >= 4);
+//! }
+//! assert!(armkit::robots::by_name("r2d2").is_err());
+//! ```
+
+use std::f64::consts::{FRAC_PI_2, PI};
+
+use crate::error::{Error, Result};
+use crate::math::{Pose, Vector3};
+use crate::model::{DhConvention, DhLink, LinkInertia, Model};
+
+/// A built-in robot: name, degrees of freedom, one-line description, constructor.
+#[derive(Clone, Copy, Debug)]
+pub struct BuiltinRobot {
+    /// Name used by [`by_name`] and the CLI's `--robot`.
+    pub name: &'static str,
+    /// Degrees of freedom.
+    pub dof: usize,
+    /// One line: what it is and where its parameters come from.
+    pub description: &'static str,
+    /// Builds the model.
+    pub build: fn() -> Result<Model>,
+}
+
+/// Every built-in robot, in the order `armkit robots` lists them.
+pub const BUILTIN: &[BuiltinRobot] = &[
+    BuiltinRobot {
+        name: "puma560",
+        dof: 6,
+        description: "Unimation PUMA 560, standard DH (Corke; Robotics Toolbox models.DH.Puma560)",
+        build: puma560,
+    },
+    BuiltinRobot {
+        name: "ur5",
+        dof: 6,
+        description: "Universal Robots UR5, standard DH (UR's published table; RTB models.DH.UR5)",
+        build: ur5,
+    },
+    BuiltinRobot {
+        name: "panda",
+        dof: 7,
+        description: "Franka Emika Panda, modified DH with RTB's tool (flange + 0.103 m, -45 deg)",
+        build: panda,
+    },
+    BuiltinRobot {
+        name: "stanford",
+        dof: 6,
+        description: "Stanford arm, RRPRRR, standard DH (Scheinman; RTB models.DH.Stanford)",
+        build: stanford,
+    },
+    BuiltinRobot {
+        name: "arm4",
+        dof: 4,
+        description: "Seed 002's 4-DOF arm: two parallel vertical axes, then a roll and a pitch",
+        build: arm4,
+    },
+    BuiltinRobot {
+        name: "space6r",
+        dof: 6,
+        description: "Seed 004's 6R space arm, PUMA-like with a spherical wrist, with mass properties",
+        build: space6r,
+    },
+    BuiltinRobot {
+        name: "gantry9",
+        dof: 9,
+        description: "Seed 000's 9-DOF gantry: 3 prismatic axes carrying a 6R arm (rigid beam)",
+        build: gantry9,
+    },
+];
+
+/// Names of the built-in robots.
+pub fn names() -> impl Iterator<Item = &'static str> {
+    BUILTIN.iter().map(|r| r.name)
+}
+
+/// The built-in robot called `name` (case-insensitive).
+pub fn by_name(name: &str) -> Result<Model> {
+    BUILTIN
+        .iter()
+        .find(|r| r.name.eq_ignore_ascii_case(name))
+        .map(|r| (r.build)())
+        .unwrap_or_else(|| {
+            Err(Error::UnknownRobot {
+                name: name.to_string(),
+                known: names().collect::<Vec<_>>().join(", "),
+            })
+        })
+}
+
+fn deg(angle: f64) -> f64 {
+    angle.to_radians()
+}
+
+/// Unimation PUMA 560, standard DH, as in the Robotics Toolbox
+/// (`models.DH.Puma560`, after Corke and Armstrong-Helouvry): lengths in m,
+/// joint limits from RTB. No velocity limits are published in that model.
+pub fn puma560() -> Result<Model> {
+    let links = [
+        DhLink::revolute(0.67183, 0.0, FRAC_PI_2).with_limits(deg(-160.0), deg(160.0)),
+        DhLink::revolute(0.0, 0.4318, 0.0).with_limits(deg(-45.0), deg(225.0)),
+        DhLink::revolute(0.15005, 0.0203, -FRAC_PI_2).with_limits(deg(-225.0), deg(45.0)),
+        DhLink::revolute(0.4318, 0.0, FRAC_PI_2).with_limits(deg(-110.0), deg(170.0)),
+        DhLink::revolute(0.0, 0.0, -FRAC_PI_2).with_limits(deg(-100.0), deg(100.0)),
+        DhLink::revolute(0.0, 0.0, 0.0).with_limits(deg(-266.0), deg(266.0)),
+    ];
+    Model::from_dh("puma560", DhConvention::Standard, &links)
+}
+
+/// Universal Robots UR5, standard DH from UR's published table (as RTB's
+/// `models.DH.UR5`). Limits: +-2 pi on every joint but the elbow (+-pi), as
+/// in UR's URDF; velocity limit pi rad/s (180 deg/s, UR5 data sheet).
+pub fn ur5() -> Result<Model> {
+    let two_pi = 2.0 * PI;
+    let links = [
+        DhLink::revolute(0.089459, 0.0, FRAC_PI_2).with_limits(-two_pi, two_pi),
+        DhLink::revolute(0.0, -0.425, 0.0).with_limits(-two_pi, two_pi),
+        DhLink::revolute(0.0, -0.39225, 0.0).with_limits(-PI, PI),
+        DhLink::revolute(0.10915, 0.0, FRAC_PI_2).with_limits(-two_pi, two_pi),
+        DhLink::revolute(0.09465, 0.0, -FRAC_PI_2).with_limits(-two_pi, two_pi),
+        DhLink::revolute(0.0823, 0.0, 0.0).with_limits(-two_pi, two_pi),
+    ]
+    .map(|l| l.with_velocity_limit(PI));
+    Model::from_dh("ur5", DhConvention::Standard, &links)
+}
+
+/// Franka Emika Panda, modified DH from Franka's documentation (as RTB's
+/// `models.DH.Panda`), with RTB's tool: the flange 0.107 m beyond joint 7
+/// (in the table) plus 0.103 m and -45 deg about z. Position, velocity and
+/// acceleration limits from Franka's data sheet.
+pub fn panda() -> Result<Model> {
+    let table = [
+        // (d, a, alpha, lower, upper, velocity, acceleration)
+        (0.333, 0.0, 0.0, -2.8973, 2.8973, 2.175, 15.0),
+        (0.0, 0.0, -FRAC_PI_2, -1.7628, 1.7628, 2.175, 7.5),
+        (0.316, 0.0, FRAC_PI_2, -2.8973, 2.8973, 2.175, 10.0),
+        (0.0, 0.0825, FRAC_PI_2, -3.0718, -0.0698, 2.175, 12.5),
+        (0.384, -0.0825, -FRAC_PI_2, -2.8973, 2.8973, 2.61, 15.0),
+        (0.0, 0.0, FRAC_PI_2, -0.0175, 3.7525, 2.61, 20.0),
+        (0.107, 0.088, FRAC_PI_2, -2.8973, 2.8973, 2.61, 20.0),
+    ];
+    let links = table.map(|(d, a, alpha, lower, upper, velocity, acceleration)| {
+        let mut link = DhLink::revolute(d, a, alpha)
+            .with_limits(lower, upper)
+            .with_velocity_limit(velocity);
+        link.limits.acceleration = Some(acceleration);
+        link
+    });
+    let tool = Pose::trans_z(0.103) * Pose::rot_z(-PI / 4.0);
+    Model::from_dh_with_transforms("panda", DhConvention::Modified, &links, Pose::identity(), tool)
+}
+
+/// The Stanford arm (RRPRRR), standard DH as in RTB's `models.DH.Stanford`:
+/// joint 3 is prismatic (0.3048 m to 1.27 m) with a constant theta of -pi/2.
+pub fn stanford() -> Result<Model> {
+    let links = [
+        DhLink::revolute(0.412, 0.0, -FRAC_PI_2).with_limits(deg(-170.0), deg(170.0)),
+        DhLink::revolute(0.154, 0.0, FRAC_PI_2).with_limits(deg(-170.0), deg(170.0)),
+        DhLink::prismatic(-FRAC_PI_2, 0.0203, 0.0).with_limits(12.0 * 0.0254, 50.0 * 0.0254),
+        DhLink::revolute(0.0, 0.0, -FRAC_PI_2).with_limits(deg(-170.0), deg(170.0)),
+        DhLink::revolute(0.0, 0.0, FRAC_PI_2).with_limits(deg(-90.0), deg(90.0)),
+        DhLink::revolute(0.0, 0.0, 0.0).with_limits(deg(-170.0), deg(170.0)),
+    ];
+    Model::from_dh("stanford", DhConvention::Standard, &links)
+}
+
+/// Seed 002's 4-DOF arm (Hao, Chen, Deng), standard DH, our dimensions.
+///
+/// The paper prints no link lengths; its inverse kinematics (eqs 8-9) says
+/// the wrist moves in a horizontal plane with
+/// `px = a1 s1 + d3 s12`, `py = -a1 c1 - d3 c12`: joints 1 and 2 are parallel
+/// vertical axes, link 1 has length `a1`, link 2 runs `d3` along the axis of
+/// joint 3 (a roll about the link), and joint 4 pitches the tool. The base is
+/// turned by -90 deg about z so that the zero pose points along -y as in
+/// those equations.
+///
+/// | link | theta | d (m) | a (m) | alpha | offset | limits |
+/// | --- | --- | --- | --- | --- | --- | --- |
+/// | 1 | q1 | 0.30 (column height) | 0.25 (`a1`) | 0 | 0 | +-150 deg |
+/// | 2 | q2 | 0 | 0 | +90 deg | +90 deg | +-150 deg |
+/// | 3 | q3 | 0.20 (`d3`, link 2's length) | 0 | +90 deg | 0 | +-180 deg |
+/// | 4 | q4 | 0 | 0.08 (tool) | 0 | 0 | +-120 deg |
+///
+/// The +90 deg offset of joint 2 turns its z axis along link 2, so joint 3
+/// rolls about the link; the tool (0.08 m along x4) makes every joint move
+/// the tool point. The limits keep the two parallel links from folding onto
+/// each other (a real arm's cables would not allow more). Velocity limit
+/// pi rad/s on every joint.
+pub fn arm4() -> Result<Model> {
+    let links = [
+        DhLink::revolute(0.30, 0.25, 0.0).with_limits(deg(-150.0), deg(150.0)),
+        DhLink::revolute(0.0, 0.0, FRAC_PI_2)
+            .with_offset(FRAC_PI_2)
+            .with_limits(deg(-150.0), deg(150.0)),
+        DhLink::revolute(0.20, 0.0, FRAC_PI_2).with_limits(-PI, PI),
+        DhLink::revolute(0.0, 0.08, 0.0).with_limits(deg(-120.0), deg(120.0)),
+    ]
+    .map(|l| l.with_velocity_limit(PI));
+    Model::from_dh_with_transforms(
+        "arm4",
+        DhConvention::Standard,
+        &links,
+        Pose::rot_z(-FRAC_PI_2),
+        Pose::identity(),
+    )
+}
+
+/// Seed 004's 6R space arm (Zhao, She, Huang, Huang), standard DH, PUMA-like
+/// with a spherical wrist, from the lengths the paper prints.
+///
+/// | link | d (m) | a (m) | alpha | limits |
+/// | --- | --- | --- | --- | --- |
+/// | 1 | 0.30 (`d1`) | 0 | +90 deg | +-180 deg |
+/// | 2 | 0.15 (`d2`, shoulder offset) | 0.83 (`a2`) | 0 | +-180 deg |
+/// | 3 | 0 | 0.03 (`a3`) | -90 deg | +-180 deg |
+/// | 4 | 0.70 (`d4`) | 0 | +90 deg | +-180 deg |
+/// | 5 | 0 | 0 | -90 deg | +-180 deg |
+/// | 6 | 0.2345 (`L7`, wrist centre to tool) | 0 | 0 | +-180 deg |
+///
+/// The DH table itself is lost in the extraction; this is the PUMA 560's
+/// structure with the paper's `d1, d2, d4, a2, a3` and `L7` as the tool
+/// length. The base transform puts joint 1 `L1 = 0.30` m above the base
+/// body's centre. Mass properties (documented in [`space6r_mass_properties`])
+/// are attached to the links for the free-floating model. Velocity limit
+/// 0.5 rad/s (a space arm's joints are slow).
+pub fn space6r() -> Result<Model> {
+    let table = [
+        (0.30, 0.0, FRAC_PI_2),
+        (0.15, 0.83, 0.0),
+        (0.0, 0.03, -FRAC_PI_2),
+        (0.70, 0.0, FRAC_PI_2),
+        (0.0, 0.0, -FRAC_PI_2),
+        (0.2345, 0.0, 0.0),
+    ];
+    let masses = space6r_mass_properties();
+    let mut links = [DhLink::revolute(0.0, 0.0, 0.0); 6];
+    for (j, ((d, a, alpha), inertia)) in table.into_iter().zip(masses).enumerate() {
+        links[j] = DhLink::revolute(d, a, alpha)
+            .with_limits(-PI, PI)
+            .with_velocity_limit(0.5)
+            .with_inertia(inertia);
+    }
+    Model::from_dh_with_transforms(
+        "space6r",
+        DhConvention::Standard,
+        &links,
+        Pose::trans_z(0.30),
+        Pose::identity(),
+    )
+}
+
+/// Mass properties of space6r's links, in each link's standard-DH frame.
+///
+/// The paper takes them from its reference [19], which the extraction does
+/// not include; these are plausible values for a 2 m class space arm of
+/// aluminium tubes (uniform rods: `I = m l^2 / 12` about the transverse axes,
+/// `m r^2 / 2` about the rod axis, r = 0.05 m), centres of mass at mid-link:
+///
+/// | link | mass (kg) | centre of mass in DH frame j (m) | rod length (m) |
+/// | --- | --- | --- | --- |
+/// | 1 | 20 | (0, -0.15, 0) | 0.30 |
+/// | 2 | 40 | (-0.415, 0, 0.15) | 0.83 |
+/// | 3 | 10 | (-0.015, 0, 0) | 0.15 (`L4`) |
+/// | 4 | 30 | (0, -0.35, 0) | 0.70 |
+/// | 5 | 8 | (0, 0, 0) | 0.10 (`L6`) |
+/// | 6 | 10 | (0, 0, -0.117) | 0.2345 (`L7`) |
+pub fn space6r_mass_properties() -> [LinkInertia; 6] {
+    let rod = |mass: f64, com: [f64; 3], length: f64, axis: usize| {
+        let transverse = mass * length * length / 12.0;
+        let axial = mass * 0.05 * 0.05 / 2.0;
+        let mut inertia = LinkInertia::point_mass(mass, Vector3::from(com));
+        for k in 0..3 {
+            inertia.inertia[(k, k)] = if k == axis { axial } else { transverse };
+        }
+        inertia
+    };
+    [
+        rod(20.0, [0.0, -0.15, 0.0], 0.30, 1),
+        rod(40.0, [-0.415, 0.0, 0.15], 0.83, 0),
+        rod(10.0, [-0.015, 0.0, 0.0], 0.15, 0),
+        rod(30.0, [0.0, -0.35, 0.0], 0.70, 1),
+        rod(8.0, [0.0, 0.0, 0.0], 0.10, 2),
+        rod(10.0, [0.0, 0.0, -0.117], 0.2345, 2),
+    ]
+}
+
+/// Height of gantry9's beam above the floor, m (the carriage's mounting plane
+/// when `d3 = 0`).
+pub const GANTRY9_BEAM_HEIGHT: f64 = 6.0;
+
+/// Length of gantry9's beam between its supports, m (seed 000, Table 1).
+pub const GANTRY9_BEAM_LENGTH: f64 = 10.0;
+
+/// Seed 000's 9-DOF gantry (Wang, Li, Xi), modified DH, our dimensions; rigid
+/// beam (the deflection coupling is in [`crate::beam`]).
+///
+/// The paper's Table 2 is garbled and gives no lengths. World frame: x along
+/// the rails, y along the beam, z up. Joint 1 moves the beam along the rails
+/// (`x = d1`); joint 2 moves the carriage along the beam (`y = d2`, the
+/// distance from the beam's left support, as in eq 1); joint 3 lowers the arm
+/// mount (`z = 6.0 - d3`). A 6R arm with a spherical wrist hangs from the
+/// carriage (Craig's PUMA structure, our lengths, an industrial arm of about
+/// 1.5 m reach):
+///
+/// | joint | type | alpha_{i-1} | a_{i-1} (m) | theta | d (m) | limits (eq 24) | vmax (eq 23) |
+/// | --- | --- | --- | --- | --- | --- | --- | --- |
+/// | 1 | P | 0 | 0 | 0 | d1 | [0, 9] m | 0.6 m/s |
+/// | 2 | P | -90 deg | 0 | 90 deg | d2 | [0, 5] m | 0.6 m/s |
+/// | 3 | P | +90 deg | 0 | 0 | d3 | [0, 5] m | 0.6 m/s |
+/// | 4 | R | 0 | 0 | q4 | 0.30 | +-2.62 rad | pi rad/s |
+/// | 5 | R | -90 deg | 0.15 | q5 | 0 | [-0.78, 1.22] rad | pi rad/s |
+/// | 6 | R | 0 | 0.70 | q6 | 0 | [-1.22, 1.05] rad | pi rad/s |
+/// | 7 | R | +90 deg | 0.11 | q7 | 0.67 | +-3.14 rad | pi rad/s |
+/// | 8 | R | -90 deg | 0 | q8 | 0 | +-2.18 rad | pi rad/s |
+/// | 9 | R | +90 deg | 0 | q9 | 0 | +-6.28 rad | pi rad/s |
+///
+/// Base: `Tz(6.0) Ry(90 deg)` turns joint 1's z axis along the rails; tool:
+/// 0.10 m flange along z9. At `q = 0` the arm hangs from the carriage with
+/// its upper arm horizontal (along -x), the forearm pointing down and the
+/// tool down. With these lengths the limits of eq 24 matter: the shoulder
+/// (q5) and elbow (q6) ranges bound how far the hand reaches above or below
+/// the carriage, and d3's 5 m stroke spans the 6 m beam height.
+pub fn gantry9() -> Result<Model> {
+    let vmax_prismatic = 0.6;
+    let vmax_rotary = PI;
+    let links = [
+        DhLink::prismatic(0.0, 0.0, 0.0).with_limits(0.0, 9.0).with_velocity_limit(vmax_prismatic),
+        DhLink::prismatic(FRAC_PI_2, 0.0, -FRAC_PI_2)
+            .with_limits(0.0, 5.0)
+            .with_velocity_limit(vmax_prismatic),
+        DhLink::prismatic(0.0, 0.0, FRAC_PI_2).with_limits(0.0, 5.0).with_velocity_limit(vmax_prismatic),
+        DhLink::revolute(0.30, 0.0, 0.0).with_limits(-2.62, 2.62).with_velocity_limit(vmax_rotary),
+        DhLink::revolute(0.0, 0.15, -FRAC_PI_2).with_limits(-0.78, 1.22).with_velocity_limit(vmax_rotary),
+        DhLink::revolute(0.0, 0.70, 0.0).with_limits(-1.22, 1.05).with_velocity_limit(vmax_rotary),
+        DhLink::revolute(0.67, 0.11, FRAC_PI_2).with_limits(-3.14, 3.14).with_velocity_limit(vmax_rotary),
+        DhLink::revolute(0.0, 0.0, -FRAC_PI_2).with_limits(-2.18, 2.18).with_velocity_limit(vmax_rotary),
+        DhLink::revolute(0.0, 0.0, FRAC_PI_2).with_limits(-6.28, 6.28).with_velocity_limit(vmax_rotary),
+    ];
+    let base = Pose::trans_z(GANTRY9_BEAM_HEIGHT) * Pose::rot_y(FRAC_PI_2);
+    Model::from_dh_with_transforms("gantry9", DhConvention::Modified, &links, base, Pose::trans_z(0.10))
+}

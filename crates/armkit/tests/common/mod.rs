@@ -1,0 +1,103 @@
+//! Helpers shared by the integration tests.
+#![allow(dead_code)]
+
+use armkit::kinematics::{forward_kinematics, Data};
+use armkit::math::{Matrix6xX, Pose, Vector3};
+use armkit::Model;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+/// Path of a file in the repository's `tests/data`.
+pub fn data_path(name: &str) -> String {
+    format!("{}/../../tests/data/{name}", env!("CARGO_MANIFEST_DIR"))
+}
+
+/// One reference sample: joint positions, tip pose, Jacobian.
+pub struct Sample {
+    pub q: Vec<f64>,
+    pub pose: [[f64; 4]; 4],
+    pub jacobian: Vec<Vec<f64>>,
+}
+
+/// The samples of a reference file in `tests/data`.
+pub fn reference_samples(file: &str) -> Vec<Sample> {
+    let text = std::fs::read_to_string(data_path(file)).unwrap();
+    let value: serde_json::Value = serde_json::from_str(&text).unwrap();
+    value["samples"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| Sample {
+            q: serde_json::from_value(s["q"].clone()).unwrap(),
+            pose: serde_json::from_value(s["pose"].clone()).unwrap(),
+            jacobian: serde_json::from_value(s["jacobian"].clone()).unwrap(),
+        })
+        .collect()
+}
+
+/// Largest entry-wise difference between a pose and reference rows.
+pub fn pose_error(pose: &Pose, rows: &[[f64; 4]; 4]) -> f64 {
+    let m = pose.to_matrix4();
+    (0..4)
+        .flat_map(|r| (0..4).map(move |c| (r, c)))
+        .map(|(r, c)| (m[(r, c)] - rows[r][c]).abs())
+        .fold(0.0, f64::max)
+}
+
+/// Largest entry-wise difference between a Jacobian and reference rows.
+pub fn jacobian_error(j: &Matrix6xX<f64>, rows: &[Vec<f64>]) -> f64 {
+    let mut worst: f64 = 0.0;
+    for (r, row) in rows.iter().enumerate() {
+        assert_eq!(row.len(), j.ncols());
+        for (c, v) in row.iter().enumerate() {
+            worst = worst.max((j[(r, c)] - v).abs());
+        }
+    }
+    worst
+}
+
+/// A seeded RNG for reproducible randomized tests.
+pub fn rng(seed: u64) -> ChaCha8Rng {
+    ChaCha8Rng::seed_from_u64(seed)
+}
+
+/// A configuration drawn uniformly within the limits (unbounded joints in [-pi, pi]).
+pub fn random_configuration(model: &Model, rng: &mut impl Rng) -> Vec<f64> {
+    model
+        .joints()
+        .iter()
+        .map(|j| {
+            let (lo, hi) = if j.limits.is_bounded() {
+                (j.limits.lower, j.limits.upper)
+            } else {
+                (-std::f64::consts::PI, std::f64::consts::PI)
+            };
+            rng.gen_range(lo..=hi)
+        })
+        .collect()
+}
+
+/// Central finite-difference Jacobian of the end-effector pose (world frame):
+/// linear rows from the position, angular rows from the rotation's log.
+pub fn finite_difference_jacobian(model: &Model, q: &[f64], step: f64) -> Matrix6xX<f64> {
+    let mut data = Data::new(model);
+    let mut jac = Matrix6xX::zeros(model.dof());
+    for j in 0..model.dof() {
+        let mut plus = q.to_vec();
+        let mut minus = q.to_vec();
+        plus[j] += step;
+        minus[j] -= step;
+        let tp = *forward_kinematics(model, &mut data, &plus).unwrap();
+        let tm = *forward_kinematics(model, &mut data, &minus).unwrap();
+        let linear = (tp.translation - tm.translation) / (2.0 * step);
+        // R+ R-' = exp(2h [w]) + O(h^3); for so small an angle its skew part
+        // (sin of the angle times the axis) is the angle times the axis to
+        // 1e-12 relative, where acos of the trace would lose half the digits.
+        let relative = tp.rotation * tm.rotation.transpose();
+        let skew = (relative - relative.transpose()) * 0.5;
+        let angular = Vector3::new(skew[(2, 1)], skew[(0, 2)], skew[(1, 0)]) / (2.0 * step);
+        jac.fixed_view_mut::<3, 1>(0, j).copy_from(&linear);
+        jac.fixed_view_mut::<3, 1>(3, j).copy_from(&angular);
+    }
+    jac
+}

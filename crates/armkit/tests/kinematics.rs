@@ -1,0 +1,102 @@
+//! Forward kinematics and Jacobian: finite differences on every built-in
+//! robot, frames, couplings and bad input.
+
+mod common;
+
+use armkit::kinematics::{forward_kinematics, jacobian, Data, JacobianFrame};
+use armkit::math::{Matrix6xX, Pose};
+use armkit::{Error, Model};
+use common::*;
+
+#[test]
+fn jacobian_matches_finite_differences_on_every_builtin_robot() {
+    let mut rng = rng(7);
+    for entry in armkit::robots::BUILTIN {
+        let model = (entry.build)().unwrap();
+        assert_eq!(model.dof(), entry.dof, "{}", entry.name);
+        let mut data = Data::new(&model);
+        for _ in 0..50 {
+            let q = random_configuration(&model, &mut rng);
+            let analytic = jacobian(&model, &mut data, &q, JacobianFrame::World).unwrap().clone();
+            let numeric = finite_difference_jacobian(&model, &q, 1e-6);
+            let error = (&analytic - &numeric).amax();
+            assert!(error < 1e-8, "{}: |J - J_fd| = {error:e} at {q:?}", entry.name);
+        }
+    }
+}
+
+#[test]
+fn end_effector_jacobian_is_the_world_jacobian_in_tool_axes() {
+    let model = armkit::robots::panda().unwrap();
+    let mut data = Data::new(&model);
+    let q = [0.3, -0.5, 0.2, -2.0, 0.4, 1.8, -0.6];
+    let world = jacobian(&model, &mut data, &q, JacobianFrame::World).unwrap().clone();
+    let rotation = data.end_effector_pose().rotation;
+    let local = jacobian(&model, &mut data, &q, JacobianFrame::EndEffector).unwrap().clone();
+    let mut rotated = Matrix6xX::zeros(7);
+    for c in 0..7 {
+        let v = rotation * local.fixed_view::<3, 1>(0, c);
+        let w = rotation * local.fixed_view::<3, 1>(3, c);
+        rotated.fixed_view_mut::<3, 1>(0, c).copy_from(&v);
+        rotated.fixed_view_mut::<3, 1>(3, c).copy_from(&w);
+    }
+    assert!((rotated - world).amax() < 1e-14);
+}
+
+#[test]
+fn joint_frames_end_at_the_end_effector_through_the_tool() {
+    let model = armkit::robots::panda().unwrap();
+    let mut data = Data::new(&model);
+    let q = [0.1, 0.2, 0.3, -1.0, 0.5, 1.0, 0.7];
+    let pose = *forward_kinematics(&model, &mut data, &q).unwrap();
+    let last = data.joint_frames()[6];
+    let rebuilt = last * *model.end_effector_placement();
+    assert!((rebuilt.to_matrix4() - pose.to_matrix4()).amax() < 1e-15);
+    // Modified DH: joint frames are the DH frames; the tool is the tool.
+    assert!((model.end_effector_placement().to_matrix4() - model.tool().to_matrix4()).amax() < 1e-15);
+}
+
+#[test]
+fn base_transform_moves_everything_rigidly() {
+    let model = armkit::robots::ur5().unwrap();
+    let (convention, links) = model.dh_table().unwrap();
+    let base = Pose::from_xyz_rpy([1.0, -2.0, 0.5], [0.1, 0.2, 0.3]);
+    let moved =
+        Model::from_dh_with_transforms("ur5-moved", convention, links, base, Pose::identity()).unwrap();
+    let q = [0.4, -1.1, 1.3, 0.2, -0.7, 2.0];
+    let mut data = Data::new(&model);
+    let mut moved_data = Data::new(&moved);
+    let pose = *forward_kinematics(&model, &mut data, &q).unwrap();
+    let moved_pose = *forward_kinematics(&moved, &mut moved_data, &q).unwrap();
+    assert!(((base * pose).to_matrix4() - moved_pose.to_matrix4()).amax() < 1e-14);
+}
+
+#[test]
+fn wrong_size_non_finite_and_foreign_data_are_errors() {
+    let model = armkit::robots::ur5().unwrap();
+    let mut data = Data::new(&model);
+    let err = forward_kinematics(&model, &mut data, &[0.0; 5]).unwrap_err();
+    assert_eq!(
+        err,
+        Error::DimensionMismatch { what: "joint_positions", expected: 6, got: 5 }
+    );
+    assert_eq!(err.to_string(), "joint_positions: expected 6 values, got 5");
+    let err = jacobian(&model, &mut data, &[0.0, 0.0, f64::NAN, 0.0, 0.0, 0.0], JacobianFrame::World)
+        .unwrap_err();
+    assert_eq!(err.to_string(), "joint_positions[2] is not finite (NaN)");
+    let panda = armkit::robots::panda().unwrap();
+    let mut panda_data = Data::new(&panda);
+    let err = forward_kinematics(&model, &mut panda_data, &[0.0; 6]).unwrap_err();
+    assert!(err.to_string().contains("another model"), "{err}");
+}
+
+#[test]
+fn limits_check_names_the_joint() {
+    let model = armkit::robots::panda().unwrap();
+    let err = model.check_limits(&[0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]).unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "joint 3 (`q4`) = 0 is outside its limits [-3.0718, -0.0698]"
+    );
+    assert!(model.check_limits(&model.neutral_configuration()).is_ok());
+}
