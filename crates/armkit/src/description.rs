@@ -171,7 +171,7 @@ fn parse_json(text: &str) -> std::result::Result<(DescriptionFile, Option<String
 }
 
 fn parse_toml(text: &str) -> std::result::Result<(DescriptionFile, Option<String>), String> {
-    let file: DescriptionFile = toml::from_str(text).map_err(|e| format!("{}", e.to_string().trim_end()))?;
+    let file: DescriptionFile = toml::from_str(text).map_err(|e| e.to_string().trim_end().to_string())?;
     Ok((file, None))
 }
 

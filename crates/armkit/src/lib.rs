@@ -24,15 +24,23 @@
 //! ```
 
 #![warn(missing_docs)]
+// Library code returns errors; it never panics on user input.
+#![cfg_attr(not(test), deny(clippy::unwrap_used, clippy::expect_used, clippy::panic))]
 
 pub mod beam;
 #[cfg(feature = "io")]
 pub mod description;
 pub mod error;
+pub mod ik;
 pub mod kinematics;
 pub mod math;
 pub mod model;
+pub mod redundancy;
 pub mod robots;
+pub mod space;
+pub mod trajectory;
+#[cfg(feature = "urdf")]
+pub mod urdf;
 
 pub use error::{Error, Result};
 pub use kinematics::{forward_kinematics, jacobian, Data, JacobianFrame};

@@ -197,17 +197,17 @@ impl Pose {
 impl Mul for Pose {
     type Output = Pose;
     fn mul(self, rhs: Pose) -> Pose {
-        &self * &rhs
+        Pose::new(
+            self.rotation * rhs.rotation,
+            self.rotation * rhs.translation + self.translation,
+        )
     }
 }
 
 impl Mul<&Pose> for &Pose {
     type Output = Pose;
     fn mul(self, rhs: &Pose) -> Pose {
-        Pose::new(
-            self.rotation * rhs.rotation,
-            self.rotation * rhs.translation + self.translation,
-        )
+        *self * *rhs
     }
 }
 

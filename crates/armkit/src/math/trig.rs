@@ -9,7 +9,9 @@
 //! Arguments beyond `|x| > 1e5` (never joint angles) and non-finite ones go to
 //! the platform routine.
 
-// fdlibm kernel coefficients.
+#![allow(clippy::excessive_precision)]
+
+// fdlibm kernel coefficients, written as fdlibm prints them.
 const S1: f64 = -1.666_666_666_666_663_243_48e-01;
 const S2: f64 = 8.333_333_333_322_489_461_24e-03;
 const S3: f64 = -1.984_126_982_985_794_931_34e-04;
@@ -25,7 +27,7 @@ const C6: f64 = -1.135_964_755_778_819_482_65e-11;
 
 // pi/2 split for the reduction: PIO2_1 holds the first 33 bits (so that
 // n * PIO2_1 is exact for |n| < 2^20), PIO2_2 the next 33, PIO2_2T the rest.
-const INV_PIO2: f64 = 6.366_197_723_675_813_824_33e-01;
+const INV_PIO2: f64 = std::f64::consts::FRAC_2_PI;
 const PIO2_1: f64 = 1.570_796_326_734_125_614_17e+00;
 const PIO2_2: f64 = 6.077_100_506_303_965_976_60e-11;
 const PIO2_2T: f64 = 2.022_266_248_795_950_631_54e-21;
@@ -35,8 +37,8 @@ const REDUCTION_LIMIT: f64 = 1e5;
 /// `(sin x, cos x)` for an angle in radians, to about one ulp.
 #[inline]
 pub fn sin_cos(x: f64) -> (f64, f64) {
-    // Also false for NaN, which then goes to the platform routine.
-    if !(x.abs() < REDUCTION_LIMIT) {
+    // NaN fails `is_finite` and goes to the platform routine too.
+    if !x.is_finite() || x.abs() >= REDUCTION_LIMIT {
         return x.sin_cos();
     }
     // n = nearest integer to x / (pi/2), by the add-and-subtract trick.

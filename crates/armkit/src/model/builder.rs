@@ -86,7 +86,7 @@ impl JointSpec {
 
 #[derive(Clone, Debug)]
 enum Element {
-    Joint(JointSpec),
+    Joint(Box<JointSpec>),
     Fixed(Pose),
 }
 
@@ -138,7 +138,7 @@ impl ModelBuilder {
 
     /// Appends a moving joint.
     pub fn joint(mut self, joint: JointSpec) -> Self {
-        self.elements.push(Element::Joint(joint));
+        self.elements.push(Element::Joint(Box::new(joint)));
         self
     }
 

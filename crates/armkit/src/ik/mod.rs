@@ -1,0 +1,1 @@
+//! ik (placeholder: being written).

@@ -1,0 +1,1 @@
+//! redundancy (placeholder: being written).

@@ -1,0 +1,1 @@
+//! URDF loading (issue 3). Placeholder: being written.
