@@ -31,7 +31,10 @@ impl SimplySupportedBeam {
             ("second_moment", second_moment),
         ] {
             if !(value.is_finite() && value > 0.0) {
-                return Err(Error::invalid_argument(name, format!("must be finite and > 0, got {value}")));
+                return Err(Error::invalid_argument(
+                    name,
+                    format!("must be finite and > 0, got {value}"),
+                ));
             }
         }
         Ok(SimplySupportedBeam {
@@ -63,7 +66,10 @@ impl SimplySupportedBeam {
         if !(position.is_finite() && (0.0..=self.length).contains(&position)) {
             return Err(Error::invalid_argument(
                 "position",
-                format!("must lie on the span [0, {}] m, got {position}", self.length),
+                format!(
+                    "must lie on the span [0, {}] m, got {position}",
+                    self.length
+                ),
             ));
         }
         Ok(())

@@ -156,11 +156,16 @@ pub fn parse_str(text: &str, format: Format, source_name: &str) -> Result<Model>
 }
 
 fn parse_json(text: &str) -> std::result::Result<(DescriptionFile, Option<String>), String> {
-    let value: serde_json::Value = serde_json::from_str(text).map_err(|e| format!("invalid JSON: {e}"))?;
+    let value: serde_json::Value =
+        serde_json::from_str(text).map_err(|e| format!("invalid JSON: {e}"))?;
     match value.get("dh") {
         Some(dh) => {
-            let robot = value.get("robot").and_then(|r| r.as_str()).map(str::to_string);
-            let file = DescriptionFile::deserialize(dh).map_err(|e| format!("in the `dh` block: {e}"))?;
+            let robot = value
+                .get("robot")
+                .and_then(|r| r.as_str())
+                .map(str::to_string);
+            let file =
+                DescriptionFile::deserialize(dh).map_err(|e| format!("in the `dh` block: {e}"))?;
             Ok((file, robot))
         }
         None => {
@@ -171,7 +176,8 @@ fn parse_json(text: &str) -> std::result::Result<(DescriptionFile, Option<String
 }
 
 fn parse_toml(text: &str) -> std::result::Result<(DescriptionFile, Option<String>), String> {
-    let file: DescriptionFile = toml::from_str(text).map_err(|e| e.to_string().trim_end().to_string())?;
+    let file: DescriptionFile =
+        toml::from_str(text).map_err(|e| e.to_string().trim_end().to_string())?;
     Ok((file, None))
 }
 
@@ -211,7 +217,9 @@ fn build(file: DescriptionFile, default_name: Option<String>, source_name: &str)
         ))
     })?;
     if file.links.is_empty() {
-        return Err(file_error("field `links`: the chain has no links (an empty chain)".into()));
+        return Err(file_error(
+            "field `links`: the chain has no links (an empty chain)".into(),
+        ));
     }
     let base = matrix_pose(&file.base).map_err(|r| file_error(format!("field `base`: {r}")))?;
     let tool = matrix_pose(&file.tool).map_err(|r| file_error(format!("field `tool`: {r}")))?;
@@ -225,13 +233,21 @@ fn build(file: DescriptionFile, default_name: Option<String>, source_name: &str)
             })
         })
         .collect::<Result<Vec<_>>>()?;
-    let name = file.name.or(default_name).unwrap_or_else(|| "robot".to_string());
-    Model::from_dh_with_transforms(&name, convention, &links, base, tool).map_err(|e| file_error(e.to_string()))
+    let name = file
+        .name
+        .or(default_name)
+        .unwrap_or_else(|| "robot".to_string());
+    Model::from_dh_with_transforms(&name, convention, &links, base, tool)
+        .map_err(|e| file_error(e.to_string()))
 }
 
 fn link_from_entry(entry: &LinkEntry) -> std::result::Result<DhLink, (&'static str, String)> {
-    let kind = parse_kind(&entry.kind, entry.qlim.is_some())
-        .ok_or_else(|| ("type", format!("expected \"R\" or \"P\", got {:?}", entry.kind)))?;
+    let kind = parse_kind(&entry.kind, entry.qlim.is_some()).ok_or_else(|| {
+        (
+            "type",
+            format!("expected \"R\" or \"P\", got {:?}", entry.kind),
+        )
+    })?;
     let (lower, upper) = match entry.qlim {
         Some([lower, upper]) => (lower, upper),
         None => (f64::NEG_INFINITY, f64::INFINITY),
@@ -248,7 +264,10 @@ fn link_from_entry(entry: &LinkEntry) -> std::result::Result<DhLink, (&'static s
         (Some(mass), com, inertia) => Some(LinkInertia {
             mass,
             com: com.map(Vector3::from).unwrap_or_else(Vector3::zeros),
-            inertia: inertia.as_ref().map(InertiaEntry::matrix).unwrap_or_else(Matrix3::zeros),
+            inertia: inertia
+                .as_ref()
+                .map(InertiaEntry::matrix)
+                .unwrap_or_else(Matrix3::zeros),
         }),
     };
     Ok(DhLink {

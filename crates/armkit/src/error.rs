@@ -58,9 +58,7 @@ pub enum Error {
     },
 
     /// A joint position lies outside its limits.
-    #[error(
-        "joint {joint} (`{name}`) = {value} is outside its limits [{lower}, {upper}]"
-    )]
+    #[error("joint {joint} (`{name}`) = {value} is outside its limits [{lower}, {upper}]")]
     OutOfLimits {
         /// 0-based joint index.
         joint: usize,

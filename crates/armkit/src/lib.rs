@@ -25,7 +25,10 @@
 
 #![warn(missing_docs)]
 // Library code returns errors; it never panics on user input.
-#![cfg_attr(not(test), deny(clippy::unwrap_used, clippy::expect_used, clippy::panic))]
+#![cfg_attr(
+    not(test),
+    deny(clippy::unwrap_used, clippy::expect_used, clippy::panic)
+)]
 
 pub mod beam;
 #[cfg(feature = "io")]

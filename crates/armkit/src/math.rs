@@ -160,10 +160,7 @@ impl Pose {
         if rotation.determinant() < 0.0 {
             return Err("rotation block is a reflection (determinant -1)".into());
         }
-        Ok(Pose::new(
-            rotation,
-            m.fixed_view::<3, 1>(0, 3).into_owned(),
-        ))
+        Ok(Pose::new(rotation, m.fixed_view::<3, 1>(0, 3).into_owned()))
     }
 
     /// A transform from the row-major rows of a 4 x 4 homogeneous matrix, checked
@@ -190,7 +187,10 @@ impl Pose {
 
     /// True when every entry is finite.
     pub fn is_finite(&self) -> bool {
-        self.rotation.iter().chain(self.translation.iter()).all(|v| v.is_finite())
+        self.rotation
+            .iter()
+            .chain(self.translation.iter())
+            .all(|v| v.is_finite())
     }
 }
 

@@ -77,7 +77,8 @@ pub const BUILTIN: &[BuiltinRobot] = &[
     BuiltinRobot {
         name: "space6r",
         dof: 6,
-        description: "Seed 004's 6R space arm, PUMA-like with a spherical wrist, with mass properties",
+        description:
+            "Seed 004's 6R space arm, PUMA-like with a spherical wrist, with mass properties",
         build: space6r,
     },
     BuiltinRobot {
@@ -166,7 +167,13 @@ pub fn panda() -> Result<Model> {
         link
     });
     let tool = Pose::trans_z(0.103) * Pose::rot_z(-PI / 4.0);
-    Model::from_dh_with_transforms("panda", DhConvention::Modified, &links, Pose::identity(), tool)
+    Model::from_dh_with_transforms(
+        "panda",
+        DhConvention::Modified,
+        &links,
+        Pose::identity(),
+        tool,
+    )
 }
 
 /// The Stanford arm (RRPRRR), standard DH as in RTB's `models.DH.Stanford`:
@@ -345,18 +352,40 @@ pub fn gantry9() -> Result<Model> {
     let vmax_prismatic = 0.6;
     let vmax_rotary = PI;
     let links = [
-        DhLink::prismatic(0.0, 0.0, 0.0).with_limits(0.0, 9.0).with_velocity_limit(vmax_prismatic),
+        DhLink::prismatic(0.0, 0.0, 0.0)
+            .with_limits(0.0, 9.0)
+            .with_velocity_limit(vmax_prismatic),
         DhLink::prismatic(FRAC_PI_2, 0.0, -FRAC_PI_2)
             .with_limits(0.0, 5.0)
             .with_velocity_limit(vmax_prismatic),
-        DhLink::prismatic(0.0, 0.0, FRAC_PI_2).with_limits(0.0, 5.0).with_velocity_limit(vmax_prismatic),
-        DhLink::revolute(0.30, 0.0, 0.0).with_limits(-2.62, 2.62).with_velocity_limit(vmax_rotary),
-        DhLink::revolute(0.0, 0.15, -FRAC_PI_2).with_limits(-0.78, 1.22).with_velocity_limit(vmax_rotary),
-        DhLink::revolute(0.0, 0.70, 0.0).with_limits(-1.22, 1.05).with_velocity_limit(vmax_rotary),
-        DhLink::revolute(0.67, 0.11, FRAC_PI_2).with_limits(-3.14, 3.14).with_velocity_limit(vmax_rotary),
-        DhLink::revolute(0.0, 0.0, -FRAC_PI_2).with_limits(-2.18, 2.18).with_velocity_limit(vmax_rotary),
-        DhLink::revolute(0.0, 0.0, FRAC_PI_2).with_limits(-6.28, 6.28).with_velocity_limit(vmax_rotary),
+        DhLink::prismatic(0.0, 0.0, FRAC_PI_2)
+            .with_limits(0.0, 5.0)
+            .with_velocity_limit(vmax_prismatic),
+        DhLink::revolute(0.30, 0.0, 0.0)
+            .with_limits(-2.62, 2.62)
+            .with_velocity_limit(vmax_rotary),
+        DhLink::revolute(0.0, 0.15, -FRAC_PI_2)
+            .with_limits(-0.78, 1.22)
+            .with_velocity_limit(vmax_rotary),
+        DhLink::revolute(0.0, 0.70, 0.0)
+            .with_limits(-1.22, 1.05)
+            .with_velocity_limit(vmax_rotary),
+        DhLink::revolute(0.67, 0.11, FRAC_PI_2)
+            .with_limits(-3.14, 3.14)
+            .with_velocity_limit(vmax_rotary),
+        DhLink::revolute(0.0, 0.0, -FRAC_PI_2)
+            .with_limits(-2.18, 2.18)
+            .with_velocity_limit(vmax_rotary),
+        DhLink::revolute(0.0, 0.0, FRAC_PI_2)
+            .with_limits(-6.28, 6.28)
+            .with_velocity_limit(vmax_rotary),
     ];
     let base = Pose::trans_z(GANTRY9_BEAM_HEIGHT) * Pose::rot_y(FRAC_PI_2);
-    Model::from_dh_with_transforms("gantry9", DhConvention::Modified, &links, base, Pose::trans_z(0.10))
+    Model::from_dh_with_transforms(
+        "gantry9",
+        DhConvention::Modified,
+        &links,
+        base,
+        Pose::trans_z(0.10),
+    )
 }

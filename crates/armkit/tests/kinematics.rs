@@ -17,10 +17,16 @@ fn jacobian_matches_finite_differences_on_every_builtin_robot() {
         let mut data = Data::new(&model);
         for _ in 0..50 {
             let q = random_configuration(&model, &mut rng);
-            let analytic = jacobian(&model, &mut data, &q, JacobianFrame::World).unwrap().clone();
+            let analytic = jacobian(&model, &mut data, &q, JacobianFrame::World)
+                .unwrap()
+                .clone();
             let numeric = finite_difference_jacobian(&model, &q, 1e-6);
             let error = (&analytic - &numeric).amax();
-            assert!(error < 1e-8, "{}: |J - J_fd| = {error:e} at {q:?}", entry.name);
+            assert!(
+                error < 1e-8,
+                "{}: |J - J_fd| = {error:e} at {q:?}",
+                entry.name
+            );
         }
     }
 }
@@ -30,9 +36,13 @@ fn end_effector_jacobian_is_the_world_jacobian_in_tool_axes() {
     let model = armkit::robots::panda().unwrap();
     let mut data = Data::new(&model);
     let q = [0.3, -0.5, 0.2, -2.0, 0.4, 1.8, -0.6];
-    let world = jacobian(&model, &mut data, &q, JacobianFrame::World).unwrap().clone();
+    let world = jacobian(&model, &mut data, &q, JacobianFrame::World)
+        .unwrap()
+        .clone();
     let rotation = data.end_effector_pose().rotation;
-    let local = jacobian(&model, &mut data, &q, JacobianFrame::EndEffector).unwrap().clone();
+    let local = jacobian(&model, &mut data, &q, JacobianFrame::EndEffector)
+        .unwrap()
+        .clone();
     let mut rotated = Matrix6xX::zeros(7);
     for c in 0..7 {
         let v = rotation * local.fixed_view::<3, 1>(0, c);
@@ -53,7 +63,9 @@ fn joint_frames_end_at_the_end_effector_through_the_tool() {
     let rebuilt = last * *model.end_effector_placement();
     assert!((rebuilt.to_matrix4() - pose.to_matrix4()).amax() < 1e-15);
     // Modified DH: joint frames are the DH frames; the tool is the tool.
-    assert!((model.end_effector_placement().to_matrix4() - model.tool().to_matrix4()).amax() < 1e-15);
+    assert!(
+        (model.end_effector_placement().to_matrix4() - model.tool().to_matrix4()).amax() < 1e-15
+    );
 }
 
 #[test]
@@ -62,7 +74,8 @@ fn base_transform_moves_everything_rigidly() {
     let (convention, links) = model.dh_table().unwrap();
     let base = Pose::from_xyz_rpy([1.0, -2.0, 0.5], [0.1, 0.2, 0.3]);
     let moved =
-        Model::from_dh_with_transforms("ur5-moved", convention, links, base, Pose::identity()).unwrap();
+        Model::from_dh_with_transforms("ur5-moved", convention, links, base, Pose::identity())
+            .unwrap();
     let q = [0.4, -1.1, 1.3, 0.2, -0.7, 2.0];
     let mut data = Data::new(&model);
     let mut moved_data = Data::new(&moved);
@@ -78,11 +91,20 @@ fn wrong_size_non_finite_and_foreign_data_are_errors() {
     let err = forward_kinematics(&model, &mut data, &[0.0; 5]).unwrap_err();
     assert_eq!(
         err,
-        Error::DimensionMismatch { what: "joint_positions", expected: 6, got: 5 }
+        Error::DimensionMismatch {
+            what: "joint_positions",
+            expected: 6,
+            got: 5
+        }
     );
     assert_eq!(err.to_string(), "joint_positions: expected 6 values, got 5");
-    let err = jacobian(&model, &mut data, &[0.0, 0.0, f64::NAN, 0.0, 0.0, 0.0], JacobianFrame::World)
-        .unwrap_err();
+    let err = jacobian(
+        &model,
+        &mut data,
+        &[0.0, 0.0, f64::NAN, 0.0, 0.0, 0.0],
+        JacobianFrame::World,
+    )
+    .unwrap_err();
     assert_eq!(err.to_string(), "joint_positions[2] is not finite (NaN)");
     let panda = armkit::robots::panda().unwrap();
     let mut panda_data = Data::new(&panda);
@@ -93,7 +115,9 @@ fn wrong_size_non_finite_and_foreign_data_are_errors() {
 #[test]
 fn limits_check_names_the_joint() {
     let model = armkit::robots::panda().unwrap();
-    let err = model.check_limits(&[0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]).unwrap_err();
+    let err = model
+        .check_limits(&[0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+        .unwrap_err();
     assert_eq!(
         err.to_string(),
         "joint 3 (`q4`) = 0 is outside its limits [-3.0718, -0.0698]"

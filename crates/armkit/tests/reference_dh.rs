@@ -21,8 +21,14 @@ fn check_against_reference(model: &Model, file: &str) {
         let j = jacobian(model, &mut data, &sample.q, JacobianFrame::World).unwrap();
         worst_jacobian = worst_jacobian.max(jacobian_error(j, &sample.jacobian));
     }
-    assert!(worst_pose < POSE_TOLERANCE, "{file}: pose error {worst_pose:e}");
-    assert!(worst_jacobian < JACOBIAN_TOLERANCE, "{file}: Jacobian error {worst_jacobian:e}");
+    assert!(
+        worst_pose < POSE_TOLERANCE,
+        "{file}: pose error {worst_pose:e}"
+    );
+    assert!(
+        worst_jacobian < JACOBIAN_TOLERANCE,
+        "{file}: Jacobian error {worst_jacobian:e}"
+    );
 }
 
 #[test]
@@ -56,11 +62,13 @@ fn the_dh_block_alone_loads_as_json_and_as_toml() {
     let value: serde_json::Value = serde_json::from_str(&text).unwrap();
     let dh_json = serde_json::to_string_pretty(&value["dh"]).unwrap();
     let model =
-        armkit::description::parse_str(&dh_json, armkit::description::Format::Json, "dh.json").unwrap();
+        armkit::description::parse_str(&dh_json, armkit::description::Format::Json, "dh.json")
+            .unwrap();
     check_against_reference(&model, "reference_panda_mdh_rtb.json");
     let dh_toml = toml::to_string(&value["dh"]).unwrap();
     let model =
-        armkit::description::parse_str(&dh_toml, armkit::description::Format::Toml, "dh.toml").unwrap();
+        armkit::description::parse_str(&dh_toml, armkit::description::Format::Toml, "dh.toml")
+            .unwrap();
     check_against_reference(&model, "reference_panda_mdh_rtb.json");
 }
 
@@ -74,11 +82,19 @@ fn builtin_limits_match_the_reference_limits() {
         let model = armkit::robots::by_name(robot).unwrap();
         let text = std::fs::read_to_string(data_path(file)).unwrap();
         let value: serde_json::Value = serde_json::from_str(&text).unwrap();
-        let lower: Vec<f64> = serde_json::from_value(value["joint_limits"]["lower"].clone()).unwrap();
-        let upper: Vec<f64> = serde_json::from_value(value["joint_limits"]["upper"].clone()).unwrap();
+        let lower: Vec<f64> =
+            serde_json::from_value(value["joint_limits"]["lower"].clone()).unwrap();
+        let upper: Vec<f64> =
+            serde_json::from_value(value["joint_limits"]["upper"].clone()).unwrap();
         for (j, joint) in model.joints().iter().enumerate() {
-            assert!((joint.limits.lower - lower[j]).abs() < 1e-12, "{robot} joint {j}");
-            assert!((joint.limits.upper - upper[j]).abs() < 1e-12, "{robot} joint {j}");
+            assert!(
+                (joint.limits.lower - lower[j]).abs() < 1e-12,
+                "{robot} joint {j}"
+            );
+            assert!(
+                (joint.limits.upper - upper[j]).abs() < 1e-12,
+                "{robot} joint {j}"
+            );
         }
     }
 }

@@ -13,7 +13,12 @@ pub fn singular_values<R: Dim, C: Dim, S: RawStorage<f64, R, C>>(
 ) -> Vec<f64> {
     let (rows, cols) = jacobian.shape();
     let copy = DMatrix::from_fn(rows, cols, |r, c| jacobian[(r, c)]);
-    let mut values: Vec<f64> = copy.svd(false, false).singular_values.iter().copied().collect();
+    let mut values: Vec<f64> = copy
+        .svd(false, false)
+        .singular_values
+        .iter()
+        .copied()
+        .collect();
     values.sort_by(|a, b| b.total_cmp(a));
     values
 }
@@ -21,7 +26,9 @@ pub fn singular_values<R: Dim, C: Dim, S: RawStorage<f64, R, C>>(
 /// Yoshikawa's manipulability: the product of the singular values, i.e.
 /// `sqrt(det(J J'))` when J has at least as many columns as rows (and
 /// `sqrt(det(J' J))` otherwise). Units mix those of the rows; zero at a singularity.
-pub fn manipulability<R: Dim, C: Dim, S: RawStorage<f64, R, C>>(jacobian: &Matrix<f64, R, C, S>) -> f64 {
+pub fn manipulability<R: Dim, C: Dim, S: RawStorage<f64, R, C>>(
+    jacobian: &Matrix<f64, R, C, S>,
+) -> f64 {
     singular_values(jacobian).iter().product()
 }
 
@@ -34,7 +41,9 @@ pub fn smallest_singular_value<R: Dim, C: Dim, S: RawStorage<f64, R, C>>(
 }
 
 /// 2-norm condition number `sigma_max / sigma_min`; infinite at a singularity.
-pub fn condition_number<R: Dim, C: Dim, S: RawStorage<f64, R, C>>(jacobian: &Matrix<f64, R, C, S>) -> f64 {
+pub fn condition_number<R: Dim, C: Dim, S: RawStorage<f64, R, C>>(
+    jacobian: &Matrix<f64, R, C, S>,
+) -> f64 {
     let values = singular_values(jacobian);
     match (values.first(), values.last()) {
         (Some(&largest), Some(&smallest)) if smallest > 0.0 => largest / smallest,

@@ -168,7 +168,9 @@ pub fn jacobian<'d>(
         // J0 M: column(source) += slope * column(target).
         let (_, slope) = coupling.law.offset_and_slope(q[coupling.source]);
         let target = data.jacobian.column(coupling.target).into_owned();
-        data.jacobian.column_mut(coupling.source).axpy(slope, &target, 1.0);
+        data.jacobian
+            .column_mut(coupling.source)
+            .axpy(slope, &target, 1.0);
     }
     if frame == JacobianFrame::EndEffector {
         let rt = data.end_effector.rotation.transpose();

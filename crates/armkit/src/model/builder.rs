@@ -40,7 +40,11 @@ impl JointSpec {
 
     /// A revolute joint about z with the given position limits (rad).
     pub fn revolute(name: impl Into<String>, lower: f64, upper: f64) -> Self {
-        Self::new(name, JointKind::Revolute, JointLimits::position(lower, upper))
+        Self::new(
+            name,
+            JointKind::Revolute,
+            JointLimits::position(lower, upper),
+        )
     }
 
     /// A continuous (unlimited, wrapping) revolute joint about z.
@@ -50,7 +54,11 @@ impl JointSpec {
 
     /// A prismatic joint along z with the given position limits (m).
     pub fn prismatic(name: impl Into<String>, lower: f64, upper: f64) -> Self {
-        Self::new(name, JointKind::Prismatic, JointLimits::position(lower, upper))
+        Self::new(
+            name,
+            JointKind::Prismatic,
+            JointLimits::position(lower, upper),
+        )
     }
 
     /// Sets the joint frame's placement in the parent link frame.
@@ -232,7 +240,13 @@ fn validate_joint(spec: &JointSpec) -> std::result::Result<(), (&'static str, St
     check_transform(&spec.origin).map_err(|r| ("origin", r))?;
     let axis_norm = spec.axis.norm();
     if !(axis_norm.is_finite() && axis_norm > 1e-12) {
-        return Err(("axis", format!("must be a finite non-zero vector, got {:?}", spec.axis.as_slice())));
+        return Err((
+            "axis",
+            format!(
+                "must be a finite non-zero vector, got {:?}",
+                spec.axis.as_slice()
+            ),
+        ));
     }
     let limits = &spec.limits;
     if limits.lower.is_nan() || limits.upper.is_nan() {
@@ -241,7 +255,10 @@ fn validate_joint(spec: &JointSpec) -> std::result::Result<(), (&'static str, St
     if limits.lower > limits.upper {
         return Err((
             "qlim",
-            format!("lower limit {} is above upper limit {}", limits.lower, limits.upper),
+            format!(
+                "lower limit {} is above upper limit {}",
+                limits.lower, limits.upper
+            ),
         ));
     }
     if spec.kind == JointKind::Continuous && limits.is_bounded() {
@@ -278,7 +295,10 @@ mod tests {
             .build()
             .unwrap_err();
         let text = err.to_string();
-        assert!(text.contains("link 1") && text.contains("`b`") && text.contains("qlim"), "{text}");
+        assert!(
+            text.contains("link 1") && text.contains("`b`") && text.contains("qlim"),
+            "{text}"
+        );
     }
 
     #[test]

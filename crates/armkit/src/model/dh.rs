@@ -131,7 +131,10 @@ impl DhLink {
         let x_part = Pose::trans_x(self.a) * Pose::rot_x(self.alpha);
         match convention {
             DhConvention::Standard => (z_part, x_part),
-            DhConvention::Modified => (Pose::rot_x(self.alpha) * Pose::trans_x(self.a) * z_part, Pose::identity()),
+            DhConvention::Modified => (
+                Pose::rot_x(self.alpha) * Pose::trans_x(self.a) * z_part,
+                Pose::identity(),
+            ),
         }
     }
 }

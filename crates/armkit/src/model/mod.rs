@@ -156,14 +156,20 @@ impl LinkInertia {
             return Err(("mass", format!("must be finite and > 0, got {}", self.mass)));
         }
         if !self.com.iter().all(|v| v.is_finite()) {
-            return Err(("com", format!("must be finite, got {:?}", self.com.as_slice())));
+            return Err((
+                "com",
+                format!("must be finite, got {:?}", self.com.as_slice()),
+            ));
         }
         if !self.inertia.iter().all(|v| v.is_finite()) {
             return Err(("inertia", "must be finite".into()));
         }
         let asymmetry = (self.inertia - self.inertia.transpose()).amax();
         if asymmetry > 1e-9 * self.inertia.amax().max(1.0) {
-            return Err(("inertia", format!("must be symmetric (asymmetry {asymmetry:e})")));
+            return Err((
+                "inertia",
+                format!("must be symmetric (asymmetry {asymmetry:e})"),
+            ));
         }
         let min_eigenvalue = self.inertia.symmetric_eigenvalues().min();
         if min_eigenvalue < -1e-12 * self.inertia.amax().max(1.0) {

@@ -1,0 +1,38 @@
+//! `armkit robots`: the built-in robots.
+
+use clap::Args;
+
+use crate::common::{print_json, CliResult, Outcome};
+
+/// Lists the built-in robots with their DOF and a one-line description.
+#[derive(Args, Debug)]
+pub struct RobotsArgs {
+    /// Print JSON instead of a table.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Runs `armkit robots`.
+pub fn run(args: &RobotsArgs) -> CliResult<Outcome> {
+    if args.json {
+        let list: Vec<_> = armkit::robots::BUILTIN
+            .iter()
+            .map(
+                |r| serde_json::json!({"name": r.name, "dof": r.dof, "description": r.description}),
+            )
+            .collect();
+        print_json(&serde_json::Value::Array(list))?;
+    } else {
+        print!("{}", table());
+    }
+    Ok(Outcome::Success)
+}
+
+/// The text table of built-in robots.
+pub fn table() -> String {
+    let mut out = format!("{:<10} {:>3}  {}\n", "robot", "dof", "description");
+    for r in armkit::robots::BUILTIN {
+        out += &format!("{:<10} {:>3}  {}\n", r.name, r.dof, r.description);
+    }
+    out
+}
