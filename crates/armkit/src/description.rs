@@ -176,9 +176,32 @@ fn parse_json(text: &str) -> std::result::Result<(DescriptionFile, Option<String
 }
 
 fn parse_toml(text: &str) -> std::result::Result<(DescriptionFile, Option<String>), String> {
-    let file: DescriptionFile =
-        toml::from_str(text).map_err(|e| e.to_string().trim_end().to_string())?;
+    let file: DescriptionFile = toml::from_str(text).map_err(|e| toml_error_line(text, &e))?;
     Ok((file, None))
+}
+
+/// A TOML error on one line: `line L, column C (`the line`): message`.
+pub(crate) fn toml_error_line(text: &str, error: &toml::de::Error) -> String {
+    let message = error.message().trim().replace('\n', " ");
+    match error.span() {
+        Some(span) => {
+            let (line, column) = line_and_column(text, span.start);
+            let source_line = text.lines().nth(line - 1).unwrap_or("").trim();
+            format!("line {line}, column {column} (`{source_line}`): {message}")
+        }
+        None => message,
+    }
+}
+
+/// 1-based line and column of a byte offset in `text`.
+pub(crate) fn line_and_column(text: &str, offset: usize) -> (usize, usize) {
+    let before = text.get(..offset).unwrap_or(text);
+    let line = before.matches('\n').count() + 1;
+    let column = before
+        .rfind('\n')
+        .map_or(before.len(), |nl| before.len() - nl - 1)
+        + 1;
+    (line, column)
 }
 
 fn parse_convention(text: &str) -> Option<DhConvention> {
