@@ -59,7 +59,16 @@ fn robots_lists_every_builtin() {
         .collect();
     assert_eq!(
         names,
-        ["puma560", "ur5", "panda", "stanford", "arm4", "space6r", "gantry9"]
+        [
+            "puma560",
+            "ur5",
+            "panda",
+            "stanford",
+            "arm4",
+            "space6r",
+            "gantry9",
+            "gantry9-flex"
+        ]
     );
     assert_eq!(list[6]["dof"], 9);
 }
@@ -108,7 +117,7 @@ fn bad_input_is_a_one_line_error_with_a_non_zero_exit() {
     let cases: [(&[&str], &str); 6] = [
         (&["fk", "--robot", "ur5", "--q", "0,0,0"], "error: --q: expected 6 values, got 3"),
         (&["fk", "--robot", "ur5", "--q", "0,0,zero,0,0,0"], "error: --q: value 3: `zero` is not a number"),
-        (&["fk", "--robot", "r2d2", "--q", "0"], "error: unknown robot `r2d2`; the built-in robots are: puma560, ur5, panda, stanford, arm4, space6r, gantry9"),
+        (&["fk", "--robot", "r2d2", "--q", "0"], "error: unknown robot `r2d2`; the built-in robots are: puma560, ur5, panda, stanford, arm4, space6r, gantry9, gantry9-flex"),
         (
             &["fk", "--robot", "panda", "--q", "0,0,0,0,0,0,0"],
             "error: joint 3 (`q4`) = 0 is outside its limits [-3.0718, -0.0698] (pass --allow-out-of-limits to evaluate anyway)",

@@ -9,6 +9,7 @@
 //! | `arm4` | 4 | standard DH | seed 002's 4-DOF arm, our dimensions |
 //! | `space6r` | 6 | standard DH | seed 004's 6R space arm, PUMA-like, paper's lengths |
 //! | `gantry9` | 9 (PPP + 6R) | modified DH | seed 000's gantry, our dimensions |
+//! | `gantry9-flex` | 9 (PPP + 6R) | modified DH + beam deflection | `gantry9` on seed 000's flexible beam |
 //!
 //! The published arms reproduce the Robotics Toolbox tables exactly (checked
 //! against `tests/data/reference_*_dh.json`). The seed robots' tables are not
@@ -86,6 +87,12 @@ pub const BUILTIN: &[BuiltinRobot] = &[
         dof: 9,
         description: "Seed 000's 9-DOF gantry: 3 prismatic axes carrying a 6R arm (rigid beam)",
         build: gantry9,
+    },
+    BuiltinRobot {
+        name: "gantry9-flex",
+        dof: 9,
+        description: "gantry9 on seed 000's flexible beam: 400 kg carriage, E = 200 GPa, 0.2 m square, L = 10 m",
+        build: gantry9_flex,
     },
 ];
 
@@ -388,4 +395,45 @@ pub fn gantry9() -> Result<Model> {
         base,
         Pose::trans_z(0.10),
     )
+}
+
+/// Seed 000's 9-DOF gantry on its flexible beam: [`gantry9`] whose carriage
+/// sinks by the beam's deflection, `d3' = d3 + w(d2)` (eq 4 corrected), with
+/// the Jacobian `J = J0 M`, `m2 = dw/dd2` (eqs 8-10 corrected).
+///
+/// The beam is [`crate::beam::CarriageDeflection::seed000`]: alloy steel,
+/// `E = 200 GPa`, solid square section 0.2 m (`I = 1.333e-4 m^4`), span
+/// [`GANTRY9_BEAM_LENGTH`] = 10 m, carriage load 400 kg x 10 m/s^2 = 4000 N
+/// (the `g` that reproduces Table 1). `d2` is the carriage's distance from
+/// the beam's left support; over its range [0, 5] m the deflection grows from
+/// 0 to 3.125 mm. Named `gantry9-flex`; see [`gantry9_with_beam`] for other
+/// loads or a rigid beam.
+pub fn gantry9_flex() -> Result<Model> {
+    gantry9_with_beam(&crate::beam::GantryBeam::default())
+}
+
+/// [`gantry9`] with the beam `beam`: [`crate::beam::GantryBeam::Rigid`] gives
+/// back [`gantry9`] exactly (same name, same model); a flexible beam couples
+/// joint 3 (index 2) to the carriage position `d2` (index 1) and names the
+/// model `gantry9-flex`. Error: a beam shorter than `d2`'s travel (5 m).
+pub fn gantry9_with_beam(beam: &crate::beam::GantryBeam) -> Result<Model> {
+    let rigid = gantry9()?;
+    match beam {
+        crate::beam::GantryBeam::Rigid => Ok(rigid),
+        crate::beam::GantryBeam::Flexible(deflection) => {
+            let travel = rigid.joints()[1].limits.upper;
+            if deflection.beam.length() < travel {
+                return Err(Error::invalid_argument(
+                    "beam",
+                    format!(
+                        "span {} m is shorter than the carriage's travel d2 <= {travel} m",
+                        deflection.beam.length()
+                    ),
+                ));
+            }
+            Ok(rigid
+                .with_coupling(beam.coupling(1, 2))?
+                .renamed("gantry9-flex"))
+        }
+    }
 }

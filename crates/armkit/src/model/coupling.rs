@@ -21,6 +21,14 @@ impl CouplingLaw {
             CouplingLaw::BeamDeflection(beam) => beam.deflection_and_slope(source_position),
         }
     }
+
+    /// Checks the law's parameters (a beam deflection: the carriage weight
+    /// is finite and >= 0).
+    pub fn validate(&self) -> Result<()> {
+        match self {
+            CouplingLaw::BeamDeflection(beam) => beam.validate(),
+        }
+    }
 }
 
 /// Joint `target` moves by `q[target] + f(q[source])`.
@@ -41,6 +49,7 @@ pub struct JointCoupling {
 impl JointCoupling {
     pub(crate) fn validate(&self, model: &Model) -> Result<()> {
         let dof = model.dof();
+        self.law.validate()?;
         let bad = |reason: String| Error::invalid_argument("coupling", reason);
         if self.source >= dof || self.target >= dof {
             return Err(bad(format!(
