@@ -1,1 +1,0 @@
-//! URDF loading (issue 3). Placeholder: being written.
