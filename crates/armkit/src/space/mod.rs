@@ -389,6 +389,22 @@ impl SpaceData {
         &self.arm
     }
 
+    /// Moves every cached position by `shift` (m, inertial frame): the
+    /// kinematics of the same configuration with the base translated.
+    fn translate(&mut self, shift: &Vector3<f64>) {
+        for p in self
+            .joint_origins
+            .iter_mut()
+            .chain(self.link_coms.iter_mut())
+        {
+            *p += shift;
+        }
+        self.base_pose.translation += shift;
+        self.base_com += shift;
+        self.com += shift;
+        self.end_effector.translation += shift;
+    }
+
     fn check_model(&self, model: &FreeFloatingModel) -> Result<()> {
         if self.dof != model.dof() {
             return Err(Error::DimensionMismatch {

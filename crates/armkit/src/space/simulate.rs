@@ -61,9 +61,11 @@ pub fn step(
     }
     // P = 0: r_g is constant. Place the base so that it is.
     update_kinematics(model, data, &state.base, &state.q)?;
-    state.base.translation += com - data.com;
+    let shift = com - data.com;
+    state.base.translation += shift;
     // Leave the workspace describing the new state (centre of mass, tip pose).
-    update_kinematics(model, data, &state.base, &state.q)
+    data.translate(&shift);
+    Ok(())
 }
 
 /// The base's body-frame angular velocity (rad/s) at joint positions
