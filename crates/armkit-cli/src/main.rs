@@ -27,6 +27,8 @@ enum Command {
     Fk(commands::fk::FkArgs),
     /// The geometric Jacobian.
     Jacobian(commands::fk::JacobianArgs),
+    /// Seed 000's flexible gantry beam: Table 1, error of a rigid model.
+    Beam(commands::beam::BeamArgs),
 }
 
 fn run(command: &Command) -> CliResult<Outcome> {
@@ -35,6 +37,7 @@ fn run(command: &Command) -> CliResult<Outcome> {
         Command::Robots(args) => commands::robots::run(args),
         Command::Fk(args) => commands::fk::run_fk(args),
         Command::Jacobian(args) => commands::fk::run_jacobian(args),
+        Command::Beam(args) => commands::beam::run(args),
     }
 }
 

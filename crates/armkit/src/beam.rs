@@ -257,7 +257,7 @@ impl SimplySupportedBeam {
     /// placed at `position` m from the left support:
     /// `w = F a^2 b^2 / (3 E I L)`, `b = L - a` (seed 000, eq 1).
     pub fn deflection_under_load(&self, position: f64, force: f64) -> Result<f64> {
-        self.check_on_span("position", position)?;
+        self.check_on_span(position, || "position".into())?;
         self.deflection(position, &[PointLoad::new(position, force)])
     }
 
@@ -268,10 +268,10 @@ impl SimplySupportedBeam {
         loads: &[PointLoad],
         term: impl Fn(Influence, f64) -> f64,
     ) -> Result<f64> {
-        self.check_on_span("x", x)?;
+        self.check_on_span(x, || "x".into())?;
         let mut total = 0.0;
         for (k, load) in loads.iter().enumerate() {
-            self.check_on_span(&format!("loads[{k}].position"), load.position)?;
+            self.check_on_span(load.position, || format!("loads[{k}].position"))?;
             if !load.force.is_finite() {
                 return Err(Error::invalid_argument(
                     format!("loads[{k}].force"),
@@ -283,12 +283,14 @@ impl SimplySupportedBeam {
         Ok(total)
     }
 
-    fn check_on_span(&self, name: &str, position: f64) -> Result<()> {
+    /// Checks `position` lies on `[0, L]`; `name` (only built on error, to
+    /// keep the success path allocation-free) names the argument.
+    fn check_on_span(&self, position: f64, name: impl FnOnce() -> String) -> Result<()> {
         if position.is_finite() && (0.0..=self.length).contains(&position) {
             Ok(())
         } else {
             Err(Error::invalid_argument(
-                name,
+                name(),
                 format!(
                     "must lie on the span [0, {}] m, got {position}",
                     self.length
@@ -486,7 +488,7 @@ impl TwoCarriageBeam {
     fn check_positions(&self, positions: [f64; 2]) -> Result<()> {
         for (k, position) in positions.iter().enumerate() {
             self.beam
-                .check_on_span(&format!("positions[{k}]"), *position)?;
+                .check_on_span(*position, || format!("positions[{k}]"))?;
         }
         Ok(())
     }
