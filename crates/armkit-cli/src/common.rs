@@ -78,6 +78,13 @@ pub struct RobotArgs {
 impl RobotArgs {
     /// Loads the selected robot model.
     pub fn load(&self) -> CliResult<Model> {
+        // clap's `requires = "urdf"` is bypassed when --robot (which conflicts
+        // with --urdf) is given (clap issue 4520), so check here.
+        if self.urdf.is_none() && (self.base.is_some() || self.tip.is_some()) {
+            return Err(CliError(
+                "--base and --tip choose the chain of a URDF: they need --urdf PATH".into(),
+            ));
+        }
         if let Some(name) = &self.robot {
             return Ok(armkit::robots::by_name(name)?);
         }
@@ -94,11 +101,11 @@ impl RobotArgs {
 }
 
 fn load_urdf(path: &std::path::Path, base: Option<&str>, tip: Option<&str>) -> CliResult<Model> {
-    let _ = (base, tip);
-    Err(CliError(format!(
-        "{}: URDF loading is not available yet",
-        path.display()
-    )))
+    let selection = armkit::urdf::ChainSelection {
+        base: base.map(str::to_string),
+        tip: tip.map(str::to_string),
+    };
+    Ok(armkit::urdf::load(path, &selection)?)
 }
 
 /// Parses one number: a decimal (`0.5`, `-1e-3`), or a multiple of pi
