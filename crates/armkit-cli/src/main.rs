@@ -1,6 +1,10 @@
 //! `armkit`: the command-line tool.
 
 mod commands;
+#[allow(dead_code)] // wired into the commands as they land
+mod plot;
+#[allow(dead_code)] // wired into `run` and `demo` as the scenarios land
+mod report;
 mod common;
 
 use std::process::ExitCode;
@@ -29,6 +33,8 @@ enum Command {
     Jacobian(commands::fk::JacobianArgs),
     /// Seed 000's flexible gantry beam: Table 1, error of a rigid model.
     Beam(commands::beam::BeamArgs),
+    /// Free-floating space robot (seed 004): generalized Jacobian, simulation, tracking.
+    Space(commands::space::SpaceArgs),
 }
 
 fn run(command: &Command) -> CliResult<Outcome> {
@@ -38,6 +44,7 @@ fn run(command: &Command) -> CliResult<Outcome> {
         Command::Fk(args) => commands::fk::run_fk(args),
         Command::Jacobian(args) => commands::fk::run_jacobian(args),
         Command::Beam(args) => commands::beam::run(args),
+        Command::Space(args) => commands::space::run(args),
     }
 }
 

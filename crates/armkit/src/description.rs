@@ -181,7 +181,8 @@ fn parse_toml(text: &str) -> std::result::Result<(DescriptionFile, Option<String
 }
 
 /// A TOML error on one line: `line L, column C (`the line`): message`.
-pub(crate) fn toml_error_line(text: &str, error: &toml::de::Error) -> String {
+/// Used for every TOML input of armkit (description and scenario files).
+pub fn toml_error_line(text: &str, error: &toml::de::Error) -> String {
     let message = error.message().trim().replace('\n', " ");
     match error.span() {
         Some(span) => {
@@ -194,7 +195,7 @@ pub(crate) fn toml_error_line(text: &str, error: &toml::de::Error) -> String {
 }
 
 /// 1-based line and column of a byte offset in `text`.
-pub(crate) fn line_and_column(text: &str, offset: usize) -> (usize, usize) {
+pub fn line_and_column(text: &str, offset: usize) -> (usize, usize) {
     let before = text.get(..offset).unwrap_or(text);
     let line = before.matches('\n').count() + 1;
     let column = before

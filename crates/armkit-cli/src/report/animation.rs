@@ -1,0 +1,156 @@
+//! The robot as a stick figure moving along the planned motion, rendered as
+//! inline SVG animated by a few lines of plain JavaScript (no library, no
+//! network).
+
+/// Frames of a stick figure: at each time, the chain's points in the world
+/// frame (base, joint origins, end effector), metres.
+#[derive(Clone, Debug, Default)]
+pub struct Animation {
+    /// Time of each frame, s.
+    pub times: Vec<f64>,
+    /// Points of each frame: base first, end effector last.
+    pub frames: Vec<Vec<[f64; 3]>>,
+}
+
+/// Camera azimuth and elevation of the oblique view, rad.
+const AZIMUTH: f64 = -0.9;
+const ELEVATION: f64 = 0.45;
+const WIDTH: f64 = 560.0;
+const HEIGHT: f64 = 420.0;
+const MAX_FRAMES: usize = 400;
+
+impl Animation {
+    /// An animation from frame times and points.
+    pub fn new(times: Vec<f64>, frames: Vec<Vec<[f64; 3]>>) -> Self {
+        Animation { times, frames }
+    }
+
+    /// Keeps at most `MAX_FRAMES` evenly spaced frames (the last one always).
+    fn decimated(&self) -> Vec<usize> {
+        let n = self.frames.len().min(self.times.len());
+        if n <= MAX_FRAMES {
+            return (0..n).collect();
+        }
+        let mut picks: Vec<usize> = (0..MAX_FRAMES)
+            .map(|k| k * (n - 1) / (MAX_FRAMES - 1))
+            .collect();
+        picks.dedup();
+        picks
+    }
+
+    /// The oblique projection of a world point onto the screen (right, up).
+    fn project(p: &[f64; 3]) -> (f64, f64) {
+        let (sa, ca) = AZIMUTH.sin_cos();
+        let (se, ce) = ELEVATION.sin_cos();
+        let right = -p[0] * sa + p[1] * ca;
+        let up = -p[0] * se * ca - p[1] * se * sa + p[2] * ce;
+        (right, up)
+    }
+
+    /// The HTML block: an SVG canvas, play/pause, a time slider and the script.
+    pub fn to_html(&self) -> String {
+        let picks = self.decimated();
+        if picks.is_empty() {
+            return String::new();
+        }
+        let projected: Vec<Vec<(f64, f64)>> = picks
+            .iter()
+            .map(|&k| self.frames[k].iter().map(Self::project).collect())
+            .collect();
+        let all = projected.iter().flatten();
+        let (mut x0, mut x1, mut y0, mut y1) = (
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        );
+        for &(x, y) in all {
+            x0 = x0.min(x);
+            x1 = x1.max(x);
+            y0 = y0.min(y);
+            y1 = y1.max(y);
+        }
+        let span = (x1 - x0).max(y1 - y0).max(1e-6);
+        let scale = 0.9 * (WIDTH.min(HEIGHT)) / span;
+        let (cx, cy) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
+        let to_screen = |(x, y): (f64, f64)| {
+            (
+                WIDTH / 2.0 + scale * (x - cx),
+                HEIGHT / 2.0 - scale * (y - cy),
+            )
+        };
+        let frames_json: Vec<String> = projected
+            .iter()
+            .map(|frame| {
+                let pts: Vec<String> = frame
+                    .iter()
+                    .map(|&p| {
+                        let (sx, sy) = to_screen(p);
+                        format!("[{sx:.1},{sy:.1}]")
+                    })
+                    .collect();
+                format!("[{}]", pts.join(","))
+            })
+            .collect();
+        let times_json: Vec<String> = picks
+            .iter()
+            .map(|&k| format!("{:.3}", self.times[k]))
+            .collect();
+        let path: Vec<String> = projected
+            .iter()
+            .filter_map(|f| f.last())
+            .map(|&p| {
+                let (sx, sy) = to_screen(p);
+                format!("{sx:.1},{sy:.1}")
+            })
+            .collect();
+        let last = picks.len() - 1;
+        format!(
+            r##"<div class="animation-block">
+<svg id="animation" viewBox="0 0 {WIDTH} {HEIGHT}" width="{WIDTH}" height="{HEIGHT}" role="img" aria-label="robot animation">
+<rect width="100%" height="100%" fill="#fbfbfd" stroke="#ddd"/>
+<polyline id="ee-path" points="{path}" fill="none" stroke="#e377c2" stroke-width="1.5" stroke-dasharray="4 3"/>
+<polyline id="robot" points="" fill="none" stroke="#1f4e79" stroke-width="5" stroke-linejoin="round" stroke-linecap="round"/>
+<g id="joints"></g>
+<text id="anim-time" x="12" y="22" font-family="sans-serif" font-size="14">t = 0 s</text>
+</svg>
+<div><button id="anim-play" type="button">pause</button>
+<input id="anim-slider" type="range" min="0" max="{last}" value="0" style="width:420px"></div>
+<p class="caption">Stick figure (base, joint origins, end effector) in an oblique view; dashed: the end-effector path.</p>
+</div>
+<script>
+(function() {{
+  var frames = [{frames}];
+  var times = [{times}];
+  var robot = document.getElementById('robot');
+  var joints = document.getElementById('joints');
+  var label = document.getElementById('anim-time');
+  var slider = document.getElementById('anim-slider');
+  var button = document.getElementById('anim-play');
+  var ns = 'http://www.w3.org/2000/svg';
+  var circles = frames[0].map(function() {{
+    var c = document.createElementNS(ns, 'circle');
+    c.setAttribute('r', '4'); c.setAttribute('fill', '#ff7f0e'); joints.appendChild(c); return c;
+  }});
+  var k = 0, playing = true;
+  function draw(i) {{
+    var f = frames[i];
+    robot.setAttribute('points', f.map(function(p) {{ return p[0] + ',' + p[1]; }}).join(' '));
+    f.forEach(function(p, j) {{ circles[j].setAttribute('cx', p[0]); circles[j].setAttribute('cy', p[1]); }});
+    label.textContent = 't = ' + times[i] + ' s';
+    slider.value = i;
+  }}
+  function tick() {{ if (playing) {{ k = (k + 1) % frames.length; draw(k); }} }}
+  slider.addEventListener('input', function() {{ k = parseInt(slider.value, 10); draw(k); }});
+  button.addEventListener('click', function() {{ playing = !playing; button.textContent = playing ? 'pause' : 'play'; }});
+  draw(0);
+  setInterval(tick, 40);
+}})();
+</script>
+"##,
+            path = path.join(" "),
+            frames = frames_json.join(","),
+            times = times_json.join(","),
+        )
+    }
+}

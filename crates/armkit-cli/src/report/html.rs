@@ -1,0 +1,133 @@
+//! The self-contained HTML pages: one report per scenario and the index.
+//! Everything is inline (CSS, SVG, script): the pages open offline.
+
+use std::path::Path;
+
+use super::{format_value, Comparison, Report, ReportSummary};
+
+const STYLE: &str = "body{font-family:-apple-system,Segoe UI,Helvetica,Arial,sans-serif;max-width:1100px;margin:24px auto;padding:0 16px;color:#222}
+h1{font-size:1.6em;margin-bottom:0.2em}h2{font-size:1.2em;margin-top:1.6em;border-bottom:1px solid #ddd}
+table{border-collapse:collapse;margin:8px 0}td,th{border:1px solid #ccc;padding:4px 8px;text-align:left;font-size:0.92em}
+th{background:#f3f3f6}.pass{color:#1a7f37;font-weight:bold}.fail{color:#c62828;font-weight:bold}
+.figures{display:flex;flex-wrap:wrap;gap:12px}.figure{border:1px solid #eee;padding:4px}
+.figure svg{max-width:100%;height:auto}.caption{color:#666;font-size:0.9em}.note{background:#fff8e1;padding:6px 10px;border-left:4px solid #f0b400}";
+
+/// Escapes text for HTML.
+pub fn escape(text: &str) -> String {
+    text.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+fn verdict(passed: bool) -> &'static str {
+    if passed {
+        "<span class=\"pass\">pass</span>"
+    } else {
+        "<span class=\"fail\">FAIL</span>"
+    }
+}
+
+fn page(title: &str, body: &str) -> String {
+    format!(
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>{}</title><style>{STYLE}</style></head>\n<body>\n{body}\n</body></html>\n",
+        escape(title)
+    )
+}
+
+/// The report page of one scenario; `svgs` are the figures' rendered SVGs.
+pub fn report_page(report: &Report, svgs: &[(String, String)]) -> String {
+    let mut body = format!(
+        "<p><a href=\"../index.html\">all scenarios</a></p>\n<h1>{}</h1>\n<p>{}</p>\n<p>Checks: {} of {} pass.</p>\n",
+        escape(&report.title),
+        escape(&report.description),
+        report.passed(),
+        report.checks.len()
+    );
+    body += "<h2>Checks</h2>\n<table><tr><th>check</th><th>value</th><th>threshold</th><th>unit</th><th>result</th></tr>\n";
+    for check in &report.checks {
+        let op = if check.comparison == Comparison::AtMost {
+            "&le;"
+        } else {
+            "&ge;"
+        };
+        body += &format!(
+            "<tr><td>{}</td><td>{}</td><td>{op} {}</td><td>{}</td><td>{}</td></tr>\n",
+            escape(&check.name),
+            format_value(check.value),
+            format_value(check.threshold),
+            escape(&check.unit),
+            verdict(check.passed())
+        );
+    }
+    body += "</table>\n";
+    for note in &report.notes {
+        body += &format!("<p class=\"note\">{}</p>\n", escape(note));
+    }
+    if let Some(animation) = &report.animation {
+        body += "<h2>Motion</h2>\n";
+        body += &animation.to_html();
+    }
+    for table in &report.tables {
+        body += &format!("<h2>{}</h2>\n<table><tr>", escape(&table.title));
+        for h in &table.header {
+            body += &format!("<th>{}</th>", escape(h));
+        }
+        body += "</tr>\n";
+        for row in &table.rows {
+            body += "<tr>";
+            for cell in row {
+                body += &format!("<td>{}</td>", escape(cell));
+            }
+            body += "</tr>\n";
+        }
+        body += "</table>\n";
+    }
+    if !svgs.is_empty() {
+        body += "<h2>Figures</h2>\n<div class=\"figures\">\n";
+        for (stem, svg) in svgs {
+            body += &format!(
+                "<div class=\"figure\">{}<p class=\"caption\">data: <a href=\"{stem}.csv\">{stem}.csv</a></p></div>\n",
+                strip_xml_declaration(svg)
+            );
+        }
+        body += "</div>\n";
+    }
+    body += "<p class=\"caption\">Every check is also in <a href=\"summary.json\">summary.json</a>.</p>\n";
+    page(&report.title, &body)
+}
+
+fn strip_xml_declaration(svg: &str) -> &str {
+    match svg.find("<svg") {
+        Some(start) => &svg[start..],
+        None => svg,
+    }
+}
+
+/// The index page: one line per scenario with its pass/fail count.
+pub fn index_page(summaries: &[ReportSummary], out_dir: &Path) -> String {
+    let all = summaries.iter().all(ReportSummary::all_passed);
+    let mut body = format!(
+        "<h1>armkit demo</h1>\n<p>{} scenarios; {}.</p>\n<table><tr><th>scenario</th><th>checks</th><th>result</th></tr>\n",
+        summaries.len(),
+        if all { "every check passes" } else { "some checks fail: see the reports" }
+    );
+    for s in summaries {
+        let link = s
+            .html
+            .strip_prefix(out_dir)
+            .unwrap_or(&s.html)
+            .to_string_lossy()
+            .replace('\\', "/");
+        body += &format!(
+            "<tr><td><a href=\"{}\">{}</a></td><td>{} of {} pass</td><td>{}</td></tr>\n",
+            escape(&link),
+            escape(&s.title),
+            s.passed,
+            s.total,
+            verdict(s.all_passed())
+        );
+    }
+    body += "</table>\n";
+    page("armkit demo", &body)
+}

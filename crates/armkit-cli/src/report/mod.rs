@@ -1,0 +1,362 @@
+//! Scenario reports: checks, tables, figures, an animation, written as CSV,
+//! SVG, `summary.json` and a self-contained `report.html`.
+//!
+//! Every file is written atomically (a temporary file, then a rename), and
+//! `report.html` is written last: an interrupted run never leaves a report
+//! that looks complete.
+
+mod animation;
+mod html;
+
+use std::path::{Path, PathBuf};
+
+pub use animation::Animation;
+
+use crate::common::CliResult;
+use crate::plot::Figure;
+
+/// How a check's value is compared with its threshold.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Comparison {
+    /// Passes when `value <= threshold`.
+    AtMost,
+    /// Passes when `value >= threshold`.
+    AtLeast,
+}
+
+/// One verifiable claim of a scenario: a measured value against a threshold.
+#[derive(Clone, Debug)]
+pub struct Check {
+    /// What is checked, in words.
+    pub name: String,
+    /// The measured value.
+    pub value: f64,
+    /// The threshold it is compared with.
+    pub threshold: f64,
+    /// How.
+    pub comparison: Comparison,
+    /// Unit of value and threshold (may be empty).
+    pub unit: String,
+}
+
+impl Check {
+    /// A check that passes when `value <= threshold`.
+    pub fn at_most(name: impl Into<String>, value: f64, threshold: f64, unit: &str) -> Self {
+        Check {
+            name: name.into(),
+            value,
+            threshold,
+            comparison: Comparison::AtMost,
+            unit: unit.into(),
+        }
+    }
+
+    /// A check that passes when `value >= threshold`.
+    pub fn at_least(name: impl Into<String>, value: f64, threshold: f64, unit: &str) -> Self {
+        Check {
+            name: name.into(),
+            value,
+            threshold,
+            comparison: Comparison::AtLeast,
+            unit: unit.into(),
+        }
+    }
+
+    /// True when the value meets the threshold (NaN never does).
+    pub fn passed(&self) -> bool {
+        match self.comparison {
+            Comparison::AtMost => self.value <= self.threshold,
+            Comparison::AtLeast => self.value >= self.threshold,
+        }
+    }
+
+    fn to_json(&self) -> serde_json::Value {
+        serde_json::json!({
+            "name": self.name,
+            "value": finite_or_null(self.value),
+            "threshold": self.threshold,
+            "comparison": match self.comparison { Comparison::AtMost => "<=", Comparison::AtLeast => ">=" },
+            "unit": self.unit,
+            "pass": self.passed(),
+        })
+    }
+}
+
+fn finite_or_null(v: f64) -> serde_json::Value {
+    if v.is_finite() {
+        serde_json::json!(v)
+    } else {
+        serde_json::Value::Null
+    }
+}
+
+/// A table of text cells with a header row.
+#[derive(Clone, Debug, Default)]
+pub struct Table {
+    /// Caption.
+    pub title: String,
+    /// Column headers.
+    pub header: Vec<String>,
+    /// Rows of cells.
+    pub rows: Vec<Vec<String>>,
+}
+
+impl Table {
+    /// A table with a caption and headers.
+    pub fn new(title: impl Into<String>, header: &[&str]) -> Self {
+        Table {
+            title: title.into(),
+            header: header.iter().map(|h| h.to_string()).collect(),
+            rows: Vec::new(),
+        }
+    }
+
+    /// Appends a row.
+    pub fn push(&mut self, row: Vec<String>) {
+        self.rows.push(row);
+    }
+
+    /// The table as aligned text, for the terminal.
+    pub fn to_text(&self) -> String {
+        let columns = self.header.len();
+        let width = |c: usize| {
+            self.rows
+                .iter()
+                .filter_map(|r| r.get(c))
+                .chain(std::iter::once(&self.header[c]))
+                .map(|s| s.chars().count())
+                .max()
+                .unwrap_or(0)
+        };
+        let widths: Vec<usize> = (0..columns).map(width).collect();
+        let line = |cells: &[String]| {
+            cells
+                .iter()
+                .zip(&widths)
+                .map(|(c, w)| format!("{c:<w$}"))
+                .collect::<Vec<_>>()
+                .join("  ")
+        };
+        let mut out = format!("{}\n{}\n", self.title, line(&self.header));
+        for row in &self.rows {
+            out += &line(row);
+            out.push('\n');
+        }
+        out
+    }
+}
+
+/// What a scenario produced.
+#[derive(Clone, Debug, Default)]
+pub struct Report {
+    /// Folder name under the output directory (letters, digits, `-`).
+    pub name: String,
+    /// Human title.
+    pub title: String,
+    /// What the scenario shows and where it comes from (seed, equations).
+    pub description: String,
+    /// The checks, each pass or fail.
+    pub checks: Vec<Check>,
+    /// Tables shown in the report and printed on the terminal.
+    pub tables: Vec<Table>,
+    /// Figures: (file stem, figure); each becomes `<stem>.svg` and `<stem>.csv`.
+    pub figures: Vec<(String, Figure)>,
+    /// Plain statements shown in the report (deviations from a paper and why).
+    pub notes: Vec<String>,
+    /// The robot moving along the planned motion, if any.
+    pub animation: Option<Animation>,
+}
+
+/// The outcome of writing one report, for the index.
+#[derive(Clone, Debug)]
+pub struct ReportSummary {
+    /// Folder name.
+    pub name: String,
+    /// Title.
+    pub title: String,
+    /// Number of checks that passed.
+    pub passed: usize,
+    /// Number of checks.
+    pub total: usize,
+    /// Path of `report.html`.
+    pub html: PathBuf,
+}
+
+impl ReportSummary {
+    /// True when every check passed.
+    pub fn all_passed(&self) -> bool {
+        self.passed == self.total
+    }
+}
+
+impl Report {
+    /// Number of checks that pass.
+    pub fn passed(&self) -> usize {
+        self.checks.iter().filter(|c| c.passed()).count()
+    }
+
+    /// `summary.json`: every check with name, value, threshold and pass.
+    pub fn summary_json(&self) -> serde_json::Value {
+        serde_json::json!({
+            "scenario": self.name,
+            "title": self.title,
+            "passed": self.passed(),
+            "total": self.checks.len(),
+            "checks": self.checks.iter().map(Check::to_json).collect::<Vec<_>>(),
+            "notes": self.notes,
+        })
+    }
+
+    /// Writes `out_dir/<name>/`: CSV and SVG per figure, `summary.json`,
+    /// then `report.html`, each atomically.
+    pub fn write(&self, out_dir: &Path) -> CliResult<ReportSummary> {
+        let dir = out_dir.join(&self.name);
+        std::fs::create_dir_all(&dir)?;
+        let mut svgs = Vec::new();
+        for (stem, figure) in &self.figures {
+            write_atomic(&dir.join(format!("{stem}.csv")), figure.to_csv().as_bytes())?;
+            let svg = figure.to_svg(760, 420)?;
+            write_atomic(&dir.join(format!("{stem}.svg")), svg.as_bytes())?;
+            svgs.push((stem.clone(), svg));
+        }
+        write_atomic(
+            &dir.join("summary.json"),
+            serde_json::to_string_pretty(&self.summary_json())?.as_bytes(),
+        )?;
+        let html_path = dir.join("report.html");
+        write_atomic(&html_path, html::report_page(self, &svgs).as_bytes())?;
+        Ok(ReportSummary {
+            name: self.name.clone(),
+            title: self.title.clone(),
+            passed: self.passed(),
+            total: self.checks.len(),
+            html: html_path,
+        })
+    }
+
+    /// The terminal summary: title, tables, checks.
+    pub fn to_text(&self) -> String {
+        let mut out = format!("== {} ({})\n", self.title, self.name);
+        for table in &self.tables {
+            out += &table.to_text();
+        }
+        for check in &self.checks {
+            out += &format!(
+                "  [{}] {}: {} ({} {} {})\n",
+                if check.passed() { "pass" } else { "FAIL" },
+                check.name,
+                format_value(check.value),
+                if check.comparison == Comparison::AtMost {
+                    "<="
+                } else {
+                    ">="
+                },
+                format_value(check.threshold),
+                check.unit
+            );
+        }
+        for note in &self.notes {
+            out += &format!("  note: {note}\n");
+        }
+        out
+    }
+}
+
+/// A number for people: 4 significant digits, scientific when small or large.
+pub fn format_value(v: f64) -> String {
+    if v == 0.0 || (1e-3..1e5).contains(&v.abs()) {
+        let s = format!("{v:.6}");
+        let s = s.trim_end_matches('0').trim_end_matches('.');
+        s.to_string()
+    } else {
+        format!("{v:.3e}")
+    }
+}
+
+/// Writes `out_dir/index.html` linking every report with a pass/fail line.
+pub fn write_index(out_dir: &Path, summaries: &[ReportSummary]) -> CliResult<PathBuf> {
+    let path = out_dir.join("index.html");
+    write_atomic(&path, html::index_page(summaries, out_dir).as_bytes())?;
+    Ok(path)
+}
+
+/// Writes `bytes` to `path` through a temporary file in the same folder and
+/// a rename, so that readers see the old file or the whole new one.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> CliResult {
+    let file_name = path
+        .file_name()
+        .and_then(|n| n.to_str())
+        .unwrap_or("output");
+    let temporary = path.with_file_name(format!(".{file_name}.{}.tmp", std::process::id()));
+    std::fs::write(&temporary, bytes)?;
+    std::fs::rename(&temporary, path)?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sample_report() -> Report {
+        let x = vec![0.0, 1.0, 2.0];
+        Report {
+            name: "sample".into(),
+            title: "A sample".into(),
+            description: "Shows <everything> & more".into(),
+            checks: vec![
+                Check::at_most("error", 1e-7, 1e-6, "m"),
+                Check::at_least("speed", 0.5, 0.6, "m/s"),
+            ],
+            tables: vec![Table {
+                title: "T".into(),
+                header: vec!["a".into()],
+                rows: vec![vec!["1".into()]],
+            }],
+            figures: vec![(
+                "curve".into(),
+                Figure::new("Curve", "t (s)", "y", x.clone()).with_series("y", x),
+            )],
+            notes: vec!["a note".into()],
+            animation: Some(Animation::new(
+                vec![0.0, 1.0],
+                vec![
+                    vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]],
+                    vec![[0.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
+                ],
+            )),
+        }
+    }
+
+    #[test]
+    fn write_produces_every_file_and_a_summary_with_pass_and_fail() {
+        let dir = std::env::temp_dir().join(format!("armkit-report-test-{}", std::process::id()));
+        let summary = sample_report().write(&dir).unwrap();
+        assert_eq!((summary.passed, summary.total), (1, 2));
+        for file in ["curve.csv", "curve.svg", "summary.json", "report.html"] {
+            assert!(dir.join("sample").join(file).exists(), "{file}");
+        }
+        let json: serde_json::Value = serde_json::from_str(
+            &std::fs::read_to_string(dir.join("sample/summary.json")).unwrap(),
+        )
+        .unwrap();
+        assert_eq!(json["checks"][0]["pass"], true);
+        assert_eq!(json["checks"][1]["pass"], false);
+        let html = std::fs::read_to_string(dir.join("sample/report.html")).unwrap();
+        assert!(html.contains("Shows &lt;everything&gt; &amp; more"));
+        assert!(html.contains("<svg") && html.contains("id=\"animation\""));
+        assert!(
+            !html.contains("src=\"http") && !html.contains("href=\"http"),
+            "external resource"
+        );
+        let index = write_index(&dir, &[summary]).unwrap();
+        let index_html = std::fs::read_to_string(index).unwrap();
+        assert!(index_html.contains("sample/report.html") && index_html.contains("1 of 2"));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn nan_never_passes() {
+        assert!(!Check::at_most("x", f64::NAN, 1.0, "").passed());
+        assert!(!Check::at_least("x", f64::NAN, 1.0, "").passed());
+    }
+}
