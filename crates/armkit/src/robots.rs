@@ -27,7 +27,7 @@
 use std::f64::consts::{FRAC_PI_2, PI};
 
 use crate::error::{Error, Result};
-use crate::math::{Pose, Vector3};
+use crate::math::{Matrix3, Pose, Vector3};
 use crate::model::{DhConvention, DhLink, LinkInertia, Model};
 
 /// A built-in robot: name, degrees of freedom, one-line description, constructor.
@@ -353,6 +353,9 @@ pub const GANTRY9_BEAM_LENGTH: f64 = 10.0;
 /// tool down. With these lengths the limits of eq 24 matter: the shoulder
 /// (q5) and elbow (q6) ranges bound how far the hand reaches above or below
 /// the carriage, and d3's 5 m stroke spans the 6 m beam height.
+///
+/// Link mass properties (400 kg carried by the beam, as in seed 000's
+/// Table 1) are attached to every link: see [`gantry9_mass_properties`].
 // The limits are eq 24's printed values (3.14 and 6.28, not pi and 2 pi).
 #[allow(clippy::approx_constant)]
 pub fn gantry9() -> Result<Model> {
@@ -387,6 +390,10 @@ pub fn gantry9() -> Result<Model> {
             .with_limits(-6.28, 6.28)
             .with_velocity_limit(vmax_rotary),
     ];
+    let mut links = links;
+    for (link, inertia) in links.iter_mut().zip(gantry9_mass_properties()) {
+        *link = link.with_inertia(inertia);
+    }
     let base = Pose::trans_z(GANTRY9_BEAM_HEIGHT) * Pose::rot_y(FRAC_PI_2);
     Model::from_dh_with_transforms(
         "gantry9",
@@ -395,6 +402,54 @@ pub fn gantry9() -> Result<Model> {
         base,
         Pose::trans_z(0.10),
     )
+}
+
+/// Mass properties of gantry9's links, each in its link's modified-DH frame
+/// (frame j on joint j's axis, as [`crate::kinematics::Data::joint_frames`]
+/// reports it).
+///
+/// Seed 000 prints none but the load each carriage puts on the beam:
+/// P = 400 kg (Table 1). We split those 400 kg into carriage 100 kg,
+/// vertical ram 150 kg and arm 150 kg (a 1.5 m reach industrial arm of
+/// about 10 kg payload class), so that everything the beam carries weighs
+/// 400 kg. The beam itself is seed 000's section: solid steel 0.2 m x 0.2 m
+/// x 10 m, 7850 kg/m^3 = 3140 kg, carried by the rails. Each body is a solid
+/// box aligned with its frame's axes (`I = m/12 diag(ly^2 + lz^2, ...)`);
+/// frames and directions are those at `q = 0` (world x along the rails, y
+/// along the beam, z up):
+///
+/// | link | body | mass (kg) | centre of mass in frame j (m) | box lx, ly, lz (m) |
+/// | --- | --- | --- | --- | --- |
+/// | 1 | beam, centreline 0.1 m above the mounting plane, spans y = 0..10 m | 3140 | (-0.1, 5.0, 0) | 0.2, 10, 0.2 |
+/// | 2 | carriage, on the beam | 100 | (0, 0.15, 0) | 0.5, 0.3, 0.5 |
+/// | 3 | vertical ram, 5 m, lower end at joint 3's origin | 150 | (0, 0, -2.5) | 0.2, 0.2, 5.0 |
+/// | 4 | arm base (turret) | 40 | (0.075, 0, -0.15) | 0.3, 0.3, 0.3 |
+/// | 5 | upper arm, 0.70 m along x5 | 45 | (0.35, 0, 0) | 0.7, 0.15, 0.15 |
+/// | 6 | forearm, elbow to wrist centre | 35 | (0.11, -0.335, 0) | 0.12, 0.67, 0.12 |
+/// | 7 | wrist roll housing | 15 | (0, 0, -0.15) | 0.12, 0.12, 0.3 |
+/// | 8 | wrist pitch body | 10 | (0, -0.05, 0) | 0.1, 0.1, 0.1 |
+/// | 9 | flange and tool | 5 | (0, 0, 0.08) | 0.1, 0.1, 0.1 |
+///
+/// Carried by the beam (links 2-9): 400 kg; arm (links 4-9): 150 kg.
+pub fn gantry9_mass_properties() -> [LinkInertia; 9] {
+    let solid_box = |mass: f64, com: [f64; 3], size: [f64; 3]| {
+        let [lx, ly, lz] = size.map(|l| l * l);
+        let mut inertia = LinkInertia::point_mass(mass, Vector3::from(com));
+        inertia.inertia = Matrix3::from_diagonal(&Vector3::new(ly + lz, lx + lz, lx + ly))
+            * (mass / 12.0);
+        inertia
+    };
+    [
+        solid_box(3140.0, [-0.1, 5.0, 0.0], [0.2, 10.0, 0.2]),
+        solid_box(100.0, [0.0, 0.15, 0.0], [0.5, 0.3, 0.5]),
+        solid_box(150.0, [0.0, 0.0, -2.5], [0.2, 0.2, 5.0]),
+        solid_box(40.0, [0.075, 0.0, -0.15], [0.3, 0.3, 0.3]),
+        solid_box(45.0, [0.35, 0.0, 0.0], [0.7, 0.15, 0.15]),
+        solid_box(35.0, [0.11, -0.335, 0.0], [0.12, 0.67, 0.12]),
+        solid_box(15.0, [0.0, 0.0, -0.15], [0.12, 0.12, 0.3]),
+        solid_box(10.0, [0.0, -0.05, 0.0], [0.1, 0.1, 0.1]),
+        solid_box(5.0, [0.0, 0.0, 0.08], [0.1, 0.1, 0.1]),
+    ]
 }
 
 /// Seed 000's 9-DOF gantry on its flexible beam: [`gantry9`] whose carriage
