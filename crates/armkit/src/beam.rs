@@ -41,7 +41,7 @@
 //! being symmetric). It is reproduced with `g = 10 m/s^2`
 //! ([`SEED000_GRAVITY`]): 0.004574, 0.005600, 0.002200 m against the printed
 //! 0.0046, 0.0056, 0.0022 (-0.6 %, 0 %, 0 %). Only `g` in
-//! [9.95, 10.09) m/s^2 rounds to all three printed values; standard gravity
+//! [9.948, 10.089) m/s^2 rounds to all three printed values; standard gravity
 //! gives 0.004485, 0.005492, 0.002158 m (-2.5 %, -1.9 %, -1.9 %, still within
 //! the paper's 4 %). The first case's "a = 3.3, b = 3.3" means 3.3 m from each
 //! end (loads at 3.3 m and 6.7 m): both loads at 3.3 m would give 0.004889 m
