@@ -595,6 +595,10 @@ fn bad_joint_values_are_named() {
             "joint `j` (line 4): <limit> lower = 1 must not be above upper = -1",
         ),
         (
+            revolute("<limit lower=\"nan\" upper=\"1\" velocity=\"1\"/>"),
+            "joint `j` (line 4): <limit> lower and upper must be numbers, got NaN and 1",
+        ),
+        (
             revolute("<limit lower=\"-1\" upper=\"1\" velocity=\"-2\"/>"),
             "joint `j` (line 4): <limit velocity> must be >= 0, got -2",
         ),
@@ -689,4 +693,22 @@ fn unreadable_files_and_empty_names_are_errors() {
         err.to_string(),
         "invalid argument `tip`: the link name is empty (leave it unset for the default)"
     );
+}
+
+#[test]
+fn a_byte_order_mark_and_a_missing_axis_are_accepted() {
+    // No <axis>: URDF's default is x. A byte-order mark before the XML.
+    let text = format!(
+        "\u{feff}{}",
+        two_links(
+            "<joint name=\"j\" type=\"prismatic\"><parent link=\"a\"/><child link=\"b\"/>\
+             <limit lower=\"0\" upper=\"1\" velocity=\"0\"/></joint>"
+        )
+    );
+    let model = parse_str(&text, "t", &ChainSelection::default()).unwrap();
+    let mut data = Data::new(&model);
+    let pose = *forward_kinematics(&model, &mut data, &[0.25]).unwrap();
+    assert!((pose.translation - Vector3::new(0.25, 0.0, 0.0)).norm() < 1e-15);
+    // velocity="0" means no velocity limit given.
+    assert_eq!(model.joints()[0].limits.velocity, None);
 }

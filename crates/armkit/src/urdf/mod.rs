@@ -30,6 +30,7 @@
 //!   contribute nothing; a body with no mass at all has no inertia (`None`).
 //!
 //! Mesh references (`package://...`), visuals, collisions, materials,
+//! `<dynamics>`, `<calibration>`, `<safety_controller>`, effort limits,
 //! transmissions and Gazebo tags are ignored: kinematics and mass only.
 //!
 //! Errors are [`Error::Parse`] naming the file and the element (with its
@@ -176,6 +177,8 @@ pub fn parse_str(text: &str, source_name: &str, selection: &ChainSelection) -> R
         source_name: source_name.to_string(),
         reason,
     };
+    // Some CAD exporters write a byte-order mark, which XML allows before the root.
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let document = xml::scan(text).map_err(fail)?;
     if document.root != "robot" {
         return Err(fail(format!(
@@ -380,7 +383,15 @@ fn joint_limits(
             }
         ));
     }
-    if limit.lower.is_nan() || limit.upper.is_nan() || limit.lower > limit.upper {
+    if limit.lower.is_nan() || limit.upper.is_nan() {
+        return Err(format!(
+            "{}: <limit> lower and upper must be numbers, got {} and {}",
+            tree.joint(joint),
+            limit.lower,
+            limit.upper
+        ));
+    }
+    if limit.lower > limit.upper {
         return Err(format!(
             "{}: <limit> lower = {} must not be above upper = {}",
             tree.joint(joint),
