@@ -4,3 +4,4 @@ pub mod beam;
 pub mod demo;
 pub mod fk;
 pub mod robots;
+pub mod space;
