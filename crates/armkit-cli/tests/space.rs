@@ -114,9 +114,16 @@ fn simulate_writes_a_csv_with_the_centre_of_mass_fixed() {
         "4",
         "--output",
         path.to_str().unwrap(),
+        "--plots",
+        scratch("simulate-plots").to_str().unwrap(),
         "--json",
     ]));
     assert_eq!(value["steps"], 2000);
+    for name in ["com_drift", "momentum", "base_position", "base_attitude"] {
+        let svg =
+            std::fs::read_to_string(scratch("simulate-plots").join(format!("{name}.svg"))).unwrap();
+        assert!(svg.starts_with("<svg") && svg.contains("t (s)"), "{name}");
+    }
     assert!(value["max_com_drift"].as_f64().unwrap() < 1e-9);
     assert!(value["max_angular_momentum"].as_f64().unwrap() < 1e-10);
     assert!(value["base_rotation"].as_f64().unwrap() > 1e-3);
@@ -151,9 +158,18 @@ fn track_follows_the_straight_line() {
         "2",
         "--output",
         path.to_str().unwrap(),
+        "--plots",
+        scratch("track-plots").to_str().unwrap(),
         "--json",
     ]));
     assert_eq!(value["status"], "completed");
+    for name in ["tracking_error", "joint_rates"] {
+        let svg =
+            std::fs::read_to_string(scratch("track-plots").join(format!("{name}.svg"))).unwrap();
+        assert!(
+            svg.starts_with("<svg") && svg.contains("Tracking error") == (name == "tracking_error")
+        );
+    }
     assert_eq!(value["samples"], 1001);
     assert!(value["max_position_error"].as_f64().unwrap() < 1e-4);
     assert!(value["max_orientation_error"].as_f64().unwrap() < 1e-4);

@@ -13,6 +13,8 @@ use armkit::space::{
 };
 use clap::{Args, Subcommand, ValueEnum};
 
+use crate::plot::Figure;
+
 use crate::common::{
     format_rows, jacobian_rows, parse_fixed_numbers, parse_joint_positions, parse_pose, pose_rows,
     print_json, CliError, CliResult, LimitPolicy, Outcome, RobotArgs,
@@ -154,6 +156,10 @@ pub struct SimulateArgs {
     /// CSV file to write (one row per step).
     #[arg(long, value_name = "PATH")]
     pub output: Option<PathBuf>,
+    /// Directory for SVG plots (created if missing): com_drift.svg,
+    /// momentum.svg, base_position.svg, base_attitude.svg.
+    #[arg(long, value_name = "DIR")]
+    pub plots: Option<PathBuf>,
     /// Print the summary as JSON.
     #[arg(long)]
     pub json: bool,
@@ -186,6 +192,10 @@ pub struct TrackArgs {
     /// CSV file to write (one row per control period).
     #[arg(long, value_name = "PATH")]
     pub output: Option<PathBuf>,
+    /// Directory for SVG plots (created if missing): tracking_error.svg,
+    /// joint_rates.svg.
+    #[arg(long, value_name = "DIR")]
+    pub plots: Option<PathBuf>,
     /// Print the summary as JSON.
     #[arg(long)]
     pub json: bool,
@@ -302,7 +312,21 @@ fn number_cells(values: &[f64]) -> String {
         .join(",")
 }
 
-fn write_csv(path: &PathBuf, text: &str) -> CliResult {
+/// Writes each figure as `DIR/NAME.svg` (800 x 450 px).
+fn write_plots(dir: &std::path::Path, figures: &[(&str, Figure)]) -> CliResult {
+    std::fs::create_dir_all(dir)
+        .map_err(|e| CliError(format!("{}: cannot create: {e}", dir.display())))?;
+    for (name, figure) in figures {
+        let path = dir.join(format!("{name}.svg"));
+        let svg = figure
+            .to_svg(800, 450)
+            .map_err(|e| CliError(format!("{}: plot: {e}", path.display())))?;
+        write_csv(&path, &svg)?;
+    }
+    Ok(())
+}
+
+fn write_csv(path: &std::path::Path, text: &str) -> CliResult {
     std::fs::write(path, text)
         .map_err(|e| CliError(format!("{}: cannot write: {e}", path.display())))
 }
@@ -355,6 +379,8 @@ fn run_simulate(args: &SimulateArgs) -> CliResult<Outcome> {
     );
     let (mut com_drift, mut worst_p, mut worst_l, mut worst_p_fd, mut worst_l_fd) =
         (0.0f64, 0.0f64, 0.0f64, 0.0f64, 0.0f64);
+    // Plot series: time, COM drift, |P| and |L| by differences, base pose.
+    let mut series: [Vec<f64>; 10] = Default::default();
     for (k, s) in states.iter().enumerate() {
         let t = k as f64 * dt;
         motion.rates(t, &mut rates);
@@ -377,6 +403,16 @@ fn run_simulate(args: &SimulateArgs) -> CliResult<Outcome> {
         };
         let drift = (com - com0).norm();
         com_drift = com_drift.max(drift);
+        let (roll, pitch, yaw) = s.base.rpy();
+        let p_base = s.base.translation - base.translation;
+        let (p_fd, l_fd) = fd.map_or((f64::NAN, f64::NAN), |m| {
+            (m.linear.norm(), m.angular.norm())
+        });
+        for (column, value) in series.iter_mut().zip([
+            t, drift, p_fd, l_fd, p_base.x, p_base.y, p_base.z, roll, pitch, yaw,
+        ]) {
+            column.push(value);
+        }
         worst_p = worst_p.max(p.linear.norm());
         worst_l = worst_l.max(p.angular.norm());
         let fd_cells = match fd {
@@ -407,6 +443,55 @@ fn run_simulate(args: &SimulateArgs) -> CliResult<Outcome> {
         Rotation3::from_matrix_unchecked(last.base.rotation * base.rotation.transpose()).angle();
     if let Some(path) = &args.output {
         write_csv(path, &csv)?;
+    }
+    if let Some(dir) = &args.plots {
+        let [t, drift, p_fd, l_fd, x, y, z, roll, pitch, yaw] = series;
+        let title = format!("{} ({mode:?}, dt = {dt} s)", model.arm().name());
+        write_plots(
+            dir,
+            &[
+                (
+                    "com_drift",
+                    Figure::new(
+                        format!("Centre-of-mass drift, {title}"),
+                        "t (s)",
+                        "|r_g(t) - r_g(0)| (m)",
+                        t.clone(),
+                    )
+                    .with_series("COM drift", drift),
+                ),
+                (
+                    "momentum",
+                    Figure::new(
+                        format!("Momentum of the simulated motion (central differences), {title}"),
+                        "t (s)",
+                        "|P| (kg m/s), |L| (kg m^2/s)",
+                        t.clone(),
+                    )
+                    .with_series("|P|", p_fd)
+                    .with_series("|L| about the COM", l_fd),
+                ),
+                (
+                    "base_position",
+                    Figure::new(
+                        format!("Base displacement, {title}"),
+                        "t (s)",
+                        "m",
+                        t.clone(),
+                    )
+                    .with_series("x", x)
+                    .with_series("y", y)
+                    .with_series("z", z),
+                ),
+                (
+                    "base_attitude",
+                    Figure::new(format!("Base attitude, {title}"), "t (s)", "rad", t)
+                        .with_series("roll", roll)
+                        .with_series("pitch", pitch)
+                        .with_series("yaw", yaw),
+                ),
+            ],
+        )?;
     }
     if args.json {
         print_json(&serde_json::json!({
@@ -522,6 +607,27 @@ fn run_track(args: &TrackArgs) -> CliResult<Outcome> {
             );
         }
         write_csv(output, &csv)?;
+    }
+    if let Some(dir) = &args.plots {
+        let t: Vec<f64> = report.samples.iter().map(|s| s.time).collect();
+        let title = format!("{} ({mode:?}, dt = {} s)", model.arm().name(), args.dt);
+        let mut rates = Figure::new(format!("Joint rates, {title}"), "t (s)", "rad/s", t.clone());
+        for j in 0..n {
+            rates = rates.with_series(
+                format!("q{}", j + 1),
+                report.samples.iter().map(|s| s.joint_rates[j]).collect(),
+            );
+        }
+        let errors = Figure::new(format!("Tracking error, {title}"), "t (s)", "m, rad", t)
+            .with_series(
+                "position (m)",
+                report.samples.iter().map(|s| s.position_error).collect(),
+            )
+            .with_series(
+                "orientation (rad)",
+                report.samples.iter().map(|s| s.orientation_error).collect(),
+            );
+        write_plots(dir, &[("tracking_error", errors), ("joint_rates", rates)])?;
     }
     let max_rate = report
         .samples
