@@ -76,7 +76,7 @@ fn bad_systems_get_clear_errors() {
     let output = armkit(&["space", "jacobian", "--base-mass", "-5", "--q", Q]);
     assert_eq!(
         stderr(&output),
-        "error: invalid model `base body `satellite``: field `mass`: must be finite and > 0 kg, got -5"
+        "error: invalid model `satellite`: base body, field `mass`: must be finite and > 0 kg, got -5"
     );
     let output = armkit(&["space", "jacobian", "--base-inertia", "1,-2,3", "--q", Q]);
     assert!(

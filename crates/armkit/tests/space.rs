@@ -103,7 +103,7 @@ fn bad_mass_properties_are_named() {
             .unwrap_err()
             .to_string();
         assert!(
-            message.starts_with("invalid model `base body `satellite``: "),
+            message.starts_with("invalid model `satellite`: base body, "),
             "{message}"
         );
         assert!(message.contains(expected), "{message}");

@@ -42,6 +42,9 @@
 //!   `v0 = -J_g q_dot` (eq 16) and
 //!   `J* = [J_v - J_g; J_w]` (eq 17): the end effector moves relative to a
 //!   centre of mass that stays put. This mode has no use for the inertias.
+//!   Holding the attitude takes a torque on the base (thrusters, or reaction
+//!   wheels whose momentum we do not model): the angular momentum of base and
+//!   arm is not conserved in this mode.
 //! * Fully free (Umetani-Yoshida). The angular momentum about `r_g` is
 //!   `L = H_w w0 + H_wq q_dot` (the `v0` term vanishes because
 //!   `sum m_i (r_i - r_g) = 0`), with the system's inertia about its centre of
@@ -147,8 +150,8 @@ impl BaseBody {
     /// error names the body and the field.
     pub fn validate(&self) -> Result<()> {
         let invalid = |field: &str, reason: String| Error::InvalidModelStructure {
-            model: format!("base body `{}`", self.name),
-            reason: format!("field `{field}`: {reason}"),
+            model: self.name.clone(),
+            reason: format!("base body, field `{field}`: {reason}"),
         };
         if !(self.mass.is_finite() && self.mass > 0.0) {
             return Err(invalid(
@@ -383,8 +386,9 @@ impl SpaceData {
         &self.end_effector
     }
 
-    /// World poses of the arm's joint frames relative to the mount: the arm
-    /// workspace of the last evaluation (see [`Data::joint_frames`]).
+    /// The arm's kinematics workspace from the last evaluation: its joint
+    /// frames ([`Data::joint_frames`]) and end-effector pose are in the mount
+    /// frame (the arm model's world frame), not the inertial frame.
     pub fn arm_data(&self) -> &Data {
         &self.arm
     }
