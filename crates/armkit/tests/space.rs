@@ -31,6 +31,38 @@ fn lopsided_model() -> FreeFloatingModel {
     FreeFloatingModel::new(base, armkit::robots::space6r().unwrap()).unwrap()
 }
 
+/// The Stanford arm (RRPRRR: joint 3 prismatic) with made-up link masses and
+/// full inertias on space6r's satellite: exercises the prismatic-joint terms.
+fn stanford_model() -> FreeFloatingModel {
+    let arm = armkit::robots::stanford().unwrap();
+    let (convention, links) = arm.dh_table().unwrap();
+    let links: Vec<_> = links
+        .iter()
+        .enumerate()
+        .map(|(j, link)| {
+            let k = j as f64;
+            let turn = Rotation3::from_euler_angles(0.2 * k, -0.1, 0.3 * k).into_inner();
+            let mut inertia = armkit::model::LinkInertia::point_mass(
+                12.0 - k,
+                Vector3::new(0.02 * k, -0.05, 0.1 - 0.03 * k),
+            );
+            inertia.inertia = turn
+                * Matrix3::from_diagonal(&Vector3::new(0.3, 0.5, 0.6 + 0.1 * k))
+                * turn.transpose();
+            link.with_inertia(inertia)
+        })
+        .collect();
+    let arm = armkit::Model::from_dh_with_transforms(
+        "stanford-massive",
+        convention,
+        &links,
+        *arm.base(),
+        *arm.tool(),
+    )
+    .unwrap();
+    FreeFloatingModel::new(space6r_base_body(), arm).unwrap()
+}
+
 fn random_state(model: &FreeFloatingModel, rng: &mut impl Rng) -> FreeFloatingState {
     let rpy = [
         rng.gen_range(-3.0..3.0),
@@ -205,44 +237,47 @@ fn bad_arguments_are_named() {
 /// (both modes) and zero angular momentum (free mode), summed body by body.
 #[test]
 fn base_twist_conserves_momentum() {
-    let model = lopsided_model();
-    let mut data = SpaceData::new(&model);
-    let mut rng = common::rng(41);
-    let mut worst = [0.0f64; 2];
-    for _ in 0..50 {
-        let state = random_state(&model, &mut rng);
-        let q_dot: Vec<f64> = (0..6).map(|_| rng.gen_range(-0.5..0.5)).collect();
-        for (m, mode) in MODES.into_iter().enumerate() {
-            generalized_jacobian(&model, &mut data, &state.base, &state.q, mode).unwrap();
-            let twist = base_twist(&data, &q_dot);
-            let p = momentum(&model, &mut data, &state.base, &state.q, &twist, &q_dot).unwrap();
-            // Scale: the momentum of the arm moving on a held base.
-            let held = momentum(
-                &model,
-                &mut data,
-                &state.base,
-                &state.q,
-                &Vector6::zeros(),
-                &q_dot,
-            )
-            .unwrap();
-            let linear = p.linear.norm() / held.linear.norm();
-            assert!(linear < 1e-13, "{mode:?}: relative |P| = {linear:e}");
-            if mode == BaseMode::FreeFloating {
-                let angular = p.angular.norm() / held.angular.norm();
-                assert!(angular < 1e-13, "relative |L| = {angular:e}");
-                worst[m] = worst[m].max(angular);
-            } else {
-                // Holding the attitude takes a torque: L is not zero.
-                assert!(p.angular.norm() > 1e-3 * held.angular.norm());
-                worst[m] = worst[m].max(linear);
+    for model in [lopsided_model(), stanford_model()] {
+        let mut data = SpaceData::new(&model);
+        let mut rng = common::rng(41);
+        let mut worst = [0.0f64; 2];
+        for _ in 0..50 {
+            let state = random_state(&model, &mut rng);
+            let q_dot: Vec<f64> = (0..6).map(|_| rng.gen_range(-0.5..0.5)).collect();
+            for (m, mode) in MODES.into_iter().enumerate() {
+                generalized_jacobian(&model, &mut data, &state.base, &state.q, mode).unwrap();
+                let twist = base_twist(&data, &q_dot);
+                let p = momentum(&model, &mut data, &state.base, &state.q, &twist, &q_dot).unwrap();
+                // Scale: the momentum of the arm moving on a held base.
+                let held = momentum(
+                    &model,
+                    &mut data,
+                    &state.base,
+                    &state.q,
+                    &Vector6::zeros(),
+                    &q_dot,
+                )
+                .unwrap();
+                let linear = p.linear.norm() / held.linear.norm();
+                assert!(linear < 1e-13, "{mode:?}: relative |P| = {linear:e}");
+                if mode == BaseMode::FreeFloating {
+                    let angular = p.angular.norm() / held.angular.norm();
+                    assert!(angular < 1e-13, "relative |L| = {angular:e}");
+                    worst[m] = worst[m].max(angular);
+                } else {
+                    // Holding the attitude takes a torque: L is not zero.
+                    assert!(p.angular.norm() > 1e-3 * held.angular.norm());
+                    worst[m] = worst[m].max(linear);
+                }
             }
         }
+        println!(
+            "{}: relative |P| (attitude held) {:.1e}, relative |L| (free) {:.1e}",
+            model.arm().name(),
+            worst[0],
+            worst[1]
+        );
     }
-    println!(
-        "relative |P| (attitude held) {:.1e}, relative |L| (free) {:.1e}",
-        worst[0], worst[1]
-    );
 }
 
 /// Central differences of the simulated end-effector motion: from a state,
@@ -277,7 +312,11 @@ fn simulated_jacobian(
 
 #[test]
 fn generalized_jacobian_matches_finite_differences_of_the_simulation() {
-    for model in [space6r_free_floating().unwrap(), lopsided_model()] {
+    for model in [
+        space6r_free_floating().unwrap(),
+        lopsided_model(),
+        stanford_model(),
+    ] {
         let mut data = SpaceData::new(&model);
         let mut rng = common::rng(7);
         for mode in MODES {
@@ -306,7 +345,8 @@ fn generalized_jacobian_matches_finite_differences_of_the_simulation() {
                 base_effect = base_effect.max((&j_star - &fixed_world).amax());
             }
             println!(
-                "{mode:?}, base {} kg: max |J* - FD(simulation)| = {worst:.2e}, max |J* - J_fixed| = {base_effect:.3}",
+                "{} {mode:?}, base {} kg: max |J* - FD(simulation)| = {worst:.2e}, max |J* - J_fixed| = {base_effect:.3}",
+                model.arm().name(),
                 model.base().mass
             );
             assert!(worst < 1e-8, "{mode:?}: {worst:e}");
