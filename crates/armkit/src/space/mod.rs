@@ -18,6 +18,10 @@
 //!
 //! # Derivation (seed 004, eqs 1-19; the extraction lost the formulas)
 //!
+//! The equation numbers are the seed's, placed from its surviving text (what
+//! each equation defines and what it is substituted into); the formulas are
+//! derived here.
+//!
 //! Notation, all vectors in the inertial frame: `p0`, `R0` the base frame's
 //! origin and orientation; `r_i` the centre of mass of body i (`r_0` the
 //! base's), `m_i` its mass, `I_i` its inertia about `r_i` in inertial axes;
@@ -73,12 +77,20 @@
 //! `q`, and is integrated with the fourth-order Magnus (Gauss-Legendre) scheme
 //! on SO(3) through the exponential map.
 //!
+//! # Velocity-level use
+//!
+//! Because the base moves, inverse kinematics and path tracking on this system
+//! run at velocity level with `J*`: [`track_pose_path`] is a resolved-rate
+//! tracker of a Cartesian pose path `t -> Pose` (seed 004, eqs 20-28); the
+//! singularity-avoidance work builds on [`generalized_jacobian`], [`step`]
+//! and [`end_effector_pose`].
+//!
 //! ```
 //! use armkit::space::{
 //!     center_of_mass, end_effector_pose, generalized_jacobian, space6r_free_floating, step,
 //!     BaseMode, FreeFloatingState, SpaceData,
 //! };
-//! use armkit::math::Pose;
+//! use armkit::math::{Matrix3, Pose};
 //! let model = space6r_free_floating().unwrap();
 //! let mut data = SpaceData::new(&model);
 //! let mut state = FreeFloatingState::new(Pose::identity(), vec![0.1, 0.5, -0.4, 0.2, 0.6, 0.0]);
@@ -91,6 +103,7 @@
 //! }
 //! // The base has moved and turned, the system's centre of mass has not.
 //! assert!(state.base.translation.norm() > 1e-4);
+//! assert!((state.base.rotation - Matrix3::identity()).amax() > 1e-5);
 //! let com_after = center_of_mass(&model, &mut data, &state.base, &state.q).unwrap();
 //! assert!((com_after - com).norm() < 1e-12);
 //! let _tip = end_effector_pose(&model, &mut data, &state.base, &state.q).unwrap();
