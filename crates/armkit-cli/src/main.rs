@@ -1,11 +1,10 @@
 //! `armkit`: the command-line tool.
 
 mod commands;
-#[allow(dead_code)] // wired into the commands as they land
-mod plot;
-#[allow(dead_code)] // wired into `run` and `demo` as the scenarios land
-mod report;
 mod common;
+mod plot;
+mod report;
+mod scenario;
 
 use std::process::ExitCode;
 
@@ -24,27 +23,39 @@ struct Cli {
 #[derive(Subcommand, Debug)]
 enum Command {
     /// Run the seed scenarios and write the report into out/.
-    Demo(commands::demo::DemoArgs),
+    Demo(commands::run::DemoArgs),
+    /// Run one scenario file and write its report.
+    Run(commands::run::RunArgs),
     /// List the built-in robots.
     Robots(commands::robots::RobotsArgs),
     /// Forward kinematics: the end-effector pose.
     Fk(commands::fk::FkArgs),
     /// The geometric Jacobian.
     Jacobian(commands::fk::JacobianArgs),
+    /// Inverse kinematics of one pose (numeric or closed form).
+    Ik(commands::ik::IkArgs),
+    /// IK benchmark: success rate and solve times on random reachable targets.
+    BenchIk(commands::ik::BenchIkArgs),
     /// Seed 000's flexible gantry beam: Table 1, error of a rigid model.
     Beam(commands::beam::BeamArgs),
     /// Free-floating space robot (seed 004): generalized Jacobian, simulation, tracking.
     Space(commands::space::SpaceArgs),
+    /// Redundancy resolution (seeds 000, 001): one motion distributed four ways, energy measure F.
+    Redundancy(commands::redundancy::RedundancyArgs),
 }
 
 fn run(command: &Command) -> CliResult<Outcome> {
     match command {
-        Command::Demo(args) => commands::demo::run(args),
+        Command::Demo(args) => commands::run::demo(args),
+        Command::Run(args) => commands::run::run(args),
         Command::Robots(args) => commands::robots::run(args),
         Command::Fk(args) => commands::fk::run_fk(args),
         Command::Jacobian(args) => commands::fk::run_jacobian(args),
+        Command::Ik(args) => commands::ik::run(args),
+        Command::BenchIk(args) => commands::ik::run_bench(args),
         Command::Beam(args) => commands::beam::run(args),
         Command::Space(args) => commands::space::run(args),
+        Command::Redundancy(args) => commands::redundancy::run(args),
     }
 }
 

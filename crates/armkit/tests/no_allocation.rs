@@ -25,7 +25,7 @@ static GLOBAL: CountingAllocator = CountingAllocator;
 
 #[test]
 fn fk_and_jacobian_do_not_allocate() {
-    for name in ["ur5", "panda", "gantry9", "stanford"] {
+    for name in ["ur5", "panda", "gantry9", "gantry9-flex", "stanford"] {
         let model = armkit::robots::by_name(name).unwrap();
         let mut data = Data::new(&model);
         let q = model.neutral_configuration();

@@ -9,7 +9,7 @@
 //!   its range `d2` in [0, 5] m (the rest of the arm fixed): `DIR/error_along_beam.csv`
 //!   and `DIR/error_along_beam.svg`.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use armkit::beam::{
     CarriageDeflection, GantryBeam, PointLoad, SimplySupportedBeam, TwoCarriageBeam,
@@ -19,11 +19,12 @@ use armkit::kinematics::{forward_kinematics, Data};
 use armkit::math::Vector3;
 use armkit::robots;
 use clap::{Args, Subcommand};
-use plotters::prelude::*;
 
 use crate::common::{
     clean_zero, parse_joint_positions, print_json, CliError, CliResult, LimitPolicy, Outcome,
 };
+use crate::plot::Figure;
+use crate::report::{write_atomic, Check, Report, Table};
 
 /// The paper's tolerance between its theory and its simulation (Table 1).
 const PAPER_TOLERANCE: f64 = 0.04;
@@ -193,35 +194,37 @@ fn table1_text(rows: &[Table1Row], load: LoadArgs) -> String {
 }
 
 /// One sample of the sweep: carriage position and what the rigid model misses.
-struct ErrorSample {
+pub struct ErrorSample {
     d2: f64,
     deflection: f64,
     error: Vector3<f64>,
     two_arm_deflection: f64,
 }
 
-fn error_along_beam(args: &ErrorAlongBeamArgs) -> CliResult<Vec<ErrorSample>> {
-    if args.samples < 2 {
+fn error_along_beam(
+    load: LoadArgs,
+    count: usize,
+    q_text: Option<&str>,
+) -> CliResult<Vec<ErrorSample>> {
+    if count < 2 {
         return Err(CliError(format!(
-            "--samples: expected at least 2, got {}",
-            args.samples
+            "--samples: expected at least 2, got {count}"
         )));
     }
     let beam = SimplySupportedBeam::seed000();
-    let carriage = CarriageDeflection::from_mass(beam, args.load.mass, args.load.gravity)?;
+    let carriage = CarriageDeflection::from_mass(beam, load.mass, load.gravity)?;
     let rigid = robots::gantry9_with_beam(&GantryBeam::Rigid)?;
     let flex = robots::gantry9_with_beam(&GantryBeam::Flexible(carriage))?;
     let two_arm = TwoCarriageBeam::new(beam, [carriage.force, carriage.force])?;
-    let mut q = match &args.q {
+    let mut q = match q_text {
         Some(text) => parse_joint_positions(text, &rigid, LimitPolicy::Enforce)?,
         None => rigid.neutral_configuration(),
     };
     let limits = rigid.joints()[1].limits;
     let (mut rigid_data, mut flex_data) = (Data::new(&rigid), Data::new(&flex));
-    (0..args.samples)
+    (0..count)
         .map(|k| {
-            let d2 =
-                limits.lower + (limits.upper - limits.lower) * k as f64 / (args.samples - 1) as f64;
+            let d2 = limits.lower + (limits.upper - limits.lower) * k as f64 / (count - 1) as f64;
             q[1] = d2;
             let truth = forward_kinematics(&flex, &mut flex_data, &q)?.translation;
             let assumed = forward_kinematics(&rigid, &mut rigid_data, &q)?.translation;
@@ -237,47 +240,44 @@ fn error_along_beam(args: &ErrorAlongBeamArgs) -> CliResult<Vec<ErrorSample>> {
         .collect()
 }
 
-fn run_error_along_beam(args: &ErrorAlongBeamArgs) -> CliResult<Outcome> {
-    let samples = error_along_beam(args)?;
-    std::fs::create_dir_all(&args.out)?;
-    let csv_path = args.out.join("error_along_beam.csv");
-    let svg_path = args.out.join("error_along_beam.svg");
-    let mut csv = String::from(
-        "d2_m,deflection_m,error_x_m,error_y_m,error_z_m,error_norm_m,deflection_two_arm_mirrored_m\n",
-    );
-    for s in &samples {
-        csv += &format!(
-            "{},{},{},{},{},{},{}\n",
-            s.d2,
-            s.deflection,
-            s.error.x,
-            s.error.y,
-            s.error.z,
-            s.error.norm(),
-            s.two_arm_deflection
-        );
-    }
-    std::fs::write(&csv_path, csv)?;
+/// The error-along-beam figure: the end-effector error of a rigid-beam
+/// model (mm) against the carriage position d2 (m).
+pub fn error_along_beam_figure(samples: &[ErrorSample]) -> Figure {
     let x: Vec<f64> = samples.iter().map(|s| s.d2).collect();
     let millimetres = |f: fn(&ErrorSample) -> f64| samples.iter().map(|s| 1e3 * f(s)).collect();
-    write_line_plot(
-        &svg_path,
+    Figure::new(
         "End-effector error of a rigid-beam model (gantry9, seed 000 beam)",
         "carriage position d2 (m)",
         "error (mm)",
-        &x,
-        &[
-            ("|error|, one arm", millimetres(|s| s.error.norm())),
-            (
-                "deflection with a second arm at L - d2",
-                millimetres(|s| s.two_arm_deflection),
-            ),
-        ],
-    )?;
-    let worst = samples
+        x,
+    )
+    .with_series("|error|, one arm (mm)", millimetres(|s| s.error.norm()))
+    .with_series(
+        "deflection w(d2) at the carriage (mm)",
+        millimetres(|s| s.deflection),
+    )
+    .with_series(
+        "deflection with a second arm at L - d2 (mm)",
+        millimetres(|s| s.two_arm_deflection),
+    )
+}
+
+fn worst_sample(samples: &[ErrorSample]) -> CliResult<&ErrorSample> {
+    samples
         .iter()
         .max_by(|a, b| a.error.norm().total_cmp(&b.error.norm()))
-        .ok_or_else(|| CliError("no samples".into()))?;
+        .ok_or_else(|| CliError("no samples".into()))
+}
+
+fn run_error_along_beam(args: &ErrorAlongBeamArgs) -> CliResult<Outcome> {
+    let samples = error_along_beam(args.load, args.samples, args.q.as_deref())?;
+    std::fs::create_dir_all(&args.out)?;
+    let csv_path = args.out.join("error_along_beam.csv");
+    let svg_path = args.out.join("error_along_beam.svg");
+    let figure = error_along_beam_figure(&samples);
+    write_atomic(&csv_path, figure.to_csv().as_bytes())?;
+    write_atomic(&svg_path, figure.to_svg(800, 500)?.as_bytes())?;
+    let worst = worst_sample(&samples)?;
     if args.json {
         print_json(&serde_json::json!({
             "csv": csv_path.display().to_string(),
@@ -302,60 +302,98 @@ fn run_error_along_beam(args: &ErrorAlongBeamArgs) -> CliResult<Outcome> {
     Ok(Outcome::Success)
 }
 
-/// Writes an SVG line chart of `series` (name, ordinates) against `x`.
-fn write_line_plot(
-    path: &Path,
-    title: &str,
-    x_label: &str,
-    y_label: &str,
-    x: &[f64],
-    series: &[(&str, Vec<f64>)],
-) -> CliResult {
-    let plot_error = |e: &dyn std::fmt::Display| CliError(format!("{}: plot: {e}", path.display()));
-    let (x_min, x_max) = bounds(x.iter().copied());
-    let (y_min, y_max) = bounds(series.iter().flat_map(|(_, y)| y.iter().copied()));
-    let y_pad = 0.05 * (y_max - y_min).max(1e-9);
-    let root = SVGBackend::new(path, (800, 500)).into_drawing_area();
-    root.fill(&WHITE).map_err(|e| plot_error(&e))?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(title, ("sans-serif", 18))
-        .margin(10)
-        .x_label_area_size(40)
-        .y_label_area_size(60)
-        .build_cartesian_2d(x_min..x_max, (y_min - y_pad)..(y_max + y_pad))
-        .map_err(|e| plot_error(&e))?;
-    chart
-        .configure_mesh()
-        .x_desc(x_label)
-        .y_desc(y_label)
-        .draw()
-        .map_err(|e| plot_error(&e))?;
-    for (k, (name, y)) in series.iter().enumerate() {
-        let color = Palette99::pick(k).to_rgba();
-        chart
-            .draw_series(LineSeries::new(
-                x.iter().copied().zip(y.iter().copied()),
-                color.stroke_width(2),
-            ))
-            .map_err(|e| plot_error(&e))?
-            .label(*name)
-            .legend(move |(px, py)| {
-                PathElement::new([(px, py), (px + 18, py)], color.stroke_width(2))
-            });
+/// Seed 000's beam as a report: Table 1 (paper vs ours, one check per case
+/// against the paper's own 4 %), and the error a rigid model makes along
+/// the beam.
+pub fn report(load: LoadArgs, samples: usize) -> CliResult<Report> {
+    let rows = table1_rows(load)?;
+    let mut table = Table::new(
+        format!(
+            "Table 1: deflection under the loads, {} kg each, g = {} m/s^2",
+            load.mass, load.gravity
+        ),
+        &[
+            "case",
+            "loads (m)",
+            "paper (m)",
+            "ours (m)",
+            "mid-span (m)",
+            "error",
+        ],
+    );
+    let mut checks = Vec::new();
+    for r in &rows {
+        table.push(vec![
+            r.label.to_string(),
+            format!("{}, {}", r.positions[0], r.positions[1]),
+            format!("{}", r.paper),
+            format!("{:.6}", r.under_each[0]),
+            format!("{:.6}", r.midspan),
+            format!("{:.2} %", 100.0 * clean_zero(r.relative_error())),
+        ]);
+        checks.push(Check::at_most(
+            format!("Table 1 case {}: |ours - paper| / paper", r.label),
+            r.relative_error().abs(),
+            PAPER_TOLERANCE,
+            "",
+        ));
     }
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .position(SeriesLabelPosition::UpperLeft)
-        .draw()
-        .map_err(|e| plot_error(&e))?;
-    root.present().map_err(|e| plot_error(&e))?;
-    Ok(())
+    let along = error_along_beam(load, samples, None)?;
+    let worst = worst_sample(&along)?;
+    let flex = robots::gantry9_with_beam(&GantryBeam::Flexible(CarriageDeflection::from_mass(
+        SimplySupportedBeam::seed000(),
+        load.mass,
+        load.gravity,
+    )?))?;
+    let coupled_jacobian_error = coupled_jacobian_error(&flex)?;
+    checks.push(Check::at_least(
+        "largest end-effector error of a rigid model along the beam",
+        1e3 * worst.error.norm(),
+        1.0,
+        "mm",
+    ));
+    checks.push(Check::at_most(
+        "coupled Jacobian J0 M vs central differences of the deflected FK",
+        coupled_jacobian_error,
+        1e-7,
+        "",
+    ));
+    Ok(Report {
+        name: "seed000-beam".into(),
+        title: "Seed 000, sec 3.1: the gantry's flexible beam (Table 1)".into(),
+        description: "A simply supported 10 m steel beam (E = 200 GPa, square 0.2 m section) carries the arm's carriage. Its deflection w(d2) lowers the vertical joint (d3' = d3 + w(d2), eq 4 corrected) and couples the Jacobian (J = J0 M, eqs 8-10 corrected). Table 1's two-load cases are recomputed from eq 1 by superposition (eqs 2-3 derived; the printed ones are garbled).".into(),
+        checks,
+        tables: vec![table],
+        figures: vec![("error_along_beam".into(), error_along_beam_figure(&along))],
+        notes: vec![
+            format!("Table 1 is reproduced with g = {SEED000_GRAVITY} m/s^2 (only g in [9.948, 10.089) rounds to all three printed values); the printed values are the deflection under the loads, not at mid-span, and case a=3.3, b=3.3 means 3.3 m from each end."),
+            "Errata: eq 3 swaps P1 and P2; eq 4 prints d2 - for d3 +; the printed eq 8 misses 2 P d2^3 / (3 E I L).".into(),
+            format!("Largest error of a rigid model: {:.3} mm at d2 = {} m, straight down.", 1e3 * worst.error.norm(), worst.d2),
+        ],
+        animation: None,
+    })
 }
 
-fn bounds(values: impl Iterator<Item = f64>) -> (f64, f64) {
-    values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
-        (lo.min(v), hi.max(v))
-    })
+/// Largest entry of |J0 M - J_fd| over a few configurations of the flexible gantry.
+fn coupled_jacobian_error(flex: &armkit::Model) -> CliResult<f64> {
+    let mut data = Data::new(flex);
+    let mut worst: f64 = 0.0;
+    for k in 0..5 {
+        let mut q = flex.neutral_configuration();
+        q[1] = 0.5 + 0.9 * k as f64;
+        let analytic = armkit::jacobian(flex, &mut data, &q, armkit::JacobianFrame::World)?.clone();
+        let h = 1e-6;
+        for j in 0..flex.dof() {
+            let (mut plus, mut minus) = (q.clone(), q.clone());
+            plus[j] += h;
+            minus[j] -= h;
+            let p = forward_kinematics(flex, &mut data, &plus)?.translation;
+            let m = forward_kinematics(flex, &mut data, &minus)?.translation;
+            let column = (p - m) / (2.0 * h);
+            for r in 0..3 {
+                worst = worst.max((analytic[(r, j)] - column[r]).abs());
+            }
+        }
+    }
+    Ok(worst)
 }

@@ -1,7 +1,9 @@
 //! One module per `armkit` subcommand.
 
 pub mod beam;
-pub mod demo;
 pub mod fk;
+pub mod ik;
+pub mod redundancy;
 pub mod robots;
+pub mod run;
 pub mod space;

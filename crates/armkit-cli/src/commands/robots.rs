@@ -30,9 +30,10 @@ pub fn run(args: &RobotsArgs) -> CliResult<Outcome> {
 
 /// The text table of built-in robots.
 pub fn table() -> String {
-    let mut out = format!("{:<10} {:>3}  {}\n", "robot", "dof", "description");
+    let width = armkit::robots::names().map(str::len).max().unwrap_or(5);
+    let mut out = format!("{:<width$} {:>3}  {}\n", "robot", "dof", "description");
     for r in armkit::robots::BUILTIN {
-        out += &format!("{:<10} {:>3}  {}\n", r.name, r.dof, r.description);
+        out += &format!("{:<width$} {:>3}  {}\n", r.name, r.dof, r.description);
     }
     out
 }

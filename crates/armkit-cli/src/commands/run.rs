@@ -1,0 +1,144 @@
+//! `armkit run SCENARIO.toml` and `armkit demo`: scenarios to reports.
+
+use std::path::{Path, PathBuf};
+
+use clap::Args;
+use indicatif::{ProgressBar, ProgressStyle};
+
+use crate::common::{CliError, CliResult, Outcome};
+use crate::report::{write_index, ReportSummary};
+use crate::scenario::{self, Scenario};
+
+/// The scenarios shipped in the repository's `scenarios/` folder, built into
+/// the binary so that `armkit demo` runs anywhere.
+const SHIPPED: &[(&str, &str)] = &[(
+    "seed000-beam.toml",
+    include_str!("../../../../scenarios/seed000-beam.toml"),
+)];
+
+/// Runs one scenario file and writes its report.
+#[derive(Args, Debug)]
+pub struct RunArgs {
+    /// The scenario file (TOML).
+    pub scenario: PathBuf,
+    /// Output directory; the report goes to OUT/<scenario name>/.
+    #[arg(long, default_value = "out")]
+    pub out: PathBuf,
+}
+
+/// Runs every shipped scenario and writes out/index.html.
+#[derive(Args, Debug)]
+pub struct DemoArgs {
+    /// Output directory.
+    #[arg(long, default_value = "out")]
+    pub out: PathBuf,
+    /// Run the scenario files of this folder instead of the shipped ones.
+    #[arg(long, value_name = "DIR")]
+    pub scenarios: Option<PathBuf>,
+}
+
+/// Runs `armkit run`.
+pub fn run(args: &RunArgs) -> CliResult<Outcome> {
+    let scenario = scenario::load(&args.scenario)?;
+    let summary = run_scenario(&scenario, &args.out)?;
+    Ok(outcome(&[summary]))
+}
+
+fn run_scenario(scenario: &Scenario, out: &Path) -> CliResult<ReportSummary> {
+    let report = scenario.run()?;
+    print!("{}", report.to_text());
+    let summary = report.write(out)?;
+    println!("  report: {}", summary.html.display());
+    Ok(summary)
+}
+
+fn outcome(summaries: &[ReportSummary]) -> Outcome {
+    if summaries.iter().all(ReportSummary::all_passed) {
+        Outcome::Success
+    } else {
+        Outcome::NotConverged
+    }
+}
+
+/// Runs `armkit demo`.
+pub fn demo(args: &DemoArgs) -> CliResult<Outcome> {
+    let scenarios = match &args.scenarios {
+        Some(dir) => load_folder(dir)?,
+        None => SHIPPED
+            .iter()
+            .map(|(name, text)| {
+                scenario::parse(text, &format!("scenarios/{name}"), Path::new("scenarios"))
+            })
+            .collect::<CliResult<Vec<_>>>()?,
+    };
+    let started = std::time::Instant::now();
+    let progress = ProgressBar::new(scenarios.len() as u64);
+    progress.set_style(
+        ProgressStyle::with_template("{bar:30} {pos}/{len} {msg}")
+            .map_err(|e| CliError(format!("progress bar: {e}")))?,
+    );
+    let mut summaries = Vec::new();
+    for scenario in &scenarios {
+        progress.set_message(scenario.name.clone());
+        let summary = progress.suspend(|| run_scenario(scenario, &args.out))?;
+        summaries.push(summary);
+        progress.inc(1);
+    }
+    progress.finish_and_clear();
+    let index = write_index(&args.out, &summaries)?;
+    println!(
+        "\n{} scenarios in {:.1} s:",
+        summaries.len(),
+        started.elapsed().as_secs_f64()
+    );
+    for s in &summaries {
+        println!(
+            "  [{}] {}: {} of {} checks pass",
+            if s.all_passed() { "pass" } else { "FAIL" },
+            s.name,
+            s.passed,
+            s.total
+        );
+    }
+    println!("open {}", index.display());
+    Ok(outcome(&summaries))
+}
+
+fn load_folder(dir: &Path) -> CliResult<Vec<Scenario>> {
+    let mut paths: Vec<PathBuf> = std::fs::read_dir(dir)
+        .map_err(|e| CliError(format!("{}: cannot read the folder: {e}", dir.display())))?
+        .filter_map(|entry| entry.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    paths.sort();
+    if paths.is_empty() {
+        return Err(CliError(format!(
+            "{}: no .toml scenario files",
+            dir.display()
+        )));
+    }
+    paths.iter().map(|p| scenario::load(p)).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_shipped_list_is_the_scenarios_folder() {
+        let dir = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios"));
+        let mut on_disk: Vec<String> = std::fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().to_string())
+            .filter(|n| n.ends_with(".toml"))
+            .collect();
+        on_disk.sort();
+        let mut shipped: Vec<String> = SHIPPED.iter().map(|(n, _)| n.to_string()).collect();
+        shipped.sort();
+        assert_eq!(on_disk, shipped);
+        for (name, text) in SHIPPED {
+            let from_disk = std::fs::read_to_string(dir.join(name)).unwrap();
+            assert_eq!(&from_disk, text);
+        }
+    }
+}

@@ -1,0 +1,207 @@
+//! Scenario files: which robot, which method with which options, and what to
+//! check; `armkit run FILE.toml` turns one into a report, `armkit demo` runs
+//! the shipped ones.
+//!
+//! ```toml
+//! name = "seed000-beam"            # folder under the output directory
+//! title = "Seed 000: the flexible beam"
+//! description = "..."              # optional
+//!
+//! [robot]                          # optional for methods that fix their robot
+//! builtin = "gantry9"              # or file = "robot.toml", or urdf = "x.urdf" (+ base, tip)
+//!
+//! [beam]                           # exactly one method table
+//! mass = 400.0
+//! ```
+//!
+//! Errors name the file, the line and the column, and say what was expected.
+
+mod methods;
+
+use std::path::{Path, PathBuf};
+
+use armkit::description::{line_and_column, toml_error_line};
+use armkit::Model;
+use serde::Deserialize;
+use toml::Spanned;
+
+use crate::common::{CliError, CliResult};
+use crate::report::Report;
+
+pub use methods::Method;
+use methods::MethodTables;
+
+/// Where the robot comes from.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RobotSpec {
+    builtin: Option<Spanned<String>>,
+    file: Option<Spanned<String>>,
+    urdf: Option<Spanned<String>>,
+    base: Option<String>,
+    tip: Option<String>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ScenarioFile {
+    name: Spanned<String>,
+    title: String,
+    #[serde(default)]
+    description: String,
+    robot: Option<Spanned<RobotSpec>>,
+    // The method tables: exactly one is present (see `methods`).
+    beam: Option<Spanned<methods::BeamSpec>>,
+}
+
+/// A parsed, validated scenario.
+#[derive(Debug)]
+pub struct Scenario {
+    /// Output folder name.
+    pub name: String,
+    /// Title.
+    pub title: String,
+    /// Description shown in the report.
+    pub description: String,
+    /// The robot, when the scenario names one.
+    pub robot: Option<Model>,
+    /// The method and its options.
+    pub method: Method,
+}
+
+/// Locates byte offsets of one file in error messages.
+pub struct Locator<'a> {
+    source_name: &'a str,
+    text: &'a str,
+}
+
+impl Locator<'_> {
+    /// `file: line L, column C: message` for a span's start.
+    pub fn error(&self, span: std::ops::Range<usize>, message: impl std::fmt::Display) -> CliError {
+        let (line, column) = line_and_column(self.text, span.start);
+        CliError(format!(
+            "{}: line {line}, column {column}: {message}",
+            self.source_name
+        ))
+    }
+}
+
+/// Reads and validates a scenario file.
+pub fn load(path: &Path) -> CliResult<Scenario> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| CliError(format!("{}: cannot read the file: {e}", path.display())))?;
+    let base_dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
+    parse(&text, &path.display().to_string(), &base_dir)
+}
+
+/// Parses scenario text; relative paths inside it are taken from `base_dir`.
+pub fn parse(text: &str, source_name: &str, base_dir: &Path) -> CliResult<Scenario> {
+    let file: ScenarioFile = toml::from_str(text)
+        .map_err(|e| CliError(format!("{source_name}: {}", toml_error_line(text, &e))))?;
+    let locator = Locator { source_name, text };
+    let name = file.name.get_ref();
+    if name.is_empty()
+        || !name
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_')
+    {
+        return Err(locator.error(
+            file.name.span(),
+            format!("`name` must be letters, digits, `-` or `_` (it names the output folder), got {name:?}"),
+        ));
+    }
+    let robot = match &file.robot {
+        Some(spec) => Some(load_robot(spec, &locator, base_dir)?),
+        None => None,
+    };
+    let method = Method::from_tables(MethodTables { beam: file.beam }, &locator)?;
+    Ok(Scenario {
+        name: name.clone(),
+        title: file.title,
+        description: file.description,
+        robot,
+        method,
+    })
+}
+
+fn load_robot(spec: &Spanned<RobotSpec>, locator: &Locator, base_dir: &Path) -> CliResult<Model> {
+    let robot = spec.get_ref();
+    let resolve = |p: &Spanned<String>| -> PathBuf { base_dir.join(p.get_ref()) };
+    match (&robot.builtin, &robot.file, &robot.urdf) {
+        (Some(name), None, None) => {
+            armkit::robots::by_name(name.get_ref()).map_err(|e| locator.error(name.span(), e))
+        }
+        (None, Some(file), None) => {
+            armkit::description::load(resolve(file)).map_err(|e| locator.error(file.span(), e))
+        }
+        (None, None, Some(urdf)) => {
+            let selection = armkit::urdf::ChainSelection {
+                base: robot.base.clone(),
+                tip: robot.tip.clone(),
+            };
+            armkit::urdf::load(resolve(urdf), &selection).map_err(|e| locator.error(urdf.span(), e))
+        }
+        _ => Err(locator.error(
+            spec.span(),
+            "[robot] needs exactly one of `builtin`, `file` or `urdf`",
+        )),
+    }
+}
+
+impl Scenario {
+    /// Runs the method and returns its report, named and titled by the scenario.
+    pub fn run(&self) -> CliResult<Report> {
+        let mut report = self.method.run(self.robot.as_ref())?;
+        report.name = self.name.clone();
+        report.title = self.title.clone();
+        if !self.description.is_empty() {
+            report.description = self.description.clone();
+        }
+        Ok(report)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn error(text: &str) -> String {
+        parse(text, "s.toml", Path::new(".")).unwrap_err().0
+    }
+
+    #[test]
+    fn a_beam_scenario_parses_and_runs() {
+        let scenario = parse(
+            "name = \"b\"\ntitle = \"Beam\"\n[beam]\nsamples = 5\n",
+            "s.toml",
+            Path::new("."),
+        )
+        .unwrap();
+        let report = scenario.run().unwrap();
+        assert_eq!(report.name, "b");
+        assert!(report.checks.len() >= 3);
+        assert_eq!(report.passed(), report.checks.len());
+    }
+
+    #[test]
+    fn errors_name_file_line_and_column() {
+        assert_eq!(
+            error("name = \"b\"\ntitle = 3\n[beam]\n"),
+            "s.toml: line 2, column 9 (`title = 3`): invalid type: integer `3`, expected a string"
+        );
+        assert_eq!(
+            error("name = \"b\"\ntitle = \"t\"\n[robot]\nbuiltin = \"r2d2\"\n[beam]\n"),
+            "s.toml: line 4, column 11: unknown robot `r2d2`; the built-in robots are: puma560, ur5, panda, stanford, arm4, space6r, gantry9, gantry9-flex"
+        );
+        assert!(error("title = \"t\"\n[beam]\n").contains("missing field `name`"));
+        assert_eq!(
+            error("name = \"b\"\ntitle = \"t\"\n"),
+            "s.toml: line 1, column 1: no method table: expected exactly one of [beam]"
+        );
+        assert_eq!(
+            error("name = \"a b\"\ntitle = \"t\"\n[beam]\n"),
+            "s.toml: line 1, column 8: `name` must be letters, digits, `-` or `_` (it names the output folder), got \"a b\""
+        );
+        assert!(error("name = \"b\"\ntitle = \"t\"\n[beam]\nmas = 3.0\n").contains("line 4"));
+    }
+}
