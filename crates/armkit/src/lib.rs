@@ -38,6 +38,7 @@ pub mod ik;
 pub mod kinematics;
 pub mod math;
 pub mod model;
+pub mod mpc;
 pub mod redundancy;
 pub mod robots;
 pub mod space;
