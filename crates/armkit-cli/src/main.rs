@@ -42,6 +42,8 @@ enum Command {
     Space(commands::space::SpaceArgs),
     /// Redundancy resolution (seeds 000, 001): one motion distributed four ways, energy measure F.
     Redundancy(commands::redundancy::RedundancyArgs),
+    /// Trajectories: joint-space profiles and Cartesian lines (seed 002), CSV and SVG plots.
+    Traj(commands::traj::TrajArgs),
 }
 
 fn run(command: &Command) -> CliResult<Outcome> {
@@ -56,6 +58,7 @@ fn run(command: &Command) -> CliResult<Outcome> {
         Command::Beam(args) => commands::beam::run(args),
         Command::Space(args) => commands::space::run(args),
         Command::Redundancy(args) => commands::redundancy::run(args),
+        Command::Traj(args) => commands::traj::run(args),
     }
 }
 

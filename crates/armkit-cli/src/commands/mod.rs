@@ -7,3 +7,4 @@ pub mod redundancy;
 pub mod robots;
 pub mod run;
 pub mod space;
+pub mod traj;

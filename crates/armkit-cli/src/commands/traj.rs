@@ -1,0 +1,371 @@
+//! `armkit traj`: joint-space profiles and Cartesian lines, sampled to CSV
+//! and plotted to SVG.
+//!
+//! * `armkit traj joint --robot panda --from Q0 --to QF [--profile quintic]
+//!   [--duration T [--accel-time TA]]`: a point-to-point profile (minimum
+//!   time under the robot's limits when no duration is given).
+//!
+//! The CSV has a header row: `t`, `q1..qn`, `qd1..qdn`, `qdd1..qddn`, then
+//! the end-effector pose `x, y, z` (m) and `roll, pitch, yaw` (rad, world
+//! frame). `--plots DIR` writes `positions.svg`, `velocities.svg` and
+//! `accelerations.svg`.
+
+use std::path::{Path, PathBuf};
+
+use armkit::kinematics::{forward_kinematics, Data};
+use armkit::trajectory::limits::{check_limits, peak_rates, LimitKind, TrajectoryLimits};
+use armkit::trajectory::profile::{self, ProfileShape};
+use armkit::trajectory::{JointState, Trajectory};
+use armkit::Model;
+use clap::{Args, Subcommand, ValueEnum};
+
+use crate::common::{
+    parse_joint_positions, print_json, CliError, CliResult, LimitPolicy, Outcome, RobotArgs,
+};
+use crate::plot::Figure;
+
+/// `armkit traj` arguments.
+#[derive(Args, Debug)]
+pub struct TrajArgs {
+    #[command(subcommand)]
+    pub command: TrajCommand,
+}
+
+/// The trajectory kinds.
+#[derive(Subcommand, Debug)]
+pub enum TrajCommand {
+    /// Joint-space point-to-point profile between two configurations.
+    Joint(JointArgs),
+}
+
+/// Where and how densely the trajectory is written.
+#[derive(Args, Debug, Clone)]
+pub struct OutputArgs {
+    /// Sampling period of the CSV and plots, s.
+    #[arg(long, default_value_t = 0.01, value_name = "S", allow_hyphen_values = true)]
+    pub dt: f64,
+    /// CSV file: t, q, qd, qdd, end-effector x y z roll pitch yaw.
+    #[arg(long, value_name = "PATH")]
+    pub csv: Option<PathBuf>,
+    /// Directory for SVG plots (created if missing): positions.svg,
+    /// velocities.svg, accelerations.svg.
+    #[arg(long, value_name = "DIR")]
+    pub plots: Option<PathBuf>,
+    /// Print the summary as JSON.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// `--profile` values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum ProfileArg {
+    /// Cubic polynomial, rest to rest.
+    Cubic,
+    /// Quintic polynomial, rest to rest.
+    Quintic,
+    /// Trapezoidal velocity (needs --accel-time with --duration).
+    Trapezoidal,
+}
+
+impl From<ProfileArg> for ProfileShape {
+    fn from(p: ProfileArg) -> Self {
+        match p {
+            ProfileArg::Cubic => ProfileShape::Cubic,
+            ProfileArg::Quintic => ProfileShape::Quintic,
+            ProfileArg::Trapezoidal => ProfileShape::Trapezoidal,
+        }
+    }
+}
+
+/// `armkit traj joint`.
+#[derive(Args, Debug)]
+pub struct JointArgs {
+    #[command(flatten)]
+    pub robot: RobotArgs,
+    /// Start configuration, comma-separated (rad or m; `pi/2`, `90deg` work).
+    #[arg(long, value_name = "Q1,Q2,...", allow_hyphen_values = true)]
+    pub from: String,
+    /// Goal configuration.
+    #[arg(long, value_name = "Q1,Q2,...", allow_hyphen_values = true)]
+    pub to: String,
+    /// Profile shape.
+    #[arg(long, value_enum, default_value_t = ProfileArg::Quintic)]
+    pub profile: ProfileArg,
+    /// Duration, s. Without it: the minimum time under the robot's velocity
+    /// and acceleration limits.
+    #[arg(long, value_name = "S", allow_hyphen_values = true)]
+    pub duration: Option<f64>,
+    /// Acceleration (and deceleration) time of the trapezoid, s (with --duration).
+    #[arg(long, value_name = "S", allow_hyphen_values = true)]
+    pub accel_time: Option<f64>,
+    /// Accept configurations outside the joint limits.
+    #[arg(long)]
+    pub allow_out_of_limits: bool,
+    #[command(flatten)]
+    pub output: OutputArgs,
+}
+
+/// Runs `armkit traj`.
+pub fn run(args: &TrajArgs) -> CliResult<Outcome> {
+    match &args.command {
+        TrajCommand::Joint(a) => run_joint(a),
+    }
+}
+
+fn run_joint(args: &JointArgs) -> CliResult<Outcome> {
+    let model = args.robot.load()?;
+    let policy = LimitPolicy::from_flag(args.allow_out_of_limits);
+    let q0 = parse_joint_positions(&args.from, &model, policy).map_err(|e| rename(e, "--from"))?;
+    let qf = parse_joint_positions(&args.to, &model, policy).map_err(|e| rename(e, "--to"))?;
+    let shape = ProfileShape::from(args.profile);
+    let limits = TrajectoryLimits::from_model(&model);
+    let traj = match args.duration {
+        Some(duration) => profile::rest_to_rest(shape, &q0, &qf, duration, args.accel_time)?,
+        None => {
+            if args.accel_time.is_some() {
+                return Err(CliError(
+                    "--accel-time needs --duration (without it the profile is minimum-time)".into(),
+                ));
+            }
+            profile::minimum_time(shape, &q0, &qf, &limits).map_err(|e| {
+                CliError(format!(
+                    "{e} (the robot's limits; give --duration to plan without them)"
+                ))
+            })?
+        }
+    };
+    let mut summary = summarize(&model, &traj, &limits)?;
+    summary["profile"] = serde_json::json!(format!("{:?}", args.profile).to_lowercase());
+    summary["minimum_time"] = serde_json::json!(args.duration.is_none());
+    let files = write_outputs(&model, &traj, &args.output)?;
+    summary["files"] = serde_json::json!(files);
+    report(&summary, args.output.json)?;
+    Ok(Outcome::Success)
+}
+
+/// Puts the option's name in a message from `parse_joint_positions` (which says `--q`).
+fn rename(error: CliError, option: &str) -> CliError {
+    CliError(error.0.replacen("--q", option, 1))
+}
+
+/// Duration, segments, peak rates and limit violations, as JSON.
+fn summarize(
+    model: &Model,
+    traj: &Trajectory,
+    limits: &TrajectoryLimits,
+) -> CliResult<serde_json::Value> {
+    let peaks = peak_rates(traj);
+    let violations: Vec<serde_json::Value> = check_limits(traj, limits)?
+        .iter()
+        .map(|v| {
+            serde_json::json!({
+                "joint": v.joint + 1,
+                "kind": match v.kind {
+                    LimitKind::Position => "position",
+                    LimitKind::Velocity => "velocity",
+                    LimitKind::Acceleration => "acceleration",
+                },
+                "from_s": v.start_time,
+                "to_s": v.end_time,
+                "peak": v.peak_value,
+                "peak_time_s": v.peak_time,
+                "bound": v.bound,
+            })
+        })
+        .collect();
+    Ok(serde_json::json!({
+        "robot": model.name(),
+        "duration_s": traj.duration(),
+        "segments": traj.segment_count(),
+        "peak_velocity": peaks.velocity,
+        "peak_acceleration": peaks.acceleration,
+        "limit_violations": violations,
+    }))
+}
+
+/// Prints the summary as JSON or as text.
+fn report(summary: &serde_json::Value, json: bool) -> CliResult {
+    if json {
+        return print_json(summary);
+    }
+    let numbers = |key: &str| -> String {
+        summary[key]
+            .as_array()
+            .map(|a| {
+                a.iter()
+                    .map(|v| format!("{:.4}", v.as_f64().unwrap_or(f64::NAN)))
+                    .collect::<Vec<_>>()
+                    .join(" ")
+            })
+            .unwrap_or_default()
+    };
+    println!(
+        "{}: {} trajectory, {:.6} s, {} segment(s)",
+        summary["robot"].as_str().unwrap_or("?"),
+        summary["profile"].as_str().unwrap_or("?"),
+        summary["duration_s"].as_f64().unwrap_or(f64::NAN),
+        summary["segments"]
+    );
+    for (key, value) in summary.as_object().into_iter().flatten() {
+        if let Some(v) = value
+            .as_f64()
+            .filter(|_| key.ends_with("_m") || key.ends_with("_rad") || key.ends_with("_ms"))
+        {
+            println!("{key}: {v:.6e}");
+        } else if key == "status" || key == "scheme" {
+            println!("{key}: {}", value.as_str().unwrap_or("?"));
+        }
+    }
+    println!("peak |qd|: {}", numbers("peak_velocity"));
+    println!("peak |qdd|: {}", numbers("peak_acceleration"));
+    let violations = summary["limit_violations"]
+        .as_array()
+        .cloned()
+        .unwrap_or_default();
+    if violations.is_empty() {
+        println!("within the robot's position, velocity and acceleration limits");
+    }
+    for v in violations {
+        println!(
+            "warning: joint {} exceeds its {} limit {} from {:.4} s to {:.4} s (peak {:.6} at {:.4} s)",
+            v["joint"],
+            v["kind"].as_str().unwrap_or("?"),
+            v["bound"],
+            v["from_s"].as_f64().unwrap_or(f64::NAN),
+            v["to_s"].as_f64().unwrap_or(f64::NAN),
+            v["peak"].as_f64().unwrap_or(f64::NAN),
+            v["peak_time_s"].as_f64().unwrap_or(f64::NAN)
+        );
+    }
+    for file in summary["files"].as_array().into_iter().flatten() {
+        println!("wrote {}", file.as_str().unwrap_or("?"));
+    }
+    Ok(())
+}
+
+/// The trajectory sampled every `dt` (and at its end): times and states.
+fn sample(traj: &Trajectory, dt: f64) -> CliResult<(Vec<f64>, Vec<JointState>)> {
+    if !(dt.is_finite() && dt > 0.0) {
+        return Err(CliError(format!("--dt: must be finite and > 0, got {dt}")));
+    }
+    let steps = (traj.duration() / dt).ceil() as usize;
+    if steps > 10_000_000 {
+        return Err(CliError(format!(
+            "--dt: {dt} s gives {steps} samples; use a larger step"
+        )));
+    }
+    let times: Vec<f64> = (0..=steps)
+        .map(|k| traj.start_time() + (k as f64 * dt).min(traj.duration()))
+        .collect();
+    let states = times
+        .iter()
+        .map(|&t| traj.sample(t))
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok((times, states))
+}
+
+/// Writes the CSV and the plots that `output` asks for; returns the paths written.
+pub fn write_outputs(
+    model: &Model,
+    traj: &Trajectory,
+    output: &OutputArgs,
+) -> CliResult<Vec<String>> {
+    let (times, states) = sample(traj, output.dt)?;
+    let mut written = Vec::new();
+    if let Some(path) = &output.csv {
+        write_file(path, &trajectory_csv(model, &times, &states)?)?;
+        written.push(path.display().to_string());
+    }
+    if let Some(dir) = &output.plots {
+        std::fs::create_dir_all(dir)
+            .map_err(|e| CliError(format!("{}: cannot create: {e}", dir.display())))?;
+        for (name, figure) in joint_figures(model.name(), &times, &states) {
+            let path = dir.join(format!("{name}.svg"));
+            let svg = figure
+                .to_svg(800, 450)
+                .map_err(|e| CliError(format!("{}: plot: {e}", path.display())))?;
+            write_file(&path, &svg)?;
+            written.push(path.display().to_string());
+        }
+    }
+    Ok(written)
+}
+
+fn write_file(path: &Path, text: &str) -> CliResult {
+    std::fs::write(path, text)
+        .map_err(|e| CliError(format!("{}: cannot write: {e}", path.display())))
+}
+
+/// CSV text: header, then one row per sample with the end-effector pose from FK.
+fn trajectory_csv(model: &Model, times: &[f64], states: &[JointState]) -> CliResult<String> {
+    let dof = model.dof();
+    let joint_columns = |prefix: &'static str| (1..=dof).map(move |j| format!("{prefix}{j}"));
+    let header: Vec<String> = std::iter::once("t".to_string())
+        .chain(joint_columns("q"))
+        .chain(joint_columns("qd"))
+        .chain(joint_columns("qdd"))
+        .chain(["x", "y", "z", "roll", "pitch", "yaw"].map(String::from))
+        .collect();
+    let mut out = header.join(",");
+    out.push('\n');
+    let mut data = Data::new(model);
+    for (t, s) in times.iter().zip(states) {
+        let pose = forward_kinematics(model, &mut data, &s.position)?;
+        let (roll, pitch, yaw) = pose.rpy();
+        let p = pose.translation;
+        let row: Vec<String> = std::iter::once(*t)
+            .chain(s.position.iter().copied())
+            .chain(s.velocity.iter().copied())
+            .chain(s.acceleration.iter().copied())
+            .chain([p.x, p.y, p.z, roll, pitch, yaw])
+            .map(|v| v.to_string())
+            .collect();
+        out += &row.join(",");
+        out.push('\n');
+    }
+    Ok(out)
+}
+
+/// Joint positions, velocities and accelerations against time: three
+/// figures named `positions`, `velocities`, `accelerations`, one series per
+/// joint. Self-contained so that it can move to a shared plotting module.
+pub fn joint_figures(
+    robot: &str,
+    times: &[f64],
+    states: &[JointState],
+) -> Vec<(&'static str, Figure)> {
+    let dof = states.first().map_or(0, JointState::dof);
+    type Field = fn(&JointState) -> &Vec<f64>;
+    let quantities: [(&'static str, &str, &str, Field); 3] = [
+        ("positions", "joint positions", "q (rad or m)", |s| {
+            &s.position
+        }),
+        ("velocities", "joint velocities", "qd (rad/s or m/s)", |s| {
+            &s.velocity
+        }),
+        (
+            "accelerations",
+            "joint accelerations",
+            "qdd (rad/s^2 or m/s^2)",
+            |s| &s.acceleration,
+        ),
+    ];
+    quantities
+        .into_iter()
+        .map(|(name, title, y_label, field)| {
+            let mut figure = Figure::new(
+                format!("{robot}: {title}"),
+                "t (s)",
+                y_label,
+                times.to_vec(),
+            );
+            for j in 0..dof {
+                figure = figure.with_series(
+                    format!("joint {}", j + 1),
+                    states.iter().map(|s| field(s)[j]).collect(),
+                );
+            }
+            (name, figure)
+        })
+        .collect()
+}

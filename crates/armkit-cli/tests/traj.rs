@@ -1,0 +1,168 @@
+//! `armkit traj`, run as a user would.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn armkit(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_armkit"))
+        .args(args)
+        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
+        .output()
+        .unwrap()
+}
+
+fn stderr(output: &Output) -> String {
+    String::from_utf8_lossy(&output.stderr).trim().to_string()
+}
+
+fn json(output: &Output) -> serde_json::Value {
+    assert!(output.status.success(), "{}", stderr(output));
+    serde_json::from_slice(&output.stdout).unwrap()
+}
+
+/// A fresh scratch directory for one test.
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("armkit-traj-test-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Rows of a CSV file as numbers, after checking the header.
+fn read_csv(path: &std::path::Path, header: &str) -> Vec<Vec<f64>> {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(lines.next().unwrap(), header);
+    lines
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect()
+}
+
+const PANDA_FROM: &str = "0,-0.3,0,-2.2,0,2,0.8";
+const PANDA_TO: &str = "1,0.4,-0.5,-1.2,0.7,1.2,-0.3";
+
+#[test]
+fn joint_trapezoid_writes_csv_and_plots() {
+    let dir = scratch("joint");
+    let csv = dir.join("traj.csv");
+    let plots = dir.join("plots");
+    let output = armkit(&[
+        "traj",
+        "joint",
+        "--robot",
+        "arm4",
+        "--from",
+        "0,0,0,0",
+        "--to",
+        "1,-0.5,pi/2,0.2",
+        "--profile",
+        "trapezoidal",
+        "--duration",
+        "2",
+        "--accel-time",
+        "0.5",
+        "--dt",
+        "0.1",
+        "--csv",
+        csv.to_str().unwrap(),
+        "--plots",
+        plots.to_str().unwrap(),
+        "--json",
+    ]);
+    let summary = json(&output);
+    assert_eq!(summary["duration_s"], 2.0);
+    assert_eq!(summary["segments"], 3);
+    let header = "t,q1,q2,q3,q4,qd1,qd2,qd3,qd4,qdd1,qdd2,qdd3,qdd4,x,y,z,roll,pitch,yaw";
+    let rows = read_csv(&csv, header);
+    assert_eq!(rows.len(), 21);
+    let last = rows.last().unwrap();
+    assert_eq!(last[0], 2.0);
+    let goal = [1.0, -0.5, std::f64::consts::FRAC_PI_2, 0.2];
+    for j in 0..4 {
+        assert!((last[1 + j] - goal[j]).abs() < 1e-12);
+        assert!(last[5 + j].abs() < 1e-12, "ends at rest");
+    }
+    // Cruise velocity d / (T - ta) at t = 1 s.
+    assert!((rows[10][5] - 1.0 / 1.5).abs() < 1e-12);
+    // The pose columns are forward kinematics: arm4 at q = 0 puts the tool at (0.08, -0.45, 0.3).
+    assert!(
+        (rows[0][13] - 0.08).abs() < 1e-12
+            && (rows[0][14] + 0.45).abs() < 1e-12
+            && (rows[0][15] - 0.3).abs() < 1e-12
+    );
+    for name in ["positions", "velocities", "accelerations"] {
+        let svg = std::fs::read_to_string(plots.join(format!("{name}.svg"))).unwrap();
+        assert!(svg.starts_with("<svg") && svg.contains("joint 4"), "{name}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn joint_minimum_time_respects_the_robot_limits() {
+    for profile in ["trapezoidal", "cubic", "quintic"] {
+        let output = armkit(&[
+            "traj",
+            "joint",
+            "--robot",
+            "panda",
+            "--from",
+            PANDA_FROM,
+            "--to",
+            PANDA_TO,
+            "--profile",
+            profile,
+            "--json",
+        ]);
+        let summary = json(&output);
+        assert_eq!(summary["minimum_time"], true);
+        assert!(
+            summary["limit_violations"].as_array().unwrap().is_empty(),
+            "{profile}"
+        );
+        let duration = summary["duration_s"].as_f64().unwrap();
+        assert!(duration > 0.3 && duration < 2.0, "{profile}: {duration}");
+        // Joint 1 moves 1 rad at most 2.175 rad/s: peak velocity within.
+        let peak = summary["peak_velocity"][0].as_f64().unwrap();
+        assert!(peak <= 2.175 * (1.0 + 1e-9), "{peak}");
+    }
+    // Text output names the files and the limits check.
+    let output = armkit(&[
+        "traj", "joint", "--robot", "panda", "--from", PANDA_FROM, "--to", PANDA_FROM,
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let text = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        text.contains("0.000000 s") && text.contains("within the robot's"),
+        "{text}"
+    );
+}
+
+#[test]
+fn joint_errors_are_clear() {
+    let run = |extra: &[&str]| {
+        let mut args = vec![
+            "traj", "joint", "--robot", "panda", "--from", PANDA_FROM, "--to", PANDA_TO,
+        ];
+        args.extend_from_slice(extra);
+        let output = armkit(&args);
+        assert!(!output.status.success());
+        stderr(&output)
+    };
+    assert_eq!(
+        run(&["--duration", "-1"]),
+        "error: invalid argument `duration`: must be finite and > 0 s, got -1 s"
+    );
+    assert_eq!(
+        run(&["--profile", "trapezoidal", "--duration", "2", "--accel-time", "1.5"]),
+        "error: invalid argument `acceleration_time`: must be at most half the duration (1 s) so that \
+         acceleration and deceleration do not overlap, got 1.5 s"
+    );
+    assert!(run(&["--profile", "trapezoidal", "--duration", "2"])
+        .contains("needs an acceleration time"));
+    assert!(run(&["--accel-time", "1"]).contains("--accel-time needs --duration"));
+    assert!(run(&["--dt", "0"]).contains("--dt: must be finite and > 0"));
+    let output = armkit(&[
+        "traj", "joint", "--robot", "panda", "--from", "0,0", "--to", PANDA_TO,
+    ]);
+    assert_eq!(stderr(&output), "error: --from: expected 7 values, got 2");
+}
