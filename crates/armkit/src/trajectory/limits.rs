@@ -200,9 +200,10 @@ fn quantity(traj: &Trajectory, segment: usize, joint: usize, kind: LimitKind) ->
 }
 
 /// Value and location (phi) of the max of `sign * f` on `[a, b]`.
-fn extremum(f: &[f64; 6], sign: f64, a: f64, b: f64, roots: &mut Vec<f64>) -> (f64, f64) {
-    poly::roots_in_unit_interval(&poly::derivative(f), roots);
+fn extremum(f: &[f64; 6], sign: f64, a: f64, b: f64) -> (f64, f64) {
+    let roots = poly::roots_in_unit_interval(&poly::derivative(f));
     let candidates = roots
+        .as_slice()
         .iter()
         .copied()
         .filter(|&r| r > a && r < b)
@@ -227,7 +228,6 @@ pub fn peak_rates(traj: &Trajectory) -> PeakRates {
         acceleration: vec![0.0; dof],
         acceleration_time: vec![traj.start_time(); dof],
     };
-    let mut roots = Vec::with_capacity(5);
     for segment in 0..traj.segment_count() {
         let t0 = traj.knots[segment];
         let h = traj.knots[segment + 1] - t0;
@@ -243,7 +243,7 @@ pub fn peak_rates(traj: &Trajectory) -> PeakRates {
                     )
                 };
                 for sign in [1.0, -1.0] {
-                    let (value, phi) = extremum(&f, sign, 0.0, 1.0, &mut roots);
+                    let (value, phi) = extremum(&f, sign, 0.0, 1.0);
                     if value > *peak {
                         *peak = value;
                         *time = t0 + phi * h;
@@ -263,8 +263,6 @@ pub fn peak_rates(traj: &Trajectory) -> PeakRates {
 pub fn check_limits(traj: &Trajectory, limits: &TrajectoryLimits) -> Result<Vec<LimitViolation>> {
     limits.check_dof(traj.dof())?;
     let mut found: Vec<LimitViolation> = Vec::new();
-    let mut roots = Vec::with_capacity(5);
-    let mut peaks = Vec::with_capacity(5);
     for joint in 0..traj.dof() {
         let bounds = [
             (LimitKind::Position, limits.upper[joint], 1.0),
@@ -285,16 +283,16 @@ pub fn check_limits(traj: &Trajectory, limits: &TrajectoryLimits) -> Result<Vec<
                 // Excess e(phi) = sign (f - bound) > 0 means outside.
                 let mut excess = f.map(|c| sign * c);
                 excess[0] -= sign * bound;
-                poly::roots_in_unit_interval(&excess, &mut roots);
+                let roots = poly::roots_in_unit_interval(&excess);
                 let t0 = traj.knots[segment];
                 let h = traj.knots[segment + 1] - t0;
-                let mut edges = Vec::with_capacity(roots.len() + 2);
-                edges.push(0.0);
-                edges.extend_from_slice(&roots);
-                edges.push(1.0);
-                for w in edges.windows(2) {
+                let mut edges = [0.0; 7];
+                let inner = roots.as_slice();
+                edges[1..=inner.len()].copy_from_slice(inner);
+                edges[inner.len() + 1] = 1.0;
+                for w in edges[..inner.len() + 2].windows(2) {
                     let (a, b) = (w[0], w[1]);
-                    let (worst, phi) = extremum(&excess, 1.0, a, b, &mut peaks);
+                    let (worst, phi) = extremum(&excess, 1.0, a, b);
                     if worst <= tolerance {
                         if let Some(v) = open.take() {
                             found.push(v);

@@ -108,18 +108,39 @@ pub(crate) fn quintic_hermite(
     ]
 }
 
-/// Real roots of the polynomial `c` (ascending, any degree up to 5) inside
-/// the open interval `(0, 1)`, sorted, appended to `roots` (which is cleared).
+/// Up to five real roots, sorted (no allocation).
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Roots {
+    values: [f64; 5],
+    len: usize,
+}
+
+impl Roots {
+    fn push(&mut self, r: f64) {
+        if self.len < self.values.len() {
+            self.values[self.len] = r;
+            self.len += 1;
+        }
+    }
+
+    /// The roots, increasing.
+    pub(crate) fn as_slice(&self) -> &[f64] {
+        &self.values[..self.len]
+    }
+}
+
+/// Real roots of the polynomial `c` (ascending, degree up to 5) inside the
+/// open interval `(0, 1)`, sorted.
 ///
 /// Recursive and robust: the roots of the derivative split `[0, 1]` into
 /// intervals on which the polynomial is monotone; each sign change is then
 /// bracketed and bisected to machine precision. A root of even multiplicity
 /// (a touch without sign change) is found as a critical point only, which is
-/// what the callers (extrema, limit crossings) need.
-pub(crate) fn roots_in_unit_interval(c: &[f64], roots: &mut Vec<f64>) {
-    roots.clear();
-    let degree = match c.iter().rposition(|&v| v != 0.0) {
-        None | Some(0) => return,
+/// what the callers (extrema, limit crossings) need. Allocates nothing.
+pub(crate) fn roots_in_unit_interval(c: &[f64]) -> Roots {
+    let mut roots = Roots::default();
+    let degree = match c.iter().take(6).rposition(|&v| v != 0.0) {
+        None | Some(0) => return roots,
         Some(d) => d,
     };
     if degree == 1 {
@@ -127,17 +148,16 @@ pub(crate) fn roots_in_unit_interval(c: &[f64], roots: &mut Vec<f64>) {
         if r > 0.0 && r < 1.0 {
             roots.push(r);
         }
-        return;
+        return roots;
     }
     let mut d = [0.0; 6];
     for k in 1..=degree {
         d[k - 1] = k as f64 * c[k];
     }
-    let mut critical = Vec::with_capacity(degree);
-    roots_in_unit_interval(&d[..degree], &mut critical);
+    let critical = roots_in_unit_interval(&d[..degree]);
     let mut left = 0.0;
     let mut f_left = value(c, left);
-    for right in critical.into_iter().chain(std::iter::once(1.0)) {
+    for &right in critical.as_slice().iter().chain(std::iter::once(&1.0)) {
         let f_right = value(c, right);
         if f_left == 0.0 && left > 0.0 {
             roots.push(left);
@@ -147,6 +167,7 @@ pub(crate) fn roots_in_unit_interval(c: &[f64], roots: &mut Vec<f64>) {
         left = right;
         f_left = f_right;
     }
+    roots
 }
 
 /// Bisection on a bracket `[a, b]` with a sign change (`fa = p(a)`).
@@ -232,8 +253,8 @@ mod tests {
     #[test]
     fn roots_are_found_in_the_unit_interval() {
         // (x - 0.2)(x - 0.5)(x - 0.9) = -0.09 + 0.73 x - 1.6 x^2 + x^3
-        let mut roots = Vec::new();
-        roots_in_unit_interval(&[-0.09, 0.73, -1.6, 1.0], &mut roots);
+        let roots = roots_in_unit_interval(&[-0.09, 0.73, -1.6, 1.0]);
+        let roots = roots.as_slice();
         assert_eq!(roots.len(), 3);
         for (r, e) in roots.iter().zip([0.2, 0.5, 0.9]) {
             assert!((r - e).abs() < 1e-14, "{r} vs {e}");
@@ -250,10 +271,12 @@ mod tests {
             }
             c = next;
         }
-        roots_in_unit_interval(&c, &mut roots);
+        let roots = roots_in_unit_interval(&c);
+        let roots = roots.as_slice();
         assert_eq!(roots.len(), 2);
         assert!((roots[0] - 0.3).abs() < 1e-13 && (roots[1] - 0.6).abs() < 1e-13);
-        roots_in_unit_interval(&[1.0, 0.0, 0.0], &mut roots);
-        assert!(roots.is_empty());
+        assert!(roots_in_unit_interval(&[1.0, 0.0, 0.0])
+            .as_slice()
+            .is_empty());
     }
 }
