@@ -631,11 +631,24 @@ fn gantry9_holding_torques_match_a_hand_count() {
 #[test]
 fn zero_torques_are_floored_never_divided_by() {
     let torques = [0.0, 0.0, -3000.0, 0.0, 600.0, 50.0, 0.2, 9.0, 0.0];
+    // Default: 5 % of the largest torque, 150 N or N m.
+    assert_eq!(TorqueFloor::default(), TorqueFloor::Relative(0.05));
     let w = JointWeights::from_torques(&torques, TorqueFloor::default()).unwrap();
-    // Floor 1e-3 * 3000 = 3 N or N m.
-    assert_eq!(w.values()[0], 9.0);
-    assert_eq!(w.values()[6], 9.0); // |0.2| < 3
-    assert_eq!(w.values()[2], 9e6);
+    for (j, expected) in [
+        22500.0, 22500.0, 9e6, 22500.0, 360000.0, 22500.0, 22500.0, 22500.0, 22500.0,
+    ]
+    .iter()
+    .enumerate()
+    {
+        assert!(
+            (w.values()[j] - expected).abs() < 1e-9 * expected,
+            "joint {j}"
+        );
+    }
+    let w = JointWeights::from_torques(&torques, TorqueFloor::Relative(1e-3)).unwrap();
+    assert!((w.values()[0] - 9.0).abs() < 1e-12); // floor 3
+    assert!((w.values()[6] - 9.0).abs() < 1e-12); // |0.2| < 3
+    assert!((w.values()[7] - 81.0).abs() < 1e-12); // |9| > 3: tau^2
     assert!(w.inverse().iter().all(|v| v.is_finite() && *v > 0.0));
     let w = JointWeights::from_torques(&torques, TorqueFloor::Absolute(0.5)).unwrap();
     assert_eq!(w.values()[0], 0.25);
@@ -673,8 +686,8 @@ fn eq17_from_torques_matches_the_weighted_form_and_its_floor_limit() {
     // unfloored optimum is nearly degenerate here (joints 1, 2, 4, 9 carry
     // no torque and 7 almost none: counter-rotating the two near-vertical
     // axes 4 and 7 while the rail and beam compensate costs almost nothing),
-    // so it asks for joint rates of ~17 rad/s for a 0.1 m/s twist; the
-    // default floor (1e-3) keeps them below 1 at a cost of under 1 % in F.
+    // so it asks for joint rates of ~17 rad/s for a 0.1 m/s twist; a floor
+    // of 1e-3 already keeps them below 1 rad/s at under 1 % in F.
     let f_raw = energy_measure(&raw, &tau).unwrap();
     let raw_size = raw.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
     assert!(raw_size > 10.0, "{raw_size}");
@@ -1130,4 +1143,53 @@ fn four_way_comparison_on_gantry9() {
     assert!(travel("priorities")[0] < 0.2 * travel("minimum-norm")[0]);
     // Energy-optimal avoids lifting the 300 kg below the carriage.
     assert!(travel("energy-optimal")[2] < 0.3 * travel("minimum-norm")[2]);
+}
+
+#[test]
+fn the_torque_floor_regularises_free_self_motion() {
+    // Panda (no link masses) holding a 50 N payload: joints 1 and 3 carry no
+    // torque and nearly share an axis. With a 1e-3 floor the energy-optimal
+    // run spins them at their velocity limit and lags; with the default 5 %
+    // floor it is smooth, and still spends less F than the minimum norm.
+    let panda = armkit::robots::by_name("panda").unwrap();
+    let q0 = panda.neutral_configuration();
+    let path = line_from(&panda, &q0, Vector3::new(0.1, 0.1, -0.1), 0.0, 2.0);
+    let load = Load::payload(50.0);
+    let run = |floor: TorqueFloor| {
+        let cases = [
+            ComparisonCase {
+                name: "minimum-norm".into(),
+                distribution: Distribution::Weights(JointWeights::uniform(7)),
+            },
+            ComparisonCase {
+                name: "energy-optimal".into(),
+                distribution: Distribution::Energy { load, floor },
+            },
+        ];
+        compare_distributions(
+            &panda,
+            &q0,
+            &path,
+            &load,
+            &cases,
+            &TrackingOptions::default(),
+        )
+        .unwrap()
+    };
+    let fastest = |r: &armkit::redundancy::ComparisonResult| {
+        r.report
+            .samples
+            .iter()
+            .flat_map(|s| s.q_dot.iter())
+            .fold(0.0_f64, |m, v| m.max(v.abs()))
+    };
+    let tiny = run(TorqueFloor::Relative(1e-3));
+    assert!(tiny[1].report.velocity_scaled_steps > 100);
+    assert!(tiny[1].report.max_position_error > 0.05);
+    assert!((fastest(&tiny[1]) - 2.175).abs() < 1e-9);
+    let default = run(TorqueFloor::default());
+    assert_eq!(default[1].report.velocity_scaled_steps, 0);
+    assert!(default[1].report.max_position_error < TRACKING_TOLERANCE);
+    assert!(fastest(&default[1]) < 0.5, "{}", fastest(&default[1]));
+    assert!(default[1].summary.energy < default[0].summary.energy);
 }
