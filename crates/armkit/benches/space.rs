@@ -6,7 +6,8 @@
 
 use armkit::math::Pose;
 use armkit::space::{
-    generalized_jacobian, space6r_free_floating, step, BaseMode, FreeFloatingState, SpaceData,
+    center_of_mass, generalized_jacobian, space6r_free_floating, step, BaseMode, FreeFloatingState,
+    SpaceData,
 };
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
@@ -16,6 +17,14 @@ fn space(c: &mut Criterion) {
     let mut data = SpaceData::new(&model);
     let base = Pose::from_xyz_rpy([0.1, -0.2, 0.3], [0.2, 0.1, -0.3]);
     let q = [0.4, 0.9, -0.7, 0.3, 0.8, -0.5];
+    c.bench_function(
+        "center_of_mass/space6r (forward kinematics of every body)",
+        |b| {
+            b.iter(|| {
+                center_of_mass(&model, &mut data, black_box(&base), black_box(&q)).unwrap();
+            })
+        },
+    );
     for (label, mode) in [
         ("attitude-held", BaseMode::AttitudeHeld),
         ("free-floating", BaseMode::FreeFloating),
