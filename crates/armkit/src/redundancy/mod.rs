@@ -339,14 +339,21 @@ fn check_jacobian(jacobian: &Matrix6xX<f64>, dof: usize) -> Result<()> {
     check_finite("jacobian", jacobian.as_slice())
 }
 
-/// `J A^-1 J' = sum_i (1 / a_i) J_i J_i'` (6 x 6), from the columns `J_i`;
-/// locked joints (inverse weight 0) drop out. Allocates nothing.
+/// `J A^-1 J' = sum_i (1 / a_i) J_i J_i'` (6 x 6, symmetric), from the
+/// columns `J_i`; locked joints (inverse weight 0) drop out. Allocates
+/// nothing. Only the lower triangle is accumulated (21 of 36 products per
+/// column), then mirrored.
 fn weighted_gram(jacobian: &Matrix6xX<f64>, inverse_weights: &[f64]) -> Matrix6<f64> {
-    let mut gram = Matrix6::zeros();
+    let mut lower = [[0.0_f64; 6]; 6];
     for (column, &inv) in jacobian.column_iter().zip(inverse_weights) {
         if inv != 0.0 {
-            gram.ger(inv, &column, &column, 1.0);
+            for r in 0..6 {
+                let scaled = inv * column[r];
+                for (c, entry) in lower[r].iter_mut().enumerate().take(r + 1) {
+                    *entry += scaled * column[c];
+                }
+            }
         }
     }
-    gram
+    Matrix6::from_fn(|r, c| if c <= r { lower[r][c] } else { lower[c][r] })
 }

@@ -91,8 +91,7 @@ impl WeightedLeastNorm {
         weights: &JointWeights,
         twist: &Vector6<f64>,
     ) -> Result<&[f64]> {
-        self.velocities.fill(0.0);
-        self.solve_from_current(jacobian, weights, twist)
+        self.solve_internal(jacobian, weights, twist, None)
     }
 
     /// The solution closest to `preferred` (rad/s or m/s) in the weighted
@@ -111,8 +110,7 @@ impl WeightedLeastNorm {
         preferred: &[f64],
     ) -> Result<&[f64]> {
         check_finite_vector("preferred", preferred, self.dof)?;
-        self.velocities.copy_from_slice(preferred);
-        self.solve_from_current(jacobian, weights, twist)
+        self.solve_internal(jacobian, weights, twist, Some(preferred))
     }
 
     /// The weighted null-space projector `N = I - A^-1 J' (J A^-1 J')^-1 J`
@@ -147,18 +145,27 @@ impl WeightedLeastNorm {
         weights.check_size("weights", self.dof)
     }
 
-    /// `q_dot = z + A^-1 J' (J A^-1 J')^-1 (V - J z)` with `z` = the current
-    /// contents of `self.velocities`.
-    fn solve_from_current(
+    /// `q_dot = z + A^-1 J' (J A^-1 J')^-1 (V - J z)`, `z = preferred` or 0.
+    fn solve_internal(
         &mut self,
         jacobian: &Matrix6xX<f64>,
         weights: &JointWeights,
         twist: &Vector6<f64>,
+        preferred: Option<&[f64]>,
     ) -> Result<&[f64]> {
         self.check_inputs(jacobian, weights)?;
         check_finite("twist", twist.as_slice())?;
         let cholesky = self.factor(jacobian, weights)?;
-        let residual = twist - jacobian * &self.velocities;
+        let residual = match preferred {
+            Some(z) => {
+                self.velocities.copy_from_slice(z);
+                twist - jacobian * &self.velocities
+            }
+            None => {
+                self.velocities.fill(0.0);
+                *twist
+            }
+        };
         let multipliers = cholesky.solve(&residual);
         for ((velocity, column), &inv) in self
             .velocities
