@@ -186,7 +186,8 @@ pub struct MpcOptions {
     /// is outside its position limits is brought back (the bounds of eq 18
     /// are relaxed to what that motion reaches). Default 0.5.
     pub recovery_speed: f64,
-    /// The QP backend. Default Clarabel.
+    /// The QP backend. Default: [`QpSolverKind::default`] (OSQP when
+    /// compiled in, else Clarabel).
     pub solver: QpSolverKind,
 }
 
@@ -382,6 +383,8 @@ pub struct StepReport {
     /// previous step (the feedback correction of sec 4.5), m; 0 on the first
     /// step.
     pub prediction_error: f64,
+    /// Wall-clock time of the QP solve alone (update + solve in the backend).
+    pub solve_time: std::time::Duration,
     /// Largest change the final limit check made to the QP's input (m/s or
     /// rad/s); round-off-sized unless the status is [`StepStatus::Clamped`]
     /// or [`StepStatus::Stopped`].
@@ -546,6 +549,7 @@ impl MpcPlanner {
                 position_error: 0.0,
                 orientation_error: 0.0,
                 prediction_error: 0.0,
+                solve_time: std::time::Duration::ZERO,
                 limit_correction: 0.0,
             },
             options,
@@ -621,6 +625,14 @@ impl MpcPlanner {
         Ok(())
     }
 
+    /// The increments `dU` of the last step's QP solution (`M dof` values,
+    /// control step major: `du(0)` for every joint, then `du(1)`, ...): the
+    /// whole planned input sequence is `u(k+l) = v_old + sum_{m<=l} du(m)`,
+    /// held after `M`. Zero before the first step and after a QP failure.
+    pub fn increments(&self) -> &[f64] {
+        &self.solution
+    }
+
     /// The input `u(k-1)` of the previous step (`v_old` of eq 14), one per joint.
     pub fn previous_velocity(&self) -> &[f64] {
         &self.previous_velocity
@@ -665,6 +677,7 @@ impl MpcPlanner {
 
     fn step_inner(&mut self, q: &[f64], measured: Option<&Pose>) -> Result<&StepReport> {
         let (pose, outside) = self.assemble(q, measured)?;
+        let started = std::time::Instant::now();
         let outcome = self.solver.solve(
             &self.hessian_upper,
             &self.gradient,
@@ -672,11 +685,15 @@ impl MpcPlanner {
             &self.bound_upper,
             &mut self.solution,
         );
+        self.report.solve_time = started.elapsed();
         let t = self.options.sample_time;
         let mut outcome = outcome;
         if outcome.status.has_solution() && self.solution[..self.dof].iter().any(|v| !v.is_finite())
         {
             outcome.status = QpStatus::NumericalFailure;
+        }
+        if !outcome.status.has_solution() {
+            self.solution.iter_mut().for_each(|v| *v = 0.0);
         }
         let mut correction: f64 = 0.0;
         for (j, &qj) in q.iter().enumerate() {
