@@ -1,7 +1,90 @@
-//! Criterion benchmarks of the ik module (placeholder until the module lands).
+//! Criterion benchmarks of the ik module: one full solve (Levenberg-Marquardt
+//! from mid-range, cycling through 64 of the benchmark's random reachable
+//! targets), one iteration (a solve capped at 1 iteration: the initial
+//! FK + Jacobian, one step, the trial FK + Jacobian), the step's linear
+//! algebra alone, and the closed-form solvers.
+//!
+//! Run: `cargo bench -p armkit --bench ik`.
+
+use std::hint::black_box;
+
+use armkit::ik::closed_form::{arm4_solutions, SphericalWristSolver};
+use armkit::ik::{
+    benchmark_targets, damped_least_squares_step, singularity_robust_step, ChiaveriniFilter,
+    IkOptions, IkSolver,
+};
+use armkit::kinematics::{jacobian, Data, JacobianFrame};
+use armkit::math::Vector6;
 use criterion::{criterion_group, criterion_main, Criterion};
 
-fn placeholder(_c: &mut Criterion) {}
+fn bench_numeric(c: &mut Criterion, name: &str) {
+    let model = armkit::robots::by_name(name).unwrap();
+    let targets = benchmark_targets(&model, 64, 42).unwrap();
+    let start = model.neutral_configuration();
+    let mut solver = IkSolver::new(&model, IkOptions::default()).unwrap();
+    let mut k = 0;
+    c.bench_function(&format!("ik/solve/lm/{name}"), |b| {
+        b.iter(|| {
+            k = (k + 1) % targets.len();
+            black_box(solver.solve(&targets[k].1, &start).unwrap());
+        })
+    });
+    let one = IkOptions {
+        max_iterations: 1,
+        max_restarts: 0,
+        ..IkOptions::default()
+    };
+    let mut single = IkSolver::new(&model, one).unwrap();
+    c.bench_function(&format!("ik/one_iteration/lm/{name}"), |b| {
+        b.iter(|| {
+            k = (k + 1) % targets.len();
+            black_box(single.solve(&targets[k].1, &start).unwrap());
+        })
+    });
+    let mut data = Data::new(&model);
+    let j = jacobian(&model, &mut data, &targets[0].0, JacobianFrame::World)
+        .unwrap()
+        .clone();
+    let e = Vector6::new(0.01, -0.02, 0.005, 0.03, 0.0, -0.01);
+    let mut step = vec![0.0; model.dof()];
+    c.bench_function(&format!("ik/dls_step/{name}"), |b| {
+        b.iter(|| damped_least_squares_step(black_box(&j), &e, 1e-3, &mut step).unwrap())
+    });
+    let filter = ChiaveriniFilter::default();
+    c.bench_function(&format!("ik/sri_step/{name}"), |b| {
+        b.iter(|| singularity_robust_step(black_box(&j), &e, &filter, &mut step).unwrap())
+    });
+}
 
-criterion_group!(benches, placeholder);
+fn bench_closed_form(c: &mut Criterion) {
+    let model = armkit::robots::by_name("puma560").unwrap();
+    let targets = benchmark_targets(&model, 64, 42).unwrap();
+    let solver = SphericalWristSolver::new(&model).unwrap();
+    let start = model.neutral_configuration();
+    let mut k = 0;
+    c.bench_function("ik/closed_form/puma560", |b| {
+        b.iter(|| {
+            k = (k + 1) % targets.len();
+            black_box(solver.solve(&targets[k].1, &start).unwrap());
+        })
+    });
+    let arm4 = armkit::robots::by_name("arm4").unwrap();
+    let targets = benchmark_targets(&arm4, 64, 42).unwrap();
+    let start = arm4.neutral_configuration();
+    c.bench_function("ik/closed_form/arm4_exact", |b| {
+        b.iter(|| {
+            k = (k + 1) % targets.len();
+            black_box(arm4_solutions(&arm4, &targets[k].1, &start).unwrap());
+        })
+    });
+}
+
+fn ik(c: &mut Criterion) {
+    for name in ["ur5", "panda", "gantry9"] {
+        bench_numeric(c, name);
+    }
+    bench_closed_form(c);
+}
+
+criterion_group!(benches, ik);
 criterion_main!(benches);
