@@ -44,6 +44,8 @@ enum Command {
     Redundancy(commands::redundancy::RedundancyArgs),
     /// Trajectories: joint-space profiles and Cartesian lines (seed 002), CSV and SVG plots.
     Traj(commands::traj::TrajArgs),
+    /// Model-predictive motion to a target pose with joint limits (seed 000), CSV and SVG plots.
+    Mpc(commands::mpc::MpcArgs),
 }
 
 fn run(command: &Command) -> CliResult<Outcome> {
@@ -59,6 +61,7 @@ fn run(command: &Command) -> CliResult<Outcome> {
         Command::Space(args) => commands::space::run(args),
         Command::Redundancy(args) => commands::redundancy::run(args),
         Command::Traj(args) => commands::traj::run(args),
+        Command::Mpc(args) => commands::mpc::run(args),
     }
 }
 

@@ -157,6 +157,8 @@ pub struct Trajectory {
     pub joint_kinds: Vec<JointKind>,
     /// The target pose.
     pub target: Pose,
+    /// Whether the task weights track orientation (else only position).
+    pub tracks_orientation: bool,
     /// Every sample, the last one with zero input (the final state).
     pub samples: Vec<Sample>,
     /// Totals.
@@ -378,6 +380,7 @@ pub fn simulate_with(
         joint_names: model.joints().iter().map(|j| j.name.clone()).collect(),
         joint_kinds: model.joints().iter().map(|j| j.kind).collect(),
         target: *target,
+        tracks_orientation,
         samples,
         summary,
     })
