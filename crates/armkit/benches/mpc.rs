@@ -79,6 +79,7 @@ fn bench_mpc(c: &mut Criterion) {
             // Percentiles over every state, 20 passes.
             let mut step_times = Vec::new();
             let mut solve_times = Vec::new();
+            let mut iterations = 0u64;
             for _ in 0..20 {
                 for (q, v) in &states {
                     planner.reset(v).unwrap();
@@ -86,17 +87,19 @@ fn bench_mpc(c: &mut Criterion) {
                     let report = planner.step(q).unwrap();
                     step_times.push(started.elapsed());
                     solve_times.push(report.solve_time);
+                    iterations += u64::from(report.qp.iterations);
                 }
             }
             step_times.sort();
             solve_times.sort();
             println!(
-                "{name}: step median {:?} p99 {:?}; {} solve median {:?} p99 {:?} ({} samples)",
+                "{name}: step median {:?} p99 {:?}; {} solve median {:?} p99 {:?}; {:.1} iterations per solve ({} samples)",
                 percentile(&step_times, 0.5),
                 percentile(&step_times, 0.99),
                 solver.name(),
                 percentile(&solve_times, 0.5),
                 percentile(&solve_times, 0.99),
+                iterations as f64 / step_times.len() as f64,
                 step_times.len()
             );
         }
