@@ -181,7 +181,6 @@ struct Kernel {
     form: Form,
     /// Number of meaningful singular values: min(active components, joints).
     rank: usize,
-    dof: usize,
 }
 
 impl Kernel {
@@ -207,45 +206,44 @@ impl Kernel {
             padding,
             form,
             rank: active.min(dof).max(1),
-            dof,
         }
     }
 
     /// The undamped, unpadded normal matrix: `S J J' S` (task) or `J' S^2 J`
     /// in the top-left n x n block (joint), with `S = W^1/2`.
-    fn normal_matrix(&self, j: &Matrix6xX<f64>) -> Matrix6<f64> {
-        let s = &self.sqrt_weights;
-        let mut a = Matrix6::zeros();
+    // Index loops: the matrix formulas read best with explicit indices.
+    #[allow(clippy::needless_range_loop)]
+    fn normal_matrix(&self, j: &Matrix6xX<f64>) -> Mat6Array {
+        let s: [f64; 6] = self.sqrt_weights.into();
+        let mut a = [[0.0; 6]; 6];
         match self.form {
             Form::Task => {
-                for col in j.column_iter() {
+                // Lower triangle of sum over columns of col col'.
+                for col in columns(j) {
                     for r in 0..6 {
-                        let cr = col[r];
                         for c in 0..=r {
-                            a[(r, c)] += cr * col[c];
+                            a[r][c] += col[r] * col[c];
                         }
                     }
                 }
                 for r in 0..6 {
                     for c in 0..=r {
-                        let v = a[(r, c)] * s[r] * s[c];
-                        a[(r, c)] = v;
-                        a[(c, r)] = v;
+                        a[r][c] *= s[r] * s[c];
                     }
                 }
             }
             Form::Joint => {
-                let n = self.dof;
-                for r in 0..n {
-                    for c in 0..=r {
-                        let mut sum = 0.0;
-                        for k in 0..6 {
-                            sum += s[k] * s[k] * j[(k, r)] * j[(k, c)];
-                        }
-                        a[(r, c)] = sum;
-                        a[(c, r)] = sum;
+                let weighted: Vec6Array = std::array::from_fn(|k| s[k] * s[k]);
+                for (r, col_r) in columns(j).enumerate() {
+                    for (c, col_c) in columns(j).take(r + 1).enumerate() {
+                        a[r][c] = (0..6).map(|k| weighted[k] * col_r[k] * col_c[k]).sum();
                     }
                 }
+            }
+        }
+        for r in 0..6 {
+            for c in r + 1..6 {
+                a[r][c] = a[c][r];
             }
         }
         a
@@ -257,10 +255,10 @@ impl Kernel {
         match self.form {
             Form::Task => se,
             Form::Joint => {
-                let sse = se.component_mul(&self.sqrt_weights);
+                let sse: Vec6Array = se.component_mul(&self.sqrt_weights).into();
                 let mut out = Vector6::zeros();
-                for (c, col) in j.column_iter().enumerate() {
-                    out[c] = col.dot(&sse);
+                for (o, col) in out.iter_mut().zip(columns(j)) {
+                    *o = dot6(col, &sse);
                 }
                 out
             }
@@ -272,9 +270,9 @@ impl Kernel {
     fn map_back(&self, j: &Matrix6xX<f64>, y: &Vector6<f64>, dq: &mut [f64]) {
         match self.form {
             Form::Task => {
-                let sy = y.component_mul(&self.sqrt_weights);
-                for (d, col) in dq.iter_mut().zip(j.column_iter()) {
-                    *d = col.dot(&sy);
+                let sy: Vec6Array = y.component_mul(&self.sqrt_weights).into();
+                for (d, col) in dq.iter_mut().zip(columns(j)) {
+                    *d = dot6(col, &sy);
                 }
             }
             Form::Joint => {
@@ -285,28 +283,36 @@ impl Kernel {
         }
     }
 
+    /// `A0 + mu I + padding`.
+    fn damped(&self, a0: &Mat6Array, mu: f64) -> Mat6Array {
+        let mut a = *a0;
+        for (i, row) in a.iter_mut().enumerate() {
+            row[i] += mu + self.padding[i];
+        }
+        a
+    }
+
     /// Solves `(A0 + mu I + padding) y = rhs` by Cholesky; `None` when the
     /// matrix is not numerically positive definite.
-    fn solve_damped(&self, a0: &Matrix6<f64>, mu: f64, rhs: &Vector6<f64>) -> Option<Vector6<f64>> {
-        let mut a = *a0;
-        for i in 0..6 {
-            a[(i, i)] += mu + self.padding[i];
+    fn solve_damped(&self, a0: &Mat6Array, mu: f64, rhs: &Vector6<f64>) -> Option<Vector6<f64>> {
+        let mut a = self.damped(a0, mu);
+        if !cholesky6(&mut a) {
+            return None;
         }
-        let y = a.cholesky()?.solve(rhs);
-        y.iter().all(|v| v.is_finite()).then_some(y)
+        let mut y: Vec6Array = (*rhs).into();
+        cholesky6_solve(&a, &mut y);
+        y.iter().all(|v| v.is_finite()).then(|| Vector6::from(y))
     }
 
     /// `sqrt(det)` of the active block of the normal matrix (Yoshikawa's
     /// manipulability of the weighted Jacobian), 0 when it is singular.
-    fn manipulability(&self, a0: &Matrix6<f64>) -> f64 {
-        let mut a = *a0;
-        for i in 0..6 {
-            a[(i, i)] += self.padding[i];
-        }
-        match a.cholesky() {
+    fn manipulability(&self, a0: &Mat6Array) -> f64 {
+        let mut a = self.damped(a0, 0.0);
+        if cholesky6(&mut a) {
             // det = prod(L_ii)^2, so sqrt(det) = prod(L_ii).
-            Some(c) => c.l_dirty().diagonal().iter().product(),
-            None => 0.0,
+            (0..6).map(|i| a[i][i]).product()
+        } else {
+            0.0
         }
     }
 
@@ -314,11 +320,11 @@ impl Kernel {
     /// smallest meaningful singular value.
     fn solve_filtered(
         &self,
-        a0: &Matrix6<f64>,
+        a0: &Mat6Array,
         rhs: &Vector6<f64>,
         filter: &ChiaveriniFilter,
     ) -> (Vector6<f64>, f64) {
-        let eigen = a0.symmetric_eigen();
+        let eigen = Matrix6::from_fn(|r, c| a0[r][c]).symmetric_eigen();
         let mut order = [0usize, 1, 2, 3, 4, 5];
         order.sort_unstable_by(|a, b| eigen.eigenvalues[*b].total_cmp(&eigen.eigenvalues[*a]));
         let smallest = order[self.rank - 1];
@@ -338,6 +344,77 @@ impl Kernel {
             }
         }
         (y, sigma_min)
+    }
+}
+
+/// A 6 x 6 matrix as row-major arrays (the fixed-size kernels below).
+type Mat6Array = [[f64; 6]; 6];
+/// A 6-vector as an array.
+type Vec6Array = [f64; 6];
+
+/// The columns of a 6 x n Jacobian as fixed-size arrays (its storage is
+/// column-major, so each is a contiguous chunk of 6).
+fn columns(j: &Matrix6xX<f64>) -> impl Iterator<Item = &Vec6Array> {
+    j.as_slice()
+        .chunks_exact(6)
+        .filter_map(|chunk| <&Vec6Array>::try_from(chunk).ok())
+}
+
+fn trace(a: &Mat6Array) -> f64 {
+    (0..6).map(|i| a[i][i]).sum()
+}
+
+#[inline(always)]
+fn dot6(a: &Vec6Array, b: &Vec6Array) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3] + a[4] * b[4] + a[5] * b[5]
+}
+
+/// In-place Cholesky factorization `A = L L'` of a symmetric 6 x 6 matrix
+/// (lower triangle read, L written there); false if A is not numerically
+/// positive definite. Fixed size, so the loops unroll: several times faster
+/// than the generic factorization for the hot path of one IK iteration.
+#[inline]
+#[allow(clippy::needless_range_loop)]
+fn cholesky6(a: &mut Mat6Array) -> bool {
+    for j in 0..6 {
+        let mut d = a[j][j];
+        for k in 0..j {
+            d -= a[j][k] * a[j][k];
+        }
+        if d.is_nan() || d <= 0.0 {
+            return false;
+        }
+        let l = d.sqrt();
+        a[j][j] = l;
+        let inverse = 1.0 / l;
+        for i in j + 1..6 {
+            let mut v = a[i][j];
+            for k in 0..j {
+                v -= a[i][k] * a[j][k];
+            }
+            a[i][j] = v * inverse;
+        }
+    }
+    true
+}
+
+/// Solves `L L' y = b` in place, `L` from [`cholesky6`].
+#[inline]
+#[allow(clippy::needless_range_loop)]
+fn cholesky6_solve(l: &Mat6Array, b: &mut Vec6Array) {
+    for i in 0..6 {
+        let mut v = b[i];
+        for k in 0..i {
+            v -= l[i][k] * b[k];
+        }
+        b[i] = v / l[i][i];
+    }
+    for i in (0..6).rev() {
+        let mut v = b[i];
+        for k in i + 1..6 {
+            v -= l[k][i] * b[k];
+        }
+        b[i] = v / l[i][i];
     }
 }
 
@@ -793,7 +870,7 @@ impl IkSolver {
                 task_of_r.axpy(gain * (self.start[c] - self.q[c]), &col, 1.0);
             }
             let task_of_r = task_of_r.component_mul(&kernel.sqrt_weights);
-            let mu = 1e-12 * a0.trace().max(f64::MIN_POSITIVE);
+            let mu = 1e-12 * trace(&a0).max(f64::MIN_POSITIVE);
             let (Some(y), Some(y_null)) = (
                 kernel.solve_damped(&a0, mu, &rhs),
                 kernel.solve_damped(&a0, mu, &task_of_r),
@@ -937,7 +1014,7 @@ fn method_step(
     let rhs = kernel.rhs(j, &current.error);
     let y = match method {
         IkMethod::NewtonRaphson => kernel.solve_damped(&a0, 0.0, &rhs).or_else(|| {
-            let mu = 1e-12 * a0.trace().max(f64::MIN_POSITIVE);
+            let mu = 1e-12 * trace(&a0).max(f64::MIN_POSITIVE);
             kernel.solve_damped(&a0, mu, &rhs)
         }),
         IkMethod::DampedLeastSquares(nakamura) => {
