@@ -166,3 +166,113 @@ fn joint_errors_are_clear() {
     ]);
     assert_eq!(stderr(&output), "error: --from: expected 7 values, got 2");
 }
+
+#[test]
+fn line_follows_the_path_within_the_tolerance() {
+    let dir = scratch("line");
+    let csv = dir.join("line.csv");
+    // Panda: 0.3 m along y from the pose of PANDA_FROM, same orientation.
+    let output = armkit(&[
+        "traj",
+        "line",
+        "--robot",
+        "panda",
+        "--from",
+        PANDA_FROM,
+        "--to-pose",
+        "0.4840068820263855,0.3,0.4130277771284139,3.141592653589793,-0.1,0.0",
+        "--csv",
+        csv.to_str().unwrap(),
+        "--json",
+    ]);
+    let summary = json(&output);
+    assert_eq!(summary["status"], "tolerance_met");
+    assert!(summary["checked_error_m"].as_f64().unwrap() <= 1e-4);
+    assert!(summary["checked_error_rad"].as_f64().unwrap() <= 1e-3);
+    assert!(summary["error_100_points_m"].as_f64().unwrap() <= 1.5e-4);
+    assert!(summary["segments"].as_u64().unwrap() >= 4);
+    assert!(summary["ik"].as_str().unwrap().starts_with("numeric"));
+    let header = "t,q1,q2,q3,q4,q5,q6,q7,qd1,qd2,qd3,qd4,qd5,qd6,qd7,qdd1,qdd2,qdd3,qdd4,qdd5,qdd6,qdd7,x,y,z,roll,pitch,yaw";
+    let rows = read_csv(&csv, header);
+    assert_eq!(rows.len(), 201);
+    let last = rows.last().unwrap();
+    assert!(
+        (last[22] - 0.4840068820263855).abs() < 1e-6 && (last[23] - 0.3).abs() < 1e-6,
+        "{last:?}"
+    );
+    assert!(last[8..22].iter().all(|v| v.abs() < 1e-9), "ends at rest");
+    // arm4 (4 joints): the task is the position; closed-form IK.
+    let output = armkit(&[
+        "traj",
+        "line",
+        "--robot",
+        "arm4",
+        "--from",
+        "0.5,-1,0.3,0.4",
+        "--to-q",
+        "0.9,-1.5,0.3,0.4",
+        "--law",
+        "trapezoidal",
+        "--json",
+    ]);
+    let summary = json(&output);
+    assert_eq!(summary["status"], "tolerance_met");
+    assert!(summary["ik"].as_str().unwrap().starts_with("seed 002"));
+    assert!(summary["error_100_points_m"].as_f64().unwrap() <= 1.5e-4);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn line_errors_and_unmet_tolerance() {
+    // Out of reach: a clear error naming the path point.
+    let output = armkit(&[
+        "traj",
+        "line",
+        "--robot",
+        "panda",
+        "--from",
+        PANDA_FROM,
+        "--to-pose",
+        "2,0,0.4,3.14159,0,0",
+    ]);
+    assert!(!output.status.success());
+    let text = stderr(&output);
+    assert!(
+        text.starts_with("error: invalid argument `path`: path point at t = ")
+            && text.contains("out of reach"),
+        "{text}"
+    );
+    // One fixed segment cannot meet 0.1 mm: exit code 3, trajectory still written.
+    let output = armkit(&[
+        "traj",
+        "line",
+        "--robot",
+        "panda",
+        "--from",
+        PANDA_FROM,
+        "--to-q",
+        PANDA_TO,
+        "--segments",
+        "1",
+        "--json",
+    ]);
+    assert_eq!(output.status.code(), Some(3), "{}", stderr(&output));
+    let summary: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    assert_eq!(summary["status"], "tolerance_not_met");
+    let output = armkit(&[
+        "traj",
+        "line",
+        "--robot",
+        "panda",
+        "--from",
+        PANDA_FROM,
+        "--to-q",
+        PANDA_TO,
+        "--accel-time",
+        "0.5",
+    ]);
+    assert_eq!(
+        stderr(&output),
+        "error: --accel-time is for --law trapezoidal"
+    );
+}

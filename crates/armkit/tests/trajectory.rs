@@ -21,6 +21,7 @@ use armkit::trajectory::continuous_path::{
 use armkit::trajectory::limits::{
     check_limits, peak_rates, scale_to_limits, LimitKind, TimeScaling, TrajectoryLimits,
 };
+use armkit::trajectory::path_ik::{path_ik_for, IkTask, NumericPathIk};
 use armkit::trajectory::spline::clamped_cubic_spline;
 use armkit::trajectory::{profile, JointState, Trajectory};
 use armkit::{Error, Model};
@@ -963,7 +964,8 @@ fn adaptive_segmentation_meets_the_tolerance_on_arm4_and_panda() {
                     };
                     assert!(max_diff(&at.position, q) < BC);
                 }
-                let [dq, dv, _] = report.trajectory.knot_discontinuities();
+                let [dq, dv, da] = report.trajectory.knot_discontinuities();
+                println!("    knot jumps: position {dq:.1e}, velocity {dv:.1e}, acceleration {da:.1e} (C1 scheme)");
                 assert!(dq < BC && dv < 1e-10);
                 interior_errors.push((name, scheme, checks_per_segment, interior, case.tolerance));
             }
@@ -988,6 +990,106 @@ fn adaptive_segmentation_meets_the_tolerance_on_arm4_and_panda() {
                 "{name} {scheme:?}: {interior:?}"
             );
         }
+    }
+}
+
+/// The issue's figures: 0.3 m lines with 0.1 mm tolerance, planned with the
+/// library's IK (arm4: closed form, position only; panda: numeric, full pose).
+#[test]
+fn seed002_lines_with_the_library_ik() {
+    let cases = [
+        ("arm4", arm4_line(), IkTask::Position, false),
+        ("arm4", arm4_line(), IkTask::Position, true),
+        ("panda", panda_line(), IkTask::Pose, true),
+    ];
+    for (name, case, task, numeric) in cases {
+        let (mut ik, method): (Box<dyn armkit::trajectory::continuous_path::PathIk>, &str) =
+            if numeric {
+                (
+                    Box::new(NumericPathIk::for_path(&case.model, task).unwrap()),
+                    "numeric",
+                )
+            } else {
+                path_ik_for(&case.model, task).unwrap()
+            };
+        for checks_per_segment in [1, 3] {
+            let options = ContinuousPathOptions {
+                tolerance: case.tolerance,
+                checks_per_segment,
+                ..Default::default()
+            };
+            let clock = std::time::Instant::now();
+            let report =
+                plan_continuous_path(&case.model, &case.path, &mut *ik, &case.start, &options)
+                    .unwrap();
+            let seconds = clock.elapsed().as_secs_f64();
+            let interior =
+                measure_path_error(&case.model, &report.trajectory, &case.path, 100).unwrap();
+            println!(
+                "{name} ({method} IK), {checks_per_segment} check(s)/segment: {:?}, {} segments, {} IK solves, \
+                 checked error {:.3e} m / {:.3e} rad, 100-point error {:.3e} m / {:.3e} rad, planning {:.2} ms",
+                report.status,
+                report.trajectory.segment_count(),
+                report.ik_solves,
+                report.checked_error.position,
+                report.checked_error.orientation,
+                interior.position,
+                interior.orientation,
+                seconds * 1e3
+            );
+            assert_eq!(report.status, PathStatus::ToleranceMet);
+            assert!(within(&report.checked_error, &case.tolerance));
+            let [dq, dv, _] = report.trajectory.knot_discontinuities();
+            assert!(dq < BC && dv < 1e-10);
+            if checks_per_segment == 3 {
+                let PathTolerance::Pose {
+                    position,
+                    orientation,
+                } = case.tolerance
+                else {
+                    assert!(interior.position <= 1.5 * 1e-4, "{name}: {interior:?}");
+                    continue;
+                };
+                assert!(
+                    interior.position <= 1.5 * position
+                        && interior.orientation <= 1.5 * orientation
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn library_ik_reports_points_out_of_reach() {
+    for (case, task) in [
+        (arm4_line(), IkTask::Position),
+        (panda_line(), IkTask::Pose),
+    ] {
+        let a = case.path.pose_at(0.0);
+        let b = Pose::new(a.rotation, a.translation + Vector3::new(0.0, -2.0, 0.0));
+        let path = CartesianTrajectory::new(
+            LinePath::new(a, b).unwrap(),
+            TimeLaw::Quintic.timing(2.0).unwrap(),
+        )
+        .unwrap();
+        let (mut ik, _) = path_ik_for(&case.model, task).unwrap();
+        let options = ContinuousPathOptions {
+            tolerance: case.tolerance,
+            ..Default::default()
+        };
+        let text = message(plan_continuous_path(
+            &case.model,
+            &path,
+            &mut *ik,
+            &case.start,
+            &options,
+        ));
+        println!("{text}");
+        assert!(
+            text.starts_with("invalid argument `path`: path point at t = ")
+                && text.contains("is out of reach"),
+            "{text}"
+        );
     }
 }
 

@@ -4,6 +4,11 @@
 //! * `armkit traj joint --robot panda --from Q0 --to QF [--profile quintic]
 //!   [--duration T [--accel-time TA]]`: a point-to-point profile (minimum
 //!   time under the robot's limits when no duration is given).
+//! * `armkit traj line --robot panda --from Q0 (--to-pose X,Y,Z,R,P,Y |
+//!   --to-q Q1) [--duration T] [--law quintic]`: a straight Cartesian line
+//!   from the pose of Q0, followed with seed 002's continuous-path method
+//!   (IK at the knots, polynomial segments, adaptive segmentation to
+//!   `--tolerance`). Exit code 3 when the tolerance is not met.
 //!
 //! The CSV has a header row: `t`, `q1..qn`, `qd1..qdn`, `qdd1..qddn`, then
 //! the end-effector pose `x, y, z` (m) and `roll, pitch, yaw` (rad, world
@@ -13,14 +18,21 @@
 use std::path::{Path, PathBuf};
 
 use armkit::kinematics::{forward_kinematics, Data};
+use armkit::trajectory::cartesian::{CartesianTrajectory, LinePath, OrientationLaw, TimeLaw};
+use armkit::trajectory::continuous_path::{
+    measure_path_error, plan_continuous_path, ContinuousPathOptions, PathIk, PathStatus,
+    PathTolerance, SegmentScheme, Segmentation, ViaVelocity,
+};
 use armkit::trajectory::limits::{check_limits, peak_rates, LimitKind, TrajectoryLimits};
+use armkit::trajectory::path_ik::{path_ik_for, IkTask, NumericPathIk};
 use armkit::trajectory::profile::{self, ProfileShape};
 use armkit::trajectory::{JointState, Trajectory};
 use armkit::Model;
 use clap::{Args, Subcommand, ValueEnum};
 
 use crate::common::{
-    parse_joint_positions, print_json, CliError, CliResult, LimitPolicy, Outcome, RobotArgs,
+    parse_joint_positions, parse_pose, print_json, CliError, CliResult, LimitPolicy, Outcome,
+    RobotArgs,
 };
 use crate::plot::Figure;
 
@@ -36,13 +48,20 @@ pub struct TrajArgs {
 pub enum TrajCommand {
     /// Joint-space point-to-point profile between two configurations.
     Joint(JointArgs),
+    /// Straight Cartesian line, followed by seed 002's continuous-path method.
+    Line(LineArgs),
 }
 
 /// Where and how densely the trajectory is written.
 #[derive(Args, Debug, Clone)]
 pub struct OutputArgs {
     /// Sampling period of the CSV and plots, s.
-    #[arg(long, default_value_t = 0.01, value_name = "S", allow_hyphen_values = true)]
+    #[arg(
+        long,
+        default_value_t = 0.01,
+        value_name = "S",
+        allow_hyphen_values = true
+    )]
     pub dt: f64,
     /// CSV file: t, q, qd, qdd, end-effector x y z roll pitch yaw.
     #[arg(long, value_name = "PATH")]
@@ -109,6 +128,7 @@ pub struct JointArgs {
 pub fn run(args: &TrajArgs) -> CliResult<Outcome> {
     match &args.command {
         TrajCommand::Joint(a) => run_joint(a),
+        TrajCommand::Line(a) => run_line(a),
     }
 }
 
@@ -139,7 +159,7 @@ fn run_joint(args: &JointArgs) -> CliResult<Outcome> {
     summary["minimum_time"] = serde_json::json!(args.duration.is_none());
     let files = write_outputs(&model, &traj, &args.output)?;
     summary["files"] = serde_json::json!(files);
-    report(&summary, args.output.json)?;
+    report_summary(&summary, args.output.json)?;
     Ok(Outcome::Success)
 }
 
@@ -184,7 +204,7 @@ fn summarize(
 }
 
 /// Prints the summary as JSON or as text.
-fn report(summary: &serde_json::Value, json: bool) -> CliResult {
+fn report_summary(summary: &serde_json::Value, json: bool) -> CliResult {
     if json {
         return print_json(summary);
     }
@@ -212,8 +232,11 @@ fn report(summary: &serde_json::Value, json: bool) -> CliResult {
             .filter(|_| key.ends_with("_m") || key.ends_with("_rad") || key.ends_with("_ms"))
         {
             println!("{key}: {v:.6e}");
-        } else if key == "status" || key == "scheme" {
-            println!("{key}: {}", value.as_str().unwrap_or("?"));
+        } else if matches!(key.as_str(), "status" | "ik" | "ik_solves") {
+            println!(
+                "{key}: {}",
+                value.as_str().map_or(value.to_string(), String::from)
+            );
         }
     }
     println!("peak |qd|: {}", numbers("peak_velocity"));
@@ -368,4 +391,236 @@ pub fn joint_figures(
             (name, figure)
         })
         .collect()
+}
+
+/// `--law` values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum LawArg {
+    /// Quintic from rest to rest.
+    Quintic,
+    /// Trapezoidal speed (with --accel-time, default a quarter of the duration).
+    Trapezoidal,
+    /// Constant speed.
+    Linear,
+}
+
+/// `--orientation` values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum OrientationArg {
+    /// Slerp between the end orientations, in step with the position.
+    Slerp,
+    /// Seed 002 eqs 20-22: roll, pitch and yaw linear in time.
+    RpyLinear,
+}
+
+/// `--task` values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum TaskArg {
+    /// Position only for robots with fewer than 6 joints (arm4), else the full pose.
+    Auto,
+    /// Position and orientation.
+    Pose,
+    /// Position only (the tolerance is on the position).
+    Position,
+}
+
+/// `--scheme` values (seed 002's polynomial schemes).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum SchemeArg {
+    /// Quartic first and last, cubic middles, via velocities by eq 23 (C1).
+    QuarticCubic,
+    /// As quartic-cubic with central-difference via velocities (not in the seed).
+    QuarticCubicCentral,
+    /// Cubic segments and a quintic last one (C2; unstable with many segments).
+    CubicQuintic,
+}
+
+/// `--ik` values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum IkArg {
+    /// Closed form if the robot has one (arm4, PUMA-type), else numeric.
+    Auto,
+    /// Numeric (Levenberg-Marquardt from the previous knot).
+    Numeric,
+}
+
+/// `armkit traj line`.
+#[derive(Args, Debug)]
+pub struct LineArgs {
+    #[command(flatten)]
+    pub robot: RobotArgs,
+    /// Start configuration (the line starts at its end-effector pose).
+    #[arg(long, value_name = "Q1,Q2,...", allow_hyphen_values = true)]
+    pub from: String,
+    /// Goal pose: x,y,z (m), roll,pitch,yaw (rad; R = Rz(yaw) Ry(pitch) Rx(roll)).
+    #[arg(
+        long,
+        value_name = "X,Y,Z,R,P,Y",
+        allow_hyphen_values = true,
+        conflicts_with = "to_q",
+        required_unless_present = "to_q"
+    )]
+    pub to_pose: Option<String>,
+    /// Goal configuration: the line ends at its end-effector pose.
+    #[arg(long, value_name = "Q1,Q2,...", allow_hyphen_values = true)]
+    pub to_q: Option<String>,
+    /// Duration, s.
+    #[arg(
+        long,
+        default_value_t = 2.0,
+        value_name = "S",
+        allow_hyphen_values = true
+    )]
+    pub duration: f64,
+    /// Timing law along the line.
+    #[arg(long, value_enum, default_value_t = LawArg::Quintic)]
+    pub law: LawArg,
+    /// Acceleration time of the trapezoidal law, s (default: duration / 4).
+    #[arg(long, value_name = "S", allow_hyphen_values = true)]
+    pub accel_time: Option<f64>,
+    /// How the orientation moves.
+    #[arg(long, value_enum, default_value_t = OrientationArg::Slerp)]
+    pub orientation: OrientationArg,
+    /// What the tolerance and the IK cover.
+    #[arg(long, value_enum, default_value_t = TaskArg::Auto)]
+    pub task: TaskArg,
+    /// Position tolerance, m.
+    #[arg(
+        long,
+        default_value_t = 1e-4,
+        value_name = "M",
+        allow_hyphen_values = true
+    )]
+    pub tolerance: f64,
+    /// Orientation tolerance, rad (with the full-pose task).
+    #[arg(
+        long,
+        default_value_t = 1e-3,
+        value_name = "RAD",
+        allow_hyphen_values = true
+    )]
+    pub orientation_tolerance: f64,
+    /// Polynomial scheme.
+    #[arg(long, value_enum, default_value_t = SchemeArg::QuarticCubic)]
+    pub scheme: SchemeArg,
+    /// Check points per segment (1: the seed's midpoint only).
+    #[arg(long, default_value_t = 3, value_name = "N")]
+    pub checks: usize,
+    /// Fixed number of segments instead of the adaptive segmentation.
+    #[arg(long, value_name = "N")]
+    pub segments: Option<usize>,
+    /// Largest number of segments of the adaptive segmentation.
+    #[arg(long, default_value_t = 4096, value_name = "N")]
+    pub max_segments: usize,
+    /// Which IK.
+    #[arg(long, value_enum, default_value_t = IkArg::Auto)]
+    pub ik: IkArg,
+    /// Accept configurations outside the joint limits.
+    #[arg(long)]
+    pub allow_out_of_limits: bool,
+    #[command(flatten)]
+    pub output: OutputArgs,
+}
+
+fn run_line(args: &LineArgs) -> CliResult<Outcome> {
+    let model = args.robot.load()?;
+    let policy = LimitPolicy::from_flag(args.allow_out_of_limits);
+    let q0 = parse_joint_positions(&args.from, &model, policy).map_err(|e| rename(e, "--from"))?;
+    let mut data = Data::new(&model);
+    let start = *forward_kinematics(&model, &mut data, &q0)?;
+    let goal = match (&args.to_pose, &args.to_q) {
+        (Some(text), _) => parse_pose(text, "--to-pose")?,
+        (None, Some(text)) => {
+            let q1 =
+                parse_joint_positions(text, &model, policy).map_err(|e| rename(e, "--to-q"))?;
+            *forward_kinematics(&model, &mut data, &q1)?
+        }
+        (None, None) => return Err(CliError("give --to-pose or --to-q".into())),
+    };
+    let law = match args.law {
+        LawArg::Quintic => TimeLaw::Quintic,
+        LawArg::Linear => TimeLaw::Linear,
+        LawArg::Trapezoidal => TimeLaw::Trapezoidal {
+            acceleration_time: args.accel_time.unwrap_or(0.25 * args.duration),
+        },
+    };
+    if args.accel_time.is_some() && args.law != LawArg::Trapezoidal {
+        return Err(CliError("--accel-time is for --law trapezoidal".into()));
+    }
+    let orientation = match args.orientation {
+        OrientationArg::Slerp => OrientationLaw::FollowPath,
+        OrientationArg::RpyLinear => OrientationLaw::RpyLinearInTime,
+    };
+    let path = CartesianTrajectory::new(LinePath::new(start, goal)?, law.timing(args.duration)?)?
+        .with_orientation_law(orientation);
+    let task = match args.task {
+        TaskArg::Pose => IkTask::Pose,
+        TaskArg::Position => IkTask::Position,
+        TaskArg::Auto if model.dof() < 6 => IkTask::Position,
+        TaskArg::Auto => IkTask::Pose,
+    };
+    let tolerance = match task {
+        IkTask::Position => PathTolerance::Position(args.tolerance),
+        IkTask::Pose => PathTolerance::Pose {
+            position: args.tolerance,
+            orientation: args.orientation_tolerance,
+        },
+    };
+    let options = ContinuousPathOptions {
+        scheme: match args.scheme {
+            SchemeArg::QuarticCubic => {
+                SegmentScheme::QuarticCubicQuartic(ViaVelocity::BackwardDifference)
+            }
+            SchemeArg::QuarticCubicCentral => {
+                SegmentScheme::QuarticCubicQuartic(ViaVelocity::CentralDifference)
+            }
+            SchemeArg::CubicQuintic => SegmentScheme::CubicQuinticLast,
+        },
+        segmentation: match args.segments {
+            Some(n) => Segmentation::Fixed(n),
+            None => Segmentation::Adaptive {
+                initial: 4.min(args.max_segments),
+                max: args.max_segments,
+            },
+        },
+        tolerance,
+        checks_per_segment: args.checks,
+        ..Default::default()
+    };
+    let (mut ik, method): (Box<dyn PathIk>, &str) = match args.ik {
+        IkArg::Auto => path_ik_for(&model, task)?,
+        IkArg::Numeric => (
+            Box::new(NumericPathIk::for_path(&model, task)?),
+            "numeric (Levenberg-Marquardt from the previous knot)",
+        ),
+    };
+    let clock = std::time::Instant::now();
+    let report = plan_continuous_path(&model, &path, &mut *ik, &q0, &options)?;
+    let planning = clock.elapsed();
+    let interior = measure_path_error(&model, &report.trajectory, &path, 100)?;
+    let limits = TrajectoryLimits::from_model(&model);
+    let mut summary = summarize(&model, &report.trajectory, &limits)?;
+    let met = report.status == PathStatus::ToleranceMet;
+    summary["profile"] = serde_json::json!("cartesian line");
+    summary["status"] = serde_json::json!(if met {
+        "tolerance_met"
+    } else {
+        "tolerance_not_met"
+    });
+    summary["ik"] = serde_json::json!(method);
+    summary["length_m"] = serde_json::json!((goal.translation - start.translation).norm());
+    summary["checked_error_m"] = serde_json::json!(report.checked_error.position);
+    summary["checked_error_rad"] = serde_json::json!(report.checked_error.orientation);
+    summary["error_100_points_m"] = serde_json::json!(interior.position);
+    summary["error_100_points_rad"] = serde_json::json!(interior.orientation);
+    summary["planning_ms"] = serde_json::json!(planning.as_secs_f64() * 1e3);
+    summary["ik_solves"] = serde_json::json!(report.ik_solves);
+    let files = write_outputs(&model, &report.trajectory, &args.output)?;
+    summary["files"] = serde_json::json!(files);
+    report_summary(&summary, args.output.json)?;
+    Ok(if met {
+        Outcome::Success
+    } else {
+        Outcome::NotConverged
+    })
 }

@@ -14,6 +14,8 @@
 //!   time), circular arcs and user curves, timed by a trapezoidal or quintic law.
 //! * [`continuous_path`]: seed 002's continuous-path method (IK at n + 1 path
 //!   points, one polynomial per segment) and its adaptive segmentation (Fig 6).
+//! * [`path_ik`]: the IK the continuous path uses: closed form (arm4,
+//!   PUMA-type arms) or numeric (any robot), nearest the previous knot.
 //! * [`limits`]: where a trajectory exceeds position, velocity or acceleration
 //!   limits, and uniform time scaling to meet them.
 //!
@@ -35,6 +37,7 @@
 pub mod cartesian;
 pub mod continuous_path;
 pub mod limits;
+pub mod path_ik;
 mod poly;
 pub mod profile;
 pub mod spline;
