@@ -199,8 +199,9 @@ fn quantity(traj: &Trajectory, segment: usize, joint: usize, kind: LimitKind) ->
     }
 }
 
-/// Value and location (phi) of the max of `sign * f` on `[a, b]`.
-fn extremum(f: &[f64; 6], sign: f64, a: f64, b: f64) -> (f64, f64) {
+/// Largest `score(f(phi))` over `[a, b]` and where (phi): the extremes of
+/// `f` lie at the ends or at the roots of `f'`.
+fn extremum(f: &[f64; 6], a: f64, b: f64, score: impl Fn(f64) -> f64) -> (f64, f64) {
     let roots = poly::roots_in_unit_interval(&poly::derivative(f));
     let candidates = roots
         .as_slice()
@@ -209,7 +210,7 @@ fn extremum(f: &[f64; 6], sign: f64, a: f64, b: f64) -> (f64, f64) {
         .filter(|&r| r > a && r < b)
         .chain([a, b]);
     candidates.fold((f64::NEG_INFINITY, a), |best, phi| {
-        let v = sign * poly::value(f, phi);
+        let v = score(poly::value(f, phi));
         if v > best.0 {
             (v, phi)
         } else {
@@ -242,12 +243,10 @@ pub fn peak_rates(traj: &Trajectory) -> PeakRates {
                         &mut peaks.acceleration_time[joint],
                     )
                 };
-                for sign in [1.0, -1.0] {
-                    let (value, phi) = extremum(&f, sign, 0.0, 1.0);
-                    if value > *peak {
-                        *peak = value;
-                        *time = t0 + phi * h;
-                    }
+                let (value, phi) = extremum(&f, 0.0, 1.0, f64::abs);
+                if value > *peak {
+                    *peak = value;
+                    *time = t0 + phi * h;
                 }
             }
         }
@@ -292,7 +291,7 @@ pub fn check_limits(traj: &Trajectory, limits: &TrajectoryLimits) -> Result<Vec<
                 edges[inner.len() + 1] = 1.0;
                 for w in edges[..inner.len() + 2].windows(2) {
                     let (a, b) = (w[0], w[1]);
-                    let (worst, phi) = extremum(&excess, 1.0, a, b);
+                    let (worst, phi) = extremum(&excess, a, b, |v| v);
                     if worst <= tolerance {
                         if let Some(v) = open.take() {
                             found.push(v);
