@@ -300,7 +300,11 @@ impl Trajectory {
     #[inline]
     fn locate(&self, t: f64) -> (usize, f64) {
         let last = self.knots.len() - 1;
-        let t = t.clamp(self.knots[0], self.knots[last]);
+        if t >= self.knots[last] {
+            // Exactly the end state (t / h may round below 1).
+            return (last - 1, 1.0);
+        }
+        let t = t.max(self.knots[0]);
         // Number of interior knots <= t: the segment index, in 0..segments.
         let segment = self.knots[1..last].partition_point(|&k| k <= t);
         let phi = (t - self.knots[segment]) * self.inverse_durations[segment];
