@@ -284,7 +284,7 @@ pub fn space6r() -> Result<Model> {
 
 /// Mass properties of space6r's links, in each link's standard-DH frame.
 ///
-/// The paper takes them from its reference [19], which the extraction does
+/// The paper takes them from its reference 19, which the extraction does
 /// not include; these are plausible values for a 2 m class space arm of
 /// aluminium tubes (uniform rods: `I = m l^2 / 12` about the transverse axes,
 /// `m r^2 / 2` about the rod axis, r = 0.05 m), centres of mass at mid-link:
@@ -435,8 +435,8 @@ pub fn gantry9_mass_properties() -> [LinkInertia; 9] {
     let solid_box = |mass: f64, com: [f64; 3], size: [f64; 3]| {
         let [lx, ly, lz] = size.map(|l| l * l);
         let mut inertia = LinkInertia::point_mass(mass, Vector3::from(com));
-        inertia.inertia = Matrix3::from_diagonal(&Vector3::new(ly + lz, lx + lz, lx + ly))
-            * (mass / 12.0);
+        inertia.inertia =
+            Matrix3::from_diagonal(&Vector3::new(ly + lz, lx + lz, lx + ly)) * (mass / 12.0);
         inertia
     };
     [
