@@ -56,6 +56,16 @@ pub struct LoadArgs {
     pub gravity: f64,
 }
 
+/// The options of the beam study (`[beam]` in a scenario file).
+#[derive(Args, Debug)]
+pub struct BeamStudyArgs {
+    #[command(flatten)]
+    pub load: LoadArgs,
+    /// Number of carriage positions in the rigid-model error sweep (>= 2).
+    #[arg(long, default_value_t = 51)]
+    pub samples: usize,
+}
+
 /// `armkit beam table1`.
 #[derive(Args, Debug)]
 pub struct Table1Args {
@@ -320,6 +330,11 @@ fn run_error_along_beam(args: &ErrorAlongBeamArgs) -> CliResult<Outcome> {
         );
     }
     Ok(Outcome::Success)
+}
+
+/// The beam study of a scenario file: [`report`] with its options.
+pub fn study_report(args: &BeamStudyArgs) -> CliResult<Report> {
+    report(args.load, args.samples)
 }
 
 /// Seed 000's beam as a report: Table 1 (paper vs ours, one check per case

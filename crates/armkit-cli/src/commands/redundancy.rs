@@ -21,6 +21,7 @@ use crate::common::{
     LimitPolicy, Outcome, RobotArgs,
 };
 use crate::plot::Figure;
+use crate::report::{Animation, Check, Report, Table};
 
 /// Distribute one straight-line motion four ways (minimum norm, energy-optimal,
 /// priorities, locked joints) and compare seed 001's energy measure.
@@ -117,8 +118,108 @@ pub enum FormulationArg {
 
 const GANTRY_START: [f64; 9] = [3.0, 2.5, 1.0, 0.3, 0.4, -0.5, 0.2, 0.8, 0.1];
 
+/// One motion distributed four ways, with everything the outputs need.
+pub struct Study {
+    model: Model,
+    q0: Vec<f64>,
+    displacement: Vec<f64>,
+    rotation: Vec<f64>,
+    gravity: bool,
+    priorities: JointWeights,
+    locked: Vec<usize>,
+    heading: String,
+    results: Vec<ComparisonResult>,
+}
+
+impl Study {
+    /// Name of the distribution with the lowest energy measure F.
+    fn lowest(&self) -> String {
+        self.results
+            .iter()
+            .min_by(|a, b| a.summary.energy.total_cmp(&b.summary.energy))
+            .map(|r| r.name.clone())
+            .unwrap_or_default()
+    }
+
+    fn all_completed(&self) -> bool {
+        self.results
+            .iter()
+            .all(|r| r.report.status == TrackingStatus::Completed)
+    }
+}
+
 /// Runs `armkit redundancy`.
 pub fn run(args: &RedundancyArgs) -> CliResult<Outcome> {
+    let study = study(args)?;
+    let files = write_outputs(&args.out, &study.model, &study.results)?;
+    let Study {
+        model,
+        q0,
+        displacement,
+        rotation,
+        gravity,
+        priorities,
+        locked,
+        heading,
+        results,
+    } = &study;
+    let lowest = study.lowest();
+    if args.json {
+        print_json(&serde_json::json!({
+            "robot": model.name(),
+            "q0": q0,
+            "move": displacement,
+            "rotate": rotation,
+            "duration": args.duration,
+            "payload": args.payload,
+            "gravity": gravity,
+            "priorities": priorities.values(),
+            "locked": locked.iter().map(|j| j + 1).collect::<Vec<_>>(),
+            "lowest_energy": lowest,
+            "distributions": results.iter().map(|r| serde_json::json!({
+                "name": r.name,
+                "status": status_text(&r.report.status),
+                "energy": r.summary.energy,
+                "travel": r.summary.travel,
+                "max_position_error": r.report.max_position_error,
+                "final_position_error": r.report.final_position_error,
+                "final_orientation_error": r.report.final_orientation_error,
+                "velocity_scaled_steps": r.report.velocity_scaled_steps,
+                "limit_locked_steps": r.report.limit_locked_steps,
+            })).collect::<Vec<_>>(),
+            "files": files,
+        }))?;
+    } else {
+        println!("{heading}");
+        println!(
+            "priorities {}; locked joints {}",
+            join(priorities.values(), 0),
+            locked
+                .iter()
+                .map(|j| (j + 1).to_string())
+                .collect::<Vec<_>>()
+                .join(",")
+        );
+        print!("{}", summary_table(model, results));
+        println!("lowest F (seed 001, eq 9): {lowest}");
+        if lowest != "energy-optimal" {
+            println!(
+                "note: the energy-optimal distribution minimises F at each instant for the \
+                 commanded twist; over a whole motion the paths in joint space differ, and \
+                 velocity scaling or joint limits change the timing"
+            );
+        }
+        println!("wrote {}", files.join(", "));
+    }
+    Ok(if study.all_completed() {
+        Outcome::Success
+    } else {
+        Outcome::NotConverged
+    })
+}
+
+/// Plans the four distributions the arguments describe.
+pub fn study(args: &RedundancyArgs) -> CliResult<Study> {
     let model = load_robot(&args.robot)?;
     let dof = model.dof();
     if dof <= 6 {
@@ -195,8 +296,6 @@ pub fn run(args: &RedundancyArgs) -> CliResult<Outcome> {
         &locked,
     )?;
     let results = compare_distributions(&model, &q0, &path, &load, &cases, &options)?;
-
-    let files = write_outputs(&args.out, &model, &results)?;
     let heading = format!(
         "{}: move ({}) m, rotate ({}) rad in {} s; load: {} N payload{}; dt {} s, gain {} 1/s",
         model.name(),
@@ -214,65 +313,16 @@ pub fn run(args: &RedundancyArgs) -> CliResult<Outcome> {
         args.dt,
         args.gain
     );
-    let lowest = results
-        .iter()
-        .min_by(|a, b| a.summary.energy.total_cmp(&b.summary.energy))
-        .map(|r| r.name.clone())
-        .unwrap_or_default();
-    if args.json {
-        print_json(&serde_json::json!({
-            "robot": model.name(),
-            "q0": q0,
-            "move": displacement,
-            "rotate": rotation,
-            "duration": args.duration,
-            "payload": args.payload,
-            "gravity": gravity,
-            "priorities": priorities.values(),
-            "locked": locked.iter().map(|j| j + 1).collect::<Vec<_>>(),
-            "lowest_energy": lowest,
-            "distributions": results.iter().map(|r| serde_json::json!({
-                "name": r.name,
-                "status": status_text(&r.report.status),
-                "energy": r.summary.energy,
-                "travel": r.summary.travel,
-                "max_position_error": r.report.max_position_error,
-                "final_position_error": r.report.final_position_error,
-                "final_orientation_error": r.report.final_orientation_error,
-                "velocity_scaled_steps": r.report.velocity_scaled_steps,
-                "limit_locked_steps": r.report.limit_locked_steps,
-            })).collect::<Vec<_>>(),
-            "files": files,
-        }))?;
-    } else {
-        println!("{heading}");
-        println!(
-            "priorities {}; locked joints {}",
-            join(priorities.values(), 0),
-            locked
-                .iter()
-                .map(|j| (j + 1).to_string())
-                .collect::<Vec<_>>()
-                .join(",")
-        );
-        print!("{}", summary_table(&model, &results));
-        println!("lowest F (seed 001, eq 9): {lowest}");
-        if lowest != "energy-optimal" {
-            println!(
-                "note: the energy-optimal distribution minimises F at each instant for the \
-                 commanded twist; over a whole motion the paths in joint space differ, and \
-                 velocity scaling or joint limits change the timing"
-            );
-        }
-        println!("wrote {}", files.join(", "));
-    }
-    let all_completed = results
-        .iter()
-        .all(|r| r.report.status == TrackingStatus::Completed);
-    Ok(if all_completed {
-        Outcome::Success
-    } else {
-        Outcome::NotConverged
+    Ok(Study {
+        model,
+        q0,
+        displacement,
+        rotation,
+        gravity,
+        priorities,
+        locked,
+        heading,
+        results,
     })
 }
 
@@ -419,6 +469,28 @@ fn write_outputs(
     }
     write("samples.csv", &samples)?;
 
+    let figures = figures(model, results);
+    for (name, figure) in &figures {
+        let svg = figure
+            .to_svg(800, 450)
+            .map_err(|e| CliError(format!("{name}.svg: plot: {e}")))?;
+        write(&format!("{name}.svg"), &svg)?;
+    }
+    Ok(written)
+}
+
+fn cells(values: &[f64]) -> String {
+    values
+        .iter()
+        .map(|v| v.to_string())
+        .collect::<Vec<_>>()
+        .join(",")
+}
+
+/// The plots: F(t), its integral, each joint's travel, and each
+/// distribution's joint motion.
+fn figures(model: &Model, results: &[ComparisonResult]) -> Vec<(String, Figure)> {
+    let names: Vec<&str> = model.joints().iter().map(|j| j.name.as_str()).collect();
     // Plots: F(t) and its integral for each distribution on one time axis
     // (the runs share the time grid unless one stopped early).
     let longest = results
@@ -485,19 +557,81 @@ fn write_outputs(
         }
         figures.push((format!("joints_{}", r.name), joints));
     }
-    for (name, figure) in &figures {
-        let svg = figure
-            .to_svg(800, 450)
-            .map_err(|e| CliError(format!("{name}.svg: plot: {e}")))?;
-        write(&format!("{name}.svg"), &svg)?;
-    }
-    Ok(written)
+    figures
 }
 
-fn cells(values: &[f64]) -> String {
-    values
+/// The four-way comparison as a report (a scenario's `[redundancy]` table):
+/// seed 001's energy measure F per distribution, each joint's travel, the
+/// checks that every run tracked the path and that the energy-optimal
+/// distribution has the lowest F.
+pub fn report(args: &RedundancyArgs) -> CliResult<Report> {
+    let study = study(args)?;
+    let by_name = |name: &str| study.results.iter().find(|r| r.name == name);
+    let energy_optimal =
+        by_name("energy-optimal").ok_or_else(|| CliError("no energy-optimal run".into()))?;
+    let others_min = study
+        .results
         .iter()
-        .map(|v| v.to_string())
-        .collect::<Vec<_>>()
-        .join(",")
+        .filter(|r| r.name != "energy-optimal")
+        .map(|r| r.summary.energy)
+        .fold(f64::INFINITY, f64::min);
+    let mut checks = vec![Check::at_most(
+        "F of the energy-optimal distribution / lowest F of the others",
+        energy_optimal.summary.energy / others_min,
+        1.0,
+        "",
+    )];
+    for r in &study.results {
+        checks.push(Check::holds(
+            format!("{}: the run completes the path", r.name),
+            r.report.status == TrackingStatus::Completed,
+            status_text(&r.report.status),
+        ));
+        checks.push(Check::at_most(
+            format!("{}: largest tracking error", r.name),
+            r.report.max_position_error,
+            1e-3,
+            "m",
+        ));
+    }
+    let names: Vec<String> = study
+        .model
+        .joints()
+        .iter()
+        .map(|j| j.name.clone())
+        .collect();
+    let mut header: Vec<&str> = vec!["distribution", "F (W^2 s)"];
+    header.extend(names.iter().map(String::as_str));
+    let mut table = Table::new(
+        "Energy measure F (seed 001, eq 9, integrated over the motion) and joint travel (m or rad)",
+        &header,
+    );
+    for r in &study.results {
+        let mut row = vec![r.name.clone(), format!("{:.4e}", r.summary.energy)];
+        row.extend(r.summary.travel.iter().map(|t| format!("{t:.3}")));
+        table.push(row);
+    }
+    let samples = &energy_optimal.report.samples;
+    let times: Vec<f64> = samples.iter().map(|s| s.time).collect();
+    let configurations: Vec<Vec<f64>> = samples.iter().map(|s| s.q.clone()).collect();
+    Ok(Report {
+        name: "redundancy".into(),
+        title: format!("Redundancy resolution on {}", study.model.name()),
+        description: format!(
+            "{} Distributions: minimum norm (all weights 1, the pseudo-inverse); energy-optimal (seed 001, eq 17 \
+             in its weighted least-norm form, weights = squared joint torques for the load, recomputed every step); \
+             seed 000's joint priorities; two joints locked. The animation shows the energy-optimal run.",
+            study.heading
+        ),
+        checks,
+        tables: vec![table],
+        figures: figures(&study.model, &study.results),
+        notes: vec![
+            "A zero torque would make a joint free of cost: the energy weights are floored at 5 % of the largest \
+             torque (a_i = max(|tau_i|, 0.05 max|tau|)^2). Seed 001's eq 17 minimises F at each instant, not over \
+             the whole motion. Locking a joint is an infinite weight (the paper says zero)."
+                .into(),
+        ],
+        animation: Some(Animation::from_configurations(&study.model, &times, &configurations)?),
+    })
 }

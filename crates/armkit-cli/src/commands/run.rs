@@ -11,10 +11,44 @@ use crate::scenario::{self, Scenario};
 
 /// The scenarios shipped in the repository's `scenarios/` folder, built into
 /// the binary so that `armkit demo` runs anywhere.
-const SHIPPED: &[(&str, &str)] = &[(
-    "seed000-beam.toml",
-    include_str!("../../../../scenarios/seed000-beam.toml"),
-)];
+const SHIPPED: &[(&str, &str)] = &[
+    (
+        "seed000-beam.toml",
+        include_str!("../../../../scenarios/seed000-beam.toml"),
+    ),
+    (
+        "seed000-mpc-ex1.toml",
+        include_str!("../../../../scenarios/seed000-mpc-ex1.toml"),
+    ),
+    (
+        "seed000-mpc-ex2-paper-weights.toml",
+        include_str!("../../../../scenarios/seed000-mpc-ex2-paper-weights.toml"),
+    ),
+    (
+        "seed000-mpc-ex2.toml",
+        include_str!("../../../../scenarios/seed000-mpc-ex2.toml"),
+    ),
+    (
+        "seed000-mpc-ex3-undamped.toml",
+        include_str!("../../../../scenarios/seed000-mpc-ex3-undamped.toml"),
+    ),
+    (
+        "seed000-mpc-ex3.toml",
+        include_str!("../../../../scenarios/seed000-mpc-ex3.toml"),
+    ),
+    (
+        "seed001-energy.toml",
+        include_str!("../../../../scenarios/seed001-energy.toml"),
+    ),
+    (
+        "seed002-arm4.toml",
+        include_str!("../../../../scenarios/seed002-arm4.toml"),
+    ),
+    (
+        "seed002-panda.toml",
+        include_str!("../../../../scenarios/seed002-panda.toml"),
+    ),
+];
 
 /// Runs one scenario file and writes its report.
 #[derive(Args, Debug)]

@@ -21,9 +21,33 @@ const MAX_FRAMES: usize = 400;
 
 impl Animation {
     /// An animation from frame times and points.
-    #[allow(dead_code)] // used by the scenarios with a moving robot, as they land
     pub fn new(times: Vec<f64>, frames: Vec<Vec<[f64; 3]>>) -> Self {
         Animation { times, frames }
+    }
+
+    /// The robot `model` at each configuration: base origin, every joint
+    /// frame's origin and the end effector, from forward kinematics.
+    pub fn from_configurations(
+        model: &armkit::Model,
+        times: &[f64],
+        configurations: &[Vec<f64>],
+    ) -> Result<Self, armkit::Error> {
+        let mut data = armkit::Data::new(model);
+        let frames = configurations
+            .iter()
+            .map(|q| {
+                let end = armkit::forward_kinematics(model, &mut data, q)?.translation;
+                let base = model.base().translation;
+                let mut points = vec![[base.x, base.y, base.z]];
+                points.extend(data.joint_frames().iter().map(|f| {
+                    let p = f.translation;
+                    [p.x, p.y, p.z]
+                }));
+                points.push([end.x, end.y, end.z]);
+                Ok(points)
+            })
+            .collect::<Result<Vec<_>, armkit::Error>>()?;
+        Ok(Animation::new(times.to_vec(), frames))
     }
 
     /// Keeps at most `MAX_FRAMES` evenly spaced frames (the last one always).

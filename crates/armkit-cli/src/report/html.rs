@@ -51,11 +51,17 @@ pub fn report_page(report: &Report, svgs: &[(String, String)]) -> String {
         } else {
             "&ge;"
         };
+        let (value, threshold) = if check.detail.is_empty() {
+            (
+                format_value(check.value),
+                format!("{op} {}", format_value(check.threshold)),
+            )
+        } else {
+            (escape(&check.detail), "holds".to_string())
+        };
         body += &format!(
-            "<tr><td>{}</td><td>{}</td><td>{op} {}</td><td>{}</td><td>{}</td></tr>\n",
+            "<tr><td>{}</td><td>{value}</td><td>{threshold}</td><td>{}</td><td>{}</td></tr>\n",
             escape(&check.name),
-            format_value(check.value),
-            format_value(check.threshold),
             escape(&check.unit),
             verdict(check.passed())
         );

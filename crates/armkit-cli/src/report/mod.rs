@@ -37,6 +37,9 @@ pub struct Check {
     pub comparison: Comparison,
     /// Unit of value and threshold (may be empty).
     pub unit: String,
+    /// The measured figures in words, for checks that are a yes/no claim
+    /// (may be empty).
+    pub detail: String,
 }
 
 impl Check {
@@ -48,6 +51,7 @@ impl Check {
             threshold,
             comparison: Comparison::AtMost,
             unit: unit.into(),
+            detail: String::new(),
         }
     }
 
@@ -59,7 +63,16 @@ impl Check {
             threshold,
             comparison: Comparison::AtLeast,
             unit: unit.into(),
+            detail: String::new(),
         }
+    }
+
+    /// A yes/no claim: value 1 when it holds, 0 when not, threshold 1, with
+    /// the figures behind it in `detail`.
+    pub fn holds(name: impl Into<String>, holds: bool, detail: impl Into<String>) -> Self {
+        let mut check = Check::at_least(name, if holds { 1.0 } else { 0.0 }, 1.0, "");
+        check.detail = detail.into();
+        check
     }
 
     /// True when the value meets the threshold (NaN never does).
@@ -77,6 +90,7 @@ impl Check {
             "threshold": self.threshold,
             "comparison": match self.comparison { Comparison::AtMost => "<=", Comparison::AtLeast => ">=" },
             "unit": self.unit,
+            "detail": self.detail,
             "pass": self.passed(),
         })
     }
@@ -241,6 +255,15 @@ impl Report {
             out += &table.to_text();
         }
         for check in &self.checks {
+            if !check.detail.is_empty() {
+                out += &format!(
+                    "  [{}] {}: {}\n",
+                    if check.passed() { "pass" } else { "FAIL" },
+                    check.name,
+                    check.detail
+                );
+                continue;
+            }
             out += &format!(
                 "  [{}] {}: {} ({} {} {})\n",
                 if check.passed() { "pass" } else { "FAIL" },

@@ -21,7 +21,6 @@ mod methods;
 use std::path::{Path, PathBuf};
 
 use armkit::description::{line_and_column, toml_error_line};
-use armkit::Model;
 use serde::Deserialize;
 use toml::Spanned;
 
@@ -29,7 +28,7 @@ use crate::common::{CliError, CliResult};
 use crate::report::Report;
 
 pub use methods::Method;
-use methods::MethodTables;
+use methods::OptionTable;
 
 /// Where the robot comes from.
 #[derive(Debug, Deserialize)]
@@ -51,7 +50,10 @@ struct ScenarioFile {
     description: String,
     robot: Option<Spanned<RobotSpec>>,
     // The method tables: exactly one is present (see `methods`).
-    beam: Option<Spanned<methods::BeamSpec>>,
+    beam: Option<Spanned<OptionTable>>,
+    mpc: Option<Spanned<OptionTable>>,
+    redundancy: Option<Spanned<OptionTable>>,
+    continuous_path: Option<Spanned<OptionTable>>,
 }
 
 /// A parsed, validated scenario.
@@ -63,9 +65,7 @@ pub struct Scenario {
     pub title: String,
     /// Description shown in the report.
     pub description: String,
-    /// The robot, when the scenario names one.
-    pub robot: Option<Model>,
-    /// The method and its options.
+    /// The method and its options (the robot among them).
     pub method: Method,
 }
 
@@ -110,36 +110,69 @@ pub fn parse(text: &str, source_name: &str, base_dir: &Path) -> CliResult<Scenar
             format!("`name` must be letters, digits, `-` or `_` (it names the output folder), got {name:?}"),
         ));
     }
-    let robot = match &file.robot {
-        Some(spec) => Some(load_robot(spec, &locator, base_dir)?),
-        None => None,
+    let robot_argv = match &file.robot {
+        Some(spec) => robot_arguments(spec, &locator, base_dir)?,
+        None => Vec::new(),
     };
-    let method = Method::from_tables(MethodTables { beam: file.beam }, &locator)?;
+    let tables = vec![
+        ("beam", file.beam),
+        ("mpc", file.mpc),
+        ("redundancy", file.redundancy),
+        ("continuous_path", file.continuous_path),
+    ];
+    let method = Method::parse(tables, &robot_argv, &locator)?;
     Ok(Scenario {
         name: name.clone(),
         title: file.title,
         description: file.description,
-        robot,
         method,
     })
 }
 
-fn load_robot(spec: &Spanned<RobotSpec>, locator: &Locator, base_dir: &Path) -> CliResult<Model> {
+/// Loads the robot (so that a bad one is reported at its line) and returns
+/// the command-line words that select it: `--robot NAME`, `--robot-file
+/// PATH` or `--urdf PATH [--base LINK] [--tip LINK]`, paths taken from the
+/// scenario's folder.
+fn robot_arguments(
+    spec: &Spanned<RobotSpec>,
+    locator: &Locator,
+    base_dir: &Path,
+) -> CliResult<Vec<(String, String, std::ops::Range<usize>)>> {
     let robot = spec.get_ref();
     let resolve = |p: &Spanned<String>| -> PathBuf { base_dir.join(p.get_ref()) };
+    let word =
+        |flag: &str, value: String, span: std::ops::Range<usize>| (flag.to_string(), value, span);
     match (&robot.builtin, &robot.file, &robot.urdf) {
         (Some(name), None, None) => {
-            armkit::robots::by_name(name.get_ref()).map_err(|e| locator.error(name.span(), e))
+            armkit::robots::by_name(name.get_ref()).map_err(|e| locator.error(name.span(), e))?;
+            Ok(vec![word("--robot", name.get_ref().clone(), name.span())])
         }
         (None, Some(file), None) => {
-            armkit::description::load(resolve(file)).map_err(|e| locator.error(file.span(), e))
+            armkit::description::load(resolve(file)).map_err(|e| locator.error(file.span(), e))?;
+            Ok(vec![word(
+                "--robot-file",
+                resolve(file).display().to_string(),
+                file.span(),
+            )])
         }
         (None, None, Some(urdf)) => {
             let selection = armkit::urdf::ChainSelection {
                 base: robot.base.clone(),
                 tip: robot.tip.clone(),
             };
-            armkit::urdf::load(resolve(urdf), &selection).map_err(|e| locator.error(urdf.span(), e))
+            armkit::urdf::load(resolve(urdf), &selection)
+                .map_err(|e| locator.error(urdf.span(), e))?;
+            let mut words = vec![word(
+                "--urdf",
+                resolve(urdf).display().to_string(),
+                urdf.span(),
+            )];
+            for (flag, value) in [("--base", &robot.base), ("--tip", &robot.tip)] {
+                if let Some(v) = value {
+                    words.push(word(flag, v.clone(), urdf.span()));
+                }
+            }
+            Ok(words)
         }
         _ => Err(locator.error(
             spec.span(),
@@ -151,7 +184,7 @@ fn load_robot(spec: &Spanned<RobotSpec>, locator: &Locator, base_dir: &Path) -> 
 impl Scenario {
     /// Runs the method and returns its report, named and titled by the scenario.
     pub fn run(&self) -> CliResult<Report> {
-        let mut report = self.method.run(self.robot.as_ref())?;
+        let mut report = self.method.run()?;
         report.name = self.name.clone();
         report.title = self.title.clone();
         if !self.description.is_empty() {
@@ -196,12 +229,23 @@ mod tests {
         assert!(error("title = \"t\"\n[beam]\n").contains("missing field `name`"));
         assert_eq!(
             error("name = \"b\"\ntitle = \"t\"\n"),
-            "s.toml: line 1, column 1: no method table: expected exactly one of [beam]"
+            "s.toml: line 1, column 1: no method table: expected exactly one of [beam], [mpc], [redundancy], [continuous_path]"
         );
         assert_eq!(
             error("name = \"a b\"\ntitle = \"t\"\n[beam]\n"),
             "s.toml: line 1, column 8: `name` must be letters, digits, `-` or `_` (it names the output folder), got \"a b\""
         );
-        assert!(error("name = \"b\"\ntitle = \"t\"\n[beam]\nmas = 3.0\n").contains("line 4"));
+        assert_eq!(
+            error("name = \"b\"\ntitle = \"t\"\n[beam]\nmas = 3.0\n"),
+            "s.toml: line 4, column 1: [beam]: unexpected argument '--mas' found"
+        );
+        assert_eq!(
+            error("name = \"b\"\ntitle = \"t\"\n[beam]\nmass = \"heavy\"\n"),
+            "s.toml: line 4, column 1: [beam]: invalid value 'heavy' for '--mass <KG>': invalid float literal"
+        );
+        assert_eq!(
+            error("name = \"b\"\ntitle = \"t\"\n[robot]\nbuiltin = \"ur5\"\n[beam]\n"),
+            "s.toml: line 4, column 11: [beam]: unexpected argument '--robot' found"
+        );
     }
 }
