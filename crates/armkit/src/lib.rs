@@ -49,3 +49,8 @@ pub mod urdf;
 pub use error::{Error, Result};
 pub use kinematics::{forward_kinematics, jacobian, Data, JacobianFrame};
 pub use model::Model;
+
+/// The README's Rust example, compiled and run as a doctest so that it stays true.
+#[doc = include_str!("../../../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;
