@@ -24,7 +24,7 @@ use crate::common::{
     clean_zero, parse_joint_positions, print_json, CliError, CliResult, LimitPolicy, Outcome,
 };
 use crate::plot::Figure;
-use crate::report::{write_atomic, Check, Report, Table};
+use crate::report::{write_atomic, Animation, Check, Report, Table};
 
 /// The paper's tolerance between its theory and its simulation (Table 1).
 const PAPER_TOLERANCE: f64 = 0.04;
@@ -405,8 +405,27 @@ pub fn report(load: LoadArgs, samples: usize) -> CliResult<Report> {
             "Errata: eq 3 swaps P1 and P2; eq 4 prints d2 - for d3 +; the printed eq 8 misses 2 P d2^3 / (3 E I L).".into(),
             format!("Largest error of a rigid model: {:.3} mm at d2 = {} m, straight down.", 1e3 * worst.error.norm(), worst.d2),
         ],
-        animation: None,
+        animation: Some(carriage_sweep_animation(&flex, &along)?),
     })
+}
+
+/// The flexible gantry at its mid-range configuration while the carriage
+/// travels the sweep's positions (one frame per position, 0.1 s apart).
+fn carriage_sweep_animation(flex: &armkit::Model, samples: &[ErrorSample]) -> CliResult<Animation> {
+    let mut q = flex.neutral_configuration();
+    let configurations: Vec<Vec<f64>> = samples
+        .iter()
+        .map(|s| {
+            q[1] = s.d2;
+            q.clone()
+        })
+        .collect();
+    let times: Vec<f64> = (0..samples.len()).map(|k| 0.1 * k as f64).collect();
+    Ok(Animation::from_configurations(
+        flex,
+        &times,
+        &configurations,
+    )?)
 }
 
 /// Largest entry of |J0 M - J_fd| over a few configurations of the flexible gantry.
