@@ -148,3 +148,16 @@ pub fn check_finite(what: &'static str, values: &[f64]) -> Result<()> {
         }),
     }
 }
+
+/// Checks that `value` is finite and > 0; the error names the argument:
+/// ``invalid argument `name`: must be finite and > 0, got -1``.
+pub fn check_positive(name: &str, value: f64) -> Result<()> {
+    if value.is_finite() && value > 0.0 {
+        Ok(())
+    } else {
+        Err(Error::invalid_argument(
+            name,
+            format!("must be finite and > 0, got {value}"),
+        ))
+    }
+}

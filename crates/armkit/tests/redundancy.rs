@@ -6,13 +6,13 @@ mod common;
 
 use std::f64::consts::PI;
 
+use armkit::ik::pose_error;
 use armkit::kinematics::{forward_kinematics, jacobian, Data, JacobianFrame};
 use armkit::math::{DMatrix, DVector, Matrix6xX, Pose, Vector3, Vector6};
 use armkit::model::{DhConvention, DhLink, Model};
 use armkit::redundancy::nullspace::{
     joint_limit_cost, joint_limit_gradient, manipulability, SecondaryTask,
 };
-use armkit::redundancy::tracking::pose_error;
 use armkit::redundancy::{
     best_partition, compare_distributions, energy_measure, gravity_torques, joint_torques,
     ComparisonCase, Damping, Distribution, Formulation, JointWeights, LinePath, Load, Partition,
@@ -1061,7 +1061,7 @@ fn pose_error_is_position_difference_and_rotation_vector() {
         let turn =
             armkit::math::Rotation3::from_axis_angle(&nalgebra::Unit::new_normalize(axis), angle);
         let b = Pose::new(turn.into_inner() * a.rotation, a.translation + Vector3::x());
-        let e = pose_error(&a, &b);
+        let e = pose_error(&b, &a);
         assert!((e.fixed_rows::<3>(0) - Vector3::x()).norm() < 1e-15);
         let w: Vector3<f64> = e.fixed_rows::<3>(3).into_owned();
         assert!((w.norm() - angle).abs() < 1e-9, "{angle}: {}", w.norm());

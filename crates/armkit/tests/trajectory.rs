@@ -10,8 +10,8 @@ use std::f64::consts::PI;
 use armkit::kinematics::{forward_kinematics, jacobian, Data, JacobianFrame};
 use armkit::math::{DMatrix, DVector, Pose, Vector3};
 use armkit::trajectory::cartesian::{
-    rotation_vector, ArcOrientation, ArcPath, CartesianPath, CartesianTrajectory, FnPath, LinePath,
-    OrientationLaw, TimeLaw,
+    ArcOrientation, ArcPath, CartesianPath, CartesianTrajectory, FnPath, LinePath, OrientationLaw,
+    TimeLaw,
 };
 use armkit::trajectory::continuous_path::{
     interpolate_via_points, measure_path_error, plan_continuous_path, BoundaryRates,
@@ -635,7 +635,8 @@ fn check_cartesian_derivatives(traj: &CartesianTrajectory, tolerance: f64) {
             traj.sample(t + h).unwrap(),
         );
         let v = (p.pose.translation - m.pose.translation) / (2.0 * h);
-        let w = rotation_vector(&(p.pose.rotation * m.pose.rotation.transpose())) / (2.0 * h);
+        let w = armkit::math::rotation_log(&(p.pose.rotation * m.pose.rotation.transpose()))
+            / (2.0 * h);
         let dv = (p.twist - m.twist) / (2.0 * h);
         let fd = Vector3::new(v.x, v.y, v.z);
         assert!(
@@ -810,7 +811,7 @@ fn newton_ik(
         let j = jacobian(model, &mut data, q.as_slice(), JacobianFrame::World)?.clone();
         let pose = *data.end_effector_pose();
         let dp = target.translation - pose.translation;
-        let dr = rotation_vector(&(target.rotation * pose.rotation.transpose()));
+        let dr = armkit::math::rotation_log(&(target.rotation * pose.rotation.transpose()));
         let e = DVector::from_iterator(rows, dp.iter().chain(dr.iter()).copied().take(rows));
         if e.norm() < 1e-12 {
             model.check_limits(q.as_slice())?;

@@ -45,11 +45,12 @@ mod protocol;
 
 use std::time::Duration;
 
+pub use crate::math::rotation_log;
 pub use numeric::{
     damped_least_squares_step, damped_pseudo_inverse, singularity_robust_inverse,
     singularity_robust_step, ChiaveriniFilter, IkSolver, LmDamping, NakamuraDamping,
 };
-pub use pose_error::{masked_error_norms, orientation_error, pose_error, rotation_log};
+pub use pose_error::{masked_error_norms, orientation_error, pose_error};
 pub use protocol::{benchmark_targets, random_configuration};
 
 use crate::error::{Error, Result};

@@ -21,60 +21,7 @@
 //! assert!(rotation_log(&goal.rotation).norm() - 0.4 < 1e-15);
 //! ```
 
-use crate::math::{Matrix3, Pose, Vector3, Vector6};
-
-/// The rotation vector `k phi` of a rotation matrix (its matrix logarithm):
-/// unit axis `k` times the angle `phi` in `[0, pi]`, radians.
-///
-/// Accurate to about machine precision over the whole range: the angle comes
-/// from `atan2(sin, cos)` (not `acos` of the trace, which loses half the
-/// digits near 0 and pi) and near `phi = pi`, where the skew part vanishes,
-/// the axis comes from the symmetric part `R + R' = 2 cos(phi) I + 2 (1 - cos(phi)) k k'`.
-pub fn rotation_log(rotation: &Matrix3<f64>) -> Vector3<f64> {
-    let r = rotation;
-    // vee((R - R') / 2) = sin(phi) k.
-    let v = Vector3::new(
-        0.5 * (r[(2, 1)] - r[(1, 2)]),
-        0.5 * (r[(0, 2)] - r[(2, 0)]),
-        0.5 * (r[(1, 0)] - r[(0, 1)]),
-    );
-    let sin = v.norm();
-    let cos = (0.5 * (r.trace() - 1.0)).clamp(-1.0, 1.0);
-    let angle = sin.atan2(cos);
-    if cos > -0.5 {
-        // phi < 2 pi / 3: the skew part carries the axis with full accuracy.
-        if sin > 0.0 {
-            return v * (angle / sin);
-        }
-        return Vector3::zeros();
-    }
-    // Near pi: k k' = (S - cos I) / (1 - cos) with S the symmetric part; take
-    // the column with the largest diagonal entry (the best-conditioned one).
-    let one_minus_cos = 1.0 - cos;
-    let mut best = 0;
-    for i in 1..3 {
-        if r[(i, i)] > r[(best, best)] {
-            best = i;
-        }
-    }
-    let mut axis = Vector3::zeros();
-    for i in 0..3 {
-        let symmetric = 0.5 * (r[(i, best)] + r[(best, i)]);
-        let identity = if i == best { cos } else { 0.0 };
-        axis[i] = (symmetric - identity) / one_minus_cos;
-    }
-    let norm = axis.norm();
-    if norm == 0.0 {
-        return Vector3::zeros();
-    }
-    axis /= norm;
-    // The symmetric part fixes the axis up to its sign; the skew part (tiny
-    // but non-zero unless phi = pi exactly) fixes the sign.
-    if axis.dot(&v) < 0.0 {
-        axis = -axis;
-    }
-    axis * angle
-}
+use crate::math::{rotation_log, Matrix3, Pose, Vector3, Vector6};
 
 /// The orientation error of seed 004 (eq 27): the rotation vector `k phi`
 /// (rad, world axes) of `R_goal R_current'`, the rotation that carries the

@@ -271,16 +271,7 @@ pub enum Damping {
 impl Damping {
     /// Checks the parameters: finite and > 0.
     pub fn validate(&self) -> Result<()> {
-        let positive = |name: &str, value: f64| {
-            if value.is_finite() && value > 0.0 {
-                Ok(())
-            } else {
-                Err(Error::invalid_argument(
-                    name,
-                    format!("must be finite and > 0, got {value}"),
-                ))
-            }
-        };
+        let positive = crate::error::check_positive;
         match *self {
             Damping::None => Ok(()),
             Damping::Constant(lambda) => positive("damping.lambda", lambda),

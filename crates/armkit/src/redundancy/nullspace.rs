@@ -71,16 +71,7 @@ pub enum SecondaryObjective {
 impl SecondaryObjective {
     /// Checks that the parameters are finite and > 0.
     pub fn validate(&self) -> Result<()> {
-        let positive = |name: &str, value: f64| {
-            if value.is_finite() && value > 0.0 {
-                Ok(())
-            } else {
-                Err(Error::invalid_argument(
-                    name,
-                    format!("must be finite and > 0, got {value}"),
-                ))
-            }
-        };
+        let positive = crate::error::check_positive;
         match *self {
             SecondaryObjective::None => Ok(()),
             SecondaryObjective::JointLimits { gain } => positive("secondary.gain", gain),

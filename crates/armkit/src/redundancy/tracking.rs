@@ -42,56 +42,10 @@ use super::partition::{best_partition, Partition, PartitionedSolver};
 use super::weighted::WeightedLeastNorm;
 use super::{Damping, JointWeights, SolverOptions};
 use crate::error::{check_finite, Error, Result};
+use crate::ik::pose_error;
 use crate::kinematics::{forward_kinematics, jacobian, Data, JacobianFrame};
-use crate::math::{Matrix3, Pose, Rotation3, Vector3, Vector6};
+use crate::math::{rotation_log, Pose, Rotation3, Vector3, Vector6};
 use crate::model::Model;
-
-/// The pose error `[p_d - p; log(R_d R')]` from `current` to `desired`
-/// (world frame): position difference (m), then the rotation vector (axis
-/// times angle, rad, angle in `[0, pi]`) that turns `current` onto `desired`.
-pub fn pose_error(current: &Pose, desired: &Pose) -> Vector6<f64> {
-    let position = desired.translation - current.translation;
-    let rotation = rotation_vector(&(desired.rotation * current.rotation.transpose()));
-    Vector6::new(
-        position.x, position.y, position.z, rotation.x, rotation.y, rotation.z,
-    )
-}
-
-/// The rotation vector (axis times angle, rad, angle in `[0, pi]`) of a
-/// rotation matrix, robust to round-off (no `acos` of a value past 1).
-///
-/// The skew part of `R` is `sin(angle) [axis]x` and its trace `1 + 2 cos(angle)`,
-/// so `angle = atan2(sin, cos)`; near `pi` the skew part vanishes and the axis
-/// comes from the symmetric part `cos I + (1 - cos) axis axis'`.
-fn rotation_vector(r: &Matrix3<f64>) -> Vector3<f64> {
-    let skew = Vector3::new(
-        r[(2, 1)] - r[(1, 2)],
-        r[(0, 2)] - r[(2, 0)],
-        r[(1, 0)] - r[(0, 1)],
-    ) * 0.5;
-    let cos = ((r.trace() - 1.0) * 0.5).clamp(-1.0, 1.0);
-    let sin = skew.norm();
-    let angle = sin.atan2(cos);
-    if cos > -0.5 {
-        // angle < 120 deg: the skew part is well conditioned.
-        return if sin < 1e-300 {
-            Vector3::zeros()
-        } else {
-            skew * (angle / sin)
-        };
-    }
-    let symmetric = (r + r.transpose()) * 0.5;
-    let outer = (symmetric - Matrix3::identity() * cos) / (1.0 - cos);
-    let k = (0..3)
-        .max_by(|&a, &b| outer[(a, a)].total_cmp(&outer[(b, b)]))
-        .unwrap_or(0);
-    let mut axis: Vector3<f64> = outer.column(k).into_owned() / outer[(k, k)].max(0.0).sqrt();
-    axis.normalize_mut();
-    if axis.dot(&skew) < 0.0 {
-        axis = -axis;
-    }
-    axis * angle
-}
 
 /// A desired end-effector motion: a pose (world frame) for each time in
 /// `[0, duration]` (s).
@@ -112,7 +66,7 @@ pub trait CartesianPath {
         if after <= before {
             return Vector6::zeros();
         }
-        pose_error(&self.pose(before), &self.pose(after)) / (after - before)
+        pose_error(&self.pose(after), &self.pose(before)) / (after - before)
     }
 }
 
@@ -148,7 +102,7 @@ impl LinePath {
             start,
             goal,
             duration,
-            rotation: rotation_vector(&(goal.rotation * start.rotation.transpose())),
+            rotation: rotation_log(&(goal.rotation * start.rotation.transpose())),
         })
     }
 
@@ -542,7 +496,7 @@ impl ResolvedRateTracker {
         // The final state, against the pose due at the time reached.
         let time = samples.last().map_or(0.0, |s| s.time + dt);
         let pose = *forward_kinematics(model, &mut self.data, &q)?;
-        let error = pose_error(&pose, &path.pose(time.min(duration)));
+        let error = pose_error(&path.pose(time.min(duration)), &pose);
         samples.push(TrackingSample {
             time,
             q,
@@ -589,7 +543,7 @@ impl ResolvedRateTracker {
                 self.weights.set_from_torques(&self.torques, *floor)?;
             }
         }
-        let error = pose_error(self.data.end_effector_pose(), desired);
+        let error = pose_error(desired, self.data.end_effector_pose());
         let twist = desired_twist + error * self.options.feedback_gain;
         let direction_is_zero = self.options.secondary == SecondaryObjective::None;
         if !direction_is_zero {

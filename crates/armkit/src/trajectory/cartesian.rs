@@ -33,7 +33,7 @@ use std::fmt;
 use super::limits::{check_limits, TrajectoryLimits};
 use super::{profile, JointState, Trajectory};
 use crate::error::{check_finite, Error, Result};
-use crate::math::{Matrix3, Pose, Rotation3, UnitQuaternion, Vector3, Vector6};
+use crate::math::{rotation_log, Matrix3, Pose, Rotation3, Vector3, Vector6};
 
 /// A pose and its first two derivatives with respect to the path parameter.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -63,31 +63,6 @@ pub trait CartesianPath: Send + Sync {
     }
 }
 
-/// Rotation vector (axis times angle, rad) of a rotation matrix: the inverse
-/// of `exp`. Accurate for small angles and up to pi (via the quaternion and
-/// `atan2`); at exactly pi the axis sign is arbitrary.
-pub fn rotation_vector(rotation: &Matrix3<f64>) -> Vector3<f64> {
-    let q = UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(*rotation));
-    let (w, v) = (q.w, q.imag());
-    let (w, v) = if w < 0.0 { (-w, -v) } else { (w, v) };
-    let sin_half = v.norm();
-    if sin_half == 0.0 {
-        return Vector3::zeros();
-    }
-    v * (2.0 * sin_half.atan2(w) / sin_half)
-}
-
-/// Angle (rad, in `[0, pi]`) of a rotation matrix, accurate at small angles
-/// (`atan2` of the skew and symmetric parts, not `acos` of the trace).
-pub fn rotation_angle(rotation: &Matrix3<f64>) -> f64 {
-    let skew = Vector3::new(
-        rotation[(2, 1)] - rotation[(1, 2)],
-        rotation[(0, 2)] - rotation[(2, 0)],
-        rotation[(1, 0)] - rotation[(0, 1)],
-    );
-    (0.5 * skew.norm()).atan2(0.5 * (rotation.trace() - 1.0))
-}
-
 /// Finite-difference derivatives of a pose function (see [`CartesianPath::derivatives`]).
 fn finite_difference_derivatives(pose: impl Fn(f64) -> Pose, s: f64) -> PathDerivatives {
     const H: f64 = 1e-4;
@@ -96,7 +71,7 @@ fn finite_difference_derivatives(pose: impl Fn(f64) -> Pose, s: f64) -> PathDeri
     let at = |k: f64| -> Vector6<f64> {
         let x = pose(s + k * H);
         let delta = x.translation - centre.translation;
-        let r = rotation_vector(&(x.rotation * centre.rotation.transpose()));
+        let r = rotation_log(&(x.rotation * centre.rotation.transpose()));
         Vector6::new(delta.x, delta.y, delta.z, r.x, r.y, r.z)
     };
     let (first, second) = if s - H < 0.0 {
@@ -156,7 +131,7 @@ impl LinePath {
         Ok(LinePath {
             start,
             end,
-            rotation: rotation_vector(&(start.rotation.transpose() * end.rotation)),
+            rotation: rotation_log(&(start.rotation.transpose() * end.rotation)),
         })
     }
 

@@ -54,12 +54,13 @@
 //! assert!(report.checked_error.position <= 1e-4);
 //! ```
 
-use super::cartesian::{rotation_angle, CartesianTrajectory};
+use super::cartesian::CartesianTrajectory;
 use super::poly;
 use super::spline::check_via_points;
 use super::{JointState, Trajectory};
 use crate::error::{check_finite_vector, Error, Result};
 use crate::kinematics::{forward_kinematics, Data};
+use crate::math::rotation_angle;
 use crate::math::Pose;
 use crate::model::Model;
 
