@@ -1,22 +1,9 @@
 //! `armkit beam table1` and `armkit beam error-along-beam`, run as a user would.
 
+mod common;
+use common::*;
+
 use std::path::PathBuf;
-use std::process::{Command, Output};
-
-fn armkit(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_armkit"))
-        .args(args)
-        .output()
-        .unwrap()
-}
-
-fn stdout(output: &Output) -> String {
-    String::from_utf8_lossy(&output.stdout).to_string()
-}
-
-fn stderr(output: &Output) -> String {
-    String::from_utf8_lossy(&output.stderr).trim().to_string()
-}
 
 /// Deflection under a 4000 N carriage at `a` on seed 000's beam, by hand:
 /// P a^2 (L - a)^2 / (3 E I L), E = 200 GPa, I = 0.2^4 / 12, L = 10 m.

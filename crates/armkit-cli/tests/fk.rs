@@ -1,23 +1,8 @@
 //! The `robots`, `fk` and `jacobian` commands, run as a user would.
 
-use std::process::{Command, Output};
+mod common;
+use common::*;
 
-fn armkit(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_armkit"))
-        .args(args)
-        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
-        .output()
-        .unwrap()
-}
-
-fn stderr(output: &Output) -> String {
-    String::from_utf8_lossy(&output.stderr).trim().to_string()
-}
-
-fn json(output: &Output) -> serde_json::Value {
-    assert!(output.status.success(), "{}", stderr(output));
-    serde_json::from_slice(&output.stdout).unwrap()
-}
 
 /// The first reference sample of a reference file: (q as text, pose rows, Jacobian rows).
 fn first_sample(file: &str) -> (String, Vec<Vec<f64>>, Vec<Vec<f64>>) {

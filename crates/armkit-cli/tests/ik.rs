@@ -1,24 +1,11 @@
 //! `armkit ik` and `armkit bench-ik`, run as a user would.
 
-use std::process::{Command, Output};
+mod common;
+use common::*;
+
 
 use armkit::kinematics::{forward_kinematics, Data};
 use armkit::math::Pose;
-
-fn armkit(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_armkit"))
-        .args(args)
-        .output()
-        .unwrap()
-}
-
-fn stdout(output: &Output) -> String {
-    String::from_utf8_lossy(&output.stdout).to_string()
-}
-
-fn stderr(output: &Output) -> String {
-    String::from_utf8_lossy(&output.stderr).trim().to_string()
-}
 
 fn urdf(name: &str) -> String {
     format!(

@@ -1,39 +1,15 @@
 //! `armkit redundancy`: the four-way comparison from the command line,
 //! checked against the library, its files, and its errors.
 
-use std::path::PathBuf;
-use std::process::{Command, Output};
+mod common;
+use common::*;
+
 
 use armkit::math::{Pose, Vector3};
 use armkit::redundancy::{
     compare_distributions, ComparisonCase, JointWeights, LinePath, Load, TorqueFloor,
     TrackingOptions, SEED000_PRIORITY_WEIGHTS,
 };
-
-fn armkit(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_armkit"))
-        .args(args)
-        .output()
-        .unwrap()
-}
-
-fn stderr(output: &Output) -> String {
-    String::from_utf8_lossy(&output.stderr).trim().to_string()
-}
-
-fn json(output: &Output) -> serde_json::Value {
-    assert!(output.status.success(), "{}", stderr(output));
-    serde_json::from_slice(&output.stdout).unwrap()
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!(
-        "armkit-redundancy-cli-{}-{name}",
-        std::process::id()
-    ));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
 
 #[test]
 fn default_gantry_comparison_matches_the_library_and_writes_files() {

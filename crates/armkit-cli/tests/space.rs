@@ -1,27 +1,13 @@
 //! `armkit space jacobian | simulate | track`: the free-floating space robot
 //! from the command line, checked against the library and on its outputs.
 
+mod common;
+use common::*;
+
 use std::path::PathBuf;
-use std::process::{Command, Output};
 
 use armkit::math::Pose;
 use armkit::space::{generalized_jacobian, space6r_free_floating, BaseMode, SpaceData};
-
-fn armkit(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_armkit"))
-        .args(args)
-        .output()
-        .unwrap()
-}
-
-fn stderr(output: &Output) -> String {
-    String::from_utf8_lossy(&output.stderr).trim().to_string()
-}
-
-fn json(output: &Output) -> serde_json::Value {
-    assert!(output.status.success(), "{}", stderr(output));
-    serde_json::from_slice(&output.stdout).unwrap()
-}
 
 fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("armkit-space-cli-{}", std::process::id()));

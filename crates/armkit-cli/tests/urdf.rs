@@ -1,24 +1,9 @@
 //! `--urdf PATH [--base LINK] [--tip LINK]` on the `fk` and `jacobian`
 //! commands, against the Pinocchio reference files.
 
-use std::process::{Command, Output};
+mod common;
+use common::*;
 
-fn armkit(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_armkit"))
-        .args(args)
-        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
-        .output()
-        .unwrap()
-}
-
-fn stderr(output: &Output) -> String {
-    String::from_utf8_lossy(&output.stderr).trim().to_string()
-}
-
-fn json(output: &Output) -> serde_json::Value {
-    assert!(output.status.success(), "{}", stderr(output));
-    serde_json::from_slice(&output.stdout).unwrap()
-}
 
 /// Sample `index` of a reference file: (q as text, pose rows, Jacobian rows).
 fn sample(file: &str, index: usize) -> (String, Vec<Vec<f64>>, Vec<Vec<f64>>) {
