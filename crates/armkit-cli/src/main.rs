@@ -1,16 +1,10 @@
 //! `armkit`: the command-line tool.
 
-mod commands;
-mod common;
-mod plot;
-mod report;
-mod scenario;
-
 use std::process::ExitCode;
 
+use armkit_cli::commands;
+use armkit_cli::common::{CliResult, Outcome};
 use clap::{Parser, Subcommand};
-
-use common::{CliResult, Outcome};
 
 /// Kinematics, redundancy resolution, trajectories and MPC for robot manipulators.
 #[derive(Parser, Debug)]
