@@ -331,6 +331,12 @@ impl SimplySupportedBeam {
     /// forward kinematics.
     fn deflection_and_slope_under_load(&self, a: f64, force: f64) -> (f64, f64) {
         let l = self.length;
+        if a.is_nan() {
+            // NaN in, NaN out: `clamp` keeps NaN, so the branch below would
+            // recurse on it forever (a stack overflow, found by
+            // tests/invariants_nonfinite.rs).
+            return (f64::NAN, f64::NAN);
+        }
         if !(0.0..=l).contains(&a) {
             let clamped = a.clamp(0.0, l);
             return (self.deflection_and_slope_under_load(clamped, force).0, 0.0);
