@@ -17,10 +17,14 @@ fn temp_dir(name: &str) -> PathBuf {
 }
 
 fn chromium() -> Option<PathBuf> {
-    ["/usr/bin/chromium", "/usr/bin/chromium-browser", "/usr/bin/google-chrome"]
-        .iter()
-        .map(PathBuf::from)
-        .find(|p| p.exists())
+    [
+        "/usr/bin/chromium",
+        "/usr/bin/chromium-browser",
+        "/usr/bin/google-chrome",
+    ]
+    .iter()
+    .map(PathBuf::from)
+    .find(|p| p.exists())
 }
 
 /// What Chromium saw on one page: the DOM after scripts ran, and the URLs the
@@ -44,13 +48,20 @@ fn visit(browser: &Path, page: &Path, scratch: &Path) -> PageVisit {
             "--disable-sync",
             "--virtual-time-budget=2000",
         ])
-        .arg(format!("--user-data-dir={}", scratch.join("profile").display()))
+        .arg(format!(
+            "--user-data-dir={}",
+            scratch.join("profile").display()
+        ))
         .arg(format!("--log-net-log={}", net_log.display()))
         .arg("--dump-dom")
         .arg(format!("file://{}", page.display()))
         .output()
         .unwrap();
-    assert!(output.status.success(), "chromium failed on {}", page.display());
+    assert!(
+        output.status.success(),
+        "chromium failed on {}",
+        page.display()
+    );
     let log: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&net_log).unwrap()).unwrap();
     let start_job = log["constants"]["logEventTypes"]["URL_REQUEST_START_JOB"].clone();
@@ -118,24 +129,43 @@ fn demo_reports_open_offline_with_plots_and_animation() {
     .unwrap();
     let seen = visit(&browser, &control, &scratch);
     assert!(
-        seen.page_requests.iter().any(|u| u.contains("armkit-control.invalid")),
+        seen.page_requests
+            .iter()
+            .any(|u| u.contains("armkit-control.invalid")),
         "the network-request detector saw nothing on the control page: {:?}",
         seen.page_requests
     );
 
     let index_visit = visit(&browser, &index, &scratch);
-    assert!(index_visit.page_requests.is_empty(), "{:?}", index_visit.page_requests);
+    assert!(
+        index_visit.page_requests.is_empty(),
+        "{:?}",
+        index_visit.page_requests
+    );
     assert!(index_visit.dom.contains("seed000-mpc-ex1/report.html"));
 
     let report_visit = visit(&browser, &report, &scratch);
-    assert!(report_visit.page_requests.is_empty(), "{:?}", report_visit.page_requests);
+    assert!(
+        report_visit.page_requests.is_empty(),
+        "{:?}",
+        report_visit.page_requests
+    );
     let dom = &report_visit.dom;
     assert!(dom.matches("<svg").count() >= 6, "plots missing");
     assert!(dom.contains("id=\"animation\""), "animation missing");
     // The script ran: the stick figure has points and joint markers.
     let robot = dom.split("id=\"robot\"").nth(1).unwrap_or("");
-    let points = robot.split("points=\"").nth(1).unwrap_or("").split('"').next().unwrap_or("");
-    assert!(points.split(' ').count() >= 5, "animation did not draw: {points:?}");
+    let points = robot
+        .split("points=\"")
+        .nth(1)
+        .unwrap_or("")
+        .split('"')
+        .next()
+        .unwrap_or("");
+    assert!(
+        points.split(' ').count() >= 5,
+        "animation did not draw: {points:?}"
+    );
     assert!(dom.contains("<circle"), "joint markers missing");
     std::fs::remove_dir_all(&out).unwrap();
     std::fs::remove_dir_all(&scratch).unwrap();

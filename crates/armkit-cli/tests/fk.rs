@@ -3,7 +3,6 @@
 mod common;
 use common::*;
 
-
 /// The first reference sample of a reference file: (q as text, pose rows, Jacobian rows).
 fn first_sample(file: &str) -> (String, Vec<Vec<f64>>, Vec<Vec<f64>>) {
     let path = format!("{}/../../tests/data/{file}", env!("CARGO_MANIFEST_DIR"));

@@ -3,7 +3,6 @@
 mod common;
 use common::*;
 
-
 use armkit::kinematics::{forward_kinematics, Data};
 use armkit::math::Pose;
 

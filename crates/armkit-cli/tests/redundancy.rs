@@ -4,7 +4,6 @@
 mod common;
 use common::*;
 
-
 use armkit::math::{Pose, Vector3};
 use armkit::redundancy::{
     compare_distributions, ComparisonCase, JointWeights, LinePath, Load, TorqueFloor,

@@ -3,7 +3,6 @@
 mod common;
 use common::*;
 
-
 /// Rows of a CSV file as numbers, after checking the header.
 fn read_csv(path: &std::path::Path, header: &str) -> Vec<Vec<f64>> {
     let text = std::fs::read_to_string(path).unwrap();

@@ -4,7 +4,6 @@
 mod common;
 use common::*;
 
-
 /// Sample `index` of a reference file: (q as text, pose rows, Jacobian rows).
 fn sample(file: &str, index: usize) -> (String, Vec<Vec<f64>>, Vec<Vec<f64>>) {
     let path = format!("{}/../../tests/data/{file}", env!("CARGO_MANIFEST_DIR"));
