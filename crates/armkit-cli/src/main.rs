@@ -3,8 +3,8 @@
 use std::process::ExitCode;
 
 use armkit_cli::commands;
-use armkit_cli::common::{CliResult, Outcome};
-use clap::{Parser, Subcommand};
+use armkit_cli::common::{accept_hyphen_values, CliResult, Outcome};
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 
 /// Kinematics, redundancy resolution, trajectories and MPC for robot manipulators.
 #[derive(Parser, Debug)]
@@ -60,7 +60,11 @@ fn run(command: &Command) -> CliResult<Outcome> {
 }
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let matches = accept_hyphen_values(Cli::command()).get_matches();
+    let cli = match Cli::from_arg_matches(&matches) {
+        Ok(cli) => cli,
+        Err(error) => error.exit(),
+    };
     match run(&cli.command) {
         Ok(Outcome::Success) => ExitCode::SUCCESS,
         Ok(Outcome::NotConverged) => ExitCode::from(3),

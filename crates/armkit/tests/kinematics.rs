@@ -124,3 +124,22 @@ fn limits_check_names_the_joint() {
     );
     assert!(model.check_limits(&model.neutral_configuration()).is_ok());
 }
+
+#[test]
+fn a_pose_that_overflows_is_an_error_not_a_result() {
+    // Finite inputs whose product overflows: lengths near f64::MAX.
+    let text = "convention = \"standard\"\n[[links]]\ntype = \"P\"\nd = 1e308\na = 1e308\nalpha = 0\nqlim = [0, 1e308]\n[[links]]\ntype = \"R\"\nd = 1e308\na = 1e308\nalpha = 0\n";
+    let model =
+        armkit::description::parse_str(text, armkit::description::Format::Toml, "<huge>").unwrap();
+    let mut data = Data::new(&model);
+    let q = [1e308, 0.0];
+    let fk = forward_kinematics(&model, &mut data, &q);
+    assert!(
+        matches!(&fk, Err(Error::Numerical { reason, .. }) if reason.contains("overflowed")),
+        "{fk:?}"
+    );
+    let j = jacobian(&model, &mut data, &q, JacobianFrame::World);
+    assert!(matches!(j, Err(Error::Numerical { .. })), "{j:?}");
+    // Even at zero the two offsets `d` add up past f64::MAX.
+    assert!(forward_kinematics(&model, &mut data, &[0.0, 0.0]).is_err());
+}

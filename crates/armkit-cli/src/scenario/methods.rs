@@ -10,7 +10,7 @@ use toml::Spanned;
 
 use super::Locator;
 use crate::commands::{beam, mpc, redundancy, traj};
-use crate::common::{CliError, CliResult};
+use crate::common::{accept_hyphen_values, CliError, CliResult};
 use crate::report::Report;
 
 /// A method table as written: option name -> value, both located.
@@ -123,7 +123,9 @@ impl ParsedTable {
         name: &'static str,
         locator: &Locator,
     ) -> CliResult<A> {
-        let command = A::augment_args(clap::Command::new(name).no_binary_name(true));
+        let command = accept_hyphen_values(A::augment_args(
+            clap::Command::new(name).no_binary_name(true),
+        ));
         let error = |e: clap::Error| {
             let text = e.to_string();
             let first = text

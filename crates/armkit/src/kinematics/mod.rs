@@ -102,8 +102,10 @@ impl Data {
 /// world frame, for joint positions `q` (rad or m, one per joint).
 ///
 /// Returns the end-effector pose. Errors: `q` of the wrong size or not
-/// finite, or `data` made for another model. Limits are not checked here
-/// (see [`Model::check_limits`]). Allocates nothing.
+/// finite, `data` made for another model, or a pose that overflows to an
+/// infinity or NaN (link lengths or prismatic positions near `f64::MAX`).
+/// Limits are not checked here (see [`Model::check_limits`]). Allocates
+/// nothing (on success).
 pub fn forward_kinematics<'d>(model: &Model, data: &'d mut Data, q: &[f64]) -> Result<&'d Pose> {
     data.check_model(model)?;
     model.check_joint_positions(q)?;
@@ -124,7 +126,26 @@ pub fn forward_kinematics<'d>(model: &Model, data: &'d mut Data, q: &[f64]) -> R
         data.joint_frames[j] = frame;
     }
     data.end_effector = &frame * model.end_effector_placement();
+    check_pose_is_finite(&data.end_effector)?;
     Ok(&data.end_effector)
+}
+
+/// Finite inputs can still overflow (lengths near `f64::MAX`); a non-finite
+/// pose is an error rather than a result. Every joint frame feeds the end
+/// effector, so checking it covers the whole chain (and the Jacobian).
+fn check_pose_is_finite(pose: &Pose) -> Result<()> {
+    let finite = pose
+        .rotation
+        .iter()
+        .chain(pose.translation.iter())
+        .all(|v| v.is_finite());
+    if finite {
+        return Ok(());
+    }
+    Err(Error::Numerical {
+        context: "forward kinematics".into(),
+        reason: "the end-effector pose overflowed to a non-finite value (link lengths or joint positions too large)".into(),
+    })
 }
 
 /// `frame = frame * Rz(angle)`: mixes the first two rotation columns.
