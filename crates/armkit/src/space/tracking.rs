@@ -5,7 +5,8 @@ use super::dynamics::generalized_jacobian;
 use super::simulate::step;
 use super::{check_pose, BaseMode, FreeFloatingModel, FreeFloatingState, SpaceData};
 use crate::error::{Error, Result};
-use crate::math::{Matrix3, Matrix6, Pose, Vector3, Vector6};
+use crate::ik::pose_error;
+use crate::math::{Matrix6, Pose, Vector6};
 
 /// Options of [`track_pose_path`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -212,97 +213,4 @@ fn least_squares_rates(
         *rate = column.dot(&y);
     }
     true
-}
-
-/// Pose error from `current` to `goal`, inertial frame: `[p_goal - p;
-/// k phi]` with `(k, phi)` the axis-angle of `R_goal R'` (seed 004, eqs
-/// 26-27). Private: the `ik` module had not landed when this was written.
-pub(super) fn pose_error(goal: &Pose, current: &Pose) -> Vector6<f64> {
-    let mut error = Vector6::zeros();
-    error
-        .fixed_rows_mut::<3>(0)
-        .copy_from(&(goal.translation - current.translation));
-    error.fixed_rows_mut::<3>(3).copy_from(&rotation_vector(
-        &(goal.rotation * current.rotation.transpose()),
-    ));
-    error
-}
-
-/// The rotation vector `k phi` (phi in `[0, pi]`) of a rotation matrix, the
-/// inverse of `exp([k phi]x)`, accurate near 0 and near pi.
-fn rotation_vector(r: &Matrix3<f64>) -> Vector3<f64> {
-    // sin(phi) k from the skew part, cos(phi) from the trace.
-    let sine_axis = Vector3::new(
-        r[(2, 1)] - r[(1, 2)],
-        r[(0, 2)] - r[(2, 0)],
-        r[(1, 0)] - r[(0, 1)],
-    ) * 0.5;
-    let sine = sine_axis.norm();
-    let cosine = 0.5 * (r.trace() - 1.0);
-    let angle = sine.atan2(cosine);
-    if angle < 1e-6 {
-        // phi / sin(phi) = 1 + phi^2 / 6 + ...
-        return sine_axis * (1.0 + angle * angle / 6.0);
-    }
-    if cosine > -0.9 {
-        return sine_axis * (angle / sine);
-    }
-    // Near pi the skew part vanishes: take the axis from the symmetric part,
-    // (R + R') / 2 - cos(phi) I = (1 - cos(phi)) k k', by its largest column,
-    // with the sign that agrees with sin(phi) k.
-    let symmetric = (r + r.transpose()) * 0.5 - Matrix3::identity() * cosine;
-    let column = (0..3)
-        .max_by(|&a, &b| symmetric[(a, a)].total_cmp(&symmetric[(b, b)]))
-        .unwrap_or(0);
-    let mut axis: Vector3<f64> = symmetric.column(column).into_owned();
-    let norm = axis.norm();
-    if norm == 0.0 {
-        return Vector3::zeros();
-    }
-    axis /= norm;
-    if axis.dot(&sine_axis) < 0.0 {
-        axis = -axis;
-    }
-    axis * angle
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use nalgebra::Rotation3;
-
-    #[test]
-    fn rotation_vector_inverts_the_exponential() {
-        for v in [
-            Vector3::new(0.3, -0.2, 0.9),
-            Vector3::new(1e-9, 2e-9, -1e-10),
-            Vector3::new(0.0, 0.0, 0.0),
-            Vector3::new(0.0, 3.0, 0.0),
-            Vector3::new(1.0, -2.0, 2.0).normalize() * (std::f64::consts::PI - 1e-9),
-            Vector3::new(-1.0, 0.5, 0.2).normalize() * 2.9,
-        ] {
-            let r = Rotation3::from_scaled_axis(v).into_inner();
-            let back = rotation_vector(&r);
-            assert!(
-                (back - v).norm() < 1e-9 * (1.0 + v.norm()),
-                "{v:?} -> {back:?}"
-            );
-        }
-        let small = Vector3::new(3e-9, -1e-9, 2e-9);
-        let back = rotation_vector(&Rotation3::from_scaled_axis(small).into_inner());
-        assert!((back - small).norm() < 1e-20);
-    }
-
-    #[test]
-    fn pose_error_is_position_difference_and_world_rotation() {
-        let current = Pose::from_xyz_rpy([0.1, 0.2, 0.3], [0.2, -0.1, 0.4]);
-        let w = Vector3::new(0.05, -0.02, 0.03);
-        let goal = Pose::new(
-            Rotation3::from_scaled_axis(w).into_inner() * current.rotation,
-            current.translation + Vector3::new(0.01, 0.0, -0.02),
-        );
-        let e = pose_error(&goal, &current);
-        assert!((e.fixed_rows::<3>(0) - Vector3::new(0.01, 0.0, -0.02)).norm() < 1e-15);
-        assert!((e.fixed_rows::<3>(3) - w).norm() < 1e-15);
-    }
 }
