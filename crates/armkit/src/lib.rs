@@ -41,6 +41,7 @@ pub mod model;
 pub mod mpc;
 pub mod redundancy;
 pub mod robots;
+pub mod singularity;
 pub mod space;
 pub mod trajectory;
 #[cfg(feature = "urdf")]

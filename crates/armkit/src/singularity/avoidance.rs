@@ -1,0 +1,820 @@
+//! Velocity-level tracking of a straight-line pose path, with seed 004's
+//! singularity avoidance and the damped baselines.
+
+use super::detection::{below_threshold, detect, jacobian_determinant, DetectionOptions, Trigger};
+use super::plant::{KnotSolve, Plant};
+use super::Manipulator;
+use crate::error::{check_finite_vector, check_positive, Error, Result};
+use crate::ik::{
+    damped_least_squares_step, pose_error, singularity_robust_step, ChiaveriniFilter,
+    NakamuraDamping,
+};
+use crate::math::{DMatrix, Pose, Vector6};
+use crate::trajectory::cartesian::{CartesianTrajectory, LinePath, TimeLaw};
+use crate::trajectory::spline::clamped_cubic_spline;
+use crate::trajectory::JointState;
+
+/// How the joint rates are obtained from the commanded end-effector twist.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Method {
+    /// Classic resolved rate, `q_dot = J^-1 x_dot` (the pseudo-inverse for
+    /// n > 6; seed 004, eq 28): blows up near a singularity (Fig 5).
+    Plain,
+    /// Seed 004's avoidance: plain tracking outside the singular region;
+    /// inside it, Newton-Raphson IK of every `k`-th planned pose
+    /// (warm-started from the previous one) and the C2 cubic fit of the
+    /// joint angles (eqs 33-42) through them; tracking resumes after.
+    Avoidance {
+        /// `k`: IK every `k`-th control period of the region (>= 1).
+        k: usize,
+    },
+    /// Damped least squares with Nakamura's adaptive damping.
+    DampedLeastSquares(NakamuraDamping),
+    /// Chiaverini's singularity-robust inverse with numerical filtering.
+    SingularityRobust(ChiaveriniFilter),
+}
+
+impl Method {
+    /// A short label: `plain`, `avoidance k=5`, `dls`, `sri`.
+    pub fn label(&self) -> String {
+        match self {
+            Method::Plain => "plain".into(),
+            Method::Avoidance { k } => format!("avoidance k={k}"),
+            Method::DampedLeastSquares(_) => "dls".into(),
+            Method::SingularityRobust(_) => "sri".into(),
+        }
+    }
+
+    /// Checks the parameters: `k >= 1`, and the baselines' own checks.
+    pub fn validate(&self) -> Result<()> {
+        match self {
+            Method::Plain => Ok(()),
+            Method::Avoidance { k } => {
+                if *k == 0 {
+                    Err(Error::invalid_argument(
+                        "k",
+                        "the knot stride must be >= 1 (IK every k-th planned pose of the singular region)",
+                    ))
+                } else {
+                    Ok(())
+                }
+            }
+            Method::DampedLeastSquares(d) => d.validate(),
+            Method::SingularityRobust(f) => f.validate(),
+        }
+    }
+}
+
+/// A straight-line pose path: from the pose of the start configuration to
+/// `goal`, position linear and orientation by slerp, timed by seed 004's
+/// trapezoidal speed profile.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LineTask {
+    /// Start joint positions, rad or m; the path starts at their pose.
+    pub start: Vec<f64>,
+    /// End pose, inertial (world) frame.
+    pub goal: Pose,
+    /// Duration, s (> 0). Seed 004: 20 s.
+    pub duration: f64,
+    /// Acceleration and deceleration time of the trapezoid, s, in
+    /// `(0, duration / 2]`. Seed 004: 4 s.
+    pub acceleration_time: f64,
+}
+
+/// Options of a tracking run. Defaults: `dt` 0.01 s, the detection defaults
+/// ([`DetectionOptions`]), IK tolerance 1e-8 (m and rad), 50 IK iterations.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TrackingOptions {
+    /// Control period, s (> 0); the duration is split into
+    /// `ceil(duration / dt)` equal steps.
+    pub dt: f64,
+    /// The singular-region tests.
+    pub detection: DetectionOptions,
+    /// `eps_T`: position (m) and orientation (rad) tolerance of the
+    /// Newton-Raphson solves inside the region (> 0). Seed 004 step 3 uses
+    /// 1e-8.
+    pub ik_tolerance: f64,
+    /// Newton-Raphson iterations per solve (>= 1).
+    pub ik_max_iterations: usize,
+}
+
+impl Default for TrackingOptions {
+    fn default() -> Self {
+        TrackingOptions {
+            dt: 0.01,
+            detection: DetectionOptions::default(),
+            ik_tolerance: 1e-8,
+            ik_max_iterations: 50,
+        }
+    }
+}
+
+impl TrackingOptions {
+    /// Checks every field; the error names it.
+    pub fn validate(&self) -> Result<()> {
+        check_positive("dt", self.dt)?;
+        self.detection.validate()?;
+        check_positive("ik_tolerance", self.ik_tolerance)?;
+        if self.ik_max_iterations == 0 {
+            return Err(Error::invalid_argument("ik_max_iterations", "must be >= 1"));
+        }
+        Ok(())
+    }
+}
+
+/// How a run ended.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum RunStatus {
+    /// The whole path was tracked.
+    Completed,
+    /// The plain inverse met an exactly singular Jacobian at `time` (s); the
+    /// run stopped there.
+    Singular {
+        /// Time of the step that could not be solved, s.
+        time: f64,
+    },
+}
+
+/// One singular region crossed by the avoidance method.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SingularRegion {
+    /// Entry time (the state where detection triggered), s.
+    pub start_time: f64,
+    /// Exit time (the knot whose `|det J|` is back above the threshold, or
+    /// the path's end), s.
+    pub end_time: f64,
+    /// The test that triggered at entry.
+    pub trigger: Trigger,
+    /// Knot times, s (entry, then every `k`-th period, then exit).
+    pub knot_times: Vec<f64>,
+    /// IK solves (one per knot after the entry).
+    pub ik_solves: usize,
+    /// Newton-Raphson iterations over those solves.
+    pub ik_iterations: usize,
+    /// Solves that did not reach the IK tolerance (their best iterate was used).
+    pub ik_failures: usize,
+    /// Knots dropped because their solution jumped (some joint would move
+    /// more than `eps_dq` per control period since the last kept knot) or
+    /// their solve did not converge.
+    pub dropped_knots: usize,
+    /// Largest position (m) and orientation (rad) error of a knot's solution.
+    pub max_knot_error: (f64, f64),
+}
+
+/// Summary figures of a run.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RunSummary {
+    /// Largest `|q_dot_j|` over joints and samples, rad/s or m/s.
+    pub peak_joint_rate: f64,
+    /// Largest position error from the planned pose, m.
+    pub max_position_error: f64,
+    /// Largest orientation error from the planned pose, rad.
+    pub max_orientation_error: f64,
+    /// Position error at the last sample, m.
+    pub final_position_error: f64,
+    /// Orientation error at the last sample, rad.
+    pub final_orientation_error: f64,
+    /// Time during which `|det J|` was below the detection threshold, s
+    /// (control periods whose start state is below it): the singular region
+    /// as this method crossed it.
+    pub time_in_singular_region: f64,
+    /// Mean position error over the samples of the singular region (m; 0 if
+    /// it was never entered).
+    pub mean_region_position_error: f64,
+    /// Mean orientation error over the samples of the singular region (rad).
+    pub mean_region_orientation_error: f64,
+    /// Position-level IK solves (avoidance only).
+    pub ik_solves: usize,
+}
+
+/// Everything a run recorded, one entry per sample (control period start,
+/// `t = 0, h, ..., T`), for plotting and tables.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MethodRun {
+    /// The method.
+    pub method: Method,
+    /// Completed, or where it stopped.
+    pub status: RunStatus,
+    /// Sample times, s.
+    pub time: Vec<f64>,
+    /// `joint_positions[j][i]`: joint j at sample i, rad or m.
+    pub joint_positions: Vec<Vec<f64>>,
+    /// `joint_rates[j][i]`: rate of joint j applied from sample i to i + 1
+    /// (zero at the last sample), rad/s or m/s.
+    pub joint_rates: Vec<Vec<f64>>,
+    /// Distance from the planned position, m.
+    pub position_error: Vec<f64>,
+    /// Angle of the rotation from the end effector to the planned orientation, rad.
+    pub orientation_error: Vec<f64>,
+    /// `|det J|` at each sample ([`jacobian_determinant`]).
+    pub determinant: Vec<f64>,
+    /// True for the samples whose next period is inside a planned region (avoidance).
+    pub in_region: Vec<bool>,
+    /// Base position at each sample (inertial frame, m); constant on a fixed base.
+    pub base_position: Vec<[f64; 3]>,
+    /// The singular regions (avoidance only).
+    pub regions: Vec<SingularRegion>,
+    /// Peak rate, errors, time in the singular region.
+    pub summary: RunSummary,
+}
+
+/// A path to track, checked and planned once; [`PathTracker::run`] then
+/// runs any [`Method`] on it from the same start.
+pub struct PathTracker<'m> {
+    manipulator: Manipulator<'m>,
+    task: LineTask,
+    options: TrackingOptions,
+    trajectory: CartesianTrajectory,
+    steps: usize,
+    h: f64,
+}
+
+impl std::fmt::Debug for PathTracker<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("PathTracker")
+            .field("task", &self.task)
+            .field("options", &self.options)
+            .field("steps", &self.steps)
+            .finish_non_exhaustive()
+    }
+}
+
+/// Spacing of the reachability check along the path, s.
+const REACH_CHECK_SPACING: f64 = 0.25;
+
+impl<'m> PathTracker<'m> {
+    /// Checks the options and the task, builds the timed line from the start
+    /// configuration's pose to the goal, and checks that the path stays
+    /// within reach: a continuation IK every 0.25 s along it (damped,
+    /// from the previous solution; with restarts on a fixed base) must reach
+    /// each pose within 1e-6 m and 1e-6 rad.
+    ///
+    /// Errors: bad options; `start` of the wrong size or not finite; a
+    /// duration or acceleration time out of range; a goal that is not a
+    /// proper rigid transform; a path out of reach (the error gives the first
+    /// time at which no solution was found and the remaining error).
+    pub fn new(
+        manipulator: Manipulator<'m>,
+        task: LineTask,
+        options: TrackingOptions,
+    ) -> Result<PathTracker<'m>> {
+        options.validate()?;
+        let n = manipulator.dof();
+        check_finite_vector("start", &task.start, n)?;
+        check_positive("duration", task.duration)?;
+        let timing = TimeLaw::Trapezoidal {
+            acceleration_time: task.acceleration_time,
+        }
+        .timing(task.duration)?;
+        let mut plant = Plant::new(
+            &manipulator,
+            &task.start,
+            options.ik_tolerance,
+            options.ik_max_iterations,
+        )?;
+        plant.evaluate_state()?;
+        let line = LinePath::new(*plant.pose(), task.goal)
+            .map_err(|e| rename_argument(e, "end", "goal"))?;
+        let trajectory = CartesianTrajectory::new(line, timing)?;
+        let steps = ((task.duration / options.dt) - 1e-9).ceil().max(1.0) as usize;
+        let h = task.duration / steps as f64;
+        let tracker = PathTracker {
+            manipulator,
+            task,
+            options,
+            trajectory,
+            steps,
+            h,
+        };
+        tracker.check_reach(&mut plant)?;
+        Ok(tracker)
+    }
+
+    /// The planned path.
+    pub fn trajectory(&self) -> &CartesianTrajectory {
+        &self.trajectory
+    }
+
+    /// The task.
+    pub fn task(&self) -> &LineTask {
+        &self.task
+    }
+
+    /// The options.
+    pub fn options(&self) -> &TrackingOptions {
+        &self.options
+    }
+
+    /// Number of control periods, and their length (s).
+    pub fn steps(&self) -> (usize, f64) {
+        (self.steps, self.h)
+    }
+
+    fn check_reach(&self, plant: &mut Plant<'_>) -> Result<()> {
+        let samples = (self.task.duration / REACH_CHECK_SPACING).ceil().max(1.0) as usize;
+        let mut q = self.task.start.clone();
+        for i in 1..=samples {
+            let t = self.task.duration * i as f64 / samples as f64;
+            let target = self.trajectory.pose_at(t);
+            let solve = plant.reach(&target, &q)?;
+            if !solve.converged {
+                return Err(Error::invalid_argument(
+                    "goal",
+                    format!(
+                        "the path is out of reach: no joint solution near its pose at t = {t:.2} s \
+                         (best position error {:.3e} m, orientation error {:.3e} rad)",
+                        solve.position_error, solve.orientation_error
+                    ),
+                ));
+            }
+            q = solve.q;
+        }
+        Ok(())
+    }
+
+    /// Tracks the path from the start configuration with `method`.
+    ///
+    /// Every control period `h` from `t`: the pose error `e` from the current
+    /// pose to the planned pose at `t + h` (seed 004, eqs 26-27), the twist
+    /// `e / h` (the planned motion plus position feedback), and joint rates
+    /// from it by the method's inverse of `J` (`J*` on the free-floating
+    /// base); the state then advances by `h` (the base moving on a
+    /// free-floating system).
+    ///
+    /// The avoidance method checks every period ([`detect`]) with the plain
+    /// rates as candidate; when a test triggers at sample `i`, it solves the
+    /// IK of the planned poses at samples `i + k, i + 2k, ...` (each
+    /// warm-started from the previous solution) until a solution's `|det J|`
+    /// is back above the threshold (or the path ends), fits the clamped C2
+    /// cubic through the knots (starting with the current rates, ending with
+    /// the plain rates of the planned twist at the exit knot; eqs 33-42), and
+    /// follows it (`q_dot = (q_fit(t + h) - q) / h`, so the joints are on the
+    /// fit at every sample). Plain tracking resumes from the exit.
+    ///
+    /// Errors: bad method parameters, and numerical failures of the model
+    /// evaluation. An exactly singular Jacobian under the plain method is a
+    /// status ([`RunStatus::Singular`]).
+    pub fn run(&self, method: &Method) -> Result<MethodRun> {
+        method.validate()?;
+        let n = self.manipulator.dof();
+        let mut plant = Plant::new(
+            &self.manipulator,
+            &self.task.start,
+            self.options.ik_tolerance,
+            self.options.ik_max_iterations,
+        )?;
+        let capacity = self.steps + 1;
+        let mut run = MethodRun {
+            method: *method,
+            status: RunStatus::Completed,
+            time: Vec::with_capacity(capacity),
+            // One buffer per joint, each sized once (`vec![v; n]` would
+            // clone empty buffers and regrow them every run).
+            joint_positions: (0..n).map(|_| Vec::with_capacity(capacity)).collect(),
+            joint_rates: (0..n).map(|_| Vec::with_capacity(capacity)).collect(),
+            position_error: Vec::with_capacity(capacity),
+            orientation_error: Vec::with_capacity(capacity),
+            determinant: Vec::with_capacity(capacity),
+            in_region: Vec::with_capacity(capacity),
+            base_position: Vec::with_capacity(capacity),
+            regions: Vec::new(),
+            summary: RunSummary {
+                peak_joint_rate: 0.0,
+                max_position_error: 0.0,
+                max_orientation_error: 0.0,
+                final_position_error: 0.0,
+                final_orientation_error: 0.0,
+                time_in_singular_region: 0.0,
+                mean_region_position_error: 0.0,
+                mean_region_orientation_error: 0.0,
+                ik_solves: 0,
+            },
+        };
+        let h = self.h;
+        let mut rates = vec![0.0; n];
+        let mut previous_rates = vec![0.0; n];
+        let mut candidate = vec![0.0; n];
+        let mut fit_state = JointState::zeros(n);
+        // The active region: its fit and the sample index where it ends.
+        let mut active: Option<(crate::trajectory::Trajectory, usize)> = None;
+        for i in 0..=self.steps {
+            let t = i as f64 * h;
+            plant.evaluate_state()?;
+            let pose = *plant.pose();
+            let error = pose_error(&self.trajectory.pose_at(t), &pose);
+            let determinant = jacobian_determinant(plant.jacobian());
+            run.time.push(t);
+            for (series, q) in run.joint_positions.iter_mut().zip(plant.q()) {
+                series.push(*q);
+            }
+            run.position_error.push(error.fixed_rows::<3>(0).norm());
+            run.orientation_error.push(error.fixed_rows::<3>(3).norm());
+            run.determinant.push(determinant);
+            let base = plant.base_pose().translation;
+            run.base_position.push([base.x, base.y, base.z]);
+            if i == self.steps {
+                rates.fill(0.0);
+                push_rates(&mut run, &rates, false);
+                break;
+            }
+            if active.as_ref().is_some_and(|(_, end)| i >= *end) {
+                active = None;
+            }
+            if active.is_none() {
+                let twist = pose_error(&self.trajectory.pose_at(t + h), &pose) / h;
+                let solved = self.rates(method, &plant, &twist, &mut rates);
+                match method {
+                    Method::Avoidance { k } => {
+                        for (c, r) in candidate.iter_mut().zip(&rates) {
+                            *c = if solved { r * h } else { f64::INFINITY };
+                        }
+                        let detection =
+                            detect(plant.jacobian(), &candidate, &self.options.detection)?;
+                        if let Some(trigger) = detection.trigger {
+                            let (fit, end, region) =
+                                self.plan_region(&mut plant, i, *k, trigger, &previous_rates)?;
+                            run.regions.push(region);
+                            active = Some((fit, end));
+                        } else if !solved {
+                            run.status = RunStatus::Singular { time: t };
+                        }
+                    }
+                    _ if !solved => run.status = RunStatus::Singular { time: t },
+                    _ => {}
+                }
+                if run.status != RunStatus::Completed {
+                    rates.fill(0.0);
+                    push_rates(&mut run, &rates, false);
+                    break;
+                }
+            }
+            let in_region = if let Some((fit, _)) = &active {
+                fit.sample_into(t + h, &mut fit_state)?;
+                for ((rate, target), q) in rates.iter_mut().zip(&fit_state.position).zip(plant.q())
+                {
+                    *rate = (target - q) / h;
+                }
+                true
+            } else {
+                false
+            };
+            push_rates(&mut run, &rates, in_region);
+            plant.advance(&rates, h)?;
+            previous_rates.copy_from_slice(&rates);
+        }
+        run.summary = self.summarize(&run);
+        Ok(run)
+    }
+
+    /// The method's joint rates for `twist` at the plant's last evaluation
+    /// (the avoidance method's candidate is the plain inverse); false when
+    /// the plain inverse meets an exactly singular Jacobian.
+    fn rates(
+        &self,
+        method: &Method,
+        plant: &Plant<'_>,
+        twist: &Vector6<f64>,
+        rates: &mut [f64],
+    ) -> bool {
+        let j = plant.jacobian();
+        let outcome = match method {
+            Method::Plain | Method::Avoidance { .. } => {
+                damped_least_squares_step(j, twist, 0.0, rates).map(|_| ())
+            }
+            Method::DampedLeastSquares(nakamura) => {
+                damped_least_squares_step(j, twist, nakamura.damping_at(j), rates).map(|_| ())
+            }
+            Method::SingularityRobust(filter) => {
+                singularity_robust_step(j, twist, filter, rates).map(|_| ())
+            }
+        };
+        outcome.is_ok() && rates.iter().all(|r| r.is_finite())
+    }
+
+    /// Plans the singular region entered at sample `entry` (seed 004, sec
+    /// 2.3.2, steps 2-4): the knots, their IK, and the C2 fit.
+    fn plan_region(
+        &self,
+        plant: &mut Plant<'_>,
+        entry: usize,
+        k: usize,
+        trigger: Trigger,
+        entry_rates: &[f64],
+    ) -> Result<(crate::trajectory::Trajectory, usize, SingularRegion)> {
+        let h = self.h;
+        let mut times = vec![entry as f64 * h];
+        let mut knots = vec![plant.q().to_vec()];
+        let mut region = SingularRegion {
+            start_time: entry as f64 * h,
+            end_time: entry as f64 * h,
+            trigger,
+            knot_times: Vec::new(),
+            ik_solves: 0,
+            ik_iterations: 0,
+            ik_failures: 0,
+            dropped_knots: 0,
+            max_knot_error: (0.0, 0.0),
+        };
+        let mut index = entry;
+        loop {
+            index = (index + k).min(self.steps);
+            let t = index as f64 * h;
+            let target = self.trajectory.pose_at(t);
+            // Warm start: the last knot moved on by the secant of the last
+            // two (first-order continuation), so that the start is on the
+            // branch being followed even where J is nearly singular.
+            let last = knots.len() - 1;
+            let (t_last, q_last) = (times[last], knots[last].clone());
+            let slope: Vec<f64> = if last == 0 {
+                entry_rates.to_vec()
+            } else {
+                let dt = t_last - times[last - 1];
+                q_last
+                    .iter()
+                    .zip(&knots[last - 1])
+                    .map(|(a, b)| (a - b) / dt)
+                    .collect()
+            };
+            let start: Vec<f64> = q_last
+                .iter()
+                .zip(&slope)
+                .map(|(q, v)| q + v * (t - t_last))
+                .collect();
+            let mut solve = plant.solve_ik(&target, &start)?;
+            self.remove_self_motion(plant, &target, &start, &mut solve)?;
+            region.ik_solves += 1;
+            region.ik_iterations += solve.iterations;
+            if !solve.converged {
+                region.ik_failures += 1;
+            }
+            // A knot whose solution would move some joint faster than
+            // eps_dq per control period since the last kept knot has jumped
+            // (the wrist flip of a path passing near the singularity), and
+            // one whose solve did not converge is no solution: either is
+            // dropped and the fit bridges it, unless it is the path's end.
+            let jump = solve
+                .q
+                .iter()
+                .zip(&q_last)
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max);
+            let steps_since = (t - t_last) / h;
+            let end = index == self.steps;
+            let jumped = jump > self.options.detection.joint_step_threshold * steps_since;
+            if (jumped || !solve.converged) && !end {
+                region.dropped_knots += 1;
+                continue;
+            }
+            region.max_knot_error.0 = region.max_knot_error.0.max(solve.position_error);
+            region.max_knot_error.1 = region.max_knot_error.1.max(solve.orientation_error);
+            plant.evaluate(&solve.q)?;
+            let regular = jacobian_determinant(plant.jacobian())
+                >= self.options.detection.determinant_threshold;
+            times.push(t);
+            knots.push(solve.q);
+            if regular || end {
+                break;
+            }
+        }
+        // End rates: the plain inverse of the planned twist at the exit knot
+        // (regular there), or rest at the end of the path.
+        let n = plant.dof();
+        let mut end_rates = vec![0.0; n];
+        if index < self.steps {
+            let planned = self.trajectory.sample(index as f64 * h)?.twist;
+            damped_least_squares_step(plant.jacobian(), &planned, 0.0, &mut end_rates)?;
+        }
+        let fit = clamped_cubic_spline(&times, &knots, entry_rates, &end_rates)?;
+        region.end_time = index as f64 * h;
+        region.knot_times = times;
+        Ok((fit, index, region))
+    }
+
+    /// At (or next to) a singular pose the IK solutions form a continuum
+    /// (for a wrist singularity, `q4 + d`, `q6 -+ d` for any `d`), and Newton's
+    /// iterate drifts along it by whatever its first step overshot: the fit
+    /// would turn that drift into a spike of joint rate. This keeps, of the
+    /// solution and the solution moved back along the Jacobian's
+    /// least-singular right direction `v` to the warm start
+    /// (`q - v v'(q - start)`), the latter whenever it is also within the IK
+    /// tolerance, i.e. whenever the drift did not matter to the pose.
+    fn remove_self_motion(
+        &self,
+        plant: &mut Plant<'_>,
+        target: &Pose,
+        start: &[f64],
+        solve: &mut KnotSolve,
+    ) -> Result<()> {
+        plant.evaluate(&solve.q)?;
+        let j = plant.jacobian();
+        let dense = DMatrix::from_column_slice(6, j.ncols(), j.as_slice());
+        let svd = dense.svd(false, true);
+        let Some(v_t) = svd.v_t else {
+            return Ok(());
+        };
+        let Some(smallest) = svd
+            .singular_values
+            .iter()
+            .enumerate()
+            .min_by(|a, b| a.1.total_cmp(b.1))
+            .map(|(i, _)| i)
+        else {
+            return Ok(());
+        };
+        let v = v_t.row(smallest);
+        let drift: f64 = solve
+            .q
+            .iter()
+            .zip(start)
+            .zip(v.iter())
+            .map(|((q, s), vi)| (q - s) * vi)
+            .sum();
+        let candidate: Vec<f64> = solve
+            .q
+            .iter()
+            .zip(v.iter())
+            .map(|(q, vi)| q - drift * vi)
+            .collect();
+        plant.evaluate(&candidate)?;
+        let error = pose_error(target, plant.pose());
+        let (position, orientation) = (
+            error.fixed_rows::<3>(0).norm(),
+            error.fixed_rows::<3>(3).norm(),
+        );
+        if position <= self.options.ik_tolerance && orientation <= self.options.ik_tolerance {
+            solve.q = candidate;
+            solve.position_error = position;
+            solve.orientation_error = orientation;
+            solve.converged = true;
+        }
+        Ok(())
+    }
+
+    fn summarize(&self, run: &MethodRun) -> RunSummary {
+        let peak_joint_rate = run
+            .joint_rates
+            .iter()
+            .flatten()
+            .fold(0.0, |m: f64, r| m.max(r.abs()));
+        let max = |v: &[f64]| v.iter().fold(0.0, |m: f64, x| m.max(*x));
+        let threshold = self.options.detection.determinant_threshold;
+        // Samples of the singular region (the last sample starts no period).
+        let region: Vec<usize> = (0..run.determinant.len().saturating_sub(1))
+            .filter(|&i| below_threshold(run.determinant[i], threshold))
+            .collect();
+        let mean = |v: &[f64]| {
+            if region.is_empty() {
+                0.0
+            } else {
+                region.iter().map(|&i| v[i]).sum::<f64>() / region.len() as f64
+            }
+        };
+        RunSummary {
+            peak_joint_rate,
+            max_position_error: max(&run.position_error),
+            max_orientation_error: max(&run.orientation_error),
+            final_position_error: run.position_error.last().copied().unwrap_or(0.0),
+            final_orientation_error: run.orientation_error.last().copied().unwrap_or(0.0),
+            time_in_singular_region: region.len() as f64 * self.h,
+            mean_region_position_error: mean(&run.position_error),
+            mean_region_orientation_error: mean(&run.orientation_error),
+            ik_solves: run.regions.iter().map(|r| r.ik_solves).sum(),
+        }
+    }
+
+    /// Runs plain tracking, the avoidance method with `k` = `ks[0]`, the
+    /// two baselines, and the avoidance method for every `k` of `ks` (the
+    /// error against `k`, seed 004 Figs 7-8), all from the same start.
+    ///
+    /// Errors: an empty `ks`, a `k` of 0, bad baseline parameters, and the
+    /// errors of [`PathTracker::run`].
+    pub fn compare(&self, baselines: &Baselines, ks: &[usize]) -> Result<Comparison> {
+        let Some(&first) = ks.first() else {
+            return Err(Error::invalid_argument(
+                "ks",
+                "give at least one knot stride k",
+            ));
+        };
+        for &k in ks {
+            Method::Avoidance { k }.validate()?;
+        }
+        baselines.nakamura.validate()?;
+        baselines.chiaverini.validate()?;
+        let mut k_sweep = Vec::with_capacity(ks.len());
+        for &k in ks {
+            k_sweep.push(self.run(&Method::Avoidance { k })?);
+        }
+        let avoidance = match k_sweep
+            .iter()
+            .find(|r| r.method == Method::Avoidance { k: first })
+        {
+            Some(run) => run.clone(),
+            None => self.run(&Method::Avoidance { k: first })?,
+        };
+        Ok(Comparison {
+            plain: self.run(&Method::Plain)?,
+            avoidance,
+            damped_least_squares: self.run(&Method::DampedLeastSquares(baselines.nakamura))?,
+            singularity_robust: self.run(&Method::SingularityRobust(baselines.chiaverini))?,
+            k_sweep,
+        })
+    }
+}
+
+/// Parameters of the two baselines of [`PathTracker::compare`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Baselines {
+    /// Damped least squares with Nakamura's adaptive damping.
+    pub nakamura: NakamuraDamping,
+    /// Chiaverini's singularity-robust inverse.
+    pub chiaverini: ChiaveriniFilter,
+}
+
+impl Baselines {
+    /// Baselines damping the same region as the detection: Nakamura's
+    /// threshold `w_0` = the determinant threshold (`|det J|` is the
+    /// manipulability of a square Jacobian), `lambda_0` = 0.05; Chiaverini's
+    /// defaults (`epsilon` = 0.05, `lambda_max` = 0.05, `beta` = 1e-4).
+    /// ([`NakamuraDamping::default`]'s threshold, 1e-3 m^3, would start
+    /// damping only 20 times closer to the singularity on space6r.)
+    pub fn for_detection(detection: &DetectionOptions) -> Baselines {
+        Baselines {
+            nakamura: NakamuraDamping {
+                threshold: detection.determinant_threshold,
+                max_damping: 0.05,
+            },
+            chiaverini: ChiaveriniFilter::default(),
+        }
+    }
+}
+
+/// The runs of [`PathTracker::compare`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Comparison {
+    /// Plain resolved rate.
+    pub plain: MethodRun,
+    /// Seed 004's avoidance with the first `k`.
+    pub avoidance: MethodRun,
+    /// Damped least squares (Nakamura).
+    pub damped_least_squares: MethodRun,
+    /// Singularity-robust inverse (Chiaverini).
+    pub singularity_robust: MethodRun,
+    /// Seed 004's avoidance for each `k` given.
+    pub k_sweep: Vec<MethodRun>,
+}
+
+impl Comparison {
+    /// The four methods of the table, in order: plain, avoidance, dls, sri.
+    pub fn methods(&self) -> [&MethodRun; 4] {
+        [
+            &self.plain,
+            &self.avoidance,
+            &self.damped_least_squares,
+            &self.singularity_robust,
+        ]
+    }
+}
+
+/// The paper's way of setting the determinant threshold (seed 004, sec
+/// 2.3.1: "find where the joint angles jump, hence the joint range of the
+/// singular region and the determinant threshold"): the largest `|det J|` at
+/// a sample of `plain` (a [`Method::Plain`] run) where a joint moved more
+/// than `joint_step_threshold` (rad or m) in one control period. `None` if no
+/// joint ever did.
+pub fn calibrate_determinant_threshold(
+    plain: &MethodRun,
+    joint_step_threshold: f64,
+) -> Option<f64> {
+    let h = match plain.time.as_slice() {
+        [a, b, ..] => b - a,
+        _ => return None,
+    };
+    (0..plain.time.len())
+        .filter(|&i| {
+            plain
+                .joint_rates
+                .iter()
+                .any(|rates| (rates[i] * h).abs() > joint_step_threshold)
+        })
+        .map(|i| plain.determinant[i])
+        .reduce(f64::max)
+}
+
+fn push_rates(run: &mut MethodRun, rates: &[f64], in_region: bool) {
+    for (series, r) in run.joint_rates.iter_mut().zip(rates) {
+        series.push(*r);
+    }
+    run.in_region.push(in_region);
+}
+
+/// The same error with the argument renamed (`LinePath::new` names its
+/// arguments `start` and `end`; here the end is the task's goal).
+fn rename_argument(error: Error, from: &str, to: &str) -> Error {
+    match error {
+        Error::InvalidArgument { name, reason } if name == from => Error::InvalidArgument {
+            name: to.into(),
+            reason,
+        },
+        other => other,
+    }
+}

@@ -1,0 +1,707 @@
+//! Seed 004: singularity detection and avoidance along a straight pose line
+//! on space6r (fixed base and attitude held), the DLS and SRI baselines,
+//! singular configurations and their classification, and the manipulability
+//! ellipsoid.
+
+use armkit::kinematics::singular_values;
+use armkit::math::{Matrix6, Pose, Vector3};
+use armkit::singularity::{
+    calibrate_determinant_threshold, classify, find_singularities, line_through,
+    manipulability_ellipsoid, nearest_singularity, seed004_path, Baselines, ClassifyOptions,
+    Comparison, DetectionOptions, JacobianPart, LineTask, Manipulator, Method, MethodRun,
+    PathTracker, RunStatus, SearchOptions, SearchStatus, SearchTarget, SingularityKind,
+    TrackingOptions, SEED004_THROUGH,
+};
+use armkit::space::{center_of_mass, space6r_free_floating, SpaceData};
+use armkit::trajectory::spline::clamped_cubic_spline;
+use armkit::{jacobian, Data, JacobianFrame};
+
+const KS: [usize; 3] = [1, 5, 10];
+
+fn print_table(title: &str, comparison: &Comparison) {
+    println!("{title}");
+    println!(
+        "{:>14} {:>10} {:>10} {:>10} {:>10} {:>10} {:>8} {:>6}",
+        "method", "peak rad/s", "max pos m", "max ori", "final pos", "final ori", "region s", "IK"
+    );
+    let mut rows: Vec<&MethodRun> = vec![&comparison.plain];
+    rows.extend(comparison.k_sweep.iter());
+    rows.push(&comparison.damped_least_squares);
+    rows.push(&comparison.singularity_robust);
+    for run in rows {
+        let s = &run.summary;
+        println!(
+            "{:>14} {:>10.4} {:>10.3e} {:>10.3e} {:>10.3e} {:>10.3e} {:>8.2} {:>6}",
+            run.method.label(),
+            s.peak_joint_rate,
+            s.max_position_error,
+            s.max_orientation_error,
+            s.final_position_error,
+            s.final_orientation_error,
+            s.time_in_singular_region,
+            s.ik_solves
+        );
+    }
+    for run in &comparison.k_sweep {
+        for r in &run.regions {
+            println!(
+                "{}: region {:.2} s .. {:.2} s ({}), {} knots, {} IK iterations, {} dropped",
+                run.method.label(),
+                r.start_time,
+                r.end_time,
+                r.trigger.as_str(),
+                r.knot_times.len(),
+                r.ik_iterations,
+                r.dropped_knots
+            );
+        }
+    }
+}
+
+fn compare(manipulator: Manipulator<'_>, task: LineTask) -> Comparison {
+    let options = TrackingOptions::default();
+    let tracker = PathTracker::new(manipulator, task, options).unwrap();
+    tracker
+        .compare(&Baselines::for_detection(&options.detection), &KS)
+        .unwrap()
+}
+
+/// The seed-004 claims, common to both bases.
+fn check_seed_claims(comparison: &Comparison) {
+    let plain = &comparison.plain;
+    assert_eq!(plain.status, RunStatus::Completed);
+    for run in &comparison.k_sweep {
+        let s = &run.summary;
+        // Plain tracking's peak joint rate at least 10 times avoidance's.
+        assert!(
+            plain.summary.peak_joint_rate >= 10.0 * s.peak_joint_rate,
+            "{}: plain {} vs {}",
+            run.method.label(),
+            plain.summary.peak_joint_rate,
+            s.peak_joint_rate
+        );
+        // The avoidance's rates stay below space6r's 0.5 rad/s limit.
+        assert!(s.peak_joint_rate < 0.5, "{}", s.peak_joint_rate);
+        // Final pose error at most 1e-6.
+        assert!(s.final_position_error <= 1e-6, "{}", s.final_position_error);
+        assert!(
+            s.final_orientation_error <= 1e-6,
+            "{}",
+            s.final_orientation_error
+        );
+        // One region, around the middle of the motion (the paper: 8.8 s to 11.2 s).
+        assert_eq!(run.regions.len(), 1, "{}", run.method.label());
+        let region = &run.regions[0];
+        assert!(
+            (8.7..9.1).contains(&region.start_time),
+            "{}",
+            region.start_time
+        );
+        assert!(
+            (11.1..11.6).contains(&region.end_time),
+            "{}",
+            region.end_time
+        );
+        assert_eq!(region.ik_failures, 0);
+        assert!(region.max_knot_error.0 <= 1e-8 && region.max_knot_error.1 <= 1e-8);
+    }
+    // The trade-off: the error grows with k while the IK solves fall.
+    let sweep = &comparison.k_sweep;
+    for pair in sweep.windows(2) {
+        let (a, b) = (&pair[0].summary, &pair[1].summary);
+        assert!(
+            a.max_position_error <= b.max_position_error,
+            "{} {}",
+            a.max_position_error,
+            b.max_position_error
+        );
+        assert!(a.max_orientation_error <= b.max_orientation_error);
+        assert!(a.ik_solves > b.ik_solves);
+    }
+    // Plain tracking crosses the singularity with joints 4 and 6 spinning:
+    // they carry the peak, joints 1 to 3 do not.
+    let peak = |j: usize| {
+        plain.joint_rates[j]
+            .iter()
+            .fold(0.0f64, |m, r| m.max(r.abs()))
+    };
+    let wrist = peak(3).max(peak(5));
+    assert_eq!(wrist, plain.summary.peak_joint_rate);
+    assert!((0..3).all(|j| peak(j) < 0.1 * wrist));
+    // The baselines keep moving too, with errors far above the avoidance's.
+    for run in [
+        &comparison.damped_least_squares,
+        &comparison.singularity_robust,
+    ] {
+        assert_eq!(run.status, RunStatus::Completed);
+        assert!(run.summary.peak_joint_rate < 0.5);
+        assert!(run.summary.max_position_error > 10.0 * sweep[2].summary.max_position_error);
+    }
+}
+
+#[test]
+fn fixed_base_seed_path_plain_avoidance_and_baselines() {
+    let arm = armkit::robots::space6r().unwrap();
+    let manipulator = Manipulator::FixedBase(&arm);
+    let line = seed004_path(&manipulator).unwrap();
+    let comparison = compare(manipulator, line.task(20.0, 4.0));
+    print_table("space6r, fixed base", &comparison);
+    check_seed_claims(&comparison);
+    // The plain run's error along the region, as it is: it stays bounded
+    // (the plain inverse is exact until 0.05 s from the singular pose).
+    assert!(comparison.plain.summary.max_position_error < 1e-3);
+    // Errors inside the region for each k (mean over its samples), reported.
+    for run in &comparison.k_sweep {
+        println!(
+            "{}: mean error in region {:.3e} m, {:.3e} rad",
+            run.method.label(),
+            run.summary.mean_region_position_error,
+            run.summary.mean_region_orientation_error
+        );
+    }
+}
+
+#[test]
+fn the_paper_rule_for_the_threshold_on_the_plain_run() {
+    let arm = armkit::robots::space6r().unwrap();
+    let manipulator = Manipulator::FixedBase(&arm);
+    let line = seed004_path(&manipulator).unwrap();
+    let options = TrackingOptions::default();
+    let tracker = PathTracker::new(manipulator, line.task(20.0, 4.0), options).unwrap();
+    let plain = tracker.run(&Method::Plain).unwrap();
+    let eps_dq = options.detection.joint_step_threshold;
+    let calibrated = calibrate_determinant_threshold(&plain, eps_dq).unwrap();
+    let below: Vec<f64> = plain
+        .time
+        .iter()
+        .zip(&plain.determinant)
+        .filter(|(_, d)| **d < calibrated)
+        .map(|(t, _)| *t)
+        .collect();
+    println!(
+        "calibrated threshold {calibrated:.3e} m^3: region {:.2} s .. {:.2} s",
+        below[0],
+        below[below.len() - 1]
+    );
+    assert!((1e-4..3e-4).contains(&calibrated), "{calibrated}");
+    assert!(below[0] > 9.9 && below[below.len() - 1] < 10.1);
+    // The default threshold is |det J| of the plain run near 8.8 s.
+    let at = |t: f64| plain.determinant[(t / 0.01).round() as usize];
+    let default = options.detection.determinant_threshold;
+    assert!(at(8.8) > default && at(8.9) < default);
+    // The singular pose is at mid-path: |det J| has its minimum at 10 s.
+    let (i_min, _) = plain
+        .determinant
+        .iter()
+        .enumerate()
+        .min_by(|a, b| a.1.total_cmp(b.1))
+        .unwrap();
+    assert!(
+        (plain.time[i_min] - 10.0).abs() < 0.02,
+        "{}",
+        plain.time[i_min]
+    );
+}
+
+#[test]
+fn attitude_held_seed_path() {
+    let system = space6r_free_floating().unwrap();
+    let at_through = Manipulator::AttitudeHeld {
+        system: &system,
+        base: Pose::identity(),
+    };
+    let line = seed004_path(&at_through).unwrap();
+    let manipulator = Manipulator::AttitudeHeld {
+        system: &system,
+        base: line.base,
+    };
+    let comparison = compare(manipulator, line.task(20.0, 4.0));
+    print_table("space6r, attitude held (J*)", &comparison);
+    check_seed_claims(&comparison);
+    // Zero linear momentum: the centre of mass stays where it started, with
+    // the base translating (and its attitude held).
+    let mut data = SpaceData::new(&system);
+    for run in comparison.methods() {
+        let com_at = |i: usize, data: &mut SpaceData| {
+            let q: Vec<f64> = run.joint_positions.iter().map(|s| s[i]).collect();
+            let p = run.base_position[i];
+            let base = Pose::new(line.base.rotation, Vector3::new(p[0], p[1], p[2]));
+            center_of_mass(&system, data, &base, &q).unwrap()
+        };
+        let start = com_at(0, &mut data);
+        let mut moved = 0.0f64;
+        let mut drift = 0.0f64;
+        for i in 0..run.time.len() {
+            drift = drift.max((com_at(i, &mut data) - start).norm());
+            let p = run.base_position[i];
+            moved = moved.max((Vector3::new(p[0], p[1], p[2]) - line.base.translation).norm());
+        }
+        assert!(
+            drift < 1e-6,
+            "{}: centre of mass drift {drift}",
+            run.method.label()
+        );
+        assert!(moved > 0.01, "{}: base moved {moved}", run.method.label());
+    }
+}
+
+#[test]
+fn a_path_far_from_singularities_is_the_same_with_and_without_avoidance() {
+    let arm = armkit::robots::space6r().unwrap();
+    let manipulator = Manipulator::FixedBase(&arm);
+    // Through a regular configuration (q5 = 1.1), a short move.
+    let line = line_through(
+        &manipulator,
+        &[0.2, 0.9, -0.6, 0.4, 1.1, 0.3],
+        &[0.2, -0.1, 0.15, 0.1, 0.1, -0.1],
+        0.0,
+    )
+    .unwrap();
+    let tracker =
+        PathTracker::new(manipulator, line.task(5.0, 1.0), TrackingOptions::default()).unwrap();
+    let plain = tracker.run(&Method::Plain).unwrap();
+    for k in KS {
+        let avoid = tracker.run(&Method::Avoidance { k }).unwrap();
+        assert!(avoid.regions.is_empty());
+        assert!(avoid.in_region.iter().all(|r| !r));
+        assert_eq!(avoid.summary.ik_solves, 0);
+        assert_eq!(avoid.joint_positions, plain.joint_positions);
+        assert_eq!(avoid.joint_rates, plain.joint_rates);
+    }
+    let det_min = plain
+        .determinant
+        .iter()
+        .fold(f64::INFINITY, |m, d| m.min(*d));
+    assert!(det_min > 0.01, "{det_min}");
+    assert!(plain.summary.max_position_error < 1e-5);
+}
+
+fn error_message<T: std::fmt::Debug>(result: armkit::Result<T>) -> String {
+    result.unwrap_err().to_string()
+}
+
+#[test]
+fn bad_input_is_an_error_naming_the_argument() {
+    let arm = armkit::robots::space6r().unwrap();
+    let manipulator = Manipulator::FixedBase(&arm);
+    let line = seed004_path(&manipulator).unwrap();
+    let task = line.task(20.0, 4.0);
+    let tracker = PathTracker::new(manipulator, task.clone(), TrackingOptions::default()).unwrap();
+    // k = 0.
+    let message = error_message(tracker.run(&Method::Avoidance { k: 0 }));
+    assert!(
+        message.contains("k") && message.contains(">= 1"),
+        "{message}"
+    );
+    let message = error_message(tracker.compare(
+        &Baselines::for_detection(&DetectionOptions::default()),
+        &[5, 0],
+    ));
+    assert!(message.contains("k"), "{message}");
+    let message = error_message(
+        tracker.compare(&Baselines::for_detection(&DetectionOptions::default()), &[]),
+    );
+    assert!(message.contains("ks"), "{message}");
+    // Thresholds <= 0 and NaN.
+    for (value, field) in [
+        (0.0, "determinant_threshold"),
+        (-1.0, "determinant_threshold"),
+        (f64::NAN, "determinant_threshold"),
+    ] {
+        let mut options = TrackingOptions::default();
+        options.detection.determinant_threshold = value;
+        let message = error_message(PathTracker::new(manipulator, task.clone(), options));
+        assert!(message.contains(field), "{message}");
+    }
+    for value in [0.0, -0.1, f64::NAN] {
+        let mut options = TrackingOptions::default();
+        options.detection.joint_step_threshold = value;
+        let message = error_message(PathTracker::new(manipulator, task.clone(), options));
+        assert!(message.contains("joint_step_threshold"), "{message}");
+    }
+    for (options, field) in [
+        (
+            TrackingOptions {
+                dt: 0.0,
+                ..TrackingOptions::default()
+            },
+            "dt",
+        ),
+        (
+            TrackingOptions {
+                ik_tolerance: f64::NAN,
+                ..TrackingOptions::default()
+            },
+            "ik_tolerance",
+        ),
+        (
+            TrackingOptions {
+                ik_max_iterations: 0,
+                ..TrackingOptions::default()
+            },
+            "ik_max_iterations",
+        ),
+    ] {
+        let message = error_message(PathTracker::new(manipulator, task.clone(), options));
+        assert!(message.contains(field), "{message}");
+    }
+    // NaN in the start, a wrong size, bad timing.
+    let mut bad = task.clone();
+    bad.start[2] = f64::NAN;
+    let message = error_message(PathTracker::new(
+        manipulator,
+        bad,
+        TrackingOptions::default(),
+    ));
+    assert!(message.contains("start"), "{message}");
+    let mut bad = task.clone();
+    bad.start.pop();
+    let message = error_message(PathTracker::new(
+        manipulator,
+        bad,
+        TrackingOptions::default(),
+    ));
+    assert!(message.contains("start"), "{message}");
+    let mut bad = task.clone();
+    bad.acceleration_time = 15.0;
+    let message = error_message(PathTracker::new(
+        manipulator,
+        bad,
+        TrackingOptions::default(),
+    ));
+    assert!(message.contains("acceleration"), "{message}");
+    let mut bad = task.clone();
+    bad.goal.translation.x = f64::NAN;
+    let message = error_message(PathTracker::new(
+        manipulator,
+        bad,
+        TrackingOptions::default(),
+    ));
+    assert!(message.contains("goal"), "{message}");
+    // A path out of reach: a goal 3 m away (space6r reaches about 1.9 m).
+    let mut far = task.clone();
+    far.goal.translation += Vector3::new(3.0, 0.0, 0.0);
+    let message = error_message(PathTracker::new(
+        manipulator,
+        far,
+        TrackingOptions::default(),
+    ));
+    assert!(
+        message.contains("goal") && message.contains("out of reach"),
+        "{message}"
+    );
+    // Baselines with bad parameters.
+    let mut baselines = Baselines::for_detection(&DetectionOptions::default());
+    baselines.nakamura.max_damping = -1.0;
+    let message = error_message(tracker.compare(&baselines, &KS));
+    assert!(message.contains("max_damping"), "{message}");
+    // line_through: NaN, and a line whose start is out of reach.
+    let message = error_message(line_through(&manipulator, &[f64::NAN; 6], &[0.0; 6], 0.0));
+    assert!(message.contains("through"), "{message}");
+    let message = error_message(line_through(
+        &manipulator,
+        &SEED004_THROUGH,
+        &[40.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+        0.0,
+    ));
+    assert!(
+        message.contains("out of reach") || message.contains("joint_direction"),
+        "{message}"
+    );
+}
+
+/// The avoidance's joints follow the C2 cubic through the knots: rebuilt
+/// from the run's knot times and positions, the fit has continuous
+/// positions, rates and accelerations at every knot, its rates are the
+/// finite differences of its positions, and the run's samples lie on it.
+#[test]
+fn the_c2_fit_is_continuous_and_the_run_follows_it() {
+    let arm = armkit::robots::space6r().unwrap();
+    let manipulator = Manipulator::FixedBase(&arm);
+    let line = seed004_path(&manipulator).unwrap();
+    let tracker = PathTracker::new(
+        manipulator,
+        line.task(20.0, 4.0),
+        TrackingOptions::default(),
+    )
+    .unwrap();
+    let (_, h) = tracker.steps();
+    let run = tracker.run(&Method::Avoidance { k: 10 }).unwrap();
+    let region = &run.regions[0];
+    let index = |t: f64| (t / h).round() as usize;
+    let knots: Vec<Vec<f64>> = region
+        .knot_times
+        .iter()
+        .map(|&t| run.joint_positions.iter().map(|s| s[index(t)]).collect())
+        .collect();
+    let entry = index(region.start_time);
+    let start_rates: Vec<f64> = run.joint_rates.iter().map(|s| s[entry - 1]).collect();
+    let exit = index(region.end_time);
+    // The fit ends at the plain rates of the planned twist at the exit knot.
+    let planned = tracker.trajectory().sample(region.end_time).unwrap().twist;
+    let mut data = Data::new(&arm);
+    let j_exit = jacobian(
+        &arm,
+        &mut data,
+        &knots[knots.len() - 1],
+        JacobianFrame::World,
+    )
+    .unwrap()
+    .clone();
+    let end_rates: Vec<f64> = Matrix6::from_column_slice(j_exit.as_slice())
+        .lu()
+        .solve(&planned)
+        .unwrap()
+        .iter()
+        .copied()
+        .collect();
+    let fit = clamped_cubic_spline(&region.knot_times, &knots, &start_rates, &end_rates).unwrap();
+    for (i, &t) in region.knot_times.iter().enumerate().skip(1) {
+        if i + 1 == region.knot_times.len() {
+            break;
+        }
+        let before = fit.sample(t - 1e-9).unwrap();
+        let after = fit.sample(t + 1e-9).unwrap();
+        for j in 0..6 {
+            assert!((before.position[j] - after.position[j]).abs() < 1e-9);
+            assert!((before.velocity[j] - after.velocity[j]).abs() < 1e-7);
+            assert!(
+                (before.acceleration[j] - after.acceleration[j]).abs() < 1e-6,
+                "joint {j} at {t}: {} vs {}",
+                before.acceleration[j],
+                after.acceleration[j]
+            );
+        }
+        // Rates and accelerations against central differences.
+        let d = 1e-4;
+        let (minus, plus, here) = (
+            fit.sample(t - d).unwrap(),
+            fit.sample(t + d).unwrap(),
+            fit.sample(t).unwrap(),
+        );
+        for j in 0..6 {
+            let rate = (plus.position[j] - minus.position[j]) / (2.0 * d);
+            assert!(
+                (rate - here.velocity[j]).abs() < 1e-7,
+                "{rate} {}",
+                here.velocity[j]
+            );
+            let accel = (plus.velocity[j] - minus.velocity[j]) / (2.0 * d);
+            assert!((accel - here.acceleration[j]).abs() < 1e-5);
+        }
+    }
+    // The run's samples inside the region lie on the fit, and its rates are
+    // the fit's finite differences over one period.
+    let mut off = 0.0f64;
+    for i in entry..exit {
+        let state = fit.sample(run.time[i]).unwrap();
+        for j in 0..6 {
+            off = off.max((run.joint_positions[j][i] - state.position[j]).abs());
+            let next = fit.sample(run.time[i + 1]).unwrap();
+            let fd = (next.position[j] - run.joint_positions[j][i]) / h;
+            assert!((run.joint_rates[j][i] - fd).abs() < 1e-9);
+        }
+    }
+    assert!(off < 1e-12, "{off}");
+    // Rates continuous at entry and exit: no jump above 1e-3 rad/s per period.
+    for j in 0..6 {
+        for i in [entry - 1, entry, exit - 1, exit] {
+            let jump = (run.joint_rates[j][i + 1] - run.joint_rates[j][i]).abs();
+            assert!(jump < 1e-3, "joint {j} at sample {i}: jump {jump}");
+        }
+    }
+}
+
+#[test]
+fn classify_spherical_wrist_singularities_of_puma560_and_space6r() {
+    let options = ClassifyOptions::default();
+    for name in ["puma560", "space6r"] {
+        let model = armkit::robots::by_name(name).unwrap();
+        let mut data = Data::new(&model);
+        // A regular configuration.
+        let regular = classify(
+            &model,
+            &mut data,
+            &[0.3, 0.5, -0.4, 0.2, 0.7, 0.1],
+            &options,
+        )
+        .unwrap();
+        assert!(regular.kinds.is_empty(), "{name}: {:?}", regular.kinds);
+        assert_eq!(regular.rank, 6);
+        let factors = regular.factors.unwrap();
+        assert!(
+            factors.wrist.abs() > 0.1
+                && factors.elbow.abs() > 0.01
+                && factors.shoulder.abs() > 0.01
+        );
+        // Wrist: q5 = 0.
+        let wrist = classify(
+            &model,
+            &mut data,
+            &[0.3, 0.5, -0.4, 0.2, 0.0, 0.1],
+            &options,
+        )
+        .unwrap();
+        assert_eq!(wrist.kinds, vec![SingularityKind::Wrist], "{name}");
+        assert_eq!(wrist.rank, 5);
+        // Elbow and shoulder, found by the search.
+        let search = SearchOptions::default();
+        let start = [0.3, 0.5, -0.4, 0.2, 0.7, 0.1];
+        for kind in [SingularityKind::Elbow, SingularityKind::Shoulder] {
+            let found =
+                nearest_singularity(&model, &mut data, &start, SearchTarget::Kind(kind), &search)
+                    .unwrap();
+            assert_eq!(
+                found.status,
+                SearchStatus::Converged,
+                "{name} {kind:?}: {:?} measure {} after {}",
+                found.q,
+                found.measure,
+                found.iterations
+            );
+            assert_eq!(found.classification.kinds, vec![kind], "{name}");
+            assert_eq!(found.classification.rank, 5, "{name} {kind:?}");
+            let c = found.classification.factors.unwrap().centre;
+            let frames: Vec<Pose> = {
+                jacobian(&model, &mut data, &found.q, JacobianFrame::World).unwrap();
+                data.joint_frames().to_vec()
+            };
+            match kind {
+                SingularityKind::Elbow => {
+                    // Stretched or folded: the wrist centre's velocity from
+                    // joint 2 is parallel to that from joint 3.
+                    let u2 = frames[1]
+                        .rotation
+                        .column(2)
+                        .cross(&(c - frames[1].translation));
+                    let u3 = frames[2]
+                        .rotation
+                        .column(2)
+                        .cross(&(c - frames[2].translation));
+                    assert!(u2.cross(&u3).norm() < 1e-6 * u2.norm() * u3.norm());
+                }
+                _ => {
+                    // Shoulder: the wrist centre's distance from axis 1 is the
+                    // shoulder offset (PUMA 0.15005 m along axis 2, space6r 0.15 m).
+                    let z1 = frames[0].rotation.column(2).into_owned();
+                    let r = c - frames[0].translation;
+                    let radial = (r - z1 * r.dot(&z1)).norm();
+                    let offset = if name == "puma560" { 0.15005 } else { 0.15 };
+                    assert!((radial - offset).abs() < 1e-6, "{name}: {radial}");
+                }
+            }
+            println!(
+                "{name} {kind:?}: q {:?}, {} iterations",
+                found.q, found.iterations
+            );
+        }
+        // Every singularity found from random starts has a name: the three
+        // factors make up det J.
+        let found = find_singularities(&model, SearchTarget::Any, 12, 7, &search).unwrap();
+        assert!(found.len() >= 8, "{name}: {} of 12", found.len());
+        for f in &found {
+            assert!(!f.classification.kinds.is_empty());
+            assert!(
+                !f.classification
+                    .kinds
+                    .contains(&SingularityKind::Unclassified),
+                "{name}: {:?}",
+                f.classification
+            );
+            assert!(f.classification.rank < 6);
+        }
+    }
+    // The seed path's through configuration is a wrist singularity.
+    let arm = armkit::robots::space6r().unwrap();
+    let mut data = Data::new(&arm);
+    let through = classify(&arm, &mut data, &SEED004_THROUGH, &options).unwrap();
+    assert_eq!(through.kinds, vec![SingularityKind::Wrist]);
+}
+
+#[test]
+fn ur5_has_no_spherical_wrist_its_singularities_are_unclassified() {
+    let ur5 = armkit::robots::ur5().unwrap();
+    let mut data = Data::new(&ur5);
+    let options = ClassifyOptions::default();
+    let wrist = classify(&ur5, &mut data, &[0.3, -1.0, 1.2, 0.2, 0.0, 0.1], &options).unwrap();
+    assert!(wrist.factors.is_none());
+    assert_eq!(wrist.kinds, vec![SingularityKind::Unclassified]);
+    assert_eq!(wrist.rank, 5);
+    let regular = classify(&ur5, &mut data, &[0.3, -1.0, 1.2, 0.2, 0.8, 0.1], &options).unwrap();
+    assert!(regular.kinds.is_empty() && regular.rank == 6);
+    let search = SearchOptions::default();
+    let found = find_singularities(&ur5, SearchTarget::Any, 6, 3, &search).unwrap();
+    assert!(found.len() >= 4, "{}", found.len());
+    for f in &found {
+        assert_eq!(f.classification.kinds, vec![SingularityKind::Unclassified]);
+        assert_eq!(f.classification.rank, 5);
+    }
+    let message = error_message(nearest_singularity(
+        &ur5,
+        &mut data,
+        &[0.3, -1.0, 1.2, 0.2, 0.8, 0.1],
+        SearchTarget::Kind(SingularityKind::Wrist),
+        &search,
+    ));
+    assert!(
+        message.contains("spherical wrist") && message.contains("ur5"),
+        "{message}"
+    );
+    let message = error_message(classify(&ur5, &mut data, &[0.0; 5], &options));
+    assert!(message.contains("q"), "{message}");
+    let message = error_message(classify(
+        &ur5,
+        &mut data,
+        &[0.0; 6],
+        &ClassifyOptions { tolerance: 0.0 },
+    ));
+    assert!(message.contains("tolerance"), "{message}");
+}
+
+#[test]
+fn manipulability_ellipsoids_are_the_singular_values_and_vectors_of_each_part() {
+    for name in ["puma560", "ur5", "space6r"] {
+        let model = armkit::robots::by_name(name).unwrap();
+        let mut data = Data::new(&model);
+        for q in [
+            [0.3, 0.5, -0.4, 0.2, 0.7, 0.1],
+            [-1.0, 0.2, 0.9, -0.6, 1.3, 2.0],
+            [0.3, 0.5, -0.4, 0.2, 0.0, 0.1],
+        ] {
+            let j = jacobian(&model, &mut data, &q, JacobianFrame::World)
+                .unwrap()
+                .clone();
+            for (part, rows) in [
+                (JacobianPart::Translational, 0),
+                (JacobianPart::Rotational, 3),
+            ] {
+                let e = manipulability_ellipsoid(&j, part).unwrap();
+                let block = j.fixed_rows::<3>(rows).into_owned();
+                let expected = singular_values(&block);
+                let gram = &block * block.transpose();
+                for (i, (axis, radius)) in e.axes.iter().zip(e.radii).enumerate() {
+                    assert!((radius - expected[i]).abs() < 1e-7, "{name} {part:?}");
+                    assert!((axis.norm() - 1.0).abs() < 1e-12);
+                    for other in &e.axes[..i] {
+                        assert!(axis.dot(other).abs() < 1e-9);
+                    }
+                    // J_p J_p' a = r^2 a.
+                    let image = gram * axis;
+                    assert!((image - axis * radius.powi(2)).norm() < 1e-9);
+                }
+                assert!((e.volume_measure() - expected.iter().product::<f64>()).abs() < 1e-9);
+            }
+        }
+    }
+    // A part that cannot move along z: its smallest radius is zero along z.
+    let mut j = armkit::math::Matrix6xX::zeros(2);
+    j[(0, 0)] = 2.0;
+    j[(1, 1)] = 0.5;
+    let e = manipulability_ellipsoid(&j, JacobianPart::Translational).unwrap();
+    assert_eq!(e.radii, [2.0, 0.5, 0.0]);
+    assert!((e.axes[2].z.abs() - 1.0).abs() < 1e-12);
+    assert_eq!(e.isotropy(), 0.0);
+    j[(3, 0)] = f64::NAN;
+    let message = error_message(manipulability_ellipsoid(&j, JacobianPart::Rotational));
+    assert!(message.contains("jacobian"), "{message}");
+}
