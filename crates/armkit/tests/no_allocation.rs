@@ -8,6 +8,7 @@
 //! * A redundancy solve allocates nothing once its workspace exists: a counting global allocator sees zero allocations across many solves (weighted least norm, damped, toward a preferred velocity, projector, seed 001's partitioned form and eq 17, torques, energy weights, null-space directions).
 //! * The free-floating hot paths allocate nothing once `SpaceData` exists: a counting global allocator sees zero allocations across many calls of `generalized_jacobian`, `step`, `center_of_mass`, `end_effector_pose` and `momentum`, in both base modes.
 //! * Sampling a trajectory allocates nothing: a counting global allocator sees zero allocations across many `sample_into` calls (joint space) and `CartesianTrajectory::sample` calls (built-in paths), counted per thread.
+//! * A singularity-tracking control period allocates nothing: a run's allocations (its recorded series) do not depend on its number of periods, for plain, avoidance, DLS and SRI.
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
@@ -342,4 +343,51 @@ fn sampling_does_not_allocate() {
     let after = allocations();
     assert!(checksum.is_finite());
     assert_eq!(after - before, 0, "{} allocations", after - before);
+}
+
+/// A singularity-tracking run allocates by design (it records every
+/// sample's series, sized once, and each region's knots and fit), but its
+/// control period does not: on a regular path, the allocations of a run do
+/// not depend on its number of periods, for every method.
+#[test]
+fn a_tracking_period_does_not_allocate() {
+    use armkit::ik::{ChiaveriniFilter, NakamuraDamping};
+    use armkit::singularity::{line_through, Manipulator, Method, PathTracker, TrackingOptions};
+    let arm = armkit::robots::space6r().unwrap();
+    let manipulator = Manipulator::FixedBase(&arm);
+    let through = [0.2, 0.9, -0.6, 0.4, 1.1, 0.3];
+    let direction = [0.2, -0.1, 0.15, 0.1, 0.1, -0.1];
+    let line = line_through(&manipulator, &through, &direction, 0.0).unwrap();
+    let counts = |dt: f64, method: &Method| {
+        let options = TrackingOptions {
+            dt,
+            ..TrackingOptions::default()
+        };
+        let tracker = PathTracker::new(manipulator, line.task(5.0, 1.0), options).unwrap();
+        let before = allocations();
+        let run = tracker.run(method).unwrap();
+        let after = allocations();
+        assert!(run.regions.is_empty());
+        after - before
+    };
+    for method in [
+        Method::Plain,
+        Method::Avoidance { k: 5 },
+        Method::DampedLeastSquares(NakamuraDamping {
+            threshold: 0.1,
+            max_damping: 0.05,
+        }),
+        Method::SingularityRobust(ChiaveriniFilter {
+            threshold: 0.5,
+            ..ChiaveriniFilter::default()
+        }),
+    ] {
+        let (coarse, fine) = (counts(0.01, &method), counts(0.0025, &method));
+        assert_eq!(
+            coarse,
+            fine,
+            "{}: {coarse} vs {fine} allocations",
+            method.label()
+        );
+    }
 }

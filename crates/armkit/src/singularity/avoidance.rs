@@ -658,26 +658,26 @@ impl<'m> PathTracker<'m> {
             .fold(0.0, |m: f64, r| m.max(r.abs()));
         let max = |v: &[f64]| v.iter().fold(0.0, |m: f64, x| m.max(*x));
         let threshold = self.options.detection.determinant_threshold;
-        // Samples of the singular region (the last sample starts no period).
-        let region: Vec<usize> = (0..run.determinant.len().saturating_sub(1))
-            .filter(|&i| below_threshold(run.determinant[i], threshold))
-            .collect();
-        let mean = |v: &[f64]| {
-            if region.is_empty() {
-                0.0
-            } else {
-                region.iter().map(|&i| v[i]).sum::<f64>() / region.len() as f64
+        // Samples of the singular region (the last sample starts no period),
+        // and their error sums, in one pass without a buffer.
+        let (mut count, mut position_sum, mut orientation_sum) = (0usize, 0.0, 0.0);
+        for i in 0..run.determinant.len().saturating_sub(1) {
+            if below_threshold(run.determinant[i], threshold) {
+                count += 1;
+                position_sum += run.position_error[i];
+                orientation_sum += run.orientation_error[i];
             }
-        };
+        }
+        let mean = |sum: f64| if count == 0 { 0.0 } else { sum / count as f64 };
         RunSummary {
             peak_joint_rate,
             max_position_error: max(&run.position_error),
             max_orientation_error: max(&run.orientation_error),
             final_position_error: run.position_error.last().copied().unwrap_or(0.0),
             final_orientation_error: run.orientation_error.last().copied().unwrap_or(0.0),
-            time_in_singular_region: region.len() as f64 * self.h,
-            mean_region_position_error: mean(&run.position_error),
-            mean_region_orientation_error: mean(&run.orientation_error),
+            time_in_singular_region: count as f64 * self.h,
+            mean_region_position_error: mean(position_sum),
+            mean_region_orientation_error: mean(orientation_sum),
             ik_solves: run.regions.iter().map(|r| r.ik_solves).sum(),
         }
     }
