@@ -40,6 +40,8 @@ enum Command {
     Traj(commands::traj::TrajArgs),
     /// Model-predictive motion to a target pose with joint limits (seed 000), CSV and SVG plots.
     Mpc(commands::mpc::MpcArgs),
+    /// Singularity avoidance along a straight line (seed 004): plain, avoidance, DLS, SRI; tables, CSV and SVG.
+    Singularity(commands::singularity::SingularityArgs),
 }
 
 fn run(command: &Command) -> CliResult<Outcome> {
@@ -56,6 +58,7 @@ fn run(command: &Command) -> CliResult<Outcome> {
         Command::Redundancy(args) => commands::redundancy::run(args),
         Command::Traj(args) => commands::traj::run(args),
         Command::Mpc(args) => commands::mpc::run(args),
+        Command::Singularity(args) => commands::singularity::run(args),
     }
 }
 

@@ -7,5 +7,6 @@ pub mod mpc;
 pub mod redundancy;
 pub mod robots;
 pub mod run;
+pub mod singularity;
 pub mod space;
 pub mod traj;

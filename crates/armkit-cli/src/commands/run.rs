@@ -48,6 +48,10 @@ const SHIPPED: &[(&str, &str)] = &[
         "seed002-panda.toml",
         include_str!("../../../../scenarios/seed002-panda.toml"),
     ),
+    (
+        "seed004-singularity.toml",
+        include_str!("../../../../scenarios/seed004-singularity.toml"),
+    ),
 ];
 
 /// Runs one scenario file and writes its report.

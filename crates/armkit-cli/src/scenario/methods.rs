@@ -9,7 +9,7 @@ use clap::{Args, FromArgMatches};
 use toml::Spanned;
 
 use super::Locator;
-use crate::commands::{beam, mpc, redundancy, traj};
+use crate::commands::{beam, mpc, redundancy, singularity, traj};
 use crate::common::{accept_hyphen_values, CliError, CliResult};
 use crate::report::Report;
 
@@ -28,10 +28,13 @@ pub enum Method {
     Redundancy(Box<redundancy::RedundancyArgs>),
     /// `[continuous_path]`: seed 002's continuous path; options of `armkit traj line`.
     ContinuousPath(Box<traj::LineArgs>),
+    /// `[singularity]`: seed 004's line through a wrist singularity tracked
+    /// four ways; options of `armkit singularity`.
+    Singularity(Box<singularity::SingularityArgs>),
 }
 
 /// The method tables a scenario file may hold (exactly one is given).
-pub const METHOD_TABLES: &str = "[beam], [mpc], [redundancy], [continuous_path]";
+pub const METHOD_TABLES: &str = "[beam], [mpc], [redundancy], [continuous_path], [singularity]";
 
 impl Method {
     /// Parses the one method table given, with the robot's arguments
@@ -61,6 +64,7 @@ impl Method {
             "beam" => Method::Beam(parsed.args(name, locator)?),
             "mpc" => Method::Mpc(Box::new(parsed.args(name, locator)?)),
             "redundancy" => Method::Redundancy(Box::new(parsed.args(name, locator)?)),
+            "singularity" => Method::Singularity(Box::new(parsed.args(name, locator)?)),
             _ => Method::ContinuousPath(Box::new(parsed.args(name, locator)?)),
         })
     }
@@ -72,6 +76,7 @@ impl Method {
             Method::Mpc(args) => mpc::example_report(args),
             Method::Redundancy(args) => redundancy::report(args),
             Method::ContinuousPath(args) => traj::line_report(args),
+            Method::Singularity(args) => singularity::report(args),
         }
     }
 }

@@ -54,6 +54,7 @@ struct ScenarioFile {
     mpc: Option<Spanned<OptionTable>>,
     redundancy: Option<Spanned<OptionTable>>,
     continuous_path: Option<Spanned<OptionTable>>,
+    singularity: Option<Spanned<OptionTable>>,
 }
 
 /// A parsed, validated scenario.
@@ -119,6 +120,7 @@ pub fn parse(text: &str, source_name: &str, base_dir: &Path) -> CliResult<Scenar
         ("mpc", file.mpc),
         ("redundancy", file.redundancy),
         ("continuous_path", file.continuous_path),
+        ("singularity", file.singularity),
     ];
     let method = Method::parse(tables, &robot_argv, &locator)?;
     Ok(Scenario {
@@ -229,7 +231,7 @@ mod tests {
         assert!(error("title = \"t\"\n[beam]\n").contains("missing field `name`"));
         assert_eq!(
             error("name = \"b\"\ntitle = \"t\"\n"),
-            "s.toml: line 1, column 1: no method table: expected exactly one of [beam], [mpc], [redundancy], [continuous_path]"
+            "s.toml: line 1, column 1: no method table: expected exactly one of [beam], [mpc], [redundancy], [continuous_path], [singularity]"
         );
         assert_eq!(
             error("name = \"a b\"\ntitle = \"t\"\n[beam]\n"),
