@@ -736,7 +736,7 @@ impl Baselines {
     /// manipulability of a square Jacobian), `lambda_0` = 0.05; Chiaverini's
     /// defaults (`epsilon` = 0.05, `lambda_max` = 0.05, `beta` = 1e-4).
     /// ([`NakamuraDamping::default`]'s threshold, 1e-3 m^3, would start
-    /// damping only 20 times closer to the singularity on space6r.)
+    /// damping only at a 4 times smaller `|det J|`, inside the region.)
     pub fn for_detection(detection: &DetectionOptions) -> Baselines {
         Baselines {
             nakamura: NakamuraDamping {

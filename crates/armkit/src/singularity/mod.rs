@@ -92,6 +92,11 @@
 //!   the warm start) when that keeps the pose within `eps_T`, and a knot
 //!   that jumps (more than `eps_dq` per period since the last knot) is
 //!   dropped and bridged by the fit.
+//! * The paper sees larger errors at the region's entry for smaller `k`
+//!   (error accumulated before it). Here tracking before the entry is the
+//!   same for every `k` (position feedback keeps it within 1e-7 m), so the
+//!   runs differ only inside the region, where the error grows with `k`
+//!   (the trade-off the paper describes: fewer IK solves, larger error).
 //!
 //! # Singular configurations and ellipsoids
 //!
