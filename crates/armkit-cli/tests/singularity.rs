@@ -336,6 +336,42 @@ fn fixed_base_and_options_are_used() {
 }
 
 #[test]
+fn a_path_that_stays_away_from_the_singularity_is_the_same_with_and_without_avoidance() {
+    // The line offset from the singular pose by a miss of -0.05 (on this
+    // line, positive misses of 0.05 and more leave the reachable workspace).
+    let value = json(&armkit(&[
+        "singularity",
+        "--json",
+        "--base",
+        "fixed",
+        "--miss",
+        "-0.05",
+        "--k",
+        "1",
+    ]));
+    let plain = method(&value, "plain");
+    let avoidance = method(&value, "avoidance k=1");
+    let threshold = value["determinant_threshold"].as_f64().unwrap();
+    let closest = plain["min_determinant"].as_f64().unwrap();
+    assert!(
+        closest > threshold,
+        "the path comes within the threshold ({closest} < {threshold}): offset it further"
+    );
+    assert!(avoidance["regions"].as_array().unwrap().is_empty());
+    assert_eq!(avoidance["ik_solves"], 0);
+    for key in [
+        "peak_joint_rate",
+        "max_position_error",
+        "max_orientation_error",
+        "final_position_error",
+        "final_orientation_error",
+    ] {
+        assert_eq!(avoidance[key], plain[key], "{key}");
+    }
+    assert_eq!(plain["time_in_singular_region"], 0.0);
+}
+
+#[test]
 fn the_scenario_runs_and_every_check_passes() {
     let out = scratch("scenario");
     let output = armkit(&[

@@ -853,6 +853,7 @@ fn summary_json(study: &Study, args: &SingularityArgs) -> serde_json::Value {
             "mean_region_position_error": r.summary.mean_region_position_error,
             "mean_region_orientation_error": r.summary.mean_region_orientation_error,
             "ik_solves": r.summary.ik_solves,
+            "min_determinant": r.determinant.iter().copied().fold(f64::INFINITY, f64::min),
             "regions": r.regions.iter().map(|g| serde_json::json!({
                 "start_time": g.start_time,
                 "end_time": g.end_time,
