@@ -412,6 +412,8 @@ fn bad_input_is_an_error_naming_the_option() {
         (&["--joint-step-threshold", "inf"], "--joint-step-threshold"),
         (&["--dt", "nan"], "--dt"),
         (&["--dt", "-0.01"], "--dt"),
+        (&["--dt", "1e-9"], "--dt"),
+        (&["--dt", "30"], "--dt"),
         (&["--duration", "0"], "--duration"),
         (&["--accel-time", "15"], "--accel-time"),
         (&["--miss", "nan"], "--miss"),

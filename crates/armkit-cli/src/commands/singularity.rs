@@ -30,6 +30,10 @@ use crate::report::{write_atomic, Animation, Check, Report, Table};
 
 /// Track a straight-line pose path through a wrist singularity (seed 004):
 /// plain, avoidance, damped least squares and singularity-robust inverse.
+///
+/// Exit code 3 when an avoidance or damped run stops before the end of the
+/// path (plain tracking stopping at an exactly singular Jacobian is a
+/// result, shown in the table).
 #[derive(Args, Debug)]
 pub struct SingularityArgs {
     /// What the arm stands on: a fixed base, or seed 004's free-floating
@@ -111,6 +115,10 @@ impl BaseArg {
 
 /// Largest `k` accepted (a stride longer than any sensible path).
 const MAX_K: f64 = 1e6;
+
+/// Largest number of control periods per run (each run keeps every sample
+/// of every joint, for several runs).
+const MAX_STEPS: f64 = 1e6;
 
 /// The arm, and the free-floating system when the base is held.
 enum Plant {
@@ -213,6 +221,13 @@ pub fn study(args: &SingularityArgs) -> CliResult<Study> {
         return Err(CliError(format!(
             "--dt: must be at most the duration ({duration} s), got {}",
             options.dt
+        )));
+    }
+    let steps = (duration / options.dt).ceil();
+    if steps > MAX_STEPS {
+        return Err(CliError(format!(
+            "--duration / --dt = {steps:.0} control periods: at most {MAX_STEPS:.0} \
+             (every run records every period)"
         )));
     }
     if !args.miss.is_finite() {
