@@ -263,6 +263,29 @@ pub fn print_json(value: &serde_json::Value) -> CliResult {
     Ok(())
 }
 
+/// Lets every option of `command` and of its subcommands take a value that
+/// starts with `-`, so that `--damping -1` reaches the option's own check
+/// ("must be > 0") instead of clap's "unexpected argument '-1'", and
+/// `--q -0.5,1` works without `=`. Positional arguments are left alone so
+/// that a flag after them is still a flag.
+pub fn accept_hyphen_values(command: clap::Command) -> clap::Command {
+    let names: Vec<String> = command
+        .get_subcommands()
+        .map(|sub| sub.get_name().to_string())
+        .collect();
+    let mut command = command.mut_args(|arg| {
+        if arg.is_positional() || !arg.get_action().takes_values() {
+            arg
+        } else {
+            arg.allow_hyphen_values(true)
+        }
+    });
+    for name in names {
+        command = command.mut_subcommand(name, accept_hyphen_values);
+    }
+    command
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -296,27 +319,4 @@ mod tests {
             "--pose: expected 6 values, got 2"
         );
     }
-}
-
-/// Lets every option of `command` and of its subcommands take a value that
-/// starts with `-`, so that `--damping -1` reaches the option's own check
-/// ("must be > 0") instead of clap's "unexpected argument '-1'", and
-/// `--q -0.5,1` works without `=`. Positional arguments are left alone so
-/// that a flag after them is still a flag.
-pub fn accept_hyphen_values(command: clap::Command) -> clap::Command {
-    let names: Vec<String> = command
-        .get_subcommands()
-        .map(|sub| sub.get_name().to_string())
-        .collect();
-    let mut command = command.mut_args(|arg| {
-        if arg.is_positional() || !arg.get_action().takes_values() {
-            arg
-        } else {
-            arg.allow_hyphen_values(true)
-        }
-    });
-    for name in names {
-        command = command.mut_subcommand(name, accept_hyphen_values);
-    }
-    command
 }

@@ -149,3 +149,11 @@ fn malformed_description_file_is_an_error() {
         "{message}"
     );
 }
+
+#[test]
+fn a_value_starting_with_a_minus_sign_needs_no_equals_sign() {
+    let spaced = armkit(&["fk", "--robot", "ur5", "--q", "-0.5,0.1,0,0,0,0", "--json"]);
+    assert!(spaced.status.success(), "{}", stderr(&spaced));
+    let joined = armkit(&["fk", "--robot", "ur5", "--q=-0.5,0.1,0,0,0,0", "--json"]);
+    assert_eq!(json(&spaced), json(&joined));
+}
