@@ -17,46 +17,14 @@
 use armkit::math::Pose;
 use armkit::singularity::{
     classify, manipulability_ellipsoid, seed004_path, Baselines, ClassifyOptions, Comparison,
-    JacobianPart, Manipulator, MethodRun, PathTracker, TrackingOptions, SEED004_THROUGH,
+    JacobianPart, Manipulator, PathTracker, TrackingOptions, SEED004_THROUGH,
 };
 use armkit::space::space6r_free_floating;
 use armkit::{jacobian, Data, JacobianFrame};
 
 fn print_table(title: &str, comparison: &Comparison) {
-    println!("\n{title}");
-    println!(
-        "{:>14} {:>10} {:>10} {:>10} {:>10} {:>10} {:>9} {:>5}",
-        "method", "peak rad/s", "max pos m", "max ori", "final pos", "final ori", "singular", "IK"
-    );
-    let mut rows: Vec<&MethodRun> = vec![&comparison.plain];
-    rows.extend(&comparison.k_sweep);
-    rows.extend([
-        &comparison.damped_least_squares,
-        &comparison.singularity_robust,
-    ]);
-    for run in rows {
-        let s = &run.summary;
-        println!(
-            "{:>14} {:>10.4} {:>10.2e} {:>10.2e} {:>10.2e} {:>10.2e} {:>7.2} s {:>5}",
-            run.method.label(),
-            s.peak_joint_rate,
-            s.max_position_error,
-            s.max_orientation_error,
-            s.final_position_error,
-            s.final_orientation_error,
-            s.time_in_singular_region,
-            s.ik_solves
-        );
-    }
-    if let Some(region) = comparison.avoidance.regions.first() {
-        println!(
-            "singular region ({}): {:.2} s to {:.2} s, entered by the {} test",
-            comparison.avoidance.method.label(),
-            region.start_time,
-            region.end_time,
-            region.trigger.as_str()
-        );
-    }
+    // One row per method, then the singular regions of the avoidance runs.
+    println!("\n{title}\n{comparison}");
 }
 
 fn main() -> Result<(), armkit::Error> {

@@ -8,9 +8,9 @@ use armkit::math::{Matrix6, Pose, Vector3};
 use armkit::singularity::{
     calibrate_determinant_threshold, classify, find_singularities, line_through,
     manipulability_ellipsoid, nearest_singularity, seed004_path, Baselines, ClassifyOptions,
-    Comparison, DetectionOptions, JacobianPart, LineTask, Manipulator, Method, MethodRun,
-    PathTracker, RunStatus, SearchOptions, SearchStatus, SearchTarget, SingularityKind,
-    TrackingOptions, SEED004_THROUGH,
+    Comparison, DetectionOptions, JacobianPart, LineTask, Manipulator, Method, PathTracker,
+    RunStatus, SearchOptions, SearchStatus, SearchTarget, SingularityKind, TrackingOptions,
+    SEED004_THROUGH,
 };
 use armkit::space::{center_of_mass, space6r_free_floating, SpaceData};
 use armkit::trajectory::spline::clamped_cubic_spline;
@@ -19,43 +19,7 @@ use armkit::{jacobian, Data, JacobianFrame};
 const KS: [usize; 3] = [1, 5, 10];
 
 fn print_table(title: &str, comparison: &Comparison) {
-    println!("{title}");
-    println!(
-        "{:>14} {:>10} {:>10} {:>10} {:>10} {:>10} {:>8} {:>6}",
-        "method", "peak rad/s", "max pos m", "max ori", "final pos", "final ori", "region s", "IK"
-    );
-    let mut rows: Vec<&MethodRun> = vec![&comparison.plain];
-    rows.extend(comparison.k_sweep.iter());
-    rows.push(&comparison.damped_least_squares);
-    rows.push(&comparison.singularity_robust);
-    for run in rows {
-        let s = &run.summary;
-        println!(
-            "{:>14} {:>10.4} {:>10.3e} {:>10.3e} {:>10.3e} {:>10.3e} {:>8.2} {:>6}",
-            run.method.label(),
-            s.peak_joint_rate,
-            s.max_position_error,
-            s.max_orientation_error,
-            s.final_position_error,
-            s.final_orientation_error,
-            s.time_in_singular_region,
-            s.ik_solves
-        );
-    }
-    for run in &comparison.k_sweep {
-        for r in &run.regions {
-            println!(
-                "{}: region {:.2} s .. {:.2} s ({}), {} knots, {} IK iterations, {} dropped",
-                run.method.label(),
-                r.start_time,
-                r.end_time,
-                r.trigger.as_str(),
-                r.knot_times.len(),
-                r.ik_iterations,
-                r.dropped_knots
-            );
-        }
-    }
+    println!("{title}\n{comparison}");
 }
 
 fn compare(manipulator: Manipulator<'_>, task: LineTask) -> Comparison {

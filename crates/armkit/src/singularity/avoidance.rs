@@ -775,6 +775,61 @@ impl Comparison {
     }
 }
 
+/// A plain-text table: one row per run (plain, each `k`, DLS, SRI) with the
+/// peak joint rate (rad/s), the maximum and final position (m) and
+/// orientation (rad) errors, the time in the singular region (s) and the IK
+/// solves; then one line per singular region of the avoidance runs.
+impl std::fmt::Display for Comparison {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        writeln!(
+            f,
+            "{:>14} {:>10} {:>10} {:>10} {:>10} {:>10} {:>8} {:>6}",
+            "method",
+            "peak rad/s",
+            "max pos m",
+            "max ori",
+            "final pos",
+            "final ori",
+            "region s",
+            "IK"
+        )?;
+        let rows = std::iter::once(&self.plain)
+            .chain(&self.k_sweep)
+            .chain([&self.damped_least_squares, &self.singularity_robust]);
+        for run in rows {
+            let s = &run.summary;
+            writeln!(
+                f,
+                "{:>14} {:>10.4} {:>10.3e} {:>10.3e} {:>10.3e} {:>10.3e} {:>8.2} {:>6}",
+                run.method.label(),
+                s.peak_joint_rate,
+                s.max_position_error,
+                s.max_orientation_error,
+                s.final_position_error,
+                s.final_orientation_error,
+                s.time_in_singular_region,
+                s.ik_solves
+            )?;
+        }
+        for run in &self.k_sweep {
+            for r in &run.regions {
+                writeln!(
+                    f,
+                    "{}: region {:.2} s .. {:.2} s ({}), {} knots, {} IK iterations, {} dropped",
+                    run.method.label(),
+                    r.start_time,
+                    r.end_time,
+                    r.trigger.as_str(),
+                    r.knot_times.len(),
+                    r.ik_iterations,
+                    r.dropped_knots
+                )?;
+            }
+        }
+        Ok(())
+    }
+}
+
 /// The paper's way of setting the determinant threshold (seed 004, sec
 /// 2.3.1: "find where the joint angles jump, hence the joint range of the
 /// singular region and the determinant threshold"): the largest `|det J|` at
