@@ -62,7 +62,28 @@ fn run(command: &Command) -> CliResult<Outcome> {
     }
 }
 
+/// Rust ignores SIGPIPE, so a write to a closed pipe (`armkit ... | head`)
+/// returns an error and `println!` panics. A command-line tool should end
+/// quietly there, like other Unix tools: restore the default action.
+#[cfg(unix)]
+fn restore_default_sigpipe() {
+    extern "C" {
+        fn signal(signum: i32, handler: usize) -> usize;
+    }
+    const SIGPIPE: i32 = 13; // the same on Linux, macOS and the BSDs
+    const SIG_DFL: usize = 0;
+    // SAFETY: the C library's `signal` with a valid signal number and the
+    // default disposition, called first in `main` before any thread starts.
+    unsafe {
+        signal(SIGPIPE, SIG_DFL);
+    }
+}
+
+#[cfg(not(unix))]
+fn restore_default_sigpipe() {}
+
 fn main() -> ExitCode {
+    restore_default_sigpipe();
     let matches = accept_hyphen_values(Cli::command()).get_matches();
     let cli = match Cli::from_arg_matches(&matches) {
         Ok(cli) => cli,

@@ -157,3 +157,19 @@ fn a_value_starting_with_a_minus_sign_needs_no_equals_sign() {
     let joined = armkit(&["fk", "--robot", "ur5", "--q=-0.5,0.1,0,0,0,0", "--json"]);
     assert_eq!(json(&spaced), json(&joined));
 }
+
+#[test]
+fn a_closed_output_pipe_ends_the_command_quietly() {
+    // `armkit fk ... | head -c 0`: the reader is gone before armkit writes.
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_armkit"))
+        .args(["fk", "--robot", "ur5", "--q", "0,0,0,0,0,0"])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let output = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert_ne!(output.status.code(), Some(101), "{stderr}");
+}
