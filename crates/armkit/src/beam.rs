@@ -64,7 +64,7 @@
 //! assert!(beam.deflection(4.0, &bad).unwrap_err().to_string().contains("loads[0].position"));
 //! ```
 
-use crate::error::{Error, Result};
+use crate::error::{check_positive, Error, Result};
 use crate::model::{CouplingLaw, JointCoupling};
 use crate::robots::GANTRY9_BEAM_LENGTH;
 
@@ -112,17 +112,6 @@ pub fn weight(mass: f64, gravity: f64) -> Result<f64> {
     }
     check_positive("gravity", gravity)?;
     Ok(mass * gravity)
-}
-
-fn check_positive(name: &str, value: f64) -> Result<()> {
-    if value.is_finite() && value > 0.0 {
-        Ok(())
-    } else {
-        Err(Error::invalid_argument(
-            name,
-            format!("must be finite and > 0, got {value}"),
-        ))
-    }
 }
 
 /// A concentrated load on a beam: `position` m from the left support, `force`

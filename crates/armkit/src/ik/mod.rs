@@ -53,7 +53,7 @@ pub use numeric::{
 pub use pose_error::{masked_error_norms, orientation_error, pose_error};
 pub use protocol::{benchmark_targets, random_configuration};
 
-use crate::error::{Error, Result};
+use crate::error::{check_positive, Error, Result};
 
 /// The numeric method an [`IkSolver`] iterates with, and its parameters.
 ///
@@ -223,12 +223,7 @@ impl IkOptions {
             ("position_tolerance", self.position_tolerance),
             ("orientation_tolerance", self.orientation_tolerance),
         ] {
-            if !(value.is_finite() && value > 0.0) {
-                return Err(Error::invalid_argument(
-                    name,
-                    format!("must be finite and > 0, got {value}"),
-                ));
-            }
+            check_positive(name, value)?;
         }
         if self.max_iterations == 0 {
             return Err(Error::invalid_argument("max_iterations", "must be >= 1"));

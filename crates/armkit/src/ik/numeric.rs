@@ -17,7 +17,7 @@ use rand_chacha::ChaCha8Rng;
 use super::pose_error::{masked_error_norms, pose_error};
 use super::protocol::sample_joint;
 use super::{IkMethod, IkOptions, IkReport, IkSelection, IkStatus, Redundancy};
-use crate::error::{check_finite, Error, Result};
+use crate::error::{check_finite, check_positive, Error, Result};
 use crate::kinematics::{jacobian, Data, JacobianFrame};
 use crate::math::{wrap_angle, DMatrix, Matrix6, Matrix6xX, Pose, Vector6};
 use crate::model::{JointKind, Model};
@@ -147,17 +147,6 @@ impl LmDamping {
     /// Checks the floor is finite and > 0.
     pub fn validate(&self) -> Result<()> {
         check_positive("LmDamping.floor", self.floor)
-    }
-}
-
-fn check_positive(name: &str, value: f64) -> Result<()> {
-    if value.is_finite() && value > 0.0 {
-        Ok(())
-    } else {
-        Err(Error::invalid_argument(
-            name,
-            format!("must be finite and > 0, got {value}"),
-        ))
     }
 }
 

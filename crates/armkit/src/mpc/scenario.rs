@@ -40,7 +40,7 @@
 //! ```
 
 use super::{MpcOptions, MpcPlanner, StepStatus, TaskWeights, VelocityWeights};
-use crate::error::{Error, Result};
+use crate::error::{check_positive, Error, Result};
 use crate::math::{Pose, Vector3};
 use crate::model::{JointKind, Model};
 
@@ -84,12 +84,7 @@ impl SimulationOptions {
             ("orientation_tolerance", self.orientation_tolerance),
             ("velocity_tolerance", self.velocity_tolerance),
         ] {
-            if !(value.is_finite() && value > 0.0) {
-                return Err(Error::invalid_argument(
-                    name,
-                    format!("must be finite and > 0, got {value}"),
-                ));
-            }
+            check_positive(name, value)?;
         }
         Ok(())
     }

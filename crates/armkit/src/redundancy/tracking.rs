@@ -41,7 +41,7 @@ use super::nullspace::{weighted_direction, SecondaryObjective, SecondaryTask};
 use super::partition::{best_partition, Partition, PartitionedSolver};
 use super::weighted::WeightedLeastNorm;
 use super::{Damping, JointWeights, SolverOptions};
-use crate::error::{check_finite, Error, Result};
+use crate::error::{check_finite, check_positive, Error, Result};
 use crate::ik::pose_error;
 use crate::kinematics::{forward_kinematics, jacobian, Data, JacobianFrame};
 use crate::math::{rotation_log, Pose, Rotation3, Vector3, Vector6};
@@ -86,12 +86,7 @@ impl LinePath {
     /// From `start` to `goal` (world frame) in `duration` s (> 0). Errors:
     /// a non-finite pose or duration.
     pub fn new(start: Pose, goal: Pose, duration: f64) -> Result<Self> {
-        if !(duration.is_finite() && duration > 0.0) {
-            return Err(Error::invalid_argument(
-                "duration",
-                format!("must be finite and > 0, got {duration}"),
-            ));
-        }
+        check_positive("duration", duration)?;
         if !start.is_finite() || !goal.is_finite() {
             return Err(Error::invalid_argument(
                 "start/goal",
@@ -147,12 +142,7 @@ pub struct FnPath<F: Fn(f64) -> Pose> {
 impl<F: Fn(f64) -> Pose> FnPath<F> {
     /// A path of `duration` s (> 0) following `pose`.
     pub fn new(duration: f64, pose: F) -> Result<Self> {
-        if !(duration.is_finite() && duration > 0.0) {
-            return Err(Error::invalid_argument(
-                "duration",
-                format!("must be finite and > 0, got {duration}"),
-            ));
-        }
+        check_positive("duration", duration)?;
         Ok(FnPath { duration, pose })
     }
 }
@@ -230,12 +220,7 @@ const PARTITION_MAX_CONDITION: f64 = 1e10;
 impl TrackingOptions {
     /// Checks every field.
     pub fn validate(&self) -> Result<()> {
-        if !(self.time_step.is_finite() && self.time_step > 0.0) {
-            return Err(Error::invalid_argument(
-                "time_step",
-                format!("must be finite and > 0, got {}", self.time_step),
-            ));
-        }
+        check_positive("time_step", self.time_step)?;
         if !(self.feedback_gain >= 0.0 && self.feedback_gain * self.time_step <= 1.0) {
             return Err(Error::invalid_argument(
                 "feedback_gain",

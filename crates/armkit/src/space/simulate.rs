@@ -5,7 +5,7 @@ use rand_chacha::ChaCha8Rng;
 
 use super::dynamics::{generalized_jacobian, update_kinematics};
 use super::{BaseMode, FreeFloatingModel, FreeFloatingState, SpaceData};
-use crate::error::{check_finite_vector, Error, Result};
+use crate::error::{check_finite_vector, check_positive, Error, Result};
 use crate::math::{skew, Matrix3, Vector3};
 
 /// Advances `state` (base pose and joint positions) by `dt` seconds with the
@@ -130,12 +130,7 @@ impl SinusoidalJointMotion {
     /// in `[0.2, 1] x max_frequency` (rad/s, > 0), phases uniform in `[0, 2 pi)`.
     pub fn random(dof: usize, seed: u64, amplitude: f64, max_frequency: f64) -> Result<Self> {
         for (name, value) in [("amplitude", amplitude), ("max_frequency", max_frequency)] {
-            if !(value.is_finite() && value > 0.0) {
-                return Err(Error::invalid_argument(
-                    name,
-                    format!("must be finite and > 0, got {value}"),
-                ));
-            }
+            check_positive(name, value)?;
         }
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         let terms = (0..dof)

@@ -58,7 +58,7 @@ use super::cartesian::CartesianTrajectory;
 use super::poly;
 use super::spline::check_via_points;
 use super::{JointState, Trajectory};
-use crate::error::{check_finite_vector, Error, Result};
+use crate::error::{check_finite_vector, check_positive, Error, Result};
 use crate::kinematics::{forward_kinematics, Data};
 use crate::math::rotation_angle;
 use crate::math::Pose;
@@ -280,12 +280,7 @@ impl PathTolerance {
             ("tolerance.position", position),
             ("tolerance.orientation", orientation),
         ] {
-            if !(v.is_finite() && v > 0.0) {
-                return Err(Error::invalid_argument(
-                    what,
-                    format!("must be finite and > 0, got {v}"),
-                ));
-            }
+            check_positive(what, v)?;
         }
         Ok(())
     }

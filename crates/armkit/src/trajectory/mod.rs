@@ -42,7 +42,7 @@ mod poly;
 pub mod profile;
 pub mod spline;
 
-use crate::error::{check_finite, check_finite_vector, Error, Result};
+use crate::error::{check_finite, check_finite_vector, check_positive, Error, Result};
 
 /// Position, velocity and acceleration of every joint at one instant.
 ///
@@ -425,12 +425,7 @@ impl Trajectory {
     /// in joint space is unchanged (the polynomials are in normalized time,
     /// only the knots move).
     pub fn time_scaled(&self, factor: f64) -> Result<Trajectory> {
-        if !(factor > 0.0 && factor.is_finite()) {
-            return Err(Error::invalid_argument(
-                "factor",
-                format!("must be finite and > 0, got {factor}"),
-            ));
-        }
+        check_positive("factor", factor)?;
         let t0 = self.start_time();
         let knots = self.knots.iter().map(|&t| t0 + (t - t0) * factor).collect();
         Ok(Self::from_parts(knots, self.dof, self.coefficients.clone()))
