@@ -40,6 +40,8 @@ enum Command {
     Traj(commands::traj::TrajArgs),
     /// Model-predictive motion to a target pose with joint limits (seed 000), CSV and SVG plots.
     Mpc(commands::mpc::MpcArgs),
+    /// Singular values, singularity kind (wrist, elbow, shoulder) and manipulability ellipsoids at one configuration.
+    Manipulability(commands::manipulability::ManipulabilityArgs),
     /// Singularity avoidance along a straight line (seed 004): plain, avoidance, DLS, SRI; tables, CSV and SVG.
     Singularity(commands::singularity::SingularityArgs),
 }
@@ -58,6 +60,7 @@ fn run(command: &Command) -> CliResult<Outcome> {
         Command::Redundancy(args) => commands::redundancy::run(args),
         Command::Traj(args) => commands::traj::run(args),
         Command::Mpc(args) => commands::mpc::run(args),
+        Command::Manipulability(args) => commands::manipulability::run(args),
         Command::Singularity(args) => commands::singularity::run(args),
     }
 }

@@ -947,6 +947,21 @@ const CASES: &[Case] = &[
         ],
         1,
     ),
+    // manipulability.
+    case(
+        "manipulability",
+        "zero tolerance",
+        &[
+            "manipulability",
+            "--robot",
+            "puma560",
+            "--q",
+            "0,0,0,0,0,0",
+            "--tolerance",
+            "0",
+        ],
+        1,
+    ),
     // Description files.
     case(
         "description",
