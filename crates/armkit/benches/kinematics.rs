@@ -1,28 +1,51 @@
 //! Forward kinematics and Jacobian timings on ur5, panda and gantry9.
 //!
 //! Run: `cargo bench -p armkit --bench kinematics`.
+//!
+//! Each call takes the next of 1024 random configurations within the limits
+//! (seeded), as Pinocchio's benchmark in `../shared/peers` does, so that the
+//! timing does not profit from one branch pattern in the trigonometry.
 
 use armkit::kinematics::{forward_kinematics, jacobian, Data, JacobianFrame};
 use criterion::{criterion_group, criterion_main, Criterion};
+use rand::{Rng, SeedableRng};
 use std::hint::black_box;
+
+fn random_configurations(model: &armkit::Model, count: usize) -> Vec<Vec<f64>> {
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(1);
+    (0..count)
+        .map(|_| {
+            model
+                .joints()
+                .iter()
+                .map(|joint| {
+                    let (lower, upper) = (joint.limits.lower, joint.limits.upper);
+                    if lower.is_finite() && upper.is_finite() {
+                        rng.gen_range(lower..=upper)
+                    } else {
+                        rng.gen_range(-std::f64::consts::PI..=std::f64::consts::PI)
+                    }
+                })
+                .collect()
+        })
+        .collect()
+}
 
 fn bench_robot(c: &mut Criterion, name: &str) {
     let model = armkit::robots::by_name(name).unwrap();
     let mut data = Data::new(&model);
-    let q: Vec<f64> = model
-        .joints()
-        .iter()
-        .enumerate()
-        .map(|(j, joint)| joint.limits.midpoint() + 0.1 * (j as f64 + 1.0))
-        .collect();
+    let configurations = random_configurations(&model, 1024);
+    let mut next = configurations.iter().cycle();
     c.bench_function(&format!("fk/{name}"), |b| {
         b.iter(|| {
-            forward_kinematics(&model, &mut data, black_box(&q)).unwrap();
+            let q = next.next().unwrap();
+            forward_kinematics(&model, &mut data, black_box(q)).unwrap();
         })
     });
     c.bench_function(&format!("fk+jacobian/{name}"), |b| {
         b.iter(|| {
-            jacobian(&model, &mut data, black_box(&q), JacobianFrame::World).unwrap();
+            let q = next.next().unwrap();
+            jacobian(&model, &mut data, black_box(q), JacobianFrame::World).unwrap();
         })
     });
 }

@@ -44,6 +44,8 @@ pub enum JacobianFrame {
 pub struct Data {
     dof: usize,
     effective_positions: Vec<f64>,
+    /// `(sin, cos)` of each effective joint position (used for rotational joints).
+    joint_sin_cos: Vec<(f64, f64)>,
     joint_frames: Vec<Pose>,
     end_effector: Pose,
     jacobian: Matrix6xX<f64>,
@@ -56,6 +58,7 @@ impl Data {
         Data {
             dof,
             effective_positions: vec![0.0; dof],
+            joint_sin_cos: vec![(0.0, 1.0); dof],
             joint_frames: vec![Pose::identity(); dof],
             end_effector: Pose::identity(),
             jacobian: Matrix6xX::zeros(dof),
@@ -114,14 +117,26 @@ pub fn forward_kinematics<'d>(model: &Model, data: &'d mut Data, q: &[f64]) -> R
         let (offset, _) = coupling.law.offset_and_slope(q[coupling.source]);
         data.effective_positions[coupling.target] += offset;
     }
+    // All the trigonometry first, in a loop of its own: the calls are
+    // independent, so the processor overlaps them, where inside the chain
+    // below each would wait for the previous frame product.
+    for ((sc, &value), joint) in data
+        .joint_sin_cos
+        .iter_mut()
+        .zip(&data.effective_positions)
+        .zip(model.joints())
+    {
+        if joint.kind.is_rotational() {
+            *sc = sin_cos(value);
+        }
+    }
     let mut frame = Pose::identity();
     for (j, placement) in model.joint_placements().iter().enumerate() {
         frame = &frame * placement;
-        let value = data.effective_positions[j];
         if model.joints()[j].kind.is_rotational() {
-            rotate_about_local_z(&mut frame, value);
+            rotate_about_local_z(&mut frame, data.joint_sin_cos[j]);
         } else {
-            frame.translation += frame.rotation.column(2) * value;
+            frame.translation += frame.rotation.column(2) * data.effective_positions[j];
         }
         data.joint_frames[j] = frame;
     }
@@ -146,10 +161,10 @@ fn check_pose_is_finite(pose: &Pose) -> Result<()> {
     })
 }
 
-/// `frame = frame * Rz(angle)`: mixes the first two rotation columns.
+/// `frame = frame * Rz(angle)`, given `(sin angle, cos angle)`: mixes the
+/// first two rotation columns.
 #[inline(always)]
-fn rotate_about_local_z(frame: &mut Pose, angle: f64) {
-    let (s, c) = sin_cos(angle);
+fn rotate_about_local_z(frame: &mut Pose, (s, c): (f64, f64)) {
     let x = frame.rotation.column(0).into_owned();
     let y = frame.rotation.column(1).into_owned();
     frame.rotation.set_column(0, &(x * c + y * s));
