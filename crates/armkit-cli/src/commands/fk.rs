@@ -2,6 +2,7 @@
 
 use armkit::kinematics::{forward_kinematics, jacobian, Data, JacobianFrame};
 use armkit::math::Pose;
+use armkit::Model;
 use clap::{Args, ValueEnum};
 
 use crate::common::{
@@ -23,6 +24,17 @@ pub struct ConfigurationArgs {
     /// Print JSON.
     #[arg(long)]
     pub json: bool,
+}
+
+impl ConfigurationArgs {
+    /// The robot and the joint positions, checked against its limits unless
+    /// `--allow-out-of-limits` is given.
+    pub fn load(&self) -> CliResult<(Model, Vec<f64>)> {
+        let model = self.robot.load()?;
+        let policy = LimitPolicy::from_flag(self.allow_out_of_limits);
+        let q = parse_joint_positions(&self.q, &model, policy)?;
+        Ok((model, q))
+    }
 }
 
 /// Forward kinematics: the end-effector pose in the world frame.
@@ -53,12 +65,7 @@ pub enum FrameArg {
 
 /// Runs `armkit fk`.
 pub fn run_fk(args: &FkArgs) -> CliResult<Outcome> {
-    let model = args.config.robot.load()?;
-    let q = parse_joint_positions(
-        &args.config.q,
-        &model,
-        LimitPolicy::from_flag(args.config.allow_out_of_limits),
-    )?;
+    let (model, q) = args.config.load()?;
     let mut data = Data::new(&model);
     let pose = *forward_kinematics(&model, &mut data, &q)?;
     if args.config.json {
@@ -94,12 +101,7 @@ pub fn describe_pose(robot: &str, pose: &Pose) -> String {
 
 /// Runs `armkit jacobian`.
 pub fn run_jacobian(args: &JacobianArgs) -> CliResult<Outcome> {
-    let model = args.config.robot.load()?;
-    let q = parse_joint_positions(
-        &args.config.q,
-        &model,
-        LimitPolicy::from_flag(args.config.allow_out_of_limits),
-    )?;
+    let (model, q) = args.config.load()?;
     let mut data = Data::new(&model);
     let frame = match args.frame {
         FrameArg::World => JacobianFrame::World,

@@ -10,7 +10,7 @@ use armkit::singularity::{
 use clap::Args;
 
 use crate::commands::fk::ConfigurationArgs;
-use crate::common::{parse_joint_positions, print_json, CliResult, LimitPolicy, Outcome};
+use crate::common::{print_json, CliResult, Outcome};
 
 /// Arguments of `armkit manipulability`.
 #[derive(Args, Debug)]
@@ -25,12 +25,7 @@ pub struct ManipulabilityArgs {
 
 /// Runs `armkit manipulability`.
 pub fn run(args: &ManipulabilityArgs) -> CliResult<Outcome> {
-    let model = args.config.robot.load()?;
-    let q = parse_joint_positions(
-        &args.config.q,
-        &model,
-        LimitPolicy::from_flag(args.config.allow_out_of_limits),
-    )?;
+    let (model, q) = args.config.load()?;
     let options = ClassifyOptions {
         tolerance: args.tolerance,
     };
