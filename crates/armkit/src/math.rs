@@ -21,7 +21,7 @@ pub use nalgebra::{
 };
 
 mod trig;
-pub use trig::sin_cos;
+pub use trig::{sin_cos, sin_cos_slice};
 
 /// A rigid transform `T = [R p; 0 1]`: rotation `R` (orthonormal 3 x 3) and
 /// translation `p` (metres).

@@ -22,7 +22,7 @@ mod measures;
 pub use measures::{condition_number, manipulability, singular_values, smallest_singular_value};
 
 use crate::error::{Error, Result};
-use crate::math::{sin_cos, Matrix6xX, Pose, Vector3};
+use crate::math::{sin_cos_slice, Matrix6xX, Pose, Vector3};
 use crate::model::Model;
 
 /// The frame in whose axes a Jacobian is expressed.
@@ -120,16 +120,7 @@ pub fn forward_kinematics<'d>(model: &Model, data: &'d mut Data, q: &[f64]) -> R
     // All the trigonometry first, in a loop of its own: the calls are
     // independent, so the processor overlaps them, where inside the chain
     // below each would wait for the previous frame product.
-    for ((sc, &value), joint) in data
-        .joint_sin_cos
-        .iter_mut()
-        .zip(&data.effective_positions)
-        .zip(model.joints())
-    {
-        if joint.kind.is_rotational() {
-            *sc = sin_cos(value);
-        }
-    }
+    sin_cos_slice(&data.effective_positions, &mut data.joint_sin_cos);
     let mut frame = Pose::identity();
     for (j, placement) in model.joint_placements().iter().enumerate() {
         frame = &frame * placement;
