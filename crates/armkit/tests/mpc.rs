@@ -17,7 +17,7 @@ use armkit::mpc::qp::{
     upper_index, upper_triangle_len, QpOutcome, QpProblem, QpSolver, QpSolverKind, QpStatus,
 };
 use armkit::mpc::scenario::{position_violation, Seed000Example};
-use armkit::mpc::{MpcOptions, MpcPlanner, StepStatus, TaskWeights, VelocityWeights};
+use armkit::mpc::{MpcOptions, MpcPlanner, ReachAid, StepStatus, TaskWeights, VelocityWeights};
 use armkit::Error;
 use rand::Rng;
 
@@ -228,6 +228,8 @@ fn without_active_constraints_the_qp_equals_the_closed_form_solution() {
                     task_weights: weights,
                     increment_weights: Some(r.clone()),
                     solver,
+                    // The closed form is seed 000's cost alone.
+                    reach: ReachAid::Off,
                     ..MpcOptions::default()
                 };
                 let t = options.sample_time;
@@ -577,17 +579,29 @@ fn bad_options_are_rejected_with_their_name() {
         ),
         (
             MpcOptions {
-                velocity_limits: Some(vec![1.0, 1.0, f64::NAN, 1.0, 1.0, 1.0]),
+                joint_limits: Some(
+                    (0..6)
+                        .map(|j| armkit::model::JointLimits {
+                            velocity: Some(if j == 2 { f64::NAN } else { 1.0 }),
+                            ..armkit::model::JointLimits::position(-3.0, 3.0)
+                        })
+                        .collect(),
+                ),
                 ..MpcOptions::default()
             },
-            "velocity_limits",
+            "joint 2: velocity limit must be finite and > 0, got NaN",
         ),
         (
             MpcOptions {
-                position_limits: Some((vec![0.0; 6], vec![1.0, 1.0, -1.0, 1.0, 1.0, 1.0])),
+                joint_limits: Some(
+                    [1.0, 1.0, -1.0, 1.0, 1.0, 1.0]
+                        .iter()
+                        .map(|&upper| armkit::model::JointLimits::position(0.0, upper))
+                        .collect(),
+                ),
                 ..MpcOptions::default()
             },
-            "joint 2: contradictory limits [0, -1]",
+            "joint 2: contradictory position limits [0, -1]",
         ),
         (
             MpcOptions {
