@@ -21,8 +21,11 @@
 //! joint-space path to `q_g` never leaves them; both terms vanish at `q_g`,
 //! so the term adds no steady-state error; it also fades out near the
 //! target ([`GoalPostureOptions::fade_error`]). When the task error stops
-//! falling for [`GoalPostureOptions::stall_steps`] steps the goal posture is
-//! searched again from where the arm is (another IK seed).
+//! falling for [`GoalPostureOptions::stall_steps`] steps, the pull is made
+//! stronger (the task cost holds the arm in a local minimum against it; a
+//! strong enough pull moves it along the straight joint-space path to
+//! `q_g`), and a goal posture not found yet is searched again from where
+//! the arm is (another IK seed).
 //!
 //! ```
 //! use armkit::mpc::{GoalPostureOptions, MpcOptions, ReachAid};
@@ -40,6 +43,9 @@ use crate::model::Model;
 
 use super::TaskWeights;
 
+/// Largest factor the stalls can put on the pull.
+const MAX_ESCALATION: f64 = 1e3;
+
 /// Settings of the goal posture ([`super::ReachAid::GoalPosture`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct GoalPostureOptions {
@@ -51,9 +57,14 @@ pub struct GoalPostureOptions {
     /// Converged IK solutions compared for the one nearest the current
     /// configuration (>= 1). Default 4.
     pub candidates: usize,
-    /// Steps without a 1 % fall of the task error after which the goal
-    /// posture is searched again (>= 1). Default 60.
+    /// Steps without a 1 % fall of the task error that count as a stall
+    /// (>= 1). Default 60. On a stall the pull is made
+    /// [`GoalPostureOptions::stall_gain`] times stronger (the linearised
+    /// task cost is holding the arm in a local minimum against it), and a
+    /// goal posture not found yet is searched again.
     pub stall_steps: usize,
+    /// Factor on the pull after each stall (>= 1). Default 4.
+    pub stall_gain: f64,
     /// Searches at most per target (>= 1). Default 4.
     pub max_searches: usize,
     /// Seed of the IK restarts (each search adds its index). Default 0.
@@ -71,6 +82,7 @@ impl Default for GoalPostureOptions {
             ik_restarts: 300,
             candidates: 4,
             stall_steps: 60,
+            stall_gain: 4.0,
             max_searches: 4,
             seed: 0,
             fade_error: 0.02,
@@ -83,6 +95,12 @@ impl GoalPostureOptions {
     pub fn validate(&self) -> Result<()> {
         check_positive("reach.weight", self.weight)?;
         check_positive("reach.fade_error", self.fade_error)?;
+        if !(self.stall_gain.is_finite() && self.stall_gain >= 1.0) {
+            return Err(Error::invalid_argument(
+                "reach.stall_gain",
+                format!("must be finite and >= 1, got {}", self.stall_gain),
+            ));
+        }
         for (name, value) in [
             ("reach.ik_restarts", self.ik_restarts),
             ("reach.candidates", self.candidates),
@@ -125,6 +143,8 @@ pub(crate) struct GoalPosture {
     searches: usize,
     best_error: f64,
     steps_since_progress: usize,
+    /// Product of the stall gains so far (1 for a new target).
+    escalation: f64,
 }
 
 impl GoalPosture {
@@ -153,6 +173,7 @@ impl GoalPosture {
             searches: 0,
             best_error: f64::INFINITY,
             steps_since_progress: 0,
+            escalation: 1.0,
         })
     }
 
@@ -162,6 +183,7 @@ impl GoalPosture {
         self.searches = 0;
         self.best_error = f64::INFINITY;
         self.steps_since_progress = 0;
+        self.escalation = 1.0;
     }
 
     /// Before a step at `q` with task error `error` (the weighted norm):
@@ -175,9 +197,17 @@ impl GoalPosture {
             self.steps_since_progress += 1;
         }
         let stalled = self.steps_since_progress >= self.options.stall_steps && error > tolerance;
+        if stalled {
+            self.steps_since_progress = 0;
+            self.best_error = error;
+            if self.search == GoalSearch::Found {
+                self.escalation = (self.escalation * self.options.stall_gain).min(MAX_ESCALATION);
+            }
+        }
         let search = match self.search {
             GoalSearch::Pending => true,
-            _ => stalled && self.searches < self.options.max_searches,
+            GoalSearch::NotFound { .. } => stalled && self.searches < self.options.max_searches,
+            GoalSearch::Found => false,
         };
         if search {
             self.search_from(target, q)?;
@@ -194,7 +224,7 @@ impl GoalPosture {
     /// ([`super::MpcPlanner::step_with_measured_pose`]), whose goal posture
     /// the model's IK cannot know, still converges.
     pub fn fade(&self, error: f64) -> f64 {
-        (error / self.options.fade_error).min(1.0)
+        self.escalation * (error / self.options.fade_error).min(1.0)
     }
 
     fn search_from(&mut self, target: &Pose, q: &[f64]) -> Result<()> {
