@@ -358,6 +358,33 @@ impl std::fmt::Display for QpSolverKind {
     }
 }
 
+/// Clarabel's accuracy settings.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ClarabelAccuracy {
+    /// Gap and feasibility tolerances 1e-8 (Clarabel's defaults), no
+    /// iterative refinement: the planner's backend.
+    Planner,
+    /// Tolerances 1e-12 (kt ratio 1e-10) and iterative refinement: the reference the
+    /// active-set solver is checked against.
+    Reference,
+}
+
+impl ClarabelAccuracy {
+    fn tolerance(self) -> f64 {
+        match self {
+            ClarabelAccuracy::Planner => 1e-8,
+            ClarabelAccuracy::Reference => 1e-12,
+        }
+    }
+
+    fn ktratio_tolerance(self) -> f64 {
+        match self {
+            ClarabelAccuracy::Planner => 1e-6,
+            ClarabelAccuracy::Reference => 1e-10,
+        }
+    }
+}
+
 /// The Clarabel backend: `lower <= A x <= upper` becomes `[A; -A] x + s =
 /// [upper; -lower]`, `s >= 0` (Clarabel's non-negative cone). Presolve and
 /// zero-dropping are off so that the problem data can be updated in place.
@@ -372,8 +399,15 @@ pub struct ClarabelQp {
 }
 
 impl ClarabelQp {
-    /// Sets the backend up for `problem` (this allocates; solves do not).
+    /// Sets the backend up for `problem` (this allocates; solves do not),
+    /// with the planner's settings: Clarabel's default tolerances (1e-8),
+    /// no iterative refinement.
     pub fn new(problem: &QpProblem) -> Result<Self> {
+        Self::with_accuracy(problem, ClarabelAccuracy::Planner)
+    }
+
+    /// As [`ClarabelQp::new`] with the given accuracy settings.
+    pub fn with_accuracy(problem: &QpProblem, accuracy: ClarabelAccuracy) -> Result<Self> {
         use clarabel::algebra::CscMatrix as ClarabelCsc;
         use clarabel::solver::{DefaultSettingsBuilder, DefaultSolver, SupportedConeT};
         let n = problem.variables;
@@ -410,7 +444,11 @@ impl ClarabelQp {
             // Iterative refinement of the KKT solves costs ~30 % of the
             // solve on this small, well-regularised problem; the closed-form
             // and limit tests pass without it.
-            .iterative_refinement_enable(false)
+            .iterative_refinement_enable(accuracy == ClarabelAccuracy::Reference)
+            .tol_gap_abs(accuracy.tolerance())
+            .tol_gap_rel(accuracy.tolerance())
+            .tol_feas(accuracy.tolerance())
+            .tol_ktratio(accuracy.ktratio_tolerance())
             .build()
             .map_err(|e| numerical("Clarabel settings", e.to_string()))?;
         let solver = DefaultSolver::new(&p, &problem.gradient, &stacked, &b, &cones, settings)
@@ -427,6 +465,22 @@ impl ClarabelQp {
             q: problem.gradient.clone(),
             b,
         })
+    }
+}
+
+impl ClarabelQp {
+    /// The multipliers of the last solve's rows, `(lower side, upper side)`
+    /// (`m` values each, >= 0): a row is active on the side whose
+    /// multiplier exceeds its slack (complementarity), the classification
+    /// the active-set solver is checked against.
+    pub fn bound_multipliers(&self) -> (&[f64], &[f64]) {
+        let z = &self.solver.solution.z;
+        let m = self.b.len() / 2;
+        if z.len() == 2 * m {
+            (&z[m..], &z[..m])
+        } else {
+            (&[], &[])
+        }
     }
 }
 
