@@ -85,7 +85,10 @@ fn an_unreachable_target_exits_3_without_crossing_a_limit() {
     let v = json(&output);
     assert_eq!(v["converged"], false);
     assert_eq!(v["status"], "unreachable");
-    assert!(v["status_detail"].as_str().unwrap().starts_with("unreachable"));
+    assert!(v["status_detail"]
+        .as_str()
+        .unwrap()
+        .starts_with("unreachable"));
     assert!(v["final_position_error"].as_f64().unwrap() > 1.0);
     assert_eq!(v["max_velocity_violation"].as_f64().unwrap(), 0.0);
     assert_eq!(v["max_position_violation"].as_f64().unwrap(), 0.0);
@@ -217,7 +220,11 @@ fn a_target_the_plain_planner_misses_is_reached_with_the_goal_posture() {
     assert_eq!(plain.status.code(), Some(3), "{}", stderr(&plain));
     let v = json(&plain);
     assert_eq!(v["status"], "joint-limit", "{v}");
-    assert!(stderr(&plain).contains("joint limit: stopped at the"), "{}", stderr(&plain));
+    assert!(
+        stderr(&plain).contains("joint limit: stopped at the"),
+        "{}",
+        stderr(&plain)
+    );
     let helped = armkit(&["mpc", "--robot", "panda", "--target", target, "--json"]);
     assert!(helped.status.success(), "{}", stderr(&helped));
     let v = json(&helped);

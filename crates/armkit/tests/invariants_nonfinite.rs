@@ -1012,13 +1012,17 @@ fn mpc_rejects_non_finite_numbers() {
     );
     let limits_of_ur5: Vec<armkit::model::JointLimits> =
         ur5.joints().iter().map(|j| j.limits).collect();
-    cases.rejects_each("MpcPlanner::new joint_limits velocity", "joint_limits", |b| {
-        options_with(&|o| {
-            let mut limits = limits_of_ur5.clone();
-            limits[5].velocity = Some(b);
-            o.joint_limits = Some(limits)
-        })
-    });
+    cases.rejects_each(
+        "MpcPlanner::new joint_limits velocity",
+        "joint_limits",
+        |b| {
+            options_with(&|o| {
+                let mut limits = limits_of_ur5.clone();
+                limits[5].velocity = Some(b);
+                o.joint_limits = Some(limits)
+            })
+        },
+    );
     cases.rejects_each(
         "MpcPlanner::new velocity_weights",
         "velocity_weights",

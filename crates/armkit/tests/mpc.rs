@@ -737,7 +737,10 @@ fn a_target_beyond_a_joint_limit_is_reported_with_that_joint() {
             "reach {reach}: {status}"
         );
         assert_eq!(status.as_str(), "joint-limit");
-        assert!(status.to_string().contains("upper limit of joint 0"), "{status}");
+        assert!(
+            status.to_string().contains("upper limit of joint 0"),
+            "{status}"
+        );
         // And a converged run says so.
         assert_eq!(
             diagnose_run(&planner, last, true).unwrap(),
@@ -756,7 +759,10 @@ fn every_status_has_a_name_and_a_display() {
         StepStatus::Stopped(QpStatus::Infeasible).to_string(),
         "stopped (infeasible)"
     );
-    assert_eq!(StepStatus::Stopped(QpStatus::IterationLimit).as_str(), "stopped");
+    assert_eq!(
+        StepStatus::Stopped(QpStatus::IterationLimit).as_str(),
+        "stopped"
+    );
     assert_eq!(QpStatus::SolvedInaccurate.to_string(), "solved-inaccurate");
     assert_eq!(QpStatus::NumericalFailure.as_str(), "numerical-failure");
     assert_eq!(ReachAid::Off.to_string(), "off");

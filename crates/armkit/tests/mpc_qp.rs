@@ -90,10 +90,7 @@ impl Shape {
 }
 
 /// A random instance of `shape`: `(P upper, q, lower, upper)`.
-fn random_instance(
-    shape: &Shape,
-    rng: &mut impl Rng,
-) -> (Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>) {
+fn random_instance(shape: &Shape, rng: &mut impl Rng) -> (Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>) {
     let (dof, n) = (shape.dof, shape.dof * shape.m);
     let bt: Vec<f64> = (0..6 * dof)
         .map(|_| SAMPLE_TIME * rng.gen_range(-1.5..1.5))
@@ -108,7 +105,9 @@ fn random_instance(
     let mut gram_terminal = vec![0.0; dof * dof];
     weighted_gram(&bt, &weights, &mut gram);
     weighted_gram(&bt, &terminal, &mut gram_terminal);
-    let r: Vec<f64> = (0..dof).map(|_| 10f64.powf(rng.gen_range(-1.0..1.0))).collect();
+    let r: Vec<f64> = (0..dof)
+        .map(|_| 10f64.powf(rng.gen_range(-1.0..1.0)))
+        .collect();
     let w: Vec<f64> = r.iter().map(|x| 0.01 * x).collect();
     let mut hessian = vec![0.0; upper_triangle_len(n)];
     shape
@@ -118,15 +117,9 @@ fn random_instance(
     let drift: [f64; 6] = std::array::from_fn(|_| rng.gen_range(-0.05..0.05));
     let wv: Vec<f64> = w.iter().map(|x| x * rng.gen_range(-1.0..1.0)).collect();
     let mut gradient = vec![0.0; n];
-    shape.condensation.fill_gradient(
-        &bt,
-        &error,
-        &drift,
-        &weights,
-        &terminal,
-        &wv,
-        &mut gradient,
-    );
+    shape
+        .condensation
+        .fill_gradient(&bt, &error, &drift, &weights, &terminal, &wv, &mut gradient);
     // Bounds around a random point, some of them narrow: the unconstrained
     // minimiser crosses several.
     let x0: Vec<f64> = (0..n).map(|_| rng.gen_range(-0.2..0.2)).collect();
@@ -148,7 +141,12 @@ const WEAK: f64 = 1e-5;
 fn weakly_active(shape: &Shape, x: &[f64], lower: &[f64], upper: &[f64]) -> bool {
     let n = x.len();
     let working: Vec<usize> = shape.active_set.active_set().map(|(i, _)| i).collect();
-    if shape.active_set.active_multipliers().iter().any(|&u| u < WEAK) {
+    if shape
+        .active_set
+        .active_multipliers()
+        .iter()
+        .any(|&u| u < WEAK)
+    {
         return true;
     }
     (0..shape.rows).any(|i| {
@@ -217,7 +215,10 @@ fn polish(
             BoundSide::Upper => -upper[i],
         };
     }
-    let solution = kkt.lu().solve(&rhs).expect("KKT system of an independent active set");
+    let solution = kkt
+        .lu()
+        .solve(&rhs)
+        .expect("KKT system of an independent active set");
     (
         solution.rows(0, n).iter().copied().collect(),
         solution.rows(n, k).iter().copied().collect(),
@@ -266,8 +267,8 @@ fn kkt_residual(
             BoundSide::Lower => 1.0,
             BoundSide::Upper => -1.0,
         };
-        for c in 0..n {
-            residual[c] -= u * sign * shape.dense[i * n + c];
+        for (r, a) in residual.iter_mut().zip(&shape.dense[i * n..(i + 1) * n]) {
+            *r -= u * sign * a;
         }
     }
     let mut worst = residual.iter().fold(0.0f64, |m, v| m.max(v.abs()));
@@ -298,11 +299,16 @@ fn active_set_matches_clarabel_on_random_qps_of_the_mpc_shape() {
         let outcome = shape
             .active_set
             .solve(&hessian, &gradient, &lower, &upper, &mut x);
-        let reference_outcome = shape
-            .clarabel
-            .solve(&hessian, &gradient, &lower, &upper, &mut reference);
+        let reference_outcome =
+            shape
+                .clarabel
+                .solve(&hessian, &gradient, &lower, &upper, &mut reference);
         assert_eq!(outcome.status, QpStatus::Solved, "QP {k}");
-        assert_eq!(reference_outcome.status, QpStatus::Solved, "QP {k} (clarabel)");
+        assert_eq!(
+            reference_outcome.status,
+            QpStatus::Solved,
+            "QP {k} (clarabel)"
+        );
         // The same minimiser. An interior-point answer is least accurate
         // along the Hessian's flat directions (M = 5 makes P ill-conditioned):
         // Clarabel's raw x is within a few 1e-6 of the exact one. So the
@@ -322,7 +328,10 @@ fn active_set_matches_clarabel_on_random_qps_of_the_mpc_shape() {
                 .iter()
                 .zip(&reference)
                 .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
-            assert!(raw_gap <= 1e-5, "QP {k}: raw solutions differ by {raw_gap:.3e}");
+            assert!(
+                raw_gap <= 1e-5,
+                "QP {k}: raw solutions differ by {raw_gap:.3e}"
+            );
             assert!(kkt_residual(shape, &hessian, &gradient, &lower, &upper, &x) <= 1e-9);
             continue;
         }
@@ -347,7 +356,10 @@ fn active_set_matches_clarabel_on_random_qps_of_the_mpc_shape() {
         largest_raw_gap = largest_raw_gap.max(raw_gap);
         largest_gap = largest_gap.max(gap);
         assert!(gap <= 1e-6, "QP {k}: solutions differ by {gap:.3e}");
-        assert!(raw_gap <= 1e-5, "QP {k}: raw solutions differ by {raw_gap:.3e}");
+        assert!(
+            raw_gap <= 1e-5,
+            "QP {k}: raw solutions differ by {raw_gap:.3e}"
+        );
         let objective = quadratic(&hessian, &x) / 2.0 + dot(&gradient, &x);
         let reference_objective =
             quadratic(&hessian, &reference) / 2.0 + dot(&gradient, &reference);
@@ -378,7 +390,10 @@ fn active_set_matches_clarabel_on_random_qps_of_the_mpc_shape() {
          {degenerate} with a weakly active row (minimiser compared only)",
         total_active as f64 / (count - degenerate) as f64
     );
-    assert!(degenerate * 200 <= count, "{degenerate} degenerate instances");
+    assert!(
+        degenerate * 200 <= count,
+        "{degenerate} degenerate instances"
+    );
     // The instances do exercise the constraints.
     assert!(total_active as f64 / count as f64 > 2.0);
 }
@@ -468,7 +483,10 @@ fn duplicate_constraints_give_the_single_constraint_answer() {
         &mut x,
     );
     assert_eq!(outcome.status, QpStatus::Solved);
-    assert!((x[0] - 0.5).abs() < 1e-12 && (x[1] - 0.5).abs() < 1e-12, "{x:?}");
+    assert!(
+        (x[0] - 0.5).abs() < 1e-12 && (x[1] - 0.5).abs() < 1e-12,
+        "{x:?}"
+    );
     assert_eq!(solver.active_set().count(), 1);
     // The same row with a tighter bound second: the tighter one is the
     // active one, the looser one leaves the working set.
@@ -480,7 +498,10 @@ fn duplicate_constraints_give_the_single_constraint_answer() {
         &mut x,
     );
     assert_eq!(outcome.status, QpStatus::Solved);
-    assert!((x[0] - 0.25).abs() < 1e-12 && (x[1] - 0.25).abs() < 1e-12, "{x:?}");
+    assert!(
+        (x[0] - 0.25).abs() < 1e-12 && (x[1] - 0.25).abs() < 1e-12,
+        "{x:?}"
+    );
     assert_eq!(
         solver.active_set().collect::<Vec<_>>(),
         vec![(1, BoundSide::Upper)]
@@ -520,7 +541,10 @@ fn a_zero_hessian_row_is_a_numerical_failure_that_the_fallback_solves() {
     assert!(outcome.status.has_solution(), "{:?}", outcome.status);
     assert!(with_fallback.last_used_fallback());
     assert_eq!(with_fallback.fallback_solves(), 1);
-    assert!((x[0] - 1.0).abs() < 1e-6 && (x[1] + 2.0).abs() < 1e-6, "{x:?}");
+    assert!(
+        (x[0] - 1.0).abs() < 1e-6 && (x[1] + 2.0).abs() < 1e-6,
+        "{x:?}"
+    );
 }
 
 #[test]

@@ -95,7 +95,10 @@ fn random_targets(model: &Model, count: usize, seed: u64, reach: &ReachAid) -> V
 /// converge, each within its tolerances, and every other one has a cause.
 fn report(name: &str, reach: &ReachAid, outcomes: &[Outcome], min_converged: f64) {
     let n = outcomes.len();
-    let converged: Vec<&Outcome> = outcomes.iter().filter(|o| o.status.is_converged()).collect();
+    let converged: Vec<&Outcome> = outcomes
+        .iter()
+        .filter(|o| o.status.is_converged())
+        .collect();
     let mut steps: Vec<usize> = converged.iter().map(|o| o.steps).collect();
     steps.sort();
     println!(

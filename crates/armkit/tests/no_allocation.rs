@@ -182,7 +182,10 @@ fn an_mpc_step_on_osqp_does_not_allocate() {
 fn an_mpc_step_on_the_active_set_solver_does_not_allocate() {
     for m in [1, 5] {
         let count = allocations_per_60_steps(m, |p| QpSolverKind::ActiveSet.build(p));
-        assert_eq!(count, 0, "active-set M={m}: {count} allocations in 60 steps");
+        assert_eq!(
+            count, 0,
+            "active-set M={m}: {count} allocations in 60 steps"
+        );
     }
 }
 
@@ -215,7 +218,10 @@ fn an_mpc_step_with_the_goal_posture_does_not_allocate_after_its_search() {
             q.iter_mut().zip(&velocity).for_each(|(q, v)| *q += t * v);
         }
         let count = allocations() - before;
-        assert_eq!(count, 0, "goal posture M={m}: {count} allocations in 40 steps");
+        assert_eq!(
+            count, 0,
+            "goal posture M={m}: {count} allocations in 40 steps"
+        );
     }
 }
 

@@ -23,9 +23,7 @@ use std::path::PathBuf;
 
 use armkit::mpc::qp::QpSolverKind;
 use armkit::mpc::scenario::{simulate_with, Seed000Example, SimulationOptions, Trajectory};
-use armkit::mpc::{
-    diagnose_run, MpcOptions, MpcPlanner, ReachAid, TaskWeights, VelocityWeights,
-};
+use armkit::mpc::{diagnose_run, MpcOptions, MpcPlanner, ReachAid, TaskWeights, VelocityWeights};
 use clap::{Args, ValueEnum};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
@@ -418,4 +416,3 @@ fn print_files(files: &[PathBuf]) {
         );
     }
 }
-

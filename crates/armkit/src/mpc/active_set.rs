@@ -215,7 +215,7 @@ impl ActiveSetQp {
                     v -= l[r + n * k] * l[c + n * k];
                 }
                 if r == c {
-                    if !(v > 1e-14 * (1.0 + hessian_upper[upper_index(c, c)].abs())) {
+                    if v.is_nan() || v <= 1e-14 * (1.0 + hessian_upper[upper_index(c, c)].abs()) {
                         return false;
                     }
                     l[c + n * c] = v.sqrt();
@@ -335,7 +335,7 @@ impl ActiveSetQp {
         };
         self.active.clear();
         self.multipliers.clear();
-        if (0..m).any(|i| !(lower[i] <= upper[i])) {
+        if (0..m).any(|i| lower[i].is_nan() || upper[i].is_nan() || lower[i] > upper[i]) {
             return fail(QpStatus::Infeasible);
         }
         if !self.factorise(hessian_upper) {
@@ -346,7 +346,9 @@ impl ActiveSetQp {
             self.d[c] = (0..=c).map(|k| self.j[k + n * c] * gradient[k]).sum();
         }
         for row in 0..n {
-            self.x[row] = -(row..n).map(|c| self.j[row + n * c] * self.d[c]).sum::<f64>();
+            self.x[row] = -(row..n)
+                .map(|c| self.j[row + n * c] * self.d[c])
+                .sum::<f64>();
         }
         let mut iterations = 0u32;
         loop {

@@ -5,6 +5,7 @@
 use crate::error::{Error, Result};
 use crate::model::{JointLimits, Model};
 
+use super::options::MpcOptions;
 use super::prediction;
 use super::qp::CscMatrix;
 
@@ -81,19 +82,22 @@ impl JointBounds {
     /// sum_{m<=l} du(m) <= vmax - v_old`. Position rows: for the constrained
     /// samples `i`, `q(k+i) = q + i T v_old + T sum_l c(i,l) du(l)` within
     /// `[lo_i, hi_i]`, the limits, relaxed for a joint outside them to what
-    /// it reaches returning at `recovery` of its speed limit. Returns whether
+    /// it reaches returning at [`MpcOptions::recovery_speed`] of its speed
+    /// limit. Returns whether
     /// a joint is outside its limits.
     pub fn fill(
         &self,
         q: &[f64],
         previous_velocity: &[f64],
-        control_horizon: usize,
-        sample_time: f64,
-        recovery: f64,
+        options: &MpcOptions,
         lower_out: &mut [f64],
         upper_out: &mut [f64],
     ) -> bool {
-        let t = sample_time;
+        let (t, control_horizon, recovery) = (
+            options.sample_time,
+            options.control_horizon,
+            options.recovery_speed,
+        );
         let nv = self.velocity_rows.len();
         for l in 0..control_horizon {
             for (k, &j) in self.velocity_rows.iter().enumerate() {
@@ -245,4 +249,3 @@ fn guard_position(q: f64, mut u: f64, t: f64, lower: f64, upper: f64) -> f64 {
     }
     u
 }
-

@@ -84,4 +84,3 @@ pub const DEFAULT_SAMPLE_TIME: f64 = 0.05;
 /// QP) are reported as [`StepStatus::Clamped`]; smaller crossings are solver
 /// round-off, clamped silently.
 pub const CLAMP_REPORT_THRESHOLD: f64 = 1e-6;
-

@@ -287,7 +287,6 @@ pub(crate) fn sized_option(
     }
 }
 
-
 /// What helps the planner out of the local minima of its linearised task
 /// cost (a joint limit or a singularity between the start and the target,
 /// where the task gradient vanishes or points into a limit).

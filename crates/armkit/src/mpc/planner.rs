@@ -491,9 +491,7 @@ impl MpcPlanner {
         let outside = self.bounds.fill(
             q,
             &self.previous_velocity,
-            self.options.control_horizon,
-            t,
-            self.options.recovery_speed,
+            &self.options,
             &mut self.bound_lower,
             &mut self.bound_upper,
         );

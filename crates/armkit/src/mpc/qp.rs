@@ -337,9 +337,9 @@ impl QpSolverKind {
     /// compiled in or rejects the problem.
     pub fn build(self, problem: &QpProblem) -> Result<Box<dyn QpSolver>> {
         match self {
-            QpSolverKind::ActiveSet => Ok(Box::new(
-                super::active_set::ActiveSetQp::with_fallback(problem)?,
-            )),
+            QpSolverKind::ActiveSet => Ok(Box::new(super::active_set::ActiveSetQp::with_fallback(
+                problem,
+            )?)),
             QpSolverKind::Clarabel => Ok(Box::new(ClarabelQp::new(problem)?)),
             #[cfg(feature = "osqp")]
             QpSolverKind::Osqp => Ok(Box::new(OsqpQp::new(problem)?)),
