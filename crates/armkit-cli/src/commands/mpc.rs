@@ -32,7 +32,7 @@ use crate::common::{
     LimitPolicy, Outcome, RobotArgs,
 };
 pub use report::example_report;
-use report::write_outputs;
+use report::{files_json, print_files, print_summary, summary_json, write_outputs};
 
 /// `armkit mpc` arguments.
 #[derive(Args, Debug)]
@@ -333,86 +333,4 @@ fn run_with_progress(
     });
     progress.finish_and_clear();
     Ok(run?)
-}
-
-fn summary_json(run: &Trajectory, planner: &MpcPlanner) -> serde_json::Value {
-    let s = &run.summary;
-    let times = planner.solve_times();
-    serde_json::json!({
-        "solver": planner.solver_name(),
-        "fallback_solves": planner.fallback_solves(),
-        "control_horizon": planner.options().control_horizon,
-        "reach": planner.options().reach.as_str(),
-        "solve_time_us": {
-            "median": times.median_us(),
-            "p99": times.p99_us(),
-            "max": times.max_us(),
-            "mean": times.mean_us(),
-            "steps": times.count(),
-        },
-        "converged": s.converged,
-        "final_position_error": s.final_position_error,
-        "final_orientation_error": s.final_orientation_error,
-        "tracks_orientation": run.tracks_orientation,
-        "steps": s.steps,
-        "sample_time": run.sample_time,
-        "max_velocity_violation": s.max_velocity_violation,
-        "max_position_violation": s.max_position_violation,
-        "non_solved_steps": s.non_solved_steps,
-        "max_prediction_error": s.max_prediction_error,
-    })
-}
-
-fn files_json(files: &[PathBuf]) -> serde_json::Value {
-    files
-        .iter()
-        .map(|f| f.display().to_string())
-        .collect::<Vec<_>>()
-        .into()
-}
-
-fn print_summary(run: &Trajectory, planner: &MpcPlanner) {
-    let s = &run.summary;
-    let orientation = if run.tracks_orientation {
-        format!("orientation error {:.3e} rad", s.final_orientation_error)
-    } else {
-        "orientation not tracked".to_string()
-    };
-    println!(
-        "  {} after {} steps ({:.2} s): position error {:.3e} m, {orientation}",
-        if s.converged {
-            "converged"
-        } else {
-            "NOT converged"
-        },
-        s.steps,
-        s.steps as f64 * run.sample_time,
-        s.final_position_error,
-    );
-    println!(
-        "  limits: max velocity violation {:.3e}, max position violation {:.3e}; {} steps not plainly solved",
-        s.max_velocity_violation, s.max_position_violation, s.non_solved_steps
-    );
-    let times = planner.solve_times();
-    println!(
-        "  QP ({}): solve time median {:.1} us, p99 {:.1} us, max {:.1} us over {} steps",
-        planner.solver_name(),
-        times.median_us(),
-        times.p99_us(),
-        times.max_us(),
-        times.count()
-    );
-}
-
-fn print_files(files: &[PathBuf]) {
-    if !files.is_empty() {
-        println!(
-            "  wrote {}",
-            files
-                .iter()
-                .map(|f| f.display().to_string())
-                .collect::<Vec<_>>()
-                .join(", ")
-        );
-    }
 }

@@ -27,6 +27,19 @@
 //! orientation (rad, world axes), each of the 6 coordinates weighted on its
 //! own ([`TaskWeights`]): position only, full pose, or any subset.
 //!
+//! The QP is solved by the dense active-set solver of [`active_set`]
+//! (Clarabel as its fallback and reference, OSQP optional; [`qp`]). The
+//! linearised task cost can hold the arm in a local minimum (a joint limit
+//! or a singularity in the way): [`ReachAid::GoalPosture`] (the default)
+//! adds a pull toward an IK goal posture ([`GoalPostureOptions`]);
+//! [`ReachAid::Off`] is seed 000's plain planner. A run that does not
+//! converge gets its cause from [`diagnose_run`] ([`RunStatus`]: unreachable,
+//! which joint limit, singularity, step limit).
+//!
+//! Layout: [`MpcOptions`] and its parts in `options`, the constraints of
+//! eqs 17-19 in `constraints`, the planner in `planner`, the goal posture in
+//! `reach`, run statuses in `outcome`, solve-time statistics in `timing`.
+//!
 //! Infeasibility is handled, never hidden: a start outside the position
 //! limits relaxes those joints' bounds to what they can reach moving back at
 //! [`MpcOptions::recovery_speed`] of their speed limit ([`StepStatus::Recovering`]);

@@ -10,11 +10,11 @@
 //!
 //! ```
 //! use armkit::mpc::{diagnose_run, MpcOptions, MpcPlanner, RunStatus};
-//! use armkit::math::{Pose, Vector3};
+//! use armkit::math::{Matrix3, Pose, Vector3};
 //! let model = armkit::robots::by_name("ur5").unwrap();
 //! let mut planner = MpcPlanner::new(&model, MpcOptions::default()).unwrap();
 //! // 5 m away: beyond the arm's reach.
-//! planner.set_target(&Pose::new(Default::default(), Vector3::new(5.0, 0.0, 0.0))).unwrap();
+//! planner.set_target(&Pose::new(Matrix3::identity(), Vector3::new(5.0, 0.0, 0.0))).unwrap();
 //! let q = model.neutral_configuration();
 //! let status = diagnose_run(&planner, &q, false).unwrap();
 //! assert_eq!(status.as_str(), "unreachable");

@@ -317,7 +317,10 @@ impl MpcPlanner {
     /// the model's forward kinematics of `q`. Returns the input to apply.
     ///
     /// Errors only on bad input (`q` of the wrong size or not finite); QP
-    /// trouble is a [`StepStatus`]. Allocates nothing.
+    /// trouble is a [`StepStatus`]. Allocates nothing, except the goal
+    /// posture's IK search ([`super::ReachAid::GoalPosture`]: at the first
+    /// step after [`MpcPlanner::set_target`], and after a stall while no
+    /// goal posture is found).
     pub fn step(&mut self, q: &[f64]) -> Result<&StepReport> {
         self.step_inner(q, None)
     }
