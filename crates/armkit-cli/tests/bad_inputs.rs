@@ -198,6 +198,15 @@ const FILES: &[(&str, &str)] = &[
         "scenario-robot-for-beam.toml",
         "name = \"s\"\ntitle = \"t\"\n[robot]\nbuiltin = \"ur5\"\n[beam]\n",
     ),
+    // Dynamics (issue 18): an inertia that is not positive semi-definite, a link without mass.
+    (
+        "indefinite-inertia.toml",
+        "convention = \"standard\"\n[[links]]\ntype = \"R\"\nd = 0\na = 1\nalpha = 0\nmass = 1.0\ninertia = [0.1, 0.1, -0.05, 0, 0, 0]\n",
+    ),
+    (
+        "second-link-massless.toml",
+        "convention = \"standard\"\n[[links]]\ntype = \"R\"\nd = 0\na = 1\nalpha = 0\nmass = 1.0\n[[links]]\ntype = \"R\"\nd = 0\na = 1\nalpha = 0\n",
+    ),
 ];
 
 /// Every case. Joint values for ur5 are 6, gantry9 9.
@@ -1290,6 +1299,111 @@ const CASES: &[Case] = &[
         "scenario",
         "a robot for a method with its own",
         &["run", "scenario-robot-for-beam.toml", "--out", "run-out"],
+        1,
+    ),
+    // dynamics.
+    case(
+        "dynamics",
+        "robot without masses",
+        &["dynamics", "--robot", "ur5", "--q", "0,0,0,0,0,0"],
+        1,
+    ),
+    case(
+        "dynamics",
+        "a link without mass (file)",
+        &[
+            "dynamics",
+            "--robot-file",
+            "second-link-massless.toml",
+            "--q",
+            "0,0",
+        ],
+        1,
+    ),
+    case(
+        "dynamics",
+        "coupled model (flexible gantry)",
+        &[
+            "dynamics",
+            "--robot",
+            "gantry9-flex",
+            "--q",
+            "1,2,0.5,0,0,0,0,0,0",
+        ],
+        1,
+    ),
+    case(
+        "dynamics",
+        "negative mass (file)",
+        &["dynamics", "--robot-file", "negative-mass.toml", "--q", "0"],
+        1,
+    ),
+    case(
+        "dynamics",
+        "inertia not positive semi-definite (file)",
+        &[
+            "dynamics",
+            "--robot-file",
+            "indefinite-inertia.toml",
+            "--q",
+            "0",
+        ],
+        1,
+    ),
+    case(
+        "dynamics",
+        "NaN velocity",
+        &[
+            "dynamics",
+            "--robot",
+            "space6r",
+            "--q",
+            "0,0,0,0,0,0",
+            "--v",
+            "0,nan,0,0,0,0",
+        ],
+        1,
+    ),
+    case(
+        "dynamics",
+        "accelerations of the wrong size",
+        &[
+            "dynamics",
+            "--robot",
+            "space6r",
+            "--q",
+            "0,0,0,0,0,0",
+            "--a",
+            "1,2",
+        ],
+        1,
+    ),
+    case(
+        "dynamics",
+        "torques of the wrong size",
+        &[
+            "dynamics",
+            "--robot",
+            "space6r",
+            "--q",
+            "0,0,0,0,0,0",
+            "--tau",
+            "1,2,3,4,5,6,7",
+        ],
+        1,
+    ),
+    case(
+        "dynamics",
+        "gravity of two values",
+        &[
+            "dynamics",
+            "--robot",
+            "space6r",
+            "--q",
+            "0,0,0,0,0,0",
+            "--gravity",
+            "0,-9.81",
+        ],
         1,
     ),
 ];

@@ -1,6 +1,7 @@
 //! One module per `armkit` subcommand.
 
 pub mod beam;
+pub mod dynamics;
 pub mod fk;
 pub mod ik;
 pub mod manipulability;
