@@ -542,3 +542,110 @@ fn one_link_pendulum_matches_closed_form() {
     let ddq = aba(&model, &mut data, &[q], &[1.3], &[0.0]).unwrap()[0];
     assert!((ddq + g / l * q.sin()).abs() < 1e-13, "{ddq}");
 }
+
+#[test]
+fn effort_limits_are_read_from_urdf_and_dh_files() {
+    let panda = load(
+        data_path("urdf/panda.urdf"),
+        &ChainSelection::between("panda_link0", "panda_link8"),
+    )
+    .unwrap();
+    let efforts: Vec<Option<f64>> = panda.joints().iter().map(|j| j.limits.effort).collect();
+    let expected = [87.0, 87.0, 87.0, 87.0, 12.0, 12.0, 12.0].map(Some);
+    assert_eq!(efforts, expected);
+    let text = "convention = \"standard\"\n[[links]]\ntype = \"R\"\nd = 0\na = 1\nalpha = 0\n\
+                qlim = [-1, 1]\ntlim = 35.5\nmass = 2.0\n";
+    let model =
+        armkit::description::parse_str(text, armkit::description::Format::Toml, "<t>").unwrap();
+    assert_eq!(model.joints()[0].limits.effort, Some(35.5));
+    let bad = text.replace("35.5", "-3");
+    let err = armkit::description::parse_str(&bad, armkit::description::Format::Toml, "<t>")
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("tlim") && err.contains("> 0"), "{err}");
+}
+
+#[test]
+fn time_scaling_brings_torques_within_limits_tightly() {
+    use armkit::dynamics::torque_limits::{
+        scale_to_torque_limits, torque_profile, TorqueCheckOptions, TorqueStatus,
+    };
+    use armkit::trajectory::profile::{rest_to_rest, ProfileShape};
+    let panda = load(
+        data_path("urdf/panda.urdf"),
+        &ChainSelection::between("panda_link0", "panda_link8"),
+    )
+    .unwrap();
+    let q0 = [0.0, -0.5, 0.0, -2.0, 0.0, 1.5, 0.0];
+    let qf = [1.5, 0.5, -1.0, -1.0, 1.0, 2.5, 1.0];
+    // 0.3 s is far too fast for the Panda's motors.
+    let traj = rest_to_rest(ProfileShape::Quintic, &q0, &qf, 0.3, None).unwrap();
+    let options = TorqueCheckOptions::default();
+    let scaled = scale_to_torque_limits(&panda, &traj, &options).unwrap();
+    assert_eq!(scaled.before.status, TorqueStatus::ExceedsLimits);
+    assert_eq!(scaled.after.status, TorqueStatus::WithinLimits);
+    assert!(scaled.factor > 1.5, "factor {}", scaled.factor);
+    assert!((scaled.trajectory.duration() - 0.3 * scaled.factor).abs() < 1e-12);
+    // Tight: some joint sits at its limit after scaling, and a slightly
+    // faster version exceeds it.
+    let worst = scaled
+        .after
+        .peaks
+        .iter()
+        .map(|p| p.ratio().unwrap())
+        .fold(0.0, f64::max);
+    assert!(worst > 1.0 - 1e-6 && worst <= 1.0, "{worst}");
+    let faster = traj.time_scaled(scaled.factor * (1.0 - 1e-4)).unwrap();
+    let report = torque_profile(&panda, &faster, &options).unwrap();
+    assert_eq!(report.status, TorqueStatus::ExceedsLimits);
+    // The scaling law: at the same point of the path tau_k = g + (tau - g) / k^2,
+    // checked against the RNEA run on the scaled trajectory.
+    let k2 = scaled.factor * scaled.factor;
+    for (i, (before, after)) in scaled
+        .before
+        .torques
+        .iter()
+        .zip(&scaled.after.torques)
+        .enumerate()
+    {
+        let g = &scaled.before.gravity[i];
+        for j in 0..7 {
+            let predicted = g[j] + (before[j] - g[j]) / k2;
+            assert!((predicted - after[j]).abs() < 1e-9 * (1.0 + before[j].abs()));
+        }
+    }
+    // Gravity alone above a limit: no timing helps, reported, unchanged.
+    let tight = TorqueCheckOptions {
+        limits: Some(vec![87.0, 1.0, 87.0, 87.0, 12.0, 12.0, 12.0]),
+        ..Default::default()
+    };
+    let scaled = scale_to_torque_limits(&panda, &traj, &tight).unwrap();
+    assert_eq!(scaled.after.status, TorqueStatus::GravityExceedsLimits);
+    assert_eq!(scaled.factor, 1.0);
+    // Bad options.
+    let err = torque_profile(
+        &panda,
+        &traj,
+        &TorqueCheckOptions {
+            samples: 1,
+            ..Default::default()
+        },
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(err.contains("samples"), "{err}");
+    let err = torque_profile(
+        &panda,
+        &traj,
+        &TorqueCheckOptions {
+            limits: Some(vec![1.0; 3]),
+            ..Default::default()
+        },
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        err.contains("torque_limits") && err.contains("expected 7"),
+        "{err}"
+    );
+}

@@ -49,6 +49,7 @@ mod algorithms;
 mod energy;
 pub mod simulate;
 pub mod spatial;
+pub mod torque_limits;
 
 pub use algorithms::{
     aba, coriolis_torques, gravity_torques, mass_matrix, mass_matrix_inverse, nonlinear_effects,
