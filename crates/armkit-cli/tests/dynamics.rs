@@ -125,3 +125,67 @@ fn text_names_every_term_and_ddq_only_with_tau() {
     let gravity: Vec<f64> = serde_json::from_value(result["gravity"].clone()).unwrap();
     assert!(gravity.iter().all(|x| x.abs() < 1e-12), "{gravity:?}");
 }
+
+const PANDA_MOVE: [&str; 12] = [
+    "traj",
+    "joint",
+    "--urdf",
+    "tests/data/urdf/panda.urdf",
+    "--base",
+    "panda_link0",
+    "--tip",
+    "panda_link8",
+    "--from",
+    "0,-0.5,0,-2,0,1.5,0",
+    "--to",
+    "1.5,0.5,-1,-1,1,2.5,1",
+];
+
+#[test]
+fn traj_reports_torques_and_fits_them_to_the_urdf_effort_limits() {
+    let args = [
+        &PANDA_MOVE[..],
+        &["--duration", "0.3", "--torques", "--json"],
+    ]
+    .concat();
+    let summary = json(&armkit(&args));
+    assert_eq!(summary["torques"]["status"], "exceeds-limits");
+    let peaks = summary["torques"]["peaks"].as_array().unwrap();
+    assert_eq!(peaks.len(), 7);
+    assert_eq!(peaks[0]["limit"], 87.0);
+    assert!(peaks[0]["ratio"].as_f64().unwrap() > 1.0);
+
+    let dir = scratch("torque-plots");
+    let plots = dir.to_str().unwrap();
+    let args = [
+        &PANDA_MOVE[..],
+        &[
+            "--duration",
+            "0.3",
+            "--fit-torque-limits",
+            "--plots",
+            plots,
+            "--json",
+        ],
+    ]
+    .concat();
+    let summary = json(&armkit(&args));
+    let torques = &summary["torques"];
+    assert_eq!(torques["status"], "within-limits");
+    let factor = torques["time_scaling_factor"].as_f64().unwrap();
+    assert!(factor > 1.0);
+    let duration = summary["duration_s"].as_f64().unwrap();
+    assert!(
+        (duration - 0.3 * factor).abs() < 1e-9,
+        "{duration} vs {factor}"
+    );
+    let worst = torques["peaks"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p["ratio"].as_f64().unwrap())
+        .fold(0.0, f64::max);
+    assert!(worst <= 1.0 && worst > 0.999, "{worst}");
+    let svg = std::fs::read_to_string(dir.join("torques.svg")).unwrap();
+    assert!(svg.contains("<svg") && svg.contains("joint torques"));
+}

@@ -12,3 +12,4 @@ pub mod run;
 pub mod singularity;
 pub mod space;
 pub mod traj;
+pub mod traj_torques;
