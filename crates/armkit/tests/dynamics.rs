@@ -649,3 +649,124 @@ fn time_scaling_brings_torques_within_limits_tightly() {
         "{err}"
     );
 }
+
+#[test]
+fn dynamic_torques_at_rest_equal_the_static_holding_torques() {
+    // Two independent implementations: redundancy's centre-of-mass Jacobians
+    // plus J' w, and this module's RNEA plus J' w.
+    use armkit::dynamics::energy_weights::{EnergyTorques, TorqueModel};
+    use armkit::redundancy::Load;
+    let mut r = rng(22);
+    for model in models_with_masses() {
+        let n = model.dof();
+        let mut workspace = EnergyTorques::new(&model).unwrap();
+        let load = Load::payload(50.0).with_gravity(Vector3::new(0.5, -0.2, -9.81));
+        let zero = vec![0.0; n];
+        for _ in 0..5 {
+            let q = random_configuration(&model, &mut r);
+            let (mut fixed, mut moving) = (vec![0.0; n], vec![0.0; n]);
+            workspace
+                .torques(
+                    &model,
+                    &q,
+                    &zero,
+                    &zero,
+                    &load,
+                    TorqueModel::Static,
+                    &mut fixed,
+                )
+                .unwrap();
+            workspace
+                .torques(
+                    &model,
+                    &q,
+                    &zero,
+                    &zero,
+                    &load,
+                    TorqueModel::Dynamic,
+                    &mut moving,
+                )
+                .unwrap();
+            let scale = fixed.iter().fold(1.0_f64, |m, t| m.max(t.abs()));
+            for j in 0..n {
+                assert!(
+                    (fixed[j] - moving[j]).abs() < 1e-10 * scale,
+                    "{}: joint {j}",
+                    model.name()
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn seed001_energy_under_static_and_dynamic_torques() {
+    // The four-way comparison of the redundancy study on gantry9: the static
+    // measure equals the study's own, the dynamic one adds the inertia.
+    use armkit::dynamics::energy_weights::{energy_along_motion, TorqueModel};
+    use armkit::redundancy::{
+        compare_distributions, ComparisonCase, JointWeights, LinePath, Load, TorqueFloor,
+        TrackingOptions, SEED000_PRIORITY_WEIGHTS,
+    };
+    let model = armkit::robots::by_name("gantry9").unwrap();
+    let q0 = [3.0, 2.5, 1.0, 0.3, 0.4, -0.5, 0.2, 0.8, 0.1];
+    let mut data = armkit::Data::new(&model);
+    let start = *armkit::forward_kinematics(&model, &mut data, &q0).unwrap();
+    let goal = Pose::from_translation(Vector3::new(0.4, 0.3, -0.3)) * start;
+    let path = LinePath::new(start, goal, 4.0).unwrap();
+    let load = Load::payload(50.0).with_standard_gravity();
+    let priorities = JointWeights::new(&SEED000_PRIORITY_WEIGHTS).unwrap();
+    let cases =
+        ComparisonCase::four_way(9, load, TorqueFloor::default(), priorities, &[0, 1]).unwrap();
+    let results = compare_distributions(
+        &model,
+        &q0,
+        &path,
+        &load,
+        &cases,
+        &TrackingOptions::default(),
+    )
+    .unwrap();
+    for result in &results {
+        let samples = &result.report.samples;
+        let times: Vec<f64> = samples.iter().map(|s| s.time).collect();
+        let q: Vec<Vec<f64>> = samples.iter().map(|s| s.q.clone()).collect();
+        let q_dot: Vec<Vec<f64>> = samples.iter().map(|s| s.q_dot.clone()).collect();
+        let fixed =
+            energy_along_motion(&model, &times, &q, &q_dot, &load, TorqueModel::Static).unwrap();
+        let moving =
+            energy_along_motion(&model, &times, &q, &q_dot, &load, TorqueModel::Dynamic).unwrap();
+        println!(
+            "{:15} F static {:.4e} W^2 s, dynamic {:.4e} W^2 s ({:+.2} %)",
+            result.name,
+            fixed.energy,
+            moving.energy,
+            100.0 * (moving.energy / fixed.energy - 1.0)
+        );
+        assert!((fixed.energy - result.summary.energy).abs() < 1e-9 * fixed.energy);
+        assert!(moving.energy > 0.0 && (moving.energy - fixed.energy).abs() > 1e-12 * fixed.energy);
+    }
+    // Bad input.
+    let err = energy_along_motion(
+        &model,
+        &[0.0],
+        &[q0.to_vec()],
+        &[vec![0.0; 9]],
+        &load,
+        TorqueModel::Dynamic,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(err.contains("at least 2 samples"), "{err}");
+    let err = energy_along_motion(
+        &model,
+        &[0.0, 0.0],
+        &[q0.to_vec(), q0.to_vec()],
+        &[vec![0.0; 9], vec![0.0; 9]],
+        &load,
+        TorqueModel::Dynamic,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(err.contains("increase strictly"), "{err}");
+}

@@ -47,6 +47,7 @@
 
 mod algorithms;
 mod energy;
+pub mod energy_weights;
 pub mod simulate;
 pub mod spatial;
 pub mod torque_limits;
