@@ -3,7 +3,7 @@
 use super::spatial::{Force, Motion};
 use super::DynamicsData;
 use crate::error::{check_finite_vector, Error, Result};
-use crate::math::{DMatrix, Vector3};
+use crate::math::{DMatrix, Matrix6, Vector3, Vector6};
 use crate::model::Model;
 
 /// Inverse dynamics by the recursive Newton-Euler algorithm (Featherstone,
@@ -232,23 +232,33 @@ pub fn aba<'d>(
     check_finite_vector("joint_velocities", v, model.dof())?;
     check_finite_vector("joint_torques", tau, model.dof())?;
     data.update_bodies(model, q)?;
-    // Pass 1: velocities, velocity-product accelerations c_j = v_j x S_j qd_j,
-    // articulated inertias and bias forces initialised to the bodies' own.
+    // Pass 1: velocities and velocity-product accelerations c_j = v_j x S_j qd_j.
     let mut velocity = Motion::ZERO;
-    for j in 0..data.dof {
-        let joint_velocity = data.axes[j] * v[j];
+    for (((axis, &qd), slot), c) in data
+        .axes
+        .iter()
+        .zip(v)
+        .zip(data.velocities.iter_mut())
+        .zip(data.accelerations.iter_mut())
+    {
+        let joint_velocity = *axis * qd;
         velocity = velocity + joint_velocity;
-        data.velocities[j] = velocity;
-        data.accelerations[j] = velocity.cross(&joint_velocity);
-        let body = &data.bodies[j];
-        data.articulated[j] = body.to_matrix();
-        data.bias_forces[j] = velocity.cross_force(&body.apply(&velocity)).to_vector();
+        *slot = velocity;
+        *c = velocity.cross(&joint_velocity);
     }
-    // Pass 2, tip to base: project each articulated body through its joint
-    // and add what the parent feels.
+    // Pass 2, tip to base: the articulated inertia IA and bias force pA of
+    // bodies j..n-1, projected through joint j and handed to the parent. In
+    // the world frame the parent adds them without a transform, so one
+    // running pair suffices.
+    let mut articulated = Matrix6::zeros();
+    let mut bias = Vector6::zeros();
     for j in (0..data.dof).rev() {
+        let body = &data.bodies[j];
+        let velocity = data.velocities[j];
+        articulated += body.to_matrix();
+        bias += velocity.cross_force(&body.apply(&velocity)).to_vector();
         let s = data.axes[j].to_vector();
-        let u_column = data.articulated[j] * s;
+        let u_column = articulated * s;
         let d = s.dot(&u_column);
         if !(d > 0.0 && d.is_finite()) {
             return Err(Error::Numerical {
@@ -259,18 +269,13 @@ pub fn aba<'d>(
                 ),
             });
         }
-        let u = tau[j] - s.dot(&data.bias_forces[j]);
+        let u = tau[j] - s.dot(&bias);
         data.u_columns[j] = u_column;
         data.d_values[j] = d;
         data.u_values[j] = u;
-        if j > 0 {
-            let c = data.accelerations[j].to_vector();
-            let inverse_d = 1.0 / d;
-            let projected = data.articulated[j] - u_column * (u_column.transpose() * inverse_d);
-            let bias = data.bias_forces[j] + projected * c + u_column * (u * inverse_d);
-            data.articulated[j - 1] += projected;
-            data.bias_forces[j - 1] += bias;
-        }
+        let inverse_d = 1.0 / d;
+        articulated -= u_column * (u_column.transpose() * inverse_d);
+        bias += articulated * data.accelerations[j].to_vector() + u_column * (u * inverse_d);
     }
     // Pass 3, base to tip: accelerations, gravity as an upward base acceleration.
     let mut acceleration = Motion::new(Vector3::zeros(), -data.gravity).to_vector();

@@ -60,7 +60,7 @@ pub use energy::{kinetic_energy, potential_energy};
 
 use crate::error::{check_finite, Error, Result};
 use crate::kinematics::{forward_kinematics, Data};
-use crate::math::{DMatrix, Matrix6, Vector3, Vector6};
+use crate::math::{DMatrix, Vector3, Vector6};
 use crate::model::{LinkInertia, Model};
 use spatial::{Force, Motion, SpatialInertia};
 
@@ -88,8 +88,6 @@ pub struct DynamicsData {
     accelerations: Vec<Motion>,
     forces: Vec<Force>,
     composite: Vec<SpatialInertia>,
-    articulated: Vec<Matrix6<f64>>,
-    bias_forces: Vec<Vector6<f64>>,
     /// ABA: `U_j = IA_j S_j`.
     u_columns: Vec<Vector6<f64>>,
     /// ABA: `D_j = S_j' U_j`.
@@ -121,8 +119,6 @@ impl DynamicsData {
             accelerations: vec![Motion::ZERO; n],
             forces: vec![Force::ZERO; n],
             composite: vec![SpatialInertia::ZERO; n],
-            articulated: vec![Matrix6::zeros(); n],
-            bias_forces: vec![Vector6::zeros(); n],
             u_columns: vec![Vector6::zeros(); n],
             d_values: vec![0.0; n],
             u_values: vec![0.0; n],

@@ -202,19 +202,24 @@ impl SpatialInertia {
         let r = &frame.rotation;
         let c = r * link.com + frame.translation;
         let m = link.mass;
-        // R I R' (symmetric): A = R I, then the lower triangle of A R'.
-        let a = r * link.inertia;
-        let mut rotational = Matrix3::zeros();
-        for i in 0..3 {
-            for j in 0..=i {
-                let value = a.row(i).dot(&r.row(j));
-                rotational[(i, j)] = value;
-                rotational[(j, i)] = value;
-            }
-        }
         let h = c * m;
+        // I_O = R I_c R' + m (|c|^2 E - c c') (parallel-axis theorem), the
+        // six distinct entries of the symmetric result only.
+        let a = r * link.inertia;
         let c2 = c.dot(&h);
-        rotational += Matrix3::from_diagonal_element(c2) - h * c.transpose();
+        let entry = |i: usize, j: usize| a.row(i).dot(&r.row(j)) - h[i] * c[j];
+        let (xy, xz, yz) = (entry(0, 1), entry(0, 2), entry(1, 2));
+        let rotational = Matrix3::new(
+            entry(0, 0) + c2,
+            xy,
+            xz,
+            xy,
+            entry(1, 1) + c2,
+            yz,
+            xz,
+            yz,
+            entry(2, 2) + c2,
+        );
         SpatialInertia {
             mass: m,
             first_moment: h,
