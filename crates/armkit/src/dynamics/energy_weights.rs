@@ -188,7 +188,10 @@ pub fn energy_along_motion(
             ),
         ));
     }
-    if let Some(k) = times.windows(2).position(|w| !(w[1] > w[0])) {
+    if let Some(k) = times
+        .windows(2)
+        .position(|w| w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater))
+    {
         return Err(Error::invalid_argument(
             "times",
             format!(

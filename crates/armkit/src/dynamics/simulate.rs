@@ -195,13 +195,13 @@ impl Simulator {
         tau: &[f64],
         h: f64,
     ) -> Result<()> {
-        let fractions = [0.0, 0.5, 0.5, 1.0];
-        for stage in 0..4 {
+        // Stage k evaluates at (q, v) + f_k h (slopes of stage k - 1).
+        for (stage, fraction) in [0.0, 0.5, 0.5, 1.0].into_iter().enumerate() {
             if stage == 0 {
                 self.q_stage.copy_from_slice(q);
                 self.v_stage.copy_from_slice(v);
             } else {
-                let f = fractions[stage] * h;
+                let f = fraction * h;
                 let (dq, dv) = (&self.dq[stage - 1], &self.dv[stage - 1]);
                 for j in 0..q.len() {
                     self.q_stage[j] = q[j] + f * dq[j];
