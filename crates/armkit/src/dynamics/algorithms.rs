@@ -135,12 +135,24 @@ fn composite_rigid_body(data: &mut DynamicsData) {
         composite += *body;
         *slot = composite;
     }
-    for j in 0..n {
-        let force = data.composite[j].apply(&data.axes[j]);
-        for i in 0..=j {
-            let value = data.axes[i].dot(&force);
-            data.mass_matrix[(i, j)] = value;
-            data.mass_matrix[(j, i)] = value;
+    // Column j, rows 0..=j, of the column-major buffer: S_i' (Ic_j S_j).
+    let m = data.mass_matrix.as_mut_slice();
+    for (j, ((composite, axis), column)) in data
+        .composite
+        .iter()
+        .zip(&data.axes)
+        .zip(m.chunks_exact_mut(n))
+        .enumerate()
+    {
+        let force = composite.apply(axis);
+        for (value, axis_i) in column.iter_mut().zip(&data.axes[..=j]) {
+            *value = axis_i.dot(&force);
+        }
+    }
+    // The lower triangle mirrors the upper: M[j][i] = M[i][j].
+    for i in 0..n {
+        for j in i + 1..n {
+            m[i * n + j] = m[j * n + i];
         }
     }
 }
