@@ -405,24 +405,38 @@ fn a_floating_joint_off_the_chain_is_ignored() {
 }
 
 #[test]
-fn a_mimic_joint_on_the_chain_is_an_error_and_off_it_is_ignored() {
+fn a_mimic_joint_follows_its_leader_off_the_chain() {
     let text = std::fs::read_to_string(urdf_path("panda.urdf")).unwrap();
-    assert_eq!(
-        parse_error(
-            &text,
-            &ChainSelection::between("panda_hand", "panda_rightfinger")
-        ),
-        "test.urdf: joint `panda_finger_joint2` (line 181) mimics joint `panda_finger_joint1`: \
-         mimic (coupled) joints are not supported on the chain"
-    );
-    // The other finger is not a mimic joint.
-    let model = parse_str(
+    // panda_finger_joint2 mimics panda_finger_joint1, on the other finger:
+    // the configuration is the leader's position.
+    let right = parse_str(
+        &text,
+        "t",
+        &ChainSelection::between("panda_hand", "panda_rightfinger"),
+    )
+    .unwrap();
+    assert_eq!(right.dof(), 1);
+    assert_eq!(right.joints()[0].name, "panda_finger_joint1");
+    assert_eq!(right.chain_joints()[0].name, "panda_finger_joint2");
+    assert_eq!(right.position_limits(), (vec![0.0], vec![0.04]));
+    assert!(right.has_mimic_joints());
+    let left = parse_str(
         &text,
         "t",
         &ChainSelection::between("panda_hand", "panda_leftfinger"),
     )
     .unwrap();
-    assert_eq!(model.dof(), 1);
+    assert_eq!(left.dof(), 1);
+    assert!(!left.has_mimic_joints());
+    // Both fingers open by the same amount, in opposite directions.
+    let mut right_data = Data::new(&right);
+    let mut left_data = Data::new(&left);
+    for q in [0.0, 0.013, 0.04] {
+        let r = *forward_kinematics(&right, &mut right_data, &[q]).unwrap();
+        let l = *forward_kinematics(&left, &mut left_data, &[q]).unwrap();
+        assert!((r.translation.y + l.translation.y).abs() < 1e-15, "{q}");
+        assert!(((r.translation.y - l.translation.y).abs() - 2.0 * q).abs() < 1e-15);
+    }
 }
 
 #[test]
@@ -588,7 +602,7 @@ fn bad_joint_values_are_named() {
     let cases = [
         (
             revolute(""),
-            "joint `j` (line 4) is revolute but has no <limit> element (lower, upper and velocity are required)",
+            "joint `j` (line 4) is revolute but has no <limit> element: the URDF specification requires <limit> (lower, upper, velocity, effort) on revolute and prismatic joints",
         ),
         (
             revolute("<limit lower=\"1\" upper=\"-1\" velocity=\"1\"/>"),
