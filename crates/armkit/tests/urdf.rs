@@ -726,3 +726,55 @@ fn a_byte_order_mark_and_a_missing_axis_are_accepted() {
     // velocity="0" means no velocity limit given.
     assert_eq!(model.joints()[0].limits.velocity, None);
 }
+
+/// Issue 20: elements the kinematics and mass properties do not read never
+/// block a load, however they are written; what the model reads still
+/// fails with the file, line and element.
+#[test]
+fn elements_the_model_does_not_read_never_block_a_load() {
+    let text = "<?xml version=\"1.0\"?>\n<robot name=\"r\">\n\
+        <material name=\"skin\"><texture /></material>\n\
+        <link name=\"a\">\n\
+          <visual><geometry><mesh filename=\"package://nowhere.stl\" scale=\"x y z\"/></geometry>\
+            <material name=\"m\"><color rgba=\"not numbers\"/><texture /></material></visual>\n\
+          <collision><geometry><box/></geometry></collision>\n\
+        </link>\n\
+        <link name=\"b\"><inertial><mass value=\"2\"/><inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"1\"/></inertial>\
+          <visual><origin xyz=\"nan\"/></visual><sensor name=\"cam\" type=\"camera\"/></link>\n\
+        <joint name=\"j\" type=\"revolute\"><parent link=\"a\"/><child link=\"b\"/>\
+          <limit lower=\"-1\" upper=\"1\" velocity=\"2\" effort=\"3\"/>\
+          <calibration rising=\"abc\"/><dynamics damping=\"lots\"/>\
+          <safety_controller soft_lower_limit=\"?\" k_velocity=\"\"/></joint>\n\
+        <transmission name=\"t\"><type>junk</type><joint/></transmission>\n\
+        <gazebo reference=\"b\"><sensor><plugin/></sensor><unknown_tag/></gazebo>\n\
+        <vendor_extension anything=\"goes\"><deeply><nested/></deeply></vendor_extension>\n\
+        </robot>\n";
+    let model = parse_str(text, "lenient.urdf", &ChainSelection::default()).unwrap();
+    assert_eq!(model.dof(), 1);
+    assert_eq!(model.joints()[0].limits.velocity, Some(2.0));
+    assert_eq!(model.joints()[0].inertia.unwrap().mass, 2.0);
+
+    // What the model reads is still checked, with the line.
+    let broken = text.replace("<mass value=\"2\"/>", "<mass value=\"heavy\"/>");
+    let message = parse_str(&broken, "lenient.urdf", &ChainSelection::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        message.starts_with("lenient.urdf: link `b` (line 8):"),
+        "{message}"
+    );
+    let broken = text.replace("velocity=\"2\"", "velocity=\"fast\"");
+    let message = parse_str(&broken, "lenient.urdf", &ChainSelection::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        message.starts_with("lenient.urdf: joint `j` (line 9):"),
+        "{message}"
+    );
+    // Malformed XML anywhere is still an error (the file is not XML).
+    let broken = text.replace("<unknown_tag/>", "<unknown_tag>");
+    let message = parse_str(&broken, "lenient.urdf", &ChainSelection::default())
+        .unwrap_err()
+        .to_string();
+    assert!(message.contains("malformed XML at line 11"), "{message}");
+}

@@ -3,6 +3,7 @@
 pub mod beam;
 pub mod fk;
 pub mod ik;
+pub mod info;
 pub mod manipulability;
 pub mod mpc;
 pub mod redundancy;
