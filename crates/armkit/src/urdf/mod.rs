@@ -213,8 +213,21 @@ pub fn parse_str(text: &str, source_name: &str, selection: &ChainSelection) -> R
     } else {
         robot.name.as_str()
     };
-    let builder = chain_builder(name, &robot, &tree, &chain).map_err(fail)?;
+    let limited = joints_with_limit(&document);
+    let builder = chain_builder(name, &robot, &tree, &chain, &limited).map_err(fail)?;
     builder.build().map_err(|e| fail(e.to_string()))
+}
+
+/// Names of the joints that have a `<limit>` element (urdf-rs fills a
+/// missing one with zeros, which a written `<limit lower="0" upper="0"
+/// effort="0" velocity="0"/>` cannot be told from).
+fn joints_with_limit(document: &xml::Document) -> Vec<&str> {
+    document
+        .children
+        .iter()
+        .filter(|e| e.name == "joint" && e.children.iter().any(|(child, _)| child == "limit"))
+        .filter_map(|e| e.name_attribute.as_deref())
+        .collect()
 }
 
 /// `urdf-rs` messages name neither the element nor the line. Parsing each
@@ -270,6 +283,7 @@ fn chain_builder(
     robot: &urdf_rs::Robot,
     tree: &Tree<'_>,
     chain: &tree::Chain,
+    limited: &[&str],
 ) -> std::result::Result<ModelBuilder, String> {
     let mut builder = ModelBuilder::new(name);
     let mut any_moving = false;
@@ -299,7 +313,15 @@ fn chain_builder(
             }
         };
         if joint.mimic.is_some() {
-            builder = add_mimic(builder, robot, tree, chain, j, &mut off_chain_leaders)?;
+            builder = add_mimic(
+                builder,
+                robot,
+                tree,
+                chain,
+                j,
+                limited,
+                &mut off_chain_leaders,
+            )?;
         }
         let axis = Vector3::from(joint.axis.xyz.0);
         if !(axis.iter().all(|v| v.is_finite()) && axis.norm() > 1e-12) {
@@ -318,7 +340,7 @@ fn chain_builder(
             kind,
             origin,
             axis,
-            limits: joint_limits(tree, j, &joint.limit, kind)?,
+            limits: joint_limits(tree, j, &joint.limit, kind, limited)?,
             inertia: None,
         };
         if let Some(inertia) = body_inertia(robot, tree, tree.child_link(j), next_moving)? {
@@ -346,6 +368,7 @@ fn add_mimic(
     tree: &Tree<'_>,
     chain: &tree::Chain,
     j: usize,
+    limited: &[&str],
     added: &mut Vec<usize>,
 ) -> std::result::Result<ModelBuilder, String> {
     let mut follower = j;
@@ -385,7 +408,13 @@ fn add_mimic(
             break;
         }
         added.push(leader);
-        let limits = joint_limits(tree, leader, &robot.joints[leader].limit, leader_kind)?;
+        let limits = joint_limits(
+            tree,
+            leader,
+            &robot.joints[leader].limit,
+            leader_kind,
+            limited,
+        )?;
         builder = builder.off_chain_joint(JointSpec {
             name: robot.joints[leader].name.clone(),
             kind: leader_kind,
@@ -427,6 +456,7 @@ fn joint_limits(
     joint: usize,
     limit: &urdf_rs::JointLimit,
     kind: JointKind,
+    limited: &[&str],
 ) -> std::result::Result<JointLimits, String> {
     for (field, value) in [
         ("velocity", limit.velocity),
@@ -448,9 +478,10 @@ fn joint_limits(
         // URDF: a continuous joint has no position limits; any given are ignored.
         return Ok(rates);
     }
-    // urdf-rs fills a missing <limit> with zeros; urdfdom rejects revolute
-    // and prismatic joints without one, and so do we.
-    if limit.lower == 0.0 && limit.upper == 0.0 && limit.velocity == 0.0 && limit.effort == 0.0 {
+    // urdfdom rejects revolute and prismatic joints without <limit>, and so
+    // do we (urdf-rs fills a missing one with zeros: the scan says whether
+    // the element is there).
+    if !limited.contains(&tree.joint_name(joint)) {
         return Err(format!(
             "{} is {} but has no <limit> element: the URDF specification requires <limit> (lower, upper, velocity, effort) on revolute and prismatic joints",
             tree.joint(joint),
