@@ -490,3 +490,21 @@ fn chain_forces_fold_onto_the_leaders() {
     assert!((power0 - power).abs() < 1e-12, "{power0} vs {power}");
     assert!(model.fold_chain_forces(&q, &tau0[..8], &mut tau).is_err());
 }
+
+#[test]
+fn gravity_torques_refuse_mimic_joints_rather_than_mispair_frames() {
+    let model = finger();
+    let mut data = Data::new(&model);
+    let q = model.neutral_configuration();
+    let mut torques = vec![0.0; model.dof()];
+    let err = armkit::redundancy::gravity_torques(
+        &model,
+        &mut data,
+        &q,
+        &armkit::math::Vector3::new(0.0, 0.0, -9.81),
+        &mut torques,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(err.contains("mimic joints"), "{err}");
+}
