@@ -8,10 +8,11 @@
 use armkit::kinematics::{forward_kinematics, jacobian, Data, JacobianFrame};
 use armkit::math::{Matrix6xX, Pose, Vector3, Vector6};
 use armkit::redundancy::{
-    best_partition, joint_torques, Damping, Distribution, JointWeights, LinePath, Load,
-    PartitionedSolver, ResolvedRateTracker, SolverOptions, TorqueFloor, TrackingOptions,
-    WeightedLeastNorm, SEED000_PRIORITY_WEIGHTS,
+    best_partition, joint_torques, Damping, Distribution, DistributionOptions, JointWeights, Load,
+    PartitionedSolver, ResolvedRateTracker, SolverOptions, TorqueFloor, WeightedLeastNorm,
+    SEED000_PRIORITY_WEIGHTS,
 };
+use armkit::trajectory::{CartesianTrajectory, TimeLaw};
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
 
@@ -44,6 +45,8 @@ fn solves(c: &mut Criterion) {
                 black_box(
                     exact
                         .solve(black_box(&j), &weights, black_box(&twist))
+                        .unwrap()
+                        .solved()
                         .unwrap()[0],
                 );
             })
@@ -54,6 +57,8 @@ fn solves(c: &mut Criterion) {
                 black_box(
                     exact
                         .solve_toward(black_box(&j), &weights, &twist, &preferred)
+                        .unwrap()
+                        .solved()
                         .unwrap()[0],
                 );
             })
@@ -71,7 +76,13 @@ fn solves(c: &mut Criterion) {
         .unwrap();
         c.bench_function(&format!("weighted_least_norm_adaptive/{name}"), |b| {
             b.iter(|| {
-                black_box(damped.solve(black_box(&j), &weights, &twist).unwrap()[0]);
+                black_box(
+                    damped
+                        .solve(black_box(&j), &weights, &twist)
+                        .unwrap()
+                        .solved()
+                        .unwrap()[0],
+                );
             })
         });
         let partition = best_partition(&j, None, 1e10).unwrap().partition;
@@ -117,7 +128,7 @@ fn tracking(c: &mut Criterion) {
     let mut data = Data::new(&model);
     let start = *forward_kinematics(&model, &mut data, &GANTRY_Q).unwrap();
     let goal = Pose::from_translation(Vector3::new(0.4, 0.3, -0.3)) * start;
-    let path = LinePath::new(start, goal, 4.0).unwrap();
+    let path = CartesianTrajectory::line(start, goal, TimeLaw::Quintic, 4.0).unwrap();
     let load = Load::payload(50.0).with_standard_gravity();
     let mut tracker = ResolvedRateTracker::new(
         &model,
@@ -125,7 +136,7 @@ fn tracking(c: &mut Criterion) {
             load,
             floor: TorqueFloor::default(),
         },
-        TrackingOptions::default(),
+        DistributionOptions::default(),
     )
     .unwrap();
     c.bench_function("tracking/gantry9 energy-optimal, 400 steps", |b| {

@@ -36,6 +36,7 @@ pub mod description;
 pub mod error;
 pub mod ik;
 pub mod kinematics;
+pub mod linalg;
 pub mod math;
 pub mod model;
 pub mod mpc;
@@ -43,6 +44,7 @@ pub mod redundancy;
 pub mod robots;
 pub mod singularity;
 pub mod space;
+pub mod tracking;
 pub mod trajectory;
 #[cfg(feature = "urdf")]
 pub mod urdf;

@@ -238,12 +238,16 @@ fn redundancy_solves_do_not_allocate() {
         weights
             .set_from_torques(&torques, TorqueFloor::default())
             .unwrap();
-        exact.solve(&j, &weights, &twist).unwrap();
-        exact
+        assert!(!exact.solve(&j, &weights, &twist).unwrap().is_singular());
+        assert!(!exact
             .solve_toward(&j, &weights, &twist, &preferred)
-            .unwrap();
-        exact.null_space_projector(&j, &weights).unwrap();
-        damped.solve(&j, &weights, &twist).unwrap();
+            .unwrap()
+            .is_singular());
+        assert!(!exact
+            .null_space_projector(&j, &weights)
+            .unwrap()
+            .is_singular());
+        assert!(!damped.solve(&j, &weights, &twist).unwrap().is_singular());
         partitioned.solve(&j, &weights, &twist, &partition).unwrap();
         partitioned
             .solve_energy_optimal(&j, &torques, &twist, &partition)
@@ -352,16 +356,20 @@ fn sampling_does_not_allocate() {
 #[test]
 fn a_tracking_period_does_not_allocate() {
     use armkit::ik::{ChiaveriniFilter, NakamuraDamping};
-    use armkit::singularity::{line_through, Manipulator, Method, PathTracker, TrackingOptions};
+    use armkit::singularity::{line_through, AvoidanceOptions, Manipulator, Method, PathTracker};
+    use armkit::tracking::TrackingOptions;
     let arm = armkit::robots::space6r().unwrap();
     let manipulator = Manipulator::FixedBase(&arm);
     let through = [0.2, 0.9, -0.6, 0.4, 1.1, 0.3];
     let direction = [0.2, -0.1, 0.15, 0.1, 0.1, -0.1];
     let line = line_through(&manipulator, &through, &direction, 0.0).unwrap();
     let counts = |dt: f64, method: &Method| {
-        let options = TrackingOptions {
-            dt,
-            ..TrackingOptions::default()
+        let options = AvoidanceOptions {
+            tracking: TrackingOptions {
+                dt,
+                ..TrackingOptions::default()
+            },
+            ..AvoidanceOptions::default()
         };
         let tracker = PathTracker::new(manipulator, line.task(5.0, 1.0), options).unwrap();
         let before = allocations();

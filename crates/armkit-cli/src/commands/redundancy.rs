@@ -9,10 +9,11 @@ use std::path::{Path, PathBuf};
 use armkit::kinematics::{forward_kinematics, Data};
 use armkit::math::{Pose, Vector3};
 use armkit::redundancy::{
-    compare_distributions, ComparisonCase, ComparisonResult, Damping, Formulation, JointWeights,
-    LinePath, Load, SecondaryObjective, TorqueFloor, TrackingOptions, TrackingStatus,
-    SEED000_PRIORITY_WEIGHTS,
+    compare_distributions, ComparisonCase, ComparisonResult, Damping, DistributionOptions,
+    Formulation, JointWeights, Load, SecondaryObjective, TorqueFloor, SEED000_PRIORITY_WEIGHTS,
 };
+use armkit::tracking::{TrackingOptions, TrackingStatus};
+use armkit::trajectory::{CartesianTrajectory, TimeLaw};
 use armkit::Model;
 use clap::{Args, ValueEnum};
 
@@ -178,7 +179,7 @@ pub fn run(args: &RedundancyArgs) -> CliResult<Outcome> {
             "lowest_energy": lowest,
             "distributions": results.iter().map(|r| serde_json::json!({
                 "name": r.name,
-                "status": status_text(&r.report.status),
+                "status": r.report.status.to_string(),
                 "energy": r.summary.energy,
                 "travel": r.summary.travel,
                 "max_position_error": r.report.max_position_error,
@@ -261,9 +262,8 @@ pub fn study(args: &RedundancyArgs) -> CliResult<Study> {
     if gravity {
         load = load.with_standard_gravity();
     }
-    let options = TrackingOptions {
-        time_step: args.dt,
-        feedback_gain: args.gain,
+    let options = DistributionOptions {
+        tracking: TrackingOptions::proportional(args.dt, args.gain),
         damping: args.damping.map_or(Damping::None, Damping::Constant),
         secondary: match args.secondary {
             SecondaryArg::None => SecondaryObjective::None,
@@ -287,7 +287,7 @@ pub fn study(args: &RedundancyArgs) -> CliResult<Study> {
         turn.into_inner() * start.rotation,
         start.translation + Vector3::from_column_slice(&displacement),
     );
-    let path = LinePath::new(start, goal, args.duration)?;
+    let path = CartesianTrajectory::line(start, goal, TimeLaw::Quintic, args.duration)?;
     let cases = ComparisonCase::four_way(
         dof,
         load,
@@ -361,16 +361,6 @@ fn join(values: &[f64], decimals: usize) -> String {
         .join(", ")
 }
 
-fn status_text(status: &TrackingStatus) -> String {
-    match status {
-        TrackingStatus::Completed => "completed".into(),
-        TrackingStatus::StoppedAtJointLimit { joint, time } => {
-            format!("stopped: joint {} at its limit at {time:.2} s", joint + 1)
-        }
-        TrackingStatus::Singular { time } => format!("singular at {time:.2} s"),
-    }
-}
-
 /// The text table: one row per distribution.
 fn summary_table(model: &Model, results: &[ComparisonResult]) -> String {
     let mut out = format!(
@@ -394,7 +384,7 @@ fn summary_table(model: &Model, results: &[ComparisonResult]) -> String {
         for t in &r.summary.travel {
             out += &format!(" {t:>9.4}");
         }
-        out += &format!("  {}\n", status_text(&r.report.status));
+        out += &format!("  {}\n", r.report.status);
     }
     out
 }
@@ -431,7 +421,7 @@ fn write_outputs(
         summary += &format!(
             "{},{},{},{},{},{},{},{},{}\n",
             r.name,
-            status_text(&r.report.status).replace(',', ";"),
+            r.report.status.to_string().replace(',', ";"),
             r.summary.energy,
             r.report.max_position_error,
             r.report.final_position_error,
@@ -459,7 +449,7 @@ fn write_outputs(
                 r.name,
                 sample.time,
                 cells(&sample.q),
-                cells(&sample.q_dot),
+                cells(&sample.joint_rates),
                 f,
                 sample.position_error,
                 sample.orientation_error,
@@ -585,7 +575,7 @@ pub fn report(args: &RedundancyArgs) -> CliResult<Report> {
         checks.push(Check::holds(
             format!("{}: the run completes the path", r.name),
             r.report.status == TrackingStatus::Completed,
-            status_text(&r.report.status),
+            r.report.status.to_string(),
         ));
         checks.push(Check::at_most(
             format!("{}: largest tracking error", r.name),

@@ -15,10 +15,11 @@ use std::path::{Path, PathBuf};
 
 use armkit::math::{Pose, Vector3};
 use armkit::singularity::{
-    line_through, Baselines, Comparison, DetectionOptions, LineThrough, Manipulator, MethodRun,
-    PathTracker, RunStatus, TrackingOptions, SEED004_DIRECTION, SEED004_THROUGH,
+    line_through, AvoidanceOptions, Baselines, Comparison, DetectionOptions, LineThrough,
+    Manipulator, MethodRun, PathTracker, SEED004_DIRECTION, SEED004_THROUGH,
 };
 use armkit::space::FreeFloatingModel;
+use armkit::tracking::{TrackingOptions, TrackingStatus};
 use armkit::Model;
 use clap::{Args, ValueEnum};
 
@@ -150,7 +151,7 @@ pub struct Study {
     direction: Vec<f64>,
     line: LineThrough,
     ks: Vec<usize>,
-    options: TrackingOptions,
+    options: AvoidanceOptions,
     heading: String,
     comparison: Comparison,
 }
@@ -180,7 +181,7 @@ pub fn run(args: &SingularityArgs) -> CliResult<Outcome> {
         .into_iter()
         .chain(&study.comparison.k_sweep)
         .filter(|r| r.method != armkit::singularity::Method::Plain)
-        .all(|r| r.status == RunStatus::Completed);
+        .all(|r| r.status == TrackingStatus::Completed);
     Ok(if completed {
         Outcome::Success
     } else {
@@ -191,7 +192,7 @@ pub fn run(args: &SingularityArgs) -> CliResult<Outcome> {
 /// Checks the arguments, builds the line and runs every method.
 pub fn study(args: &SingularityArgs) -> CliResult<Study> {
     let ks = parse_ks(&args.k)?;
-    let defaults = TrackingOptions::default();
+    let defaults = AvoidanceOptions::default();
     let detection = DetectionOptions {
         determinant_threshold: positive(
             "--determinant-threshold",
@@ -204,8 +205,11 @@ pub fn study(args: &SingularityArgs) -> CliResult<Study> {
                 .unwrap_or(defaults.detection.joint_step_threshold),
         )?,
     };
-    let options = TrackingOptions {
-        dt: positive("--dt", args.dt.unwrap_or(defaults.dt))?,
+    let options = AvoidanceOptions {
+        tracking: TrackingOptions {
+            dt: positive("--dt", args.dt.unwrap_or(defaults.tracking.dt))?,
+            ..defaults.tracking
+        },
         detection,
         ..defaults
     };
@@ -217,13 +221,13 @@ pub fn study(args: &SingularityArgs) -> CliResult<Study> {
             args.accel_time
         )));
     }
-    if options.dt > duration {
+    if options.tracking.dt > duration {
         return Err(CliError(format!(
             "--dt: must be at most the duration ({duration} s), got {}",
-            options.dt
+            options.tracking.dt
         )));
     }
-    let steps = (duration / options.dt).ceil();
+    let steps = (duration / options.tracking.dt).ceil();
     if steps > MAX_STEPS {
         return Err(CliError(format!(
             "--duration / --dt = {steps:.0} control periods: at most {MAX_STEPS:.0} \
@@ -282,7 +286,7 @@ pub fn study(args: &SingularityArgs) -> CliResult<Study> {
         join(&through),
         duration,
         args.accel_time,
-        options.dt,
+        options.tracking.dt,
         short(closest),
         closest_time,
         short(options.detection.determinant_threshold),
@@ -374,13 +378,6 @@ fn short(v: f64) -> String {
     crate::report::format_value(v)
 }
 
-fn status_text(status: &RunStatus) -> String {
-    match status {
-        RunStatus::Completed => "completed".into(),
-        RunStatus::Singular { time } => format!("stopped: singular J at {time:.2} s"),
-    }
-}
-
 /// The runs of the table: plain, avoidance (first k), dls, sri, then the
 /// other k of the sweep.
 fn table_runs(study: &Study) -> Vec<&MethodRun> {
@@ -417,7 +414,7 @@ fn methods_table(study: &Study) -> Table {
             format!("{:.3e}", s.final_orientation_error),
             format!("{:.2}", s.time_in_singular_region),
             s.ik_solves.to_string(),
-            status_text(&run.status),
+            run.status.to_string(),
         ]);
     }
     table
@@ -552,8 +549,8 @@ fn checks(study: &Study) -> Vec<Check> {
     {
         checks.push(Check::holds(
             format!("{}: the run completes the path", run.method.label()),
-            run.status == RunStatus::Completed,
-            status_text(&run.status),
+            run.status == TrackingStatus::Completed,
+            run.status.to_string(),
         ));
     }
     if c.k_sweep.len() > 1 {
@@ -823,7 +820,7 @@ fn summary_csv(study: &Study) -> String {
         out += &format!(
             "{},{},{},{},{},{},{},{},{},{},{}\n",
             run.method.label(),
-            status_text(&run.status),
+            run.status,
             s.peak_joint_rate,
             s.max_position_error,
             s.max_orientation_error,
@@ -852,13 +849,13 @@ fn summary_json(study: &Study, args: &SingularityArgs) -> serde_json::Value {
         "goal_xyz_rpy": [goal.translation.x, goal.translation.y, goal.translation.z, roll, pitch, yaw],
         "duration": args.duration,
         "accel_time": args.accel_time,
-        "dt": study.options.dt,
+        "dt": study.options.tracking.dt,
         "determinant_threshold": study.options.detection.determinant_threshold,
         "joint_step_threshold": study.options.detection.joint_step_threshold,
         "k": study.ks,
         "methods": table_runs(study).iter().map(|r| serde_json::json!({
             "method": r.method.label(),
-            "status": status_text(&r.status),
+            "status": r.status.to_string(),
             "peak_joint_rate": r.summary.peak_joint_rate,
             "max_position_error": r.summary.max_position_error,
             "max_orientation_error": r.summary.max_orientation_error,

@@ -9,8 +9,9 @@ use armkit::math::{Pose, Rotation3, Vector3, Vector6};
 use armkit::space::{
     center_of_mass, generalized_jacobian, momentum, space6r_base_body, step, track_pose_path,
     BaseBody, BaseMode, FreeFloatingModel, FreeFloatingState, SinusoidalJointMotion, SpaceData,
-    TrackingOptions, TrackingStatus,
 };
+use armkit::tracking::{LeastSquares, TimedPath, TrackingOptions, TrackingStatus};
+use armkit::trajectory::{CartesianTrajectory, TimeLaw};
 use clap::{Args, Subcommand, ValueEnum};
 
 use crate::plot::Figure;
@@ -528,25 +529,6 @@ fn run_simulate(args: &SimulateArgs) -> CliResult<Outcome> {
     Ok(Outcome::Success)
 }
 
-/// Trapezoidal speed profile: the path parameter `s(t)` in `[0, 1]` for a
-/// motion of `duration` s with `accel` s of constant acceleration at each end.
-fn trapezoid(t: f64, duration: f64, accel: f64) -> f64 {
-    let t = t.clamp(0.0, duration);
-    if accel <= 0.0 {
-        return t / duration;
-    }
-    let speed = 1.0 / (duration - accel);
-    let a = speed / accel;
-    if t < accel {
-        0.5 * a * t * t
-    } else if t <= duration - accel {
-        0.5 * a * accel * accel + speed * (t - accel)
-    } else {
-        let r = duration - t;
-        1.0 - 0.5 * a * r * r
-    }
-}
-
 fn run_track(args: &TrackArgs) -> CliResult<Outcome> {
     let (model, base) = args.system.load()?;
     let mode = BaseMode::from(args.system.base_mode);
@@ -567,21 +549,25 @@ fn run_track(args: &TrackArgs) -> CliResult<Outcome> {
     let initial = FreeFloatingState::new(base, q0);
     generalized_jacobian(&model, &mut data, &initial.base, &initial.q, mode)?;
     let start = *data.end_effector_pose();
-    let turn =
-        Rotation3::from_matrix_unchecked(goal.rotation * start.rotation.transpose()).scaled_axis();
     let (duration, accel) = (args.duration, args.accel_time);
-    let path = |t: f64| {
-        let s = trapezoid(t, duration, accel);
-        Pose::new(
-            Rotation3::from_scaled_axis(turn * s).into_inner() * start.rotation,
-            start.translation + (goal.translation - start.translation) * s,
-        )
+    // Seed 004's trapezoidal speed along the line (constant speed without
+    // an acceleration phase).
+    let law = if accel > 0.0 {
+        TimeLaw::Trapezoidal {
+            acceleration_time: accel,
+        }
+    } else {
+        TimeLaw::Linear
     };
+    let path = CartesianTrajectory::line(start, goal, law, duration)?;
     let options = TrackingOptions {
         dt: args.dt,
+        ..TrackingOptions::default()
+    };
+    let damping = LeastSquares {
         damping: args.damping,
     };
-    let report = track_pose_path(&model, &mut data, mode, &initial, path, duration, &options)?;
+    let report = track_pose_path(&model, &mut data, mode, &initial, &path, damping, &options)?;
     let n = model.dof();
     if let Some(output) = &args.output {
         let mut csv = format!(
@@ -601,7 +587,7 @@ fn run_track(args: &TrackArgs) -> CliResult<Outcome> {
                 number_cells(&s.joint_rates),
                 pose_cells(&s.base),
                 pose_cells(&s.end_effector),
-                pose_cells(&path(s.time)),
+                pose_cells(&path.pose(s.time)),
                 s.position_error,
                 s.orientation_error
             );
@@ -634,10 +620,7 @@ fn run_track(args: &TrackArgs) -> CliResult<Outcome> {
         .iter()
         .flat_map(|s| s.joint_rates.iter())
         .fold(0.0f64, |m, r| m.max(r.abs()));
-    let status = match report.status {
-        TrackingStatus::Completed => "completed".to_string(),
-        TrackingStatus::Singular { time } => format!("singular J* at t = {time} s"),
-    };
+    let status = report.status.to_string();
     if args.json {
         print_json(&serde_json::json!({
             "robot": model.arm().name(),
@@ -665,23 +648,6 @@ fn run_track(args: &TrackArgs) -> CliResult<Outcome> {
     }
     Ok(match report.status {
         TrackingStatus::Completed => Outcome::Success,
-        TrackingStatus::Singular { .. } => Outcome::NotConverged,
+        _ => Outcome::NotConverged,
     })
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn trapezoid_is_continuous_and_reaches_one() {
-        let (d, a) = (20.0, 4.0);
-        assert_eq!(trapezoid(0.0, d, a), 0.0);
-        assert!((trapezoid(d, d, a) - 1.0).abs() < 1e-15);
-        assert!((trapezoid(10.0, d, a) - 0.5).abs() < 1e-15);
-        for t in [a, d - a] {
-            assert!((trapezoid(t - 1e-9, d, a) - trapezoid(t + 1e-9, d, a)).abs() < 1e-9);
-        }
-        assert!((trapezoid(5.0, 10.0, 0.0) - 0.5).abs() < 1e-15);
-    }
 }

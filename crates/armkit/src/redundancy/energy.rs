@@ -136,8 +136,22 @@ pub fn joint_torques(
 ) -> Result<()> {
     load.validate()?;
     check_torque_buffer(model, torques)?;
-    let j = jacobian(model, data, q, JacobianFrame::World)?;
-    for (tau, column) in torques.iter_mut().zip(j.column_iter()) {
+    jacobian(model, data, q, JacobianFrame::World)?;
+    torques_at_evaluated(model, data, q, load, torques)
+}
+
+/// [`joint_torques`] from a `data` that already holds the forward kinematics
+/// and the world-frame Jacobian at `q` (a tracking plant's evaluation):
+/// the same arithmetic without evaluating the model again. The load is
+/// assumed validated and the buffer sized.
+pub(crate) fn torques_at_evaluated(
+    model: &Model,
+    data: &Data,
+    q: &[f64],
+    load: &Load,
+    torques: &mut [f64],
+) -> Result<()> {
+    for (tau, column) in torques.iter_mut().zip(data.jacobian().column_iter()) {
         *tau = column.dot(&load.wrench);
     }
     if let Some(gravity) = load.gravity {

@@ -18,22 +18,19 @@ pub fn jacobian_determinant(jacobian: &Matrix6xX<f64>) -> f64 {
             .determinant()
             .abs();
     }
-    let mut gram = Matrix6::zeros();
     if n > 6 {
-        for column in jacobian.column_iter() {
-            gram += column * column.transpose();
-        }
-    } else {
-        for r in 0..6 {
-            for c in 0..6 {
-                gram[(r, c)] = if r < n && c < n {
-                    jacobian.column(r).dot(&jacobian.column(c))
-                } else if r == c {
-                    1.0
-                } else {
-                    0.0
-                };
-            }
+        return crate::linalg::manipulability(jacobian);
+    }
+    let mut gram = Matrix6::zeros();
+    for r in 0..6 {
+        for c in 0..6 {
+            gram[(r, c)] = if r < n && c < n {
+                jacobian.column(r).dot(&jacobian.column(c))
+            } else if r == c {
+                1.0
+            } else {
+                0.0
+            };
         }
     }
     gram.determinant().max(0.0).sqrt()
