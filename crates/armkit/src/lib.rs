@@ -42,8 +42,10 @@ pub mod model;
 pub mod mpc;
 pub mod redundancy;
 pub mod robots;
+pub mod seeds;
 pub mod singularity;
 pub mod space;
+pub mod study;
 pub mod tracking;
 pub mod trajectory;
 #[cfg(feature = "urdf")]

@@ -143,7 +143,7 @@ pub struct RunSummary {
 
 /// A recorded closed-loop run.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Trajectory {
+pub struct MpcRun {
     /// Sample time, s.
     pub sample_time: f64,
     /// Joint names, in order.
@@ -160,7 +160,11 @@ pub struct Trajectory {
     pub summary: RunSummary,
 }
 
-impl Trajectory {
+/// The former name of [`MpcRun`], kept while the CLI's `commands/mpc.rs`
+/// still uses it (distinct from [`crate::trajectory::Trajectory`]).
+pub type Trajectory = MpcRun;
+
+impl MpcRun {
     /// Indices of the prismatic joints.
     pub fn prismatic_joints(&self) -> Vec<usize> {
         (0..self.joint_kinds.len())
@@ -254,7 +258,7 @@ pub fn simulate(
     start: &[f64],
     target: &Pose,
     simulation: &SimulationOptions,
-) -> Result<Trajectory> {
+) -> Result<MpcRun> {
     let planner = MpcPlanner::new(model, options)?;
     simulate_with(planner, start, target, simulation, |_| {})
 }
@@ -267,7 +271,7 @@ pub fn simulate_with(
     target: &Pose,
     simulation: &SimulationOptions,
     mut progress: impl FnMut(usize),
-) -> Result<Trajectory> {
+) -> Result<MpcRun> {
     simulation.validate()?;
     let model = planner.model().clone();
     model.check_joint_positions(start)?;
@@ -370,7 +374,7 @@ pub fn simulate_with(
     summary.final_position_error = position_error;
     summary.final_orientation_error = orientation_error;
     summary.max_velocity_violation = summary.max_velocity_violation.max(0.0);
-    Ok(Trajectory {
+    Ok(MpcRun {
         sample_time: t,
         joint_names: model.joints().iter().map(|j| j.name.clone()).collect(),
         joint_kinds: model.joints().iter().map(|j| j.kind).collect(),
@@ -409,7 +413,7 @@ pub const SEED000_START: [f64; 9] = [
 
 /// The paper's joint priorities `R` (sec 5): rail 100, beam joints 10,
 /// rotary joints 1.
-pub const SEED000_PRIORITIES: [f64; 9] = [100.0, 10.0, 10.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0];
+pub use crate::seeds::SEED000_PRIORITY_WEIGHTS as SEED000_PRIORITIES;
 
 /// Priorities spread far enough apart for Example 2's claim: rail 1e5, beam
 /// joints 1e4, rotary joints 1. With quadratic weights every increment lies
@@ -567,7 +571,7 @@ impl Seed000Example {
     }
 
     /// Runs the example.
-    pub fn run(self) -> Result<Trajectory> {
+    pub fn run(self) -> Result<MpcRun> {
         simulate(
             &Self::model()?,
             self.options(),
@@ -579,15 +583,15 @@ impl Seed000Example {
 
     /// The claims the paper's text (or our explanation) makes for this
     /// example, evaluated on `run`.
-    pub fn checks(self, run: &Trajectory) -> Vec<Check> {
+    pub fn checks(self, run: &MpcRun) -> Vec<ExampleCheck> {
         let prismatic = run.prismatic_joints();
         let mut checks = vec![
-            Check::new(
+            ExampleCheck::new(
                 "no joint velocity limit crossed",
                 run.summary.max_velocity_violation == 0.0,
                 format!("max violation {:.3e}", run.summary.max_velocity_violation),
             ),
-            Check::new(
+            ExampleCheck::new(
                 "no joint position limit crossed",
                 run.summary.max_position_violation == 0.0,
                 format!("max violation {:.3e}", run.summary.max_position_violation),
@@ -595,7 +599,7 @@ impl Seed000Example {
         ];
         let peak_prismatic: Vec<f64> = prismatic.iter().map(|&j| run.peak_speed(j)).collect();
         let travel_prismatic: Vec<f64> = prismatic.iter().map(|&j| run.travel(j)).collect();
-        let converged = Check::new(
+        let converged = ExampleCheck::new(
             "converges: at the target (1e-4 m) and at rest (1e-3)",
             run.summary.converged,
             format!(
@@ -613,7 +617,7 @@ impl Seed000Example {
             Seed000Example::LargeMove => {
                 checks.push(converged);
                 let saturated = peak_prismatic.iter().filter(|&&p| p >= 0.6 - 1e-9).count();
-                checks.push(Check::new(
+                checks.push(ExampleCheck::new(
                     "prismatic velocities reach 0.6 m/s without exceeding it",
                     saturated > 0 && peak_prismatic.iter().all(|&p| p <= 0.6),
                     format!(
@@ -624,7 +628,7 @@ impl Seed000Example {
                 let final_speed = run.samples.iter().rev().nth(1).map_or(f64::NAN, |s| {
                     s.velocity.iter().fold(0.0, |m, v| m.max(v.abs()))
                 });
-                checks.push(Check::new(
+                checks.push(ExampleCheck::new(
                     "all joint velocities settle to zero",
                     run.summary.converged && final_speed <= 1e-3,
                     format!("largest |v| at the last step {final_speed:.2e}"),
@@ -632,7 +636,7 @@ impl Seed000Example {
             }
             Seed000Example::SmallMove => {
                 checks.push(converged);
-                checks.push(Check::new(
+                checks.push(ExampleCheck::new(
                     "prismatic joints travel less than 1 mm",
                     travel_prismatic.iter().all(|&d| d < 1e-3),
                     travel,
@@ -640,14 +644,14 @@ impl Seed000Example {
             }
             Seed000Example::SmallMovePaperWeights => {
                 checks.push(converged);
-                checks.push(Check::new(
+                checks.push(ExampleCheck::new(
                     "with R = 100/10/1 the prismatic joints do move (> 1 mm): a 10:1 priority only scales their share",
                     travel_prismatic.iter().any(|&d| d >= 1e-3),
                     travel,
                 ));
             }
             Seed000Example::EqualWeights => {
-                checks.push(Check::new(
+                checks.push(ExampleCheck::new(
                     "prismatic joints move (more than 1 mm)",
                     travel_prismatic.iter().any(|&d| d >= 1e-3),
                     travel,
@@ -656,7 +660,7 @@ impl Seed000Example {
             }
             Seed000Example::EqualWeightsUndamped => {
                 let reached = run.samples.iter().any(|s| s.position_error <= 1e-4);
-                checks.push(Check::new(
+                checks.push(ExampleCheck::new(
                     "the hand reaches the target (1e-4 m)",
                     reached,
                     format!("final error {:.2e} m", run.summary.final_position_error),
@@ -664,7 +668,7 @@ impl Seed000Example {
                 let last_speed = run.samples.iter().rev().nth(1).map_or(f64::NAN, |s| {
                     s.velocity.iter().fold(0.0, |m, v| m.max(v.abs()))
                 });
-                checks.push(Check::new(
+                checks.push(ExampleCheck::new(
                     "but the joints never settle: self-motion is undamped without a velocity term",
                     !run.summary.converged && last_speed > 1e-3,
                     format!(
@@ -692,7 +696,7 @@ fn format_values(values: &[f64], unit: &str) -> String {
 
 /// One check of an example: what is claimed, whether it holds, the numbers.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Check {
+pub struct ExampleCheck {
     /// The claim.
     pub name: String,
     /// Whether it holds.
@@ -701,9 +705,9 @@ pub struct Check {
     pub detail: String,
 }
 
-impl Check {
+impl ExampleCheck {
     fn new(name: &str, passed: bool, detail: String) -> Self {
-        Check {
+        ExampleCheck {
             name: name.to_string(),
             passed,
             detail,

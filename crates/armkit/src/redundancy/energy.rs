@@ -39,7 +39,7 @@
 //! let model = armkit::robots::by_name("gantry9").unwrap();
 //! let mut data = Data::new(&model);
 //! let q = [3.0, 2.5, 1.0, 0.3, 0.4, -0.5, 0.2, 0.8, 0.1];
-//! // Hold a 50 N payload, with the links' own weight (g = 9.81 m/s^2 along -z).
+//! // Hold a 50 N payload, with the links' own weight (seed 001's g = 9.81 m/s^2 along -z).
 //! let load = Load::payload(50.0).with_standard_gravity();
 //! let mut tau = [0.0; 9];
 //! joint_torques(&model, &mut data, &q, &load, &mut tau).unwrap();
@@ -55,8 +55,7 @@ use crate::kinematics::{jacobian, Data, JacobianFrame};
 use crate::math::{Vector3, Vector6};
 use crate::model::Model;
 
-/// Standard gravity, m/s^2, acting along the world's -z axis.
-pub const STANDARD_GRAVITY: f64 = 9.81;
+pub use crate::seeds::STANDARD_GRAVITY;
 
 /// What the robot holds: an end-effector wrench and, optionally, gravity on
 /// its own links.
@@ -104,9 +103,17 @@ impl Load {
         self
     }
 
-    /// This load with standard gravity, `9.81 m/s^2` along world -z.
+    /// This load with seed 001's gravity ([`crate::seeds::SEED001_GRAVITY`],
+    /// 9.81 m/s^2) along world -z. For the exact conventional value use
+    /// [`Load::with_gravity`] with [`STANDARD_GRAVITY`] (9.80665 m/s^2).
     pub fn with_standard_gravity(self) -> Self {
-        self.with_gravity(Vector3::new(0.0, 0.0, -STANDARD_GRAVITY))
+        self.with_seed001_gravity()
+    }
+
+    /// This load with seed 001's gravity ([`crate::seeds::SEED001_GRAVITY`])
+    /// along world -z.
+    pub fn with_seed001_gravity(self) -> Self {
+        self.with_gravity(Vector3::new(0.0, 0.0, -crate::seeds::SEED001_GRAVITY))
     }
 
     /// Checks that every number is finite.

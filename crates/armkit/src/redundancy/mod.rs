@@ -69,11 +69,7 @@ pub use weighted::WeightedLeastNorm;
 use crate::error::{check_finite, check_finite_vector, Error, Result};
 use crate::math::Matrix6xX;
 
-/// Seed 000's joint priorities for the 9-DOF gantry (sec 4.4, example 1):
-/// weight 100 on the rail joint `d1` (lowest priority: long, heavy, imprecise),
-/// 10 on the beam joints `d2`, `d3`, and 1 on the six arm joints (highest
-/// priority). Dimensionless; joint order of [`crate::robots::gantry9`].
-pub const SEED000_PRIORITY_WEIGHTS: [f64; 9] = [100.0, 10.0, 10.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0];
+pub use crate::seeds::SEED000_PRIORITY_WEIGHTS;
 
 /// Positive per-joint weights `a_i` of the velocity cost `sum a_i q_dot_i^2`
 /// (seed 001, eq 18), or a locked joint.

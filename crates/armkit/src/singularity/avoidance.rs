@@ -1,7 +1,8 @@
 //! Velocity-level tracking of a straight-line pose path, with seed 004's
 //! singularity avoidance and the damped baselines.
 
-use super::detection::{below_threshold, detect, jacobian_determinant, DetectionOptions, Trigger};
+use super::detection::{below_threshold, jacobian_determinant, DetectionOptions, Trigger};
+use super::method_law::MethodLaw;
 use super::plant::{KnotSolve, Plant};
 use super::Manipulator;
 use crate::error::{check_finite_vector, check_positive, Error, Result};
@@ -10,9 +11,7 @@ use crate::ik::{
     NakamuraDamping,
 };
 use crate::math::{DMatrix, Pose, Vector6};
-use crate::tracking::{
-    track, RateLaw, RateOutcome, Recorder, SampleState, Step, TrackingOptions, TrackingStatus,
-};
+use crate::tracking::{track, TrackingOptions, TrackingStatus};
 use crate::trajectory::cartesian::{CartesianTrajectory, LinePath, TimeLaw};
 use crate::trajectory::spline::clamped_cubic_spline;
 use crate::trajectory::JointState;
@@ -215,7 +214,7 @@ pub struct MethodRun {
 pub struct PathTracker<'m> {
     manipulator: Manipulator<'m>,
     task: LineTask,
-    options: AvoidanceOptions,
+    pub(super) options: AvoidanceOptions,
     trajectory: CartesianTrajectory,
     steps: usize,
     h: f64,
@@ -397,7 +396,7 @@ impl<'m> PathTracker<'m> {
     /// The method's joint rates for `twist` at the plant's last evaluation
     /// (the avoidance method's candidate is the plain inverse); false when
     /// the plain inverse meets an exactly singular Jacobian.
-    fn rates(
+    pub(super) fn rates(
         &self,
         method: &Method,
         plant: &Plant<'_>,
@@ -421,7 +420,7 @@ impl<'m> PathTracker<'m> {
 
     /// Plans the singular region entered at sample `entry` (seed 004, sec
     /// 2.3.2, steps 2-4): the knots, their IK, and the C2 fit.
-    fn plan_region(
+    pub(super) fn plan_region(
         &self,
         plant: &mut Plant<'_>,
         entry: usize,
@@ -608,106 +607,5 @@ impl<'m> PathTracker<'m> {
             mean_region_orientation_error: mean(orientation_sum),
             ik_solves: run.regions.iter().map(|r| r.ik_solves).sum(),
         }
-    }
-}
-
-/// The rate law of one [`Method`] on a [`PathTracker`]'s path: the plain,
-/// damped or singularity-robust inverse, or seed 004's avoidance (plain
-/// outside a singular region, the fitted joint motion across it).
-struct MethodLaw<'t, 'm> {
-    tracker: &'t PathTracker<'m>,
-    method: Method,
-    /// The active region: its fit and the sample index where it ends.
-    active: Option<(crate::trajectory::Trajectory, usize)>,
-    /// The rates applied in the last period.
-    previous_rates: Vec<f64>,
-    /// The plain rates' joint steps, for detection.
-    candidate: Vec<f64>,
-    fit_state: JointState,
-    regions: Vec<SingularRegion>,
-}
-
-impl RateLaw<Plant<'_>> for MethodLaw<'_, '_> {
-    fn rates(
-        &mut self,
-        plant: &mut Plant<'_>,
-        step: &Step<'_>,
-        rates: &mut [f64],
-    ) -> Result<RateOutcome> {
-        let (i, t, h) = (step.index, step.time, step.dt);
-        if self.active.as_ref().is_some_and(|(_, end)| i >= *end) {
-            self.active = None;
-        }
-        if self.active.is_none() {
-            let solved = self.tracker.rates(&self.method, plant, &step.twist, rates);
-            match self.method {
-                Method::Avoidance { k } => {
-                    for (c, r) in self.candidate.iter_mut().zip(rates.iter()) {
-                        *c = if solved { r * h } else { f64::INFINITY };
-                    }
-                    let detection = detect(
-                        plant.jacobian(),
-                        &self.candidate,
-                        &self.tracker.options.detection,
-                    )?;
-                    if let Some(trigger) = detection.trigger {
-                        let (fit, end, region) =
-                            self.tracker
-                                .plan_region(plant, i, k, trigger, &self.previous_rates)?;
-                        self.regions.push(region);
-                        self.active = Some((fit, end));
-                    } else if !solved {
-                        return Ok(RateOutcome::Singular);
-                    }
-                }
-                _ if !solved => return Ok(RateOutcome::Singular),
-                _ => {}
-            }
-        }
-        let planned = if let Some((fit, _)) = &self.active {
-            fit.sample_into(t + h, &mut self.fit_state)?;
-            for ((rate, target), q) in rates
-                .iter_mut()
-                .zip(&self.fit_state.position)
-                .zip(plant.q())
-            {
-                *rate = (target - q) / h;
-            }
-            true
-        } else {
-            false
-        };
-        self.previous_rates.copy_from_slice(rates);
-        Ok(RateOutcome::Rates {
-            velocity_scale: 1.0,
-            limit_locks: 0,
-            planned,
-            stopped_at: None,
-        })
-    }
-}
-
-/// A [`MethodRun`] records its series column by column (sized once: a
-/// period allocates nothing).
-impl Recorder for MethodRun {
-    fn state(&mut self, sample: &SampleState<'_>) -> Result<()> {
-        self.time.push(sample.time);
-        for (series, q) in self.joint_positions.iter_mut().zip(sample.q) {
-            series.push(*q);
-        }
-        self.position_error.push(sample.position_error);
-        self.orientation_error.push(sample.orientation_error);
-        self.determinant.push(jacobian_determinant(sample.jacobian));
-        let base = sample.base.translation;
-        self.base_position.push([base.x, base.y, base.z]);
-        Ok(())
-    }
-
-    fn rates(&mut self, rates: &[f64], outcome: Option<&RateOutcome>) {
-        for (series, r) in self.joint_rates.iter_mut().zip(rates) {
-            series.push(*r);
-        }
-        let planned = matches!(outcome, Some(RateOutcome::Rates { planned: true, .. }));
-        self.in_region.push(planned);
     }
 }

@@ -63,6 +63,8 @@ pub(crate) fn below_threshold(determinant: f64, threshold: f64) -> bool {
 /// * `joint_step_threshold` 0.005 rad per control period: space6r's joint
 ///   speed limit, 0.5 rad/s, over 0.01 s.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "io", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "io", serde(deny_unknown_fields))]
 pub struct DetectionOptions {
     /// `eps_det`: the motion is singular where `|det J| <`
     /// this ([`jacobian_determinant`]; m^3 for a 6R arm), > 0.

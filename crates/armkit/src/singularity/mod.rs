@@ -133,6 +133,7 @@ mod comparison;
 mod configurations;
 mod detection;
 mod ellipsoid;
+mod method_law;
 mod plant;
 mod scenario;
 
@@ -155,6 +156,8 @@ use crate::space::FreeFloatingModel;
 
 /// Which base the arm stands on.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "io", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "io", serde(rename_all = "kebab-case"))]
 pub enum BaseKind {
     /// A fixed base: the arm's world frame is the inertial frame.
     Fixed,
