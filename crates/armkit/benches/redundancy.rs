@@ -144,5 +144,42 @@ fn tracking(c: &mut Criterion) {
     });
 }
 
-criterion_group!(benches, solves, energy, tracking);
+/// The shared kernels and the bare tracking loop (new hot paths of the
+/// velocity-level layer): the damped least-squares rates of a 6 x 9
+/// Jacobian, and a 100-period least-squares run on a fixed base recording
+/// every sample.
+fn kernels(c: &mut Criterion) {
+    use armkit::linalg::{damped_least_squares_rates, GRAM_THRESHOLD};
+    use armkit::tracking::{track_samples, FixedBase, LeastSquares, TrackingOptions};
+    let j = jacobian_at("gantry9", &GANTRY_Q);
+    let twist = Vector6::new(0.1, 0.05, -0.05, 0.0, 0.1, 0.0);
+    let mut rates = [0.0; 9];
+    c.bench_function("linalg/damped_least_squares_rates gantry9", |b| {
+        b.iter(|| {
+            damped_least_squares_rates(black_box(&j), &twist, 0.01, GRAM_THRESHOLD, &mut rates)
+                .is_singular()
+        })
+    });
+    let model = armkit::robots::by_name("ur5").unwrap();
+    let q0 = [0.3, -1.2, 1.4, -1.5, -1.4, 0.2];
+    let mut data = Data::new(&model);
+    let start = *forward_kinematics(&model, &mut data, &q0).unwrap();
+    let goal = Pose::from_translation(Vector3::new(0.0, 0.1, 0.05)) * start;
+    let path = CartesianTrajectory::line(start, goal, TimeLaw::Quintic, 1.0).unwrap();
+    c.bench_function("tracking/ur5 least squares, 100 periods", |b| {
+        b.iter(|| {
+            let mut plant = FixedBase::new(&model, &mut data, &q0).unwrap();
+            let report = track_samples(
+                &mut plant,
+                &mut LeastSquares { damping: 0.0 },
+                &path,
+                &TrackingOptions::default(),
+            )
+            .unwrap();
+            black_box(report.status)
+        })
+    });
+}
+
+criterion_group!(benches, solves, energy, tracking, kernels);
 criterion_main!(benches);
