@@ -532,3 +532,34 @@ fn dynamics_does_not_allocate() {
         assert_eq!(after - before, 0, "{name}: {} allocations", after - before);
     }
 }
+
+#[test]
+fn the_simulated_plant_does_not_allocate() {
+    use armkit::mpc::{ActuatorPrecision, Plant, PlantModel};
+    let model = armkit::robots::gantry9_flex().unwrap();
+    let kinds: Vec<_> = model.joints().iter().map(|j| j.kind).collect();
+    let limited = PlantModel::LimitedPrecision {
+        prismatic: ActuatorPrecision {
+            position_resolution: 1e-3,
+            deadband: 1e-3,
+            velocity_resolution: 1e-4,
+        },
+        rotary: ActuatorPrecision::EXACT,
+    };
+    for plant_model in [PlantModel::Exact, limited] {
+        let mut q = model.neutral_configuration();
+        let mut plant = Plant::new(plant_model, &kinds, &q).unwrap();
+        let u = vec![0.013; q.len()];
+        let before = allocations();
+        for _ in 0..100 {
+            plant.advance(&mut q, &u, 0.05).unwrap();
+        }
+        let after = allocations();
+        assert_eq!(
+            after - before,
+            0,
+            "{plant_model:?}: {} allocations",
+            after - before
+        );
+    }
+}
