@@ -603,3 +603,34 @@ fn linalg_kernels_and_the_tracking_loop_do_not_allocate() {
     assert_eq!(loop_allocations(0.5), 0);
     assert_eq!(loop_allocations(2.0), 0);
 }
+
+#[test]
+fn the_simulated_plant_does_not_allocate() {
+    use armkit::mpc::{ActuatorPrecision, Plant, PlantModel};
+    let model = armkit::robots::gantry9_flex().unwrap();
+    let kinds: Vec<_> = model.joints().iter().map(|j| j.kind).collect();
+    let limited = PlantModel::LimitedPrecision {
+        prismatic: ActuatorPrecision {
+            position_resolution: 1e-3,
+            deadband: 1e-3,
+            velocity_resolution: 1e-4,
+        },
+        rotary: ActuatorPrecision::EXACT,
+    };
+    for plant_model in [PlantModel::Exact, limited] {
+        let mut q = model.neutral_configuration();
+        let mut plant = Plant::new(plant_model, &kinds, &q).unwrap();
+        let u = vec![0.013; q.len()];
+        let before = allocations();
+        for _ in 0..100 {
+            plant.advance(&mut q, &u, 0.05).unwrap();
+        }
+        let after = allocations();
+        assert_eq!(
+            after - before,
+            0,
+            "{plant_model:?}: {} allocations",
+            after - before
+        );
+    }
+}
