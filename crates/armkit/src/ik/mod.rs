@@ -39,19 +39,24 @@
 //! ```
 
 pub mod closed_form;
+mod damping;
+mod kernel;
 mod numeric;
 mod pose_error;
 mod protocol;
+mod steps;
 
 use std::time::Duration;
 
 pub use crate::math::rotation_log;
-pub use numeric::{
-    damped_least_squares_step, damped_pseudo_inverse, singularity_robust_inverse,
-    singularity_robust_step, ChiaveriniFilter, IkSolver, LmDamping, NakamuraDamping,
-};
+pub use damping::{ChiaveriniFilter, LmDamping, NakamuraDamping};
+pub use numeric::IkSolver;
 pub use pose_error::{masked_error_norms, orientation_error, pose_error};
 pub use protocol::{benchmark_targets, random_configuration};
+pub use steps::{
+    damped_least_squares_step, damped_pseudo_inverse, singularity_robust_inverse,
+    singularity_robust_step,
+};
 
 use crate::error::{check_positive, Error, Result};
 
@@ -299,6 +304,12 @@ impl IkStatus {
             IkStatus::Converged => "converged",
             IkStatus::NotConverged => "not_converged",
         }
+    }
+}
+
+impl std::fmt::Display for IkStatus {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
     }
 }
 
