@@ -38,6 +38,7 @@
 //! assert!((reached.translation - goal.translation).norm() <= 1e-6);
 //! ```
 
+pub mod analytic;
 pub mod closed_form;
 mod damping;
 mod kernel;

@@ -17,6 +17,11 @@ use crate::kinematics::{jacobian, Data, JacobianFrame};
 use crate::math::{wrap_angle, Matrix6xX, Pose, Vector6};
 use crate::model::{JointKind, Model};
 
+/// When an attempt gives up: after `stall` iterations in a row that did not
+/// lower the attempt's best objective below `progress` times itself. Near a
+/// solution every step divides the error by far more, so a stall means a
+/// local minimum, a singular region or a limit: restart.
+#[derive(Clone, Copy, Debug)]
 struct Patience {
     stall: usize,
     progress: f64,

@@ -113,11 +113,6 @@ pub fn singularity_robust_inverse(
     Ok(inverse)
 }
 
-/// When an attempt gives up: after `stall` iterations in a row that did not
-/// lower the attempt's best objective below `progress` times itself. Near a
-/// solution every step divides the error by far more, so a stall means a
-/// local minimum, a singular region or a limit: restart.
-
 #[cfg(test)]
 mod tests {
     use super::*;
