@@ -11,6 +11,7 @@ use rand_chacha::ChaCha8Rng;
 use super::kernel::{trace, Form, Kernel};
 use super::pose_error::{masked_error_norms, pose_error};
 use super::protocol::sample_joint;
+use super::reach::ReachBound;
 use super::{IkMethod, IkOptions, IkReport, IkSelection, IkStatus, Redundancy};
 use crate::error::{Error, Result};
 use crate::kinematics::{jacobian, Data, JacobianFrame};
@@ -84,6 +85,8 @@ pub struct IkSolver {
     held: Vec<bool>,
     /// The Jacobian with the held joints' columns zeroed.
     held_jacobian: Matrix6xX<f64>,
+    /// Targets beyond it are not attempted.
+    reach: ReachBound,
 }
 
 impl IkSolver {
@@ -112,6 +115,7 @@ impl IkSolver {
             solution: vec![0.0; n],
             held: vec![false; n],
             held_jacobian: Matrix6xX::zeros(n),
+            reach: ReachBound::of_model(model),
         })
     }
 
@@ -140,7 +144,10 @@ impl IkSolver {
     /// Errors only for bad input: `start` of the wrong size or not finite, a
     /// `target` with a non-finite entry or a rotation that is not
     /// orthonormal (to 1e-6) with determinant +1. Not reaching the target is
-    /// [`IkStatus::NotConverged`] with the best iterate.
+    /// [`IkStatus::NotConverged`] with the best iterate; a target beyond the
+    /// arm's reach ([`ReachBound`], when all three position components are
+    /// weighted) is not attempted: `NotConverged` at once, with the start
+    /// (projected into the limits) and no iterations.
     pub fn solve(&mut self, target: &Pose, start: &[f64]) -> Result<IkReport> {
         let began = Instant::now();
         self.model.check_joint_positions(start)?;
@@ -159,7 +166,13 @@ impl IkSolver {
         let mut solution_distance = f64::INFINITY;
         let mut iterations = 0usize;
         let mut restarts = 0usize;
-        for attempt in 0..=self.options.max_restarts {
+        let attempts = if self.beyond_reach(target) {
+            self.best.copy_from_slice(&self.start);
+            0
+        } else {
+            self.options.max_restarts + 1
+        };
+        for attempt in 0..attempts {
             if attempt == 0 {
                 self.q.copy_from_slice(&self.start);
             } else {
@@ -220,6 +233,17 @@ impl IkSolver {
             restarts,
             elapsed: began.elapsed(),
         })
+    }
+
+    /// True when every position component is weighted and `target` is
+    /// beyond the reach bound.
+    pub fn beyond_reach(&self, target: &Pose) -> bool {
+        self.options.task_weights[..3].iter().all(|w| *w > 0.0) && self.reach.excludes(target)
+    }
+
+    /// The reach bound of the model.
+    pub fn reach(&self) -> &ReachBound {
+        &self.reach
     }
 
     /// One attempt from `self.q`: iterates until converged, stalled, out of
