@@ -548,6 +548,88 @@ fn every_representative_within_wide_ranges() {
 }
 
 #[test]
+fn subproblem_verification_agrees_with_forward_kinematics() {
+    use armkit::ik::analytic::Verification;
+    for name in ["ur5", "puma560", "stanford"] {
+        let model = armkit::robots::by_name(name).unwrap();
+        let fast = AnalyticOptions {
+            verification: Verification::Subproblems,
+            ..AnalyticOptions::default()
+        };
+        let mut checked = solver(&model);
+        let mut quick = AnalyticSolver::new(&model, fast).unwrap();
+        for (q, target) in armkit::ik::benchmark_targets(&model, 200, 9).unwrap() {
+            let a = checked.solve(&target, &q).unwrap().to_vec();
+            let b = quick.solve(&target, &q).unwrap().to_vec();
+            assert_eq!(a.len(), b.len(), "{name}");
+            for (x, y) in a.iter().zip(&b) {
+                assert_eq!(x.q(), y.q());
+                assert_eq!(x.fit, y.fit, "{name}");
+                assert!(y.position_error.is_nan());
+            }
+        }
+    }
+}
+
+#[test]
+fn the_numeric_solver_rejects_targets_beyond_reach_at_once() {
+    use armkit::ik::{IkOptions, IkSolver, IkStatus, ReachBound};
+    for name in ["ur5", "panda", "puma560", "stanford"] {
+        let model = armkit::robots::by_name(name).unwrap();
+        let reach = ReachBound::of_model(&model);
+        // The bound holds on random configurations (it is an upper bound).
+        let mut data = Data::new(&model);
+        let mut rng = common::rng(11);
+        for _ in 0..2000 {
+            let q = common::random_configuration(&model, &mut rng);
+            let pose = forward_kinematics(&model, &mut data, &q).unwrap();
+            assert!(!reach.excludes(pose), "{name}");
+        }
+        let mut far = Pose::identity();
+        far.translation = reach.centre() + Vector3::new(reach.radius() * 1.001 + 1e-6, 0.0, 0.0);
+        let mut solver = IkSolver::new(&model, IkOptions::default()).unwrap();
+        let report = solver.solve(&far, &model.neutral_configuration()).unwrap();
+        assert_eq!(report.status, IkStatus::NotConverged);
+        assert_eq!(report.iterations, 0, "{name}");
+        assert!(
+            report.elapsed.as_micros() < 1000,
+            "{name}: {:?}",
+            report.elapsed
+        );
+    }
+}
+
+#[test]
+fn auto_is_exact_on_every_pose_of_ur5_and_panda() {
+    use armkit::ik::{AutoSolver, IkOptions, IkRoute, IkStatus};
+    for name in ["ur5", "panda", "puma560"] {
+        let model = armkit::robots::by_name(name).unwrap();
+        let options = IkOptions {
+            time_budget: None,
+            max_restarts: 200,
+            ..IkOptions::default()
+        };
+        let mut auto = AutoSolver::new(&model, options).unwrap();
+        let start = model.neutral_configuration();
+        let mut analytic = 0;
+        for (_, target) in armkit::ik::benchmark_targets(&model, 300, 42).unwrap() {
+            let solved = auto.solve(&target, &start).unwrap();
+            assert_eq!(solved.report.status, IkStatus::Converged, "{name}");
+            model.check_limits(&solved.report.q).unwrap();
+            assert!(solved.report.position_error <= 1e-6);
+            analytic += usize::from(solved.route != IkRoute::Numeric);
+        }
+        // 6R arms always take the analytic route; the Panda when joint 7's
+        // start value admits a solution within the limits, else numeric.
+        if name != "panda" {
+            assert_eq!(analytic, 300, "{name}");
+        } else {
+            assert!(analytic > 50, "{name}: {analytic}");
+        }
+    }
+}
+
+#[test]
 #[ignore = "10 000 poses per robot: cargo test --release --test ik_analytic -- --ignored"]
 fn ten_thousand_poses_per_robot() {
     let cases: Vec<(Model, Option<Parameter>)> = vec![

@@ -5,11 +5,12 @@
 //!   one within the limits is returned.
 //! * 7-joint arms: a spherical-shoulder-elbow-wrist arm by its elbow angle,
 //!   any other by holding the first joint (last first) whose release leaves a
-//!   class; first at the start's own parameter (the start's elbow angle or
-//!   joint value), then over a sweep of [`SWEEP_VALUES`] values of the
-//!   parameter; the nearest exact solution wins.
+//!   class, at the start's own parameter (the start's elbow angle or joint
+//!   value).
 //! * Otherwise, or when nothing exact lies within the limits: the numeric
-//!   solver from the start.
+//!   solver from the start; if it does not converge on a 7-joint arm, a sweep
+//!   of [`SWEEP_VALUES`] values of the parameter, the nearest exact
+//!   solution winning.
 //! * A target beyond the reach bound ([`super::ReachBound`]) is not attempted.
 //!
 //! ```
@@ -79,6 +80,15 @@ pub struct AutoReport {
     pub route: IkRoute,
 }
 
+/// Which analytic attempt.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Stage {
+    /// At the start's own parameter (or the 6-DOF arm's only solve).
+    OwnParameter,
+    /// Over a sweep of the 7-DOF parameter.
+    Sweep,
+}
+
 /// How a 7-joint arm's spare freedom is parameterized.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Spare {
@@ -124,9 +134,8 @@ impl AutoSolver {
                 route: IkRoute::Unreachable,
             });
         }
-        if let Some(found) = self.analytic_answer(target, start)? {
-            let (solution, route) = found;
-            return Ok(AutoReport {
+        let analytic = |found: Option<(AnalyticSolution, IkRoute)>| {
+            found.map(|(solution, route)| AutoReport {
                 report: IkReport {
                     status: IkStatus::Converged,
                     q: solution.q().to_vec(),
@@ -137,9 +146,19 @@ impl AutoSolver {
                     elapsed: began.elapsed(),
                 },
                 route,
-            });
+            })
+        };
+        if let Some(answer) = analytic(self.analytic_answer(target, start, Stage::OwnParameter)?) {
+            return Ok(answer);
         }
         let mut report = self.numeric.solve(target, start)?;
+        if !report.converged() {
+            // The numeric solver gave up: sweep the 7-DOF parameter.
+            if let Some(mut answer) = analytic(self.analytic_answer(target, start, Stage::Sweep)?) {
+                answer.report.elapsed = began.elapsed();
+                return Ok(answer);
+            }
+        }
         report.elapsed = began.elapsed();
         Ok(AutoReport {
             report,
@@ -152,6 +171,7 @@ impl AutoSolver {
         &mut self,
         target: &Pose,
         start: &[f64],
+        stage: Stage,
     ) -> Result<Option<(AnalyticSolution, IkRoute)>> {
         let options = *self.numeric.options();
         let Some(analytic) = self.analytic.as_mut() else {
@@ -167,15 +187,18 @@ impl AutoSolver {
             Spare::ElbowAngle => Some(analytic.elbow_angle(start)?),
             Spare::Joint(j) => Some(start[j]),
         };
-        if let Some(value) = own {
-            analytic.set_parameter_value(value)?;
-        }
-        if let Some(s) = analytic
-            .solve(target, start)?
-            .iter()
-            .find(|s| acceptable(s))
-        {
-            return Ok(Some((*s, IkRoute::Analytic)));
+        if stage == Stage::OwnParameter {
+            if let Some(value) = own {
+                if analytic.set_parameter_value(value).is_err() {
+                    return Ok(None);
+                }
+            }
+            let found = analytic
+                .solve(target, start)?
+                .iter()
+                .find(|s| acceptable(s))
+                .copied();
+            return Ok(found.map(|s| (s, IkRoute::Analytic)));
         }
         let Some(own) = own else {
             return Ok(None);

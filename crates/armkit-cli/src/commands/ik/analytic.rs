@@ -118,6 +118,27 @@ impl Route {
         }
     }
 
+    /// The nearest exact solution within the limits (the benchmark's answer:
+    /// every solution is computed, only the first is copied out).
+    pub(super) fn first_exact(
+        &mut self,
+        target: &Pose,
+        start: &[f64],
+    ) -> CliResult<Option<Vec<f64>>> {
+        match self {
+            Route::Subproblems(s) => Ok(s
+                .solve(target, start)?
+                .iter()
+                .find(|s| s.fit == Fit::Exact)
+                .map(|s| s.q().to_vec())),
+            Route::Arm4(c) => Ok(c
+                .solve(target, start)?
+                .into_iter()
+                .find(|s| s.fit == Fit::Exact)
+                .map(|s| s.q)),
+        }
+    }
+
     /// Every solution within the limits, nearest `start` first; with `sweep`
     /// N, over N values of the 7-DOF parameter.
     pub(super) fn solve(

@@ -2,7 +2,6 @@
 
 use std::time::Instant;
 
-use armkit::ik::closed_form::Fit;
 use armkit::ik::{benchmark_targets, AutoSolver, IkSolver, IkStatus};
 use armkit::kinematics::Data;
 use armkit::math::Pose;
@@ -171,11 +170,7 @@ fn bench_solver(
     for (i, (_, target)) in targets.iter().enumerate() {
         let began = Instant::now();
         let q = if let Some(route) = analytic.as_mut() {
-            route
-                .solve(target, start, None)?
-                .into_iter()
-                .find(|s| s.fit == Fit::Exact)
-                .map(|s| s.q)
+            route.first_exact(target, start)?
         } else {
             let report = match auto.as_mut() {
                 Some(auto) => auto.solve(target, start)?.report,

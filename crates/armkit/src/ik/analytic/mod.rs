@@ -57,7 +57,7 @@ pub mod subproblems;
 mod wrist;
 
 pub use class::{ArmClass, ChainEnd, Positioning};
-pub use finish::{AnalyticSolution, Representatives};
+pub use finish::{AnalyticSolution, Representatives, Verification};
 
 use self::chain::{Candidates, Chain};
 use self::class::{detect, Detected};
@@ -71,13 +71,16 @@ use crate::math::Pose;
 use crate::model::Model;
 
 /// Options of an [`AnalyticSolver`]. Defaults: every representative within
-/// the limits, solutions outside the limits dropped.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// the limits, solutions outside the limits dropped, each solution checked
+/// by forward kinematics.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct AnalyticOptions {
     /// Which 2 pi multiples of a joint angle are returned.
     pub representatives: Representatives,
     /// Whether solutions outside the joint limits are kept.
     pub limits: RangeFilter,
+    /// How each solution's fit is decided.
+    pub verification: Verification,
 }
 
 impl Default for AnalyticOptions {
@@ -85,6 +88,7 @@ impl Default for AnalyticOptions {
         AnalyticOptions {
             representatives: Representatives::Every,
             limits: RangeFilter::WithinLimits,
+            verification: Verification::ForwardKinematics,
         }
     }
 }
