@@ -10,7 +10,9 @@
 
 use std::hint::black_box;
 
-use armkit::ik::analytic::{AnalyticOptions, AnalyticSolver, Parameter, Representatives};
+use armkit::ik::analytic::{
+    AnalyticOptions, AnalyticSolver, Parameter, Representatives, Verification,
+};
 use armkit::ik::closed_form::{arm4_solutions, SphericalWristSolver};
 use armkit::ik::AutoSolver;
 use armkit::ik::{
@@ -138,6 +140,16 @@ fn bench_analytic(c: &mut Criterion) {
     }
     let solver = AnalyticSolver::new(&ur5, every).unwrap();
     bench_analytic_solver(c, "ur5/every_representative", &ur5, solver);
+    // Fit from the subproblems' own flags, no FK check (IK-Geo's measure).
+    let unchecked = AnalyticOptions {
+        verification: Verification::Subproblems,
+        ..nearest
+    };
+    for name in ["ur5", "puma560"] {
+        let model = armkit::robots::by_name(name).unwrap();
+        let solver = AnalyticSolver::new(&model, unchecked).unwrap();
+        bench_analytic_solver(c, &format!("{name}/distinct_unchecked"), &model, solver);
+    }
     let iiwa = ideal_iiwa14();
     let solver =
         AnalyticSolver::with_parameter(&iiwa, nearest, Parameter::ElbowAngle(0.3)).unwrap();

@@ -234,6 +234,30 @@ fn the_iiwa14_urdf_is_not_exactly_srs() {
     assert!(error.contains("no analytic solver"), "{error}");
 }
 
+/// Asserts the generating configuration was found on at least 99.9 % of poses.
+fn assert_search_recovered(name: &str, tally: &Tally) {
+    assert!(
+        tally.recovered as f64 >= 0.999 * tally.poses as f64,
+        "{name}: generating configuration found on {}/{} poses",
+        tally.recovered,
+        tally.poses
+    );
+}
+
+#[test]
+fn iiwa14_urdf_with_the_elbow_joint_held_by_1d_search() {
+    let model = urdf("urdf/iiwa14.urdf", "tool0");
+    let parameter = Parameter::FixedJoint {
+        joint: 2,
+        value: 0.4,
+    };
+    let mut s =
+        AnalyticSolver::with_parameter(&model, AnalyticOptions::default(), parameter).unwrap();
+    assert_eq!(s.class().as_str(), "spherical_wrist_general_1d_search");
+    let tally = check(&model, &mut s, POSES, 8, &no_parameter);
+    assert_search_recovered("iiwa14 urdf q3 held", &tally);
+}
+
 #[test]
 fn panda_with_the_last_joint_fixed_every_pose() {
     let model = armkit::robots::by_name("panda").unwrap();
@@ -333,6 +357,7 @@ fn spherical_wrist_lines(rng: &mut ChaCha8Rng, positioning: Positioning) -> Line
             lines[1].0 = lines[0].0;
             lines[2].2 = true;
         }
+        Positioning::General => {}
     }
     for _ in 0..3 {
         lines.push((w, unit(rng), false));
@@ -420,6 +445,52 @@ fn random_spherical_wrist_arms() {
             |rng| spherical_wrist_lines(rng, positioning),
             true,
             base,
+        );
+    }
+}
+
+#[test]
+fn random_general_position_spherical_wrist_arms() {
+    // No special pair among the first three axes: the 1-D search class.
+    let lines = |rng: &mut ChaCha8Rng| {
+        let w = point(rng) + Vector3::new(0.0, 0.0, 1.0);
+        let mut lines: Lines = (0..3).map(|_| (point(rng), unit(rng), false)).collect();
+        for _ in 0..3 {
+            lines.push((w, unit(rng), false));
+        }
+        lines
+    };
+    for (seed, reverse, class) in [
+        (60, false, "spherical_wrist_general_1d_search"),
+        (61, true, "spherical_base_general_1d_search"),
+    ] {
+        let mut rng = common::rng(seed);
+        let mut tally = Tally {
+            poses: 0,
+            recovered: 0,
+            worst_error: 0.0,
+            solutions: 0,
+        };
+        for arm in 0..20 {
+            let mut lines = lines(&mut rng);
+            if reverse {
+                lines.reverse();
+            }
+            let model = model_from_lines(&format!("general{arm}"), &lines, random_home(&mut rng));
+            let mut s = solver(&model);
+            assert_eq!(s.class().as_str(), class);
+            let one = check(&model, &mut s, POSES / 10, seed * 100 + arm, &no_parameter);
+            tally.poses += one.poses;
+            tally.recovered += one.recovered;
+        }
+        // Measured: 1993/2000 (99.65 %), short of the 99.9 % the iiwa14
+        // reaches: random geometry puts some roots of the residual where it
+        // only touches zero. Held here at 99.5 % so that a regression fails.
+        assert!(
+            tally.recovered as f64 >= 0.995 * tally.poses as f64,
+            "{class}: generating configuration found on {}/{} poses",
+            tally.recovered,
+            tally.poses
         );
     }
 }

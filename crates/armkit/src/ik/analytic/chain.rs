@@ -7,7 +7,7 @@ use crate::math::{Matrix3, Pose, Vector3};
 
 /// Most candidate solutions one solve produces (8 for every class here;
 /// room for tangent duplicates).
-pub(crate) const MAX_CANDIDATES: usize = 16;
+pub(crate) const MAX_CANDIDATES: usize = 32;
 /// Most joints of an arm the analytic solvers handle (7-DOF arms).
 pub(crate) const MAX_JOINTS: usize = 7;
 

@@ -28,6 +28,9 @@ pub enum Positioning {
     /// Axes 1 and 2 intersect, joint 3 prismatic (Stanford arm): a
     /// quadratic for the slide, then subproblem 2.
     PrismaticThird,
+    /// No intersecting or parallel pair: a 1-D search over joint 1 (see
+    /// the `search` tolerances), then subproblems 4 and 1.
+    General,
 }
 
 /// The class of an arm, as far as the analytic solvers are concerned.
@@ -75,11 +78,13 @@ impl ArmClass {
                 (Tip, IntersectingFirstSecond) => "spherical_wrist_intersecting_1_2",
                 (Tip, IntersectingSecondThird) => "spherical_wrist_intersecting_2_3",
                 (Tip, PrismaticThird) => "spherical_wrist_prismatic_3",
+                (Tip, General) => "spherical_wrist_general_1d_search",
                 (Base, ParallelSecondThird) => "spherical_base_parallel_5_4",
                 (Base, ParallelFirstSecond) => "spherical_base_parallel_6_5",
                 (Base, IntersectingFirstSecond) => "spherical_base_intersecting_6_5",
                 (Base, IntersectingSecondThird) => "spherical_base_intersecting_5_4",
                 (Base, PrismaticThird) => "spherical_base_prismatic_4",
+                (Base, General) => "spherical_base_general_1d_search",
             },
             ArmClass::ThreeParallel { end: Tip } => "three_parallel_2_3_4_intersecting_5_6",
             ArmClass::ThreeParallel { end: Base } => "three_parallel_3_4_5_intersecting_1_2",
@@ -93,6 +98,13 @@ impl ArmClass {
     /// A sentence for `--explain`.
     pub fn description(&self) -> &'static str {
         match self {
+            ArmClass::SphericalWrist {
+                end,
+                positioning: Positioning::General,
+            } => match end {
+                ChainEnd::Tip => "spherical wrist at the tip, three general positioning axes: 1-D search over joint 1 (256 samples, roots to 1e-13 rad), up to 8 solutions",
+                ChainEnd::Base => "spherical joint group at the base, three general positioning axes: 1-D search on the reversed chain (256 samples, roots to 1e-13 rad)",
+            },
             ArmClass::SphericalWrist { end: ChainEnd::Tip, .. } => {
                 "spherical wrist at the tip (axes 4-5-6 meet in one point): closed form, up to 8 solutions"
             }
@@ -240,7 +252,7 @@ fn spherical_wrist(chain: &ArmStructure, end: ChainEnd) -> Option<Detected> {
         (Relation::Parallel, _) => found(Positioning::ParallelFirstSecond, wrist),
         (Relation::Intersecting(o), _) => found(Positioning::IntersectingFirstSecond, o),
         (_, Relation::Intersecting(o)) => found(Positioning::IntersectingSecondThird, o),
-        _ => None,
+        _ => found(Positioning::General, wrist),
     }
 }
 

@@ -28,7 +28,9 @@
 //! configuration. After [`AnalyticSolver::new`], a solve allocates nothing
 //! (unless the representatives outgrow the buffer sized at set-up for every
 //! joint's range, which only happens for [`Parameter::FixedJoint`] changes).
-//! None of the classes here needs a search, so there is no search tolerance.
+//! One class searches: a spherical wrist behind three general positioning
+//! axes, by a 1-D search over joint 1 whose tolerances are in [`search`]
+//! (256 samples per turn, roots to 1e-13 rad); it may miss a double root.
 //!
 //! ```
 //! use armkit::ik::analytic::{AnalyticOptions, AnalyticSolver};
@@ -51,6 +53,7 @@ mod chain;
 mod class;
 mod finish;
 mod parallel;
+pub mod search;
 mod srs;
 pub mod structure;
 pub mod subproblems;

@@ -22,7 +22,7 @@ pub(crate) fn solve(
 ) {
     // Joints 4-6 fix the wrist point: E1 E2 E3 w = T home^-1 w.
     let goal = target.transform_point(&chain.home_inverse.transform_point(wrist));
-    let mut positions = [([0.0; 3], false); 4];
+    let mut positions = [([0.0; 3], false); 16];
     let count = position(chain, positioning, wrist, shoulder, &goal, &mut positions);
     let wrist_goal = target.rotation * chain.home_inverse.rotation;
     for &(q, exact) in &positions[..count] {
@@ -45,8 +45,11 @@ fn position(
     w: &Vector3<f64>,
     o: &Vector3<f64>,
     goal: &Vector3<f64>,
-    out: &mut [([f64; 3], bool); 4],
+    out: &mut [([f64; 3], bool); 16],
 ) -> usize {
+    if positioning == Positioning::General {
+        return super::search::position(chain, w, goal, out);
+    }
     let (c, h) = (&chain.c, &chain.h);
     let mut count = 0;
     let mut push = |q: [f64; 3], exact: bool| {
@@ -106,6 +109,7 @@ fn position(
                 }
             }
         }
+        Positioning::General => {}
         Positioning::PrismaticThird => {
             // |w + d h3 - o|^2 = |W - o|^2: d^2 + 2 b d + (|w - o|^2 - |W - o|^2) = 0.
             let b = h[2].dot(&(w - o));
