@@ -4,8 +4,8 @@
 //! * 6-joint arms of an analytic class: every solution, the nearest exact
 //!   one within the limits is returned.
 //! * 7-joint arms: a spherical-shoulder-elbow-wrist arm by its elbow angle,
-//!   any other by holding the first joint (last first) whose release leaves a
-//!   class, at the start's own parameter (the start's elbow angle or joint
+//!   any other by holding the joint [`super::analytic::joint_to_hold`]
+//!   picks, at the start's own parameter (the start's elbow angle or joint
 //!   value).
 //! * Otherwise, or when nothing exact lies within the limits: the numeric
 //!   solver from the start; if it does not converge on a 7-joint arm, a sweep
@@ -253,11 +253,10 @@ fn analytic_for(model: &Model) -> (Option<AnalyticSolver>, Spare) {
     if let Ok(s) = AnalyticSolver::with_parameter(model, options, Parameter::ElbowAngle(0.0)) {
         return (Some(s), Spare::ElbowAngle);
     }
-    let neutral = model.neutral_configuration();
-    for joint in (0..7).rev() {
+    if let Some((joint, _)) = super::analytic::joint_to_hold(model) {
         let parameter = Parameter::FixedJoint {
             joint,
-            value: neutral[joint],
+            value: model.neutral_configuration()[joint],
         };
         if let Ok(s) = AnalyticSolver::with_parameter(model, options, parameter) {
             return (Some(s), Spare::Joint(joint));

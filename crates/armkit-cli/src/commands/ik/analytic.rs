@@ -77,12 +77,12 @@ impl Route {
             solver.set_parameter_value(psi)?;
             return Ok(Route::Subproblems(Box::new(solver)));
         }
-        for joint in (0..7).rev() {
+        if let Some((joint, _)) = analytic::joint_to_hold(model) {
             let value = redundancy.parameter.unwrap_or(start[joint]);
             let parameter = Parameter::FixedJoint { joint, value };
-            if let Ok(solver) = AnalyticSolver::with_parameter(model, options, parameter) {
-                return Ok(Route::Subproblems(Box::new(solver)));
-            }
+            return Ok(Route::Subproblems(Box::new(
+                AnalyticSolver::with_parameter(model, options, parameter)?,
+            )));
         }
         Err(elbow
             .err()
@@ -279,15 +279,9 @@ pub(super) fn explain(model: &Model, redundancy: &RedundancyArgs, json: bool) ->
     let (mut class, structure) = analytic::explain(model, parameter)?;
     let mut held = None;
     if model.dof() == 7 && parameter.is_none() && !class.is_solvable() {
-        // The first joint (last first) whose holding leaves a class.
-        for joint in (0..7).rev() {
-            let parameter = Some(Parameter::FixedJoint { joint, value: 0.0 });
-            let (reduced, _) = analytic::explain(model, parameter)?;
-            if reduced.is_solvable() {
-                class = reduced;
-                held = Some(joint + 1);
-                break;
-            }
+        if let Some((joint, reduced)) = analytic::joint_to_hold(model) {
+            class = reduced;
+            held = Some(joint + 1);
         }
     }
     let held_text = held

@@ -352,6 +352,47 @@ impl AnalyticSolver {
     }
 }
 
+/// The joint (0-based) of a 7-joint `model` to hold so that the other six
+/// form a class at any value of it (checked at 0, 0.7 and -1.9), with that
+/// class: the last such joint of a closed-form class, else the last of a
+/// search class; `None` if none (or not 7 joints).
+pub fn joint_to_hold(model: &Model) -> Option<(usize, ArmClass)> {
+    if model.dof() != 7 {
+        return None;
+    }
+    let structure = ArmStructure::of_model(model).ok()?;
+    let class_at = |joint: usize| -> Option<ArmClass> {
+        let mut class = None;
+        for value in [0.0, 0.7, -1.9] {
+            let parameter = Some(Parameter::FixedJoint { joint, value });
+            let (c, _) = plan(model, &structure, parameter).ok()?;
+            if class.is_some_and(|k| k != c) {
+                return None;
+            }
+            class = Some(c);
+        }
+        class
+    };
+    let searches = |c: &ArmClass| {
+        matches!(
+            c,
+            ArmClass::SphericalWrist {
+                positioning: Positioning::General,
+                ..
+            }
+        )
+    };
+    let classes: Vec<(usize, ArmClass)> = (0..7)
+        .rev()
+        .filter_map(|j| class_at(j).map(|c| (j, c)))
+        .collect();
+    classes
+        .iter()
+        .find(|(_, c)| !searches(c))
+        .or_else(|| classes.first())
+        .copied()
+}
+
 /// The class of `model` and the lines it was read from (for `--explain`).
 pub fn explain(model: &Model, parameter: Option<Parameter>) -> Result<(ArmClass, ArmStructure)> {
     let structure = ArmStructure::of_model(model)?;
