@@ -161,6 +161,19 @@ fn bench_analytic(c: &mut Criterion) {
     };
     let solver = AnalyticSolver::with_parameter(&panda, nearest, held).unwrap();
     bench_analytic_solver(c, "panda_q7_held/distinct", &panda, solver);
+    // The 1-D search class: the iiwa14 URDF (0.436 mm offsets) with joint 3 held.
+    let iiwa_urdf = urdf("iiwa14.urdf", &|t| t);
+    let held = Parameter::FixedJoint {
+        joint: 2,
+        value: 0.4,
+    };
+    let solver = AnalyticSolver::with_parameter(&iiwa_urdf, nearest, held).unwrap();
+    bench_analytic_solver(
+        c,
+        "iiwa14_urdf_q3_held_1d_search/distinct",
+        &iiwa_urdf,
+        solver,
+    );
     for name in ["ur5", "panda"] {
         let model = armkit::robots::by_name(name).unwrap();
         let targets = benchmark_targets(&model, 64, 42).unwrap();

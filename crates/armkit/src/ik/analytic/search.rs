@@ -18,11 +18,11 @@
 //! local minimum at a sample without a sign change, a golden-section search
 //! (to the same tolerance) looks for a sign change hiding between the
 //! neighbours (two close roots). A root where `f_b` only touches zero (a
-//! double root) can still be missed: the search classes are held to
-//! >= 99.9 % of random poses, not 100 %.
+//! double root) can still be missed by one formulation, hence two (see
+//! `position`); the search classes are held to >= 99.9 % of random
+//! poses, not 100 %.
 
 use super::chain::Chain;
-use super::structure::GEOMETRY_TOLERANCE;
 use super::subproblems::{rotation, subproblem1, subproblem4};
 use crate::math::Vector3;
 
@@ -59,10 +59,12 @@ pub(crate) struct Lines3 {
 }
 
 /// Joints 1-3 of `chain` putting `w` at `goal`, by the search; written to
-/// `out`, returns how many. The search runs over joint 1, or over joint 3
-/// (on the inverted problem `E3^-1 E2^-1 E1^-1 goal = w`) when axes 1 and 2
-/// come nearer to meeting than axes 2 and 3: the residual over joint 1 is
-/// flat when axes 1 and 2 nearly intersect.
+/// `out`, returns how many. The search runs twice and the roots are merged
+/// (duplicates within 1e-9 rad dropped): over joint 1, and over joint 3 on
+/// the inverted problem `E3^-1 E2^-1 E1^-1 goal = w`. Each alone misses
+/// some roots where its residual is flat or only touches zero (the one over
+/// joint 1 when axes 1 and 2 nearly meet, as in the iiwa14 URDF); on 4 000
+/// poses of 40 random arms each missed 0.3-0.5 %, merged none.
 pub(crate) fn position(
     chain: &Chain,
     w: &Vector3<f64>,
@@ -70,31 +72,30 @@ pub(crate) fn position(
     out: &mut [([f64; 3], bool)],
 ) -> usize {
     let (c, h) = (&chain.c, &chain.h);
-    let gap = |i: usize, j: usize| {
-        let n = h[i].cross(&h[j]);
-        if n.norm() < GEOMETRY_TOLERANCE {
-            f64::INFINITY
-        } else {
-            (c[j] - c[i]).dot(&n).abs() / n.norm()
-        }
+    let forward = Lines3 {
+        c: [c[0], c[1], c[2]],
+        h: [h[0], h[1], h[2]],
     };
-    if gap(0, 1) < gap(1, 2) {
-        let lines = Lines3 {
-            c: [c[2], c[1], c[0]],
-            h: [-h[2], -h[1], -h[0]],
-        };
-        let count = search(&lines, goal, w, out);
-        for (q, _) in out[..count].iter_mut() {
-            q.swap(0, 2);
+    let mut count = search(&forward, w, goal, out);
+    let inverted = Lines3 {
+        c: [c[2], c[1], c[0]],
+        h: [-h[2], -h[1], -h[0]],
+    };
+    let mut more = [([0.0; 3], false); 16];
+    let extra = search(&inverted, goal, w, &mut more);
+    for (mut q, exact) in more.into_iter().take(extra) {
+        q.swap(0, 2);
+        let duplicate = out[..count].iter().any(|(p, _)| {
+            p.iter()
+                .zip(&q)
+                .all(|(a, b)| crate::math::wrap_angle(a - b).abs() < 1e-9)
+        });
+        if !duplicate && count < out.len() {
+            out[count] = (q, exact);
+            count += 1;
         }
-        count
-    } else {
-        let lines = Lines3 {
-            c: [c[0], c[1], c[2]],
-            h: [h[0], h[1], h[2]],
-        };
-        search(&lines, w, goal, out)
     }
+    count
 }
 
 /// The search over the first joint of `chain`.
