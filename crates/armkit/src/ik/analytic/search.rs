@@ -15,7 +15,8 @@
 //! where subproblem 4's two solutions merge, found by bisection) is refined
 //! by the Illinois variant of regula falsi until the bracket is narrower
 //! than [`ROOT_TOLERANCE`] rad or `f` is exactly zero; where `|f_b|` has a
-//! local minimum at a sample without a sign change, a golden-section search
+//! local minimum at a sample without a sign change and the parabola through
+//! the three samples dips below a quarter of it, a golden-section search
 //! (to the same tolerance) looks for a sign change hiding between the
 //! neighbours (two close roots). A root where `f_b` only touches zero (a
 //! double root) can still be missed by one formulation, hence two (see
@@ -27,7 +28,7 @@ use super::subproblems::{rotation, subproblem1, subproblem4};
 use crate::math::Vector3;
 
 /// Samples of `t1` over one turn.
-pub const SAMPLES: usize = 256;
+pub const SAMPLES: usize = 128;
 /// Width (rad) below which a bracket of `t1` counts as converged.
 pub const ROOT_TOLERANCE: f64 = 1e-13;
 /// Most refinement steps per root.
@@ -150,6 +151,7 @@ fn search(
                     && f1.signum() == f2.signum()
                     && f1.abs() < f0.abs()
                     && f1.abs() < f2.abs()
+                    && parabola_nears_zero(f0, f1, f2)
                 {
                     let (a, b) = (ta - step, t);
                     if let Some((tm, fm)) = minimize(chain, w, goal, branch, a, b) {
@@ -173,6 +175,20 @@ fn search(
         }
     }
     count
+}
+
+/// True when the parabola through three equally spaced samples of the
+/// same sign, smallest in the middle, dips below a quarter of the middle
+/// sample's magnitude (or through zero): only then can two roots hide there.
+fn parabola_nears_zero(f0: f64, f1: f64, f2: f64) -> bool {
+    let s = f1.signum();
+    let (g0, g1, g2) = (s * f0, s * f1, s * f2);
+    let curvature = g0 - 2.0 * g1 + g2;
+    if curvature <= 0.0 {
+        return true;
+    }
+    let vertex = g1 - (g2 - g0) * (g2 - g0) / (8.0 * curvature);
+    vertex < 0.25 * g1
 }
 
 /// Golden-section search for the minimum of `|f|` of branch `branch` on
