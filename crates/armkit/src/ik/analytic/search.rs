@@ -34,6 +34,23 @@ pub const ROOT_TOLERANCE: f64 = 1e-13;
 /// Most refinement steps per root.
 const MAX_STEPS: usize = 100;
 
+/// The residuals of both branches at `t1` (one rotation and one
+/// subproblem 4 shared), for the sampling pass.
+fn residuals(chain: &Lines3, w: &Vector3<f64>, goal: &Vector3<f64>, t1: f64) -> [Option<f64>; 2] {
+    let (c, h) = (&chain.c, &chain.h);
+    let x = c[0] + rotation(&h[0], t1).transpose() * (goal - c[0]);
+    let t3s = subproblem4(&h[1], &h[2], &(w - c[2]), h[1].dot(&(x - c[2])));
+    if !t3s.exact || t3s.as_slice().len() < 2 {
+        return [None, None];
+    }
+    let radius = (x - c[1]).norm_squared();
+    let at = |t3: f64| {
+        let y = c[2] + rotation(&h[2], t3) * (w - c[2]);
+        Some((y - c[1]).norm_squared() - radius)
+    };
+    [at(t3s.as_slice()[0]), at(t3s.as_slice()[1])]
+}
+
 /// The residual of branch `branch` at `t1`, if the branch exists there.
 fn residual(
     chain: &Lines3,
@@ -121,8 +138,13 @@ fn search(
         }
     };
     let step = TAU / SAMPLES as f64;
-    for branch in 0..2 {
-        let at = |k: usize| residual(chain, w, goal, -PI + step * (k % SAMPLES) as f64, branch);
+    let mut samples = [[None; SAMPLES]; 2];
+    let [first, second] = &mut samples;
+    for (k, (a, b)) in first.iter_mut().zip(second.iter_mut()).enumerate() {
+        [*a, *b] = residuals(chain, w, goal, -PI + step * k as f64);
+    }
+    for (branch, row) in samples.iter().enumerate() {
+        let at = |k: usize| row[k % SAMPLES];
         let mut before = at(SAMPLES - 1);
         let mut previous = at(0);
         for k in 1..=SAMPLES {
