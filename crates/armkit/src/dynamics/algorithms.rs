@@ -142,13 +142,26 @@ fn joint_space_inertia(data: &mut DynamicsData) {
             data.mass_matrix = m;
         }
         Some(mut coupled) => {
-            // M' H_c M, H_c the chain's mass matrix.
+            // M' H_c M, H_c the chain's mass matrix (plain loops: nalgebra's
+            // gemm packs into heap buffers).
             composite_rigid_body(data, &mut coupled.chain_mass_matrix);
-            coupled
-                .product
-                .gemm(1.0, &coupled.chain_mass_matrix, &coupled.map, 0.0);
-            data.mass_matrix
-                .gemm_tr(1.0, &coupled.map, &coupled.product, 0.0);
+            let (h, map, product) = (
+                &coupled.chain_mass_matrix,
+                &coupled.map,
+                &mut coupled.product,
+            );
+            let chain = h.nrows();
+            for k in 0..map.ncols() {
+                for i in 0..chain {
+                    product[(i, k)] = (0..chain).map(|j| h[(i, j)] * map[(j, k)]).sum();
+                }
+            }
+            for k in 0..map.ncols() {
+                for i in 0..map.ncols() {
+                    data.mass_matrix[(i, k)] =
+                        (0..chain).map(|j| map[(j, i)] * product[(j, k)]).sum();
+                }
+            }
             data.coupled = Some(coupled);
         }
     }
