@@ -1384,18 +1384,6 @@ const CASES: &[Case] = &[
     ),
     case(
         "dynamics",
-        "coupled model (flexible gantry)",
-        &[
-            "dynamics",
-            "--robot",
-            "gantry9-flex",
-            "--q",
-            "1,2,0.5,0,0,0,0,0,0",
-        ],
-        1,
-    ),
-    case(
-        "dynamics",
         "negative mass (file)",
         &["dynamics", "--robot-file", "negative-mass.toml", "--q", "0"],
         1,

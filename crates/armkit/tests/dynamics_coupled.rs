@@ -201,6 +201,24 @@ fn coupled_rnea_equals_the_free_chain_with_the_map_applied_by_hand() {
             random_chain(seed, dof, false),
         ));
     }
+    // mimicbot, and the same file with its <mimic> elements removed.
+    let text = std::fs::read_to_string(data_path("urdf/mimicbot.urdf")).unwrap();
+    let free_text: String = text
+        .lines()
+        .filter(|line| !line.contains("<mimic"))
+        .map(|line| format!("{line}\n"))
+        .collect();
+    assert_eq!(text.matches("<mimic").count(), 3);
+    let dir = std::env::temp_dir().join(format!("armkit-dynamics-coupled-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let free_path = dir.join("mimicbot_free.urdf");
+    std::fs::write(&free_path, free_text).unwrap();
+    for tip in ["fingertip", "finger_b_tip"] {
+        let free = load(&free_path, &ChainSelection::between("base", tip)).unwrap();
+        assert!(free.coupling().is_none());
+        pairs.push((mimicbot(tip), free));
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
     let mut r = rng(40);
     for (coupled, free) in &pairs {
         let n = coupled.dof();

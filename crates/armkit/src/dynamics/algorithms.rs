@@ -13,7 +13,10 @@ use crate::model::Model;
 ///
 /// Returns one torque per joint (also kept in [`DynamicsData::torques`]).
 /// Errors: a slice of the wrong size or not finite, `data` made for another
-/// model, a link without mass properties, a coupled model. Allocates nothing.
+/// model, a link without mass properties, an additive coupling curve
+/// without a second derivative. A coupled model (mimic joints, the flexible
+/// gantry) works in its independent joints (see the module documentation).
+/// Allocates nothing.
 pub fn rnea<'d>(
     model: &Model,
     data: &'d mut DynamicsData,
@@ -25,7 +28,7 @@ pub fn rnea<'d>(
     check_finite_vector("joint_accelerations", a, model.dof())?;
     data.update_bodies(model, q)?;
     let gravity = data.gravity;
-    data.chain_newton_euler(v, Some(a), Some(&gravity));
+    data.chain_newton_euler(Some(v), Some(a), Some(&gravity));
     Ok(data.torques())
 }
 
@@ -39,11 +42,7 @@ pub fn gravity_torques<'d>(
 ) -> Result<&'d [f64]> {
     data.update_bodies(model, q)?;
     let gravity = data.gravity;
-    // Zero velocities (the chain-length zeros cover the independent joints:
-    // a chain has at least as many joints as the configuration).
-    let zeros = std::mem::take(&mut data.zeros);
-    data.chain_newton_euler(&zeros, None, Some(&gravity));
-    data.zeros = zeros;
+    data.chain_newton_euler(None, None, Some(&gravity));
     Ok(data.torques())
 }
 
@@ -57,7 +56,7 @@ pub fn coriolis_torques<'d>(
 ) -> Result<&'d [f64]> {
     check_finite_vector("joint_velocities", v, model.dof())?;
     data.update_bodies(model, q)?;
-    data.chain_newton_euler(v, None, None);
+    data.chain_newton_euler(Some(v), None, None);
     Ok(data.torques())
 }
 
@@ -72,7 +71,7 @@ pub fn nonlinear_effects<'d>(
     check_finite_vector("joint_velocities", v, model.dof())?;
     data.update_bodies(model, q)?;
     let gravity = data.gravity;
-    data.chain_newton_euler(v, None, Some(&gravity));
+    data.chain_newton_euler(Some(v), None, Some(&gravity));
     Ok(data.torques())
 }
 
@@ -279,6 +278,11 @@ pub fn mass_matrix_inverse<'d>(
 /// (rad/s^2 or m/s^2) that torques `tau` (N m or N) give at positions `q` and
 /// velocities `v`, under the workspace's gravity.
 ///
+/// For a coupled model (mimic joints, the flexible gantry) the chain is
+/// constrained, and the O(n) recursion does not hold: `(M' H_c M) ddq =
+/// tau - M'(C + g)` is solved by a Cholesky factorization instead, O(n^3)
+/// (module documentation).
+///
 /// Returns one acceleration per joint (also kept in
 /// [`DynamicsData::accelerations`]). Errors as [`rnea`], and
 /// [`Error::Numerical`] if a joint's articulated inertia about its axis is not
@@ -364,7 +368,7 @@ fn coupled_forward_dynamics(
     tau: &[f64],
 ) -> Result<()> {
     let gravity = data.gravity;
-    data.chain_newton_euler(v, None, Some(&gravity));
+    data.chain_newton_euler(Some(v), None, Some(&gravity));
     joint_space_inertia(data);
     cholesky_factor(model, data)?;
     let n = data.dof;

@@ -287,16 +287,21 @@ impl DynamicsData {
     }
 
     /// The RNEA's two passes on the chain (after `update_bodies`) at joint
-    /// velocities `v` and accelerations `a` (`None`: zero) of the
+    /// velocities `v` and accelerations `a` (each `None`: zero) of the
     /// independent joints, `gravity` `None` leaving it out; the torques are
     /// then in [`DynamicsData::torques`]. A coupled model's chain moves at
     /// `M v`, `M a + Md v`, and its torques fold to `M' tau_c`.
-    fn chain_newton_euler(&mut self, v: &[f64], a: Option<&[f64]>, gravity: Option<&Vector3<f64>>) {
+    fn chain_newton_euler(
+        &mut self,
+        v: Option<&[f64]>,
+        a: Option<&[f64]>,
+        gravity: Option<&Vector3<f64>>,
+    ) {
+        let zeros = std::mem::take(&mut self.zeros);
+        let v = v.unwrap_or(&zeros);
         match self.coupled.take() {
             None => {
-                let zeros = std::mem::take(&mut self.zeros);
                 algorithms::newton_euler(self, v, a.unwrap_or(&zeros), gravity);
-                self.zeros = zeros;
             }
             Some(mut coupled) => {
                 coupled.expand(v, a);
@@ -310,6 +315,7 @@ impl DynamicsData {
                 self.coupled = Some(coupled);
             }
         }
+        self.zeros = zeros;
     }
 }
 
