@@ -768,3 +768,45 @@ fn seed001_energy_under_static_and_dynamic_torques() {
     .to_string();
     assert!(err.contains("increase strictly"), "{err}");
 }
+
+/// Instruction-count probe (not a check): `ARMKIT_PROBE_CALLS=N` calls of
+/// each of RNEA, CRBA and ABA on the UR5 URDF. Under callgrind, the
+/// difference between two runs with different N, divided by the difference
+/// in N, is the instructions per call, free of set-up:
+/// `ARMKIT_PROBE_CALLS=20000 valgrind --tool=callgrind --callgrind-out-file=/tmp/cg.20k <test binary> --ignored --exact instruction_count_probe`
+/// (then 10000), and `callgrind_annotate` each file's total.
+/// `ARMKIT_PROBE_ONLY=rnea|crba|aba` runs one algorithm.
+#[test]
+#[ignore]
+fn instruction_count_probe() {
+    let calls: usize = std::env::var("ARMKIT_PROBE_CALLS")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(1000);
+    let only = std::env::var("ARMKIT_PROBE_ONLY").unwrap_or_default();
+    let model = load(
+        data_path("urdf/ur5.urdf"),
+        &ChainSelection::between("base_link", "tool0"),
+    )
+    .unwrap();
+    let mut data = DynamicsData::new(&model).unwrap();
+    let q = [0.1, -0.4, 0.8, 0.2, 0.5, -0.3];
+    let v = [0.2, 0.1, -0.3, 0.4, 0.0, 0.1];
+    let a = [1.0, -0.5, 0.3, 0.0, 0.2, 0.1];
+    let mut sum = 0.0;
+    for i in 0..calls {
+        let mut q = q;
+        q[0] += i as f64 * 1e-9;
+        let q = std::hint::black_box(q);
+        if only.is_empty() || only == "rnea" {
+            sum += rnea(&model, &mut data, &q, &v, &a).unwrap()[0];
+        }
+        if only.is_empty() || only == "crba" {
+            sum += mass_matrix(&model, &mut data, &q).unwrap()[(0, 0)];
+        }
+        if only.is_empty() || only == "aba" {
+            sum += aba(&model, &mut data, &q, &v, &a).unwrap()[0];
+        }
+    }
+    println!("{sum}");
+}

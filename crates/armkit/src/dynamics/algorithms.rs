@@ -134,7 +134,13 @@ pub fn mass_matrix<'d>(
 /// The mass matrix of the bodies placed by `update_bodies` into
 /// `data.mass_matrix`: the CRBA, folded `M' H_c M` for a coupled model.
 fn joint_space_inertia(data: &mut DynamicsData) {
-    match data.coupled.take() {
+    // Checked before `take` so that an uncoupled call moves nothing.
+    let coupled = if data.coupled.is_some() {
+        data.coupled.take()
+    } else {
+        None
+    };
+    match coupled {
         None => {
             let mut m = std::mem::take(&mut data.mass_matrix);
             composite_rigid_body(data, &mut m);

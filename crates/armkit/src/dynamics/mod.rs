@@ -299,7 +299,13 @@ impl DynamicsData {
     ) {
         let zeros = std::mem::take(&mut self.zeros);
         let v = v.unwrap_or(&zeros);
-        match self.coupled.take() {
+        // Checked before `take` so that an uncoupled call moves nothing.
+        let coupled = if self.coupled.is_some() {
+            self.coupled.take()
+        } else {
+            None
+        };
+        match coupled {
             None => {
                 algorithms::newton_euler(self, v, a.unwrap_or(&zeros), gravity);
             }
