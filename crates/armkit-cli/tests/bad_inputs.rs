@@ -155,6 +155,10 @@ const FILES: &[(&str, &str)] = &[
         "<robot name=\"r\"><link name=\"a\"/><link name=\"b\"/><link name=\"c\"/><joint name=\"j1\" type=\"revolute\"><parent link=\"a\"/><child link=\"b\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint><joint name=\"j2\" type=\"revolute\"><parent link=\"b\"/><child link=\"c\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/><mimic joint=\"j1\" offset=\"3\"/></joint></robot>",
     ),
     (
+        "mimic-masses.urdf",
+        "<robot name=\"r\"><link name=\"a\"/><link name=\"b\"><inertial><mass value=\"1\"/><inertia ixx=\"0.01\" ixy=\"0\" ixz=\"0\" iyy=\"0.01\" iyz=\"0\" izz=\"0.01\"/></inertial></link><link name=\"c\"><inertial><mass value=\"1\"/><inertia ixx=\"0.01\" ixy=\"0\" ixz=\"0\" iyy=\"0.01\" iyz=\"0\" izz=\"0.01\"/></inertial></link><joint name=\"j1\" type=\"revolute\"><parent link=\"a\"/><child link=\"b\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint><joint name=\"j2\" type=\"revolute\"><parent link=\"b\"/><child link=\"c\"/><origin xyz=\"0.3 0 0\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/><mimic joint=\"j1\" multiplier=\"0.5\"/></joint></robot>",
+    ),
+    (
         "mimic-ok.urdf",
         "<robot name=\"r\"><link name=\"a\"/><link name=\"b\"/><link name=\"c\"/><joint name=\"j1\" type=\"revolute\"><parent link=\"a\"/><child link=\"b\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint><joint name=\"j2\" type=\"revolute\"><parent link=\"b\"/><child link=\"c\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/><mimic joint=\"j1\" multiplier=\"2\"/></joint></robot>",
     ),
@@ -1488,14 +1492,14 @@ const CASES: &[Case] = &[
     ),
     case(
         "dynamics",
-        "coupled model (flexible gantry)",
-        &[
-            "dynamics",
-            "--robot",
-            "gantry9-flex",
-            "--q",
-            "1,2,0.5,0,0,0,0,0,0",
-        ],
+        "mimic chain: one value per chain joint instead of per independent joint",
+        &["dynamics", "--urdf", "mimic-masses.urdf", "--q", "0,0"],
+        1,
+    ),
+    case(
+        "dynamics",
+        "mimic chain without masses",
+        &["dynamics", "--urdf", "mimic-ok.urdf", "--q", "0"],
         1,
     ),
     case(

@@ -189,3 +189,45 @@ fn traj_reports_torques_and_fits_them_to_the_urdf_effort_limits() {
     let svg = std::fs::read_to_string(dir.join("torques.svg")).unwrap();
     assert!(svg.contains("<svg") && svg.contains("joint torques"));
 }
+
+#[test]
+fn coupled_models_work_in_their_independent_joints() {
+    // mimicbot's finger: 9 chain joints, 7 independent (a mimic of a mimic).
+    let q = "0.1,-0.4,0.8,0.2,0.5,-0.3,0.3";
+    let output = armkit(&[
+        "dynamics",
+        "--urdf",
+        "tests/data/urdf/mimicbot.urdf",
+        "--base",
+        "base",
+        "--tip",
+        "fingertip",
+        "--q",
+        q,
+        "--v",
+        "0.2,0.1,-0.3,0.4,0,0.1,0.5",
+        "--a",
+        "1,-0.5,0.3,0,0.2,0.1,-1",
+        "--tau",
+        "1,2,3,0.5,0.2,0.1,0.01",
+        "--json",
+    ]);
+    let result = json(&output);
+    for key in ["tau", "gravity", "coriolis", "ddq"] {
+        assert_eq!(result[key].as_array().unwrap().len(), 7, "{key}");
+    }
+    assert_eq!(result["mass_matrix"].as_array().unwrap().len(), 7);
+    // The flexible gantry, refused before issue 20's coupled dynamics.
+    let output = armkit(&[
+        "dynamics",
+        "--robot",
+        "gantry9-flex",
+        "--q",
+        "1,2,0.5,0,0,0,0,0,0",
+        "--v",
+        "0,1,0,0,0,0,0,0,0",
+        "--json",
+    ]);
+    let result = json(&output);
+    assert_eq!(result["tau"].as_array().unwrap().len(), 9);
+}

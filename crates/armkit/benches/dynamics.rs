@@ -2,6 +2,9 @@
 //! ABA on the ur5 and panda URDF chains, the models Pinocchio's benchmark in
 //! `../shared/peers` (`bench_cpp.py`: `rnea_ns`, `crba_ns`, `aba_ns`) loads.
 //!
+//! Also the coupled models of issue 20 (mimicbot's finger, gantry9-flex),
+//! which work in their independent joints.
+//!
 //! Run: `cargo bench -p armkit --bench dynamics`.
 //!
 //! Each call takes the next of 1024 random states (positions within the
@@ -57,6 +60,12 @@ fn bench_robot(c: &mut Criterion, name: &str, base: &str, tip: &str) {
         env!("CARGO_MANIFEST_DIR")
     );
     let model = load(path, &ChainSelection::between(base, tip)).unwrap();
+    bench_model(c, name, &model);
+}
+
+/// RNEA, CRBA and ABA on `model`, labelled `name`.
+fn bench_model(c: &mut Criterion, name: &str, model: &armkit::Model) {
+    let model = model.clone();
     let mut data = DynamicsData::new(&model).unwrap();
     let states = random_states(&model, 1024);
     let mut next = states.iter().cycle();
@@ -83,6 +92,11 @@ fn bench_robot(c: &mut Criterion, name: &str, base: &str, tip: &str) {
 fn dynamics(c: &mut Criterion) {
     bench_robot(c, "ur5", "base_link", "tool0");
     bench_robot(c, "panda", "panda_link0", "panda_link8");
+    // Coupled models (issue 20): a mimic-joint finger (9 chain joints, 7
+    // independent; forward dynamics by Cholesky) and the flexible gantry.
+    bench_robot(c, "mimicbot", "base", "fingertip");
+    let flex = armkit::robots::by_name("gantry9-flex").unwrap();
+    bench_model(c, "gantry9-flex", &flex);
 }
 
 criterion_group!(benches, dynamics);

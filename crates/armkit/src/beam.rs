@@ -334,6 +334,23 @@ impl SimplySupportedBeam {
         let k = force / (3.0 * self.stiffness() * l);
         (k * a * a * b * b, k * 2.0 * a * b * (l - 2.0 * a))
     }
+
+    /// `d^2 w / da^2` under a single load `force` at `a` that moves with the
+    /// point of interest: `d/da [2 a b (b - a)] = 2 (a^2 - 4 a b + b^2)`
+    /// times `F / (3 E I L)`, `b = L - a`; zero off the span (where the
+    /// deflection is clamped), NaN for a NaN `a`.
+    fn curvature_under_load(&self, a: f64, force: f64) -> f64 {
+        let l = self.length;
+        if a.is_nan() {
+            return f64::NAN;
+        }
+        if !(0.0..=l).contains(&a) {
+            return 0.0;
+        }
+        let b = l - a;
+        let k = force / (3.0 * self.stiffness() * l);
+        k * 2.0 * (a * a - 4.0 * a * b + b * b)
+    }
 }
 
 /// A carriage of weight `force` (N) riding on a beam: the deflection under it
@@ -392,6 +409,14 @@ impl CarriageDeflection {
     pub fn deflection_and_slope(&self, a: f64) -> (f64, f64) {
         self.beam.deflection_and_slope_under_load(a, self.force)
     }
+
+    /// `d^2 w / da^2` (1/m) for the carriage at `a` m from the left support:
+    /// the derivative of [`CarriageDeflection::deflection_and_slope`]'s slope,
+    /// zero off the span. The gantry's dynamics use it (the carriage's
+    /// vertical acceleration gains `w''(d2) d2_dot^2`).
+    pub fn curvature(&self, a: f64) -> f64 {
+        self.beam.curvature_under_load(a, self.force)
+    }
 }
 
 /// The beam's deflection as the gantry's coupling curve: `d3' = d3 + w(d2)`
@@ -399,6 +424,10 @@ impl CarriageDeflection {
 impl CouplingCurve for CarriageDeflection {
     fn value_and_slope(&self, x: f64) -> (f64, f64) {
         self.deflection_and_slope(x)
+    }
+
+    fn second_derivative(&self, x: f64) -> Option<f64> {
+        Some(self.curvature(x))
     }
 
     fn describe(&self) -> String {

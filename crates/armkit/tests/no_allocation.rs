@@ -8,7 +8,7 @@
 //! * A redundancy solve allocates nothing once its workspace exists: a counting global allocator sees zero allocations across many solves (weighted least norm, damped, toward a preferred velocity, projector, seed 001's partitioned form and eq 17, torques, energy weights, null-space directions).
 //! * The free-floating hot paths allocate nothing once `SpaceData` exists: a counting global allocator sees zero allocations across many calls of `generalized_jacobian`, `step`, `center_of_mass`, `end_effector_pose` and `momentum`, in both base modes.
 //! * Sampling a trajectory allocates nothing: a counting global allocator sees zero allocations across many `sample_into` calls (joint space) and `CartesianTrajectory::sample` calls (built-in paths), counted per thread.
-//! * The dynamics algorithms allocate nothing once `DynamicsData` exists: RNEA, CRBA, M^-1, g, C v, ABA, energies, a simulation step (both integrators, with friction) and the seed 001 torques.
+//! * The dynamics algorithms allocate nothing once `DynamicsData` exists: RNEA, CRBA, M^-1, g, C v, ABA, energies, a simulation step (both integrators, with friction) and the seed 001 torques, on coupled models too (gantry9-flex, a mimic-joint chain).
 //! * A singularity-tracking control period allocates nothing: a run's allocations (its recorded series) do not depend on its number of periods, for plain, avoidance, DLS and SRI.
 //! * The linear-algebra kernels (Gram factor, damped least-squares rates, manipulability) and a period of the tracking loop (fixed base, least squares, a recorder that stores nothing) allocate nothing.
 
@@ -490,8 +490,24 @@ fn dynamics_does_not_allocate() {
         aba, coriolis_torques, gravity_torques, kinetic_energy, mass_matrix, mass_matrix_inverse,
         nonlinear_effects, potential_energy, rnea, DynamicsData,
     };
-    for name in ["space6r", "gantry9"] {
-        let model = armkit::robots::by_name(name).unwrap();
+    // Coupled models too: the flexible gantry and a mimic-joint finger.
+    let mut models: Vec<armkit::Model> = ["space6r", "gantry9", "gantry9-flex"]
+        .into_iter()
+        .map(|name| armkit::robots::by_name(name).unwrap())
+        .collect();
+    models.push(
+        armkit::urdf::load(
+            concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/../../tests/data/urdf/mimicbot.urdf"
+            ),
+            &armkit::urdf::ChainSelection::between("base", "fingertip"),
+        )
+        .unwrap(),
+    );
+    for model in &models {
+        let name = model.name();
+        let model = model.clone();
         let n = model.dof();
         let mut data = DynamicsData::new(&model).unwrap();
         let q = model.neutral_configuration();
@@ -531,7 +547,13 @@ fn dynamics_does_not_allocate() {
             for sim in simulators.iter_mut() {
                 sim.step(&model, &mut qs, &mut vs, &tau).unwrap();
             }
-            for torque_model in [TorqueModel::Static, TorqueModel::Dynamic] {
+            // (The static load torques refuse mimic joints: statics' limit.)
+            let torque_models = if model.has_mimic_joints() {
+                &[TorqueModel::Dynamic][..]
+            } else {
+                &[TorqueModel::Static, TorqueModel::Dynamic][..]
+            };
+            for &torque_model in torque_models {
                 energy
                     .torques(&model, &q, &v, &a, &load, torque_model, &mut tau)
                     .unwrap();

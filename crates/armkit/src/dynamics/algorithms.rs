@@ -13,7 +13,10 @@ use crate::model::Model;
 ///
 /// Returns one torque per joint (also kept in [`DynamicsData::torques`]).
 /// Errors: a slice of the wrong size or not finite, `data` made for another
-/// model, a link without mass properties, a coupled model. Allocates nothing.
+/// model, a link without mass properties, an additive coupling curve
+/// without a second derivative. A coupled model (mimic joints, the flexible
+/// gantry) works in its independent joints (see the module documentation).
+/// Allocates nothing.
 pub fn rnea<'d>(
     model: &Model,
     data: &'d mut DynamicsData,
@@ -25,8 +28,8 @@ pub fn rnea<'d>(
     check_finite_vector("joint_accelerations", a, model.dof())?;
     data.update_bodies(model, q)?;
     let gravity = data.gravity;
-    newton_euler(data, v, a, Some(&gravity));
-    Ok(&data.tau)
+    data.chain_newton_euler(Some(v), Some(a), Some(&gravity));
+    Ok(data.torques())
 }
 
 /// Gravity torques `g(q) = RNEA(q, 0, 0)` (N m or N): the torques that hold
@@ -39,10 +42,8 @@ pub fn gravity_torques<'d>(
 ) -> Result<&'d [f64]> {
     data.update_bodies(model, q)?;
     let gravity = data.gravity;
-    let zeros = std::mem::take(&mut data.zeros);
-    newton_euler(data, &zeros, &zeros, Some(&gravity));
-    data.zeros = zeros;
-    Ok(&data.tau)
+    data.chain_newton_euler(None, None, Some(&gravity));
+    Ok(data.torques())
 }
 
 /// Coriolis and centrifugal torques `C(q, v) v = RNEA(q, v, 0)` without
@@ -55,10 +56,8 @@ pub fn coriolis_torques<'d>(
 ) -> Result<&'d [f64]> {
     check_finite_vector("joint_velocities", v, model.dof())?;
     data.update_bodies(model, q)?;
-    let zeros = std::mem::take(&mut data.zeros);
-    newton_euler(data, v, &zeros, None);
-    data.zeros = zeros;
-    Ok(&data.tau)
+    data.chain_newton_euler(Some(v), None, None);
+    Ok(data.torques())
 }
 
 /// Non-linear effects `C(q, v) v + g(q) = RNEA(q, v, 0)` (N m or N), what
@@ -72,15 +71,19 @@ pub fn nonlinear_effects<'d>(
     check_finite_vector("joint_velocities", v, model.dof())?;
     data.update_bodies(model, q)?;
     let gravity = data.gravity;
-    let zeros = std::mem::take(&mut data.zeros);
-    newton_euler(data, v, &zeros, Some(&gravity));
-    data.zeros = zeros;
-    Ok(&data.tau)
+    data.chain_newton_euler(Some(v), None, Some(&gravity));
+    Ok(data.torques())
 }
 
-/// The two passes of the RNEA on bodies already placed by
-/// `update_bodies`; `gravity` `None` leaves it out.
-fn newton_euler(data: &mut DynamicsData, v: &[f64], a: &[f64], gravity: Option<&Vector3<f64>>) {
+/// The two passes of the RNEA on the chain's bodies already placed by
+/// `update_bodies`, at chain velocities `v` and accelerations `a`, into the
+/// chain torques `data.tau`; `gravity` `None` leaves it out.
+pub(super) fn newton_euler(
+    data: &mut DynamicsData,
+    v: &[f64],
+    a: &[f64],
+    gravity: Option<&Vector3<f64>>,
+) {
     // Gravity as an upward acceleration of the base (Featherstone 5.3):
     // every body then feels it through its inertia.
     let mut velocity = Motion::ZERO;
@@ -124,19 +127,61 @@ pub fn mass_matrix<'d>(
     q: &[f64],
 ) -> Result<&'d DMatrix<f64>> {
     data.update_bodies(model, q)?;
-    composite_rigid_body(data);
+    joint_space_inertia(data);
     Ok(&data.mass_matrix)
 }
 
-fn composite_rigid_body(data: &mut DynamicsData) {
-    let n = data.dof;
+/// The mass matrix of the bodies placed by `update_bodies` into
+/// `data.mass_matrix`: the CRBA, folded `M' H_c M` for a coupled model.
+fn joint_space_inertia(data: &mut DynamicsData) {
+    // Checked before `take` so that an uncoupled call moves nothing.
+    let coupled = if data.coupled.is_some() {
+        data.coupled.take()
+    } else {
+        None
+    };
+    match coupled {
+        None => {
+            let mut m = std::mem::take(&mut data.mass_matrix);
+            composite_rigid_body(data, &mut m);
+            data.mass_matrix = m;
+        }
+        Some(mut coupled) => {
+            // M' H_c M, H_c the chain's mass matrix (plain loops: nalgebra's
+            // gemm packs into heap buffers).
+            composite_rigid_body(data, &mut coupled.chain_mass_matrix);
+            let (h, map, product) = (
+                &coupled.chain_mass_matrix,
+                &coupled.map,
+                &mut coupled.product,
+            );
+            let chain = h.nrows();
+            for k in 0..map.ncols() {
+                for i in 0..chain {
+                    product[(i, k)] = (0..chain).map(|j| h[(i, j)] * map[(j, k)]).sum();
+                }
+            }
+            for k in 0..map.ncols() {
+                for i in 0..map.ncols() {
+                    data.mass_matrix[(i, k)] =
+                        (0..chain).map(|j| map[(j, i)] * product[(j, k)]).sum();
+                }
+            }
+            data.coupled = Some(coupled);
+        }
+    }
+}
+
+/// The chain's mass matrix (chain joints x chain joints) into `out`.
+fn composite_rigid_body(data: &mut DynamicsData, out: &mut DMatrix<f64>) {
+    let n = data.axes.len();
     let mut composite = super::spatial::SpatialInertia::ZERO;
     for (body, slot) in data.bodies.iter().zip(data.composite.iter_mut()).rev() {
         composite += *body;
         *slot = composite;
     }
     // Column j, rows 0..=j, of the column-major buffer: S_i' (Ic_j S_j).
-    let m = data.mass_matrix.as_mut_slice();
+    let m = out.as_mut_slice();
     for (j, ((composite, axis), column)) in data
         .composite
         .iter()
@@ -157,18 +202,11 @@ fn composite_rigid_body(data: &mut DynamicsData) {
     }
 }
 
-/// The inverse of the mass matrix, `M(q)^-1` (n x n), by a Cholesky
-/// factorization of [`mass_matrix`] done in place. Errors as [`rnea`], and
-/// [`Error::Numerical`] if `M` is not positive definite (a body without
-/// inertia about its own joint axis). Allocates nothing.
-pub fn mass_matrix_inverse<'d>(
-    model: &Model,
-    data: &'d mut DynamicsData,
-    q: &[f64],
-) -> Result<&'d DMatrix<f64>> {
-    mass_matrix(model, data, q)?;
+/// The lower Cholesky factor `L` of `data.mass_matrix` (`M = L L'`) into
+/// `data.mass_matrix_inverse`'s buffer (lower triangle). Error: `M` not
+/// positive definite, naming the joint.
+fn cholesky_factor(model: &Model, data: &mut DynamicsData) -> Result<()> {
     let n = data.dof;
-    // Lower Cholesky factor L (M = L L') into the inverse's buffer.
     let l = &mut data.mass_matrix_inverse;
     l.copy_from(&data.mass_matrix);
     for j in 0..n {
@@ -195,6 +233,22 @@ pub fn mass_matrix_inverse<'d>(
             l[(i, j)] = value / diagonal;
         }
     }
+    Ok(())
+}
+
+/// The inverse of the mass matrix, `M(q)^-1` (n x n), by a Cholesky
+/// factorization of [`mass_matrix`] done in place. Errors as [`rnea`], and
+/// [`Error::Numerical`] if `M` is not positive definite (a body without
+/// inertia about its own joint axis). Allocates nothing.
+pub fn mass_matrix_inverse<'d>(
+    model: &Model,
+    data: &'d mut DynamicsData,
+    q: &[f64],
+) -> Result<&'d DMatrix<f64>> {
+    mass_matrix(model, data, q)?;
+    let n = data.dof;
+    cholesky_factor(model, data)?;
+    let l = &mut data.mass_matrix_inverse;
     // L^-1 in place (lower triangular), then M^-1 = L^-T L^-1.
     for j in 0..n {
         l[(j, j)] = 1.0 / l[(j, j)];
@@ -230,6 +284,11 @@ pub fn mass_matrix_inverse<'d>(
 /// (rad/s^2 or m/s^2) that torques `tau` (N m or N) give at positions `q` and
 /// velocities `v`, under the workspace's gravity.
 ///
+/// For a coupled model (mimic joints, the flexible gantry) the chain is
+/// constrained, and the O(n) recursion does not hold: `(M' H_c M) ddq =
+/// tau - M'(C + g)` is solved by a Cholesky factorization instead, O(n^3)
+/// (module documentation).
+///
 /// Returns one acceleration per joint (also kept in
 /// [`DynamicsData::accelerations`]). Errors as [`rnea`], and
 /// [`Error::Numerical`] if a joint's articulated inertia about its axis is not
@@ -244,6 +303,10 @@ pub fn aba<'d>(
     check_finite_vector("joint_velocities", v, model.dof())?;
     check_finite_vector("joint_torques", tau, model.dof())?;
     data.update_bodies(model, q)?;
+    if data.coupled.is_some() {
+        coupled_forward_dynamics(model, data, v, tau)?;
+        return Ok(&data.ddq);
+    }
     // Pass 1: velocities and velocity-product accelerations c_j = v_j x S_j qd_j.
     let mut velocity = Motion::ZERO;
     for (((axis, &qd), slot), c) in data
@@ -298,4 +361,46 @@ pub fn aba<'d>(
         data.ddq[j] = qdd;
     }
     Ok(&data.ddq)
+}
+
+/// Forward dynamics of a coupled model (bodies placed by `update_bodies`):
+/// `(M' H_c M) ddq = tau - M'(C + g)` by a Cholesky factorization, O(n^3)
+/// (the articulated-body recursion holds for unconstrained chains only),
+/// into `data.ddq`.
+fn coupled_forward_dynamics(
+    model: &Model,
+    data: &mut DynamicsData,
+    v: &[f64],
+    tau: &[f64],
+) -> Result<()> {
+    let gravity = data.gravity;
+    data.chain_newton_euler(Some(v), None, Some(&gravity));
+    joint_space_inertia(data);
+    cholesky_factor(model, data)?;
+    let n = data.dof;
+    let l = &data.mass_matrix_inverse;
+    let ddq = &mut data.ddq;
+    let bias = match &data.coupled {
+        Some(coupled) => &coupled.torques,
+        None => &data.tau,
+    };
+    for ((x, &t), &bias) in ddq.iter_mut().zip(tau).zip(bias) {
+        *x = t - bias;
+    }
+    // L y = rhs, then L' ddq = y, in place.
+    for i in 0..n {
+        let mut value = ddq[i];
+        for k in 0..i {
+            value -= l[(i, k)] * ddq[k];
+        }
+        ddq[i] = value / l[(i, i)];
+    }
+    for i in (0..n).rev() {
+        let mut value = ddq[i];
+        for k in i + 1..n {
+            value -= l[(k, i)] * ddq[k];
+        }
+        ddq[i] = value / l[(i, i)];
+    }
+    Ok(())
 }

@@ -12,6 +12,16 @@ use crate::model::Model;
 pub fn kinetic_energy(model: &Model, data: &mut DynamicsData, q: &[f64], v: &[f64]) -> Result<f64> {
     check_finite_vector("joint_velocities", v, model.dof())?;
     data.update_bodies(model, q)?;
+    // A coupled model's chain moves at M v; take the buffer out to keep the
+    // per-body ones borrowable.
+    let mut coupled = data.coupled.take();
+    let chain_velocities = match &mut coupled {
+        None => v,
+        Some(coupled) => {
+            coupled.expand(v, None);
+            &coupled.chain_velocities
+        }
+    };
     let mut velocity = Motion::ZERO;
     let mut energy = 0.0;
     for (((axis, body), slot), &qd) in data
@@ -19,12 +29,13 @@ pub fn kinetic_energy(model: &Model, data: &mut DynamicsData, q: &[f64], v: &[f6
         .iter()
         .zip(&data.bodies)
         .zip(data.velocities.iter_mut())
-        .zip(v)
+        .zip(chain_velocities)
     {
         velocity = velocity + *axis * qd;
         *slot = velocity;
         energy += body.kinetic_energy(&velocity);
     }
+    data.coupled = coupled;
     Ok(energy)
 }
 

@@ -68,8 +68,8 @@ pub struct EnergyTorques {
 }
 
 impl EnergyTorques {
-    /// A workspace for `model`. Errors: a model without mass properties or
-    /// with a coupling (the dynamic torques need them).
+    /// A workspace for `model`. Errors: a model without mass properties
+    /// (the dynamic torques need them; see [`super::check_dynamics_model`]).
     pub fn new(model: &Model) -> Result<Self> {
         Ok(EnergyTorques {
             kinematics: Data::new(model),

@@ -23,10 +23,21 @@
 //!   ([`DEFAULT_GRAVITY`], set with [`DynamicsData::set_gravity`]).
 //!
 //! A model whose links lack mass properties is refused, naming the first
-//! such link. A model with a joint coupling (`gantry9-flex`'s beam
-//! deflection `d3' = d3 + w(d2)`) is refused too: the coupling would have to
-//! enter through its Jacobian and its second derivative, which these
-//! algorithms do not include; use the rigid `gantry9`.
+//! such link.
+//!
+//! **Coupled models** (mimic joints, issue 20, and `gantry9-flex`'s beam
+//! deflection `d3' = d3 + w(d2)`, seed 000 eq 4) work in the independent
+//! joints. The algorithms run on the chain's joints at the chain
+//! configuration `q_c = c(q)` ([`Model::chain_positions`]) with
+//! `qd_c = M qd` and `qdd_c = M qdd + Md qd`, `M = d q_c / d q` (seed 000,
+//! eqs 8-10): `Md qd` is zero for a mimic joint and `f''(q_s) qd_s^2` on the
+//! target of an additive curve `f` (its
+//! [`crate::model::CouplingCurve::second_derivative`]). Torques fold back as
+//! `tau = M' tau_c` (the principle of virtual work), the mass matrix as
+//! `M' H_c M`, gravity and Coriolis torques as `M' g_c` and
+//! `M' (C_c qd_c + H_c Md qd)`. Forward dynamics of a coupled model solves
+//! `(M' H_c M) qdd = tau - M'(C + g)` by a Cholesky factorization, O(n^3):
+//! the O(n) articulated-body algorithm holds for unconstrained chains only.
 //!
 //! All algorithms allocate nothing after [`DynamicsData::new`].
 //!
@@ -61,7 +72,7 @@ pub use energy::{kinetic_energy, potential_energy};
 use crate::error::{check_finite, Error, Result};
 use crate::kinematics::{forward_kinematics, Data};
 use crate::math::{DMatrix, Vector3, Vector6};
-use crate::model::{LinkInertia, Model};
+use crate::model::{CouplingLaw, LinkInertia, Model};
 use spatial::{Force, Motion, SpatialInertia};
 
 /// Standard gravity in the world frame, m/s^2: `(0, 0, -9.81)`, as
@@ -79,7 +90,9 @@ pub struct DynamicsData {
     dof: usize,
     gravity: Vector3<f64>,
     kinematics: Data,
-    /// Motion subspace of each joint, world frame.
+    /// Buffers of the configuration-to-chain map; `None` without coupling.
+    coupled: Option<CoupledBuffers>,
+    /// Motion subspace of each chain joint, world frame.
     axes: Vec<Motion>,
     /// Each body's spatial inertia, world frame.
     bodies: Vec<SpatialInertia>,
@@ -95,10 +108,34 @@ pub struct DynamicsData {
     /// ABA: `u_j = tau_j - S_j' pA_j`.
     u_values: Vec<f64>,
     zeros: Vec<f64>,
+    /// One torque per chain joint (the result itself without coupling).
     tau: Vec<f64>,
     ddq: Vec<f64>,
     mass_matrix: DMatrix<f64>,
     mass_matrix_inverse: DMatrix<f64>,
+}
+
+/// What a coupled model's dynamics needs besides the chain's buffers.
+#[derive(Clone, Debug)]
+struct CoupledBuffers {
+    /// `M = d q_c / d q` at the last configuration (chain joints x dof).
+    map: DMatrix<f64>,
+    /// The additive curves: (configuration source, chain target, `f''(q_s)`
+    /// at the last configuration).
+    additive: Vec<(usize, usize, f64)>,
+    /// Chain velocities `M qd`.
+    chain_velocities: Vec<f64>,
+    /// Chain accelerations `M qdd + Md qd`.
+    chain_accelerations: Vec<f64>,
+    /// The chain's mass matrix `H_c` (chain joints x chain joints).
+    chain_mass_matrix: DMatrix<f64>,
+    /// `H_c M` (chain joints x dof).
+    product: DMatrix<f64>,
+    /// The folded torques `M' tau_c` (one per independent joint).
+    torques: Vec<f64>,
+    /// Scratch: a unit chain force, and one row of `M`.
+    unit: Vec<f64>,
+    row: Vec<f64>,
 }
 
 impl DynamicsData {
@@ -109,21 +146,39 @@ impl DynamicsData {
     pub fn new(model: &Model) -> Result<Self> {
         check_dynamics_model(model)?;
         let n = model.dof();
+        let chain = model.chain_joints().len();
+        let coupled = (!model.couplings().is_empty()).then(|| CoupledBuffers {
+            map: DMatrix::zeros(chain, n),
+            additive: model
+                .couplings()
+                .iter()
+                .filter(|c| matches!(c.law, CouplingLaw::Additive(_)))
+                .map(|c| (c.source, c.target, 0.0))
+                .collect(),
+            chain_velocities: vec![0.0; chain],
+            chain_accelerations: vec![0.0; chain],
+            chain_mass_matrix: DMatrix::zeros(chain, chain),
+            product: DMatrix::zeros(chain, n),
+            torques: vec![0.0; n],
+            unit: vec![0.0; chain],
+            row: vec![0.0; n],
+        });
         Ok(DynamicsData {
             dof: n,
             gravity: DEFAULT_GRAVITY,
             kinematics: Data::new(model),
-            axes: vec![Motion::ZERO; n],
-            bodies: vec![SpatialInertia::ZERO; n],
-            velocities: vec![Motion::ZERO; n],
-            accelerations: vec![Motion::ZERO; n],
-            forces: vec![Force::ZERO; n],
-            composite: vec![SpatialInertia::ZERO; n],
-            u_columns: vec![Vector6::zeros(); n],
-            d_values: vec![0.0; n],
-            u_values: vec![0.0; n],
-            zeros: vec![0.0; n],
-            tau: vec![0.0; n],
+            coupled,
+            axes: vec![Motion::ZERO; chain],
+            bodies: vec![SpatialInertia::ZERO; chain],
+            velocities: vec![Motion::ZERO; chain],
+            accelerations: vec![Motion::ZERO; chain],
+            forces: vec![Force::ZERO; chain],
+            composite: vec![SpatialInertia::ZERO; chain],
+            u_columns: vec![Vector6::zeros(); chain],
+            d_values: vec![0.0; chain],
+            u_values: vec![0.0; chain],
+            zeros: vec![0.0; chain],
+            tau: vec![0.0; chain],
             ddq: vec![0.0; n],
             mass_matrix: DMatrix::zeros(n, n),
             mass_matrix_inverse: DMatrix::zeros(n, n),
@@ -156,15 +211,20 @@ impl DynamicsData {
     }
 
     /// Each body's spatial velocity from the last [`rnea`], [`aba`] or
-    /// [`kinetic_energy`] call, world frame, about the world origin.
+    /// [`kinetic_energy`] call, world frame, about the world origin (one per
+    /// chain joint, [`Model::chain_joints`]).
     pub fn body_velocities(&self) -> &[Motion] {
         &self.velocities
     }
 
     /// The joint torques of the last [`rnea`], [`gravity_torques`],
-    /// [`coriolis_torques`] or [`nonlinear_effects`] call (N m or N).
+    /// [`coriolis_torques`] or [`nonlinear_effects`] call (N m or N), one
+    /// per independent joint.
     pub fn torques(&self) -> &[f64] {
-        &self.tau
+        match &self.coupled {
+            Some(coupled) => &coupled.torques,
+            None => &self.tau,
+        }
     }
 
     /// The joint accelerations of the last [`aba`] call.
@@ -186,8 +246,14 @@ impl DynamicsData {
                 got: self.dof,
             });
         }
-        if model.coupling().is_some() {
-            return Err(coupling_error(model));
+        if self.axes.len() != model.chain_joints().len()
+            || self.coupled.is_some() == model.couplings().is_empty()
+        {
+            return Err(Error::DimensionMismatch {
+                what: "dynamics data chain joints (workspace made for another model)",
+                expected: model.chain_joints().len(),
+                got: self.axes.len(),
+            });
         }
         Ok(())
     }
@@ -197,9 +263,12 @@ impl DynamicsData {
     fn update_bodies(&mut self, model: &Model, q: &[f64]) -> Result<()> {
         self.check_model(model)?;
         forward_kinematics(model, &mut self.kinematics, q)?;
+        if let Some(coupled) = &mut self.coupled {
+            coupled.update_map(model, q);
+        }
         let frames = self.kinematics.joint_frames();
         for (link, ((joint, frame), (axis, body))) in model
-            .joints()
+            .chain_joints()
             .iter()
             .zip(frames)
             .zip(self.axes.iter_mut().zip(self.bodies.iter_mut()))
@@ -216,6 +285,103 @@ impl DynamicsData {
         }
         Ok(())
     }
+
+    /// The RNEA's two passes on the chain (after `update_bodies`) at joint
+    /// velocities `v` and accelerations `a` (each `None`: zero) of the
+    /// independent joints, `gravity` `None` leaving it out; the torques are
+    /// then in [`DynamicsData::torques`]. A coupled model's chain moves at
+    /// `M v`, `M a + Md v`, and its torques fold to `M' tau_c`.
+    fn chain_newton_euler(
+        &mut self,
+        v: Option<&[f64]>,
+        a: Option<&[f64]>,
+        gravity: Option<&Vector3<f64>>,
+    ) {
+        let zeros = std::mem::take(&mut self.zeros);
+        let v = v.unwrap_or(&zeros);
+        // Checked before `take` so that an uncoupled call moves nothing.
+        let coupled = if self.coupled.is_some() {
+            self.coupled.take()
+        } else {
+            None
+        };
+        match coupled {
+            None => {
+                algorithms::newton_euler(self, v, a.unwrap_or(&zeros), gravity);
+            }
+            Some(mut coupled) => {
+                coupled.expand(v, a);
+                algorithms::newton_euler(
+                    self,
+                    &coupled.chain_velocities,
+                    &coupled.chain_accelerations,
+                    gravity,
+                );
+                coupled.fold_torques(&self.tau);
+                self.coupled = Some(coupled);
+            }
+        }
+        self.zeros = zeros;
+    }
+}
+
+impl CoupledBuffers {
+    /// `M = d q_c / d q` at `q`, and each additive curve's `f''(q_s)`.
+    fn update_map(&mut self, model: &Model, q: &[f64]) {
+        // Row j of M is M' e_j: the model's own fold of a unit chain force
+        // (one code path with the Jacobian's J = J0 M).
+        let map = model.joint_map();
+        for j in 0..self.unit.len() {
+            self.unit[j] = 1.0;
+            map.fold_forces(q, &self.unit, &mut self.row);
+            self.unit[j] = 0.0;
+            for (i, &value) in self.row.iter().enumerate() {
+                self.map[(j, i)] = value;
+            }
+        }
+        let curves = model.couplings().iter().filter_map(|c| match &c.law {
+            CouplingLaw::Additive(curve) => Some(curve),
+            CouplingLaw::Mimic { .. } => None,
+        });
+        for ((source, _, curvature), curve) in self.additive.iter_mut().zip(curves) {
+            // Checked at set-up (`check_dynamics_model`): the curve has a
+            // second derivative.
+            *curvature = curve.second_derivative(q[*source]).unwrap_or(f64::NAN);
+        }
+    }
+
+    /// Chain velocities `M v` and accelerations `M a + Md v` (`a` `None`:
+    /// zero), `Md v` the additive curves' `f''(q_s) v_s^2` on their targets.
+    fn expand(&mut self, v: &[f64], a: Option<&[f64]>) {
+        multiply(&self.map, v, &mut self.chain_velocities);
+        match a {
+            Some(a) => multiply(&self.map, a, &mut self.chain_accelerations),
+            None => self.chain_accelerations.fill(0.0),
+        }
+        for &(source, target, curvature) in &self.additive {
+            self.chain_accelerations[target] += curvature * v[source] * v[source];
+        }
+    }
+
+    /// `tau = M' tau_c` into `torques`.
+    fn fold_torques(&mut self, chain_torques: &[f64]) {
+        for (i, value) in self.torques.iter_mut().enumerate() {
+            *value = self
+                .map
+                .column(i)
+                .iter()
+                .zip(chain_torques)
+                .map(|(m, t)| m * t)
+                .sum();
+        }
+    }
+}
+
+/// `out = m x` for a matrix `m` (rows = `out.len()`, columns = `x.len()`).
+fn multiply(m: &DMatrix<f64>, x: &[f64], out: &mut [f64]) {
+    for (i, value) in out.iter_mut().enumerate() {
+        *value = m.row(i).iter().zip(x).map(|(a, b)| a * b).sum();
+    }
 }
 
 fn link_inertia<'m>(
@@ -225,7 +391,7 @@ fn link_inertia<'m>(
 ) -> Result<&'m LinkInertia> {
     inertia.ok_or_else(|| Error::InvalidModel {
         link,
-        name: model.joints()[link].name.clone(),
+        name: model.chain_joints()[link].name.clone(),
         field: "mass".into(),
         reason: format!(
             "model `{}` has no mass properties for this link: dynamics needs every link's \
@@ -236,24 +402,27 @@ fn link_inertia<'m>(
     })
 }
 
-fn coupling_error(model: &Model) -> Error {
-    Error::InvalidModelStructure {
-        model: model.name().to_string(),
-        reason: "the model has a joint coupling (e.g. gantry9-flex's beam deflection): \
-                 armkit's dynamics does not include couplings; use the rigid model \
-                 (gantry9) instead"
-            .into(),
-    }
-}
-
-/// Checks that `model` can go through the dynamics algorithms: every link
-/// has mass properties (the error names the first that has none) and there is
-/// no joint coupling.
+/// Checks that `model` can go through the dynamics algorithms: every chain
+/// link has mass properties (the error names the first that has none), and
+/// every additive coupling curve gives its second derivative.
 pub fn check_dynamics_model(model: &Model) -> Result<()> {
-    if model.coupling().is_some() {
-        return Err(coupling_error(model));
+    for coupling in model.couplings() {
+        if let CouplingLaw::Additive(curve) = &coupling.law {
+            if curve.second_derivative(0.0).is_none() {
+                return Err(Error::InvalidModelStructure {
+                    model: model.name().to_string(),
+                    reason: format!(
+                        "the coupling of chain joint {} ({}) has no second derivative \
+                         (CouplingCurve::second_derivative): the dynamics need it for the \
+                         coupled joint's acceleration",
+                        coupling.target,
+                        curve.describe()
+                    ),
+                });
+            }
+        }
     }
-    for (link, joint) in model.joints().iter().enumerate() {
+    for (link, joint) in model.chain_joints().iter().enumerate() {
         link_inertia(model, link, joint.inertia.as_ref())?;
     }
     Ok(())

@@ -140,7 +140,7 @@ pub struct Simulator {
 
 impl Simulator {
     /// A simulator for `model`. Errors: invalid options, a model without
-    /// mass properties or with a coupling.
+    /// mass properties (see [`super::check_dynamics_model`]).
     pub fn new(model: &Model, options: SimulationOptions) -> Result<Self> {
         options.validate(model.dof())?;
         let n = model.dof();

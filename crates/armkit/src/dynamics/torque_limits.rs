@@ -159,7 +159,7 @@ pub struct TorqueReport {
 /// `options.samples` evenly spaced times, their peaks against the limits.
 ///
 /// Errors: a trajectory for another number of joints, invalid options, a
-/// model without mass properties or with a coupling.
+/// model without mass properties (see [`super::check_dynamics_model`]).
 pub fn torque_profile(
     model: &Model,
     traj: &Trajectory,

@@ -55,6 +55,16 @@ pub trait CouplingCurve: Debug + Send + Sync {
     /// One line saying what the curve is, for listings (`armkit info`).
     fn describe(&self) -> String;
 
+    /// The curvature `d^2 f / dx^2` at `x`, if the curve provides it
+    /// (default: `None`). The dynamics need it: the target joint's
+    /// acceleration gains `f''(x) xd^2` ([`crate::dynamics`] refuses a
+    /// model with an additive curve that returns `None`). Must not allocate;
+    /// NaN for a NaN `x`.
+    fn second_derivative(&self, x: f64) -> Option<f64> {
+        let _ = x;
+        None
+    }
+
     /// Checks the curve's parameters when it is attached to a model
     /// (default: nothing to check).
     fn validate(&self) -> Result<()> {
