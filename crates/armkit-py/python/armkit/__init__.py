@@ -1,0 +1,25 @@
+"""armkit: robot-manipulator kinematics, inverse kinematics, trajectories,
+redundancy resolution and model-predictive planning, from Rust.
+
+Conventions: SI units (m, rad, s, kg, N); poses are homogeneous (4, 4) arrays
+in the world frame (the frame the robot's base transform is given in);
+Jacobian and twist rows are ``[vx, vy, vz, wx, wy, wz]``; roll-pitch-yaw is
+URDF's ``R = Rz(yaw) Ry(pitch) Rx(roll)``.
+
+Arrays come in as any float array-like (lists, C- or Fortran-ordered or
+strided NumPy arrays) and go out as new C-ordered float64 arrays. Calls on a
+batch (``robot.fk(Q)`` with ``Q`` of shape (N, dof), ``robot.ik_batch``)
+release the GIL and run on every core (``threads=`` to choose). Bad input
+raises ``ValueError`` (``FileNotFoundError`` for a missing file) with the
+library's message; a solver that did not converge reports it in its status.
+
+>>> import armkit, numpy as np
+>>> robot = armkit.Robot.builtin("ur5")
+>>> T = robot.fk([0.1, -1.2, 1.0, -0.5, 1.5, 0.3])
+>>> T.shape
+(4, 4)
+"""
+
+from ._armkit import IkResult, Robot, __version__, builtin_robots
+
+__all__ = ["IkResult", "Robot", "__version__", "builtin_robots"]
