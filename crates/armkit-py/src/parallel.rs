@@ -10,12 +10,12 @@ use pyo3::PyResult;
 
 /// The number of threads a batched call uses: `requested`, or every core
 /// the process may use (`std::thread::available_parallelism`) by default.
-pub fn thread_count(requested: Option<usize>) -> PyResult<usize> {
+pub fn thread_count(requested: Option<i64>) -> PyResult<usize> {
     match requested {
-        Some(0) => Err(PyValueError::new_err(
-            "invalid argument `threads`: must be >= 1 (or None for every core)",
-        )),
-        Some(n) => Ok(n),
+        Some(n) if n >= 1 => Ok(usize::try_from(n).unwrap_or(usize::MAX)),
+        Some(n) => Err(PyValueError::new_err(format!(
+            "invalid argument `threads`: must be >= 1 (or None for every core), got {n}"
+        ))),
         None => Ok(std::thread::available_parallelism().map_or(1, NonZeroUsize::get)),
     }
 }

@@ -97,7 +97,7 @@ impl Robot {
         &self,
         array: &Bound<'py, PyArrayDyn<f64>>,
         item_shape: &[usize],
-        threads: Option<usize>,
+        threads: Option<i64>,
         per_row: impl Fn(&Model, &mut Data, &[f64], &mut [f64]) -> armkit::Result<()> + Sync,
     ) -> PyResult<Bound<'py, PyAny>> {
         let py = array.py();
@@ -208,11 +208,7 @@ impl Robot {
     /// `q` of shape (N, dof) (batched: GIL released, `threads` threads,
     /// default every core).
     #[pyo3(signature = (q, threads=None))]
-    fn fk<'py>(
-        &self,
-        q: &Bound<'py, PyAny>,
-        threads: Option<usize>,
-    ) -> PyResult<Bound<'py, PyAny>> {
+    fn fk<'py>(&self, q: &Bound<'py, PyAny>, threads: Option<i64>) -> PyResult<Bound<'py, PyAny>> {
         let py = q.py();
         let array = float_array(q, "q")?;
         match array.ndim() {
@@ -246,7 +242,7 @@ impl Robot {
         &self,
         q: &Bound<'py, PyAny>,
         frame: &str,
-        threads: Option<usize>,
+        threads: Option<i64>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let py = q.py();
         let frame = jacobian_frame(frame).or_raise()?;
@@ -343,7 +339,7 @@ impl Robot {
         time_budget: Option<f64>,
         seed: u64,
         task_weights: Option<Vec<f64>>,
-        threads: Option<usize>,
+        threads: Option<i64>,
     ) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyArray1<bool>>)> {
         let arguments = IkArguments::new(
             solver,
