@@ -10,10 +10,16 @@
 //! result's status.
 
 mod arrays;
+mod beam;
 mod errors;
 mod ik;
+mod mpc;
 mod parallel;
+mod redundancy;
 mod robot;
+mod singularity;
+mod space;
+mod trajectory;
 
 use pyo3::prelude::*;
 
@@ -30,5 +36,24 @@ fn _armkit(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(builtin_robots, m)?)?;
     m.add_class::<robot::Robot>()?;
     m.add_class::<ik::IkResult>()?;
+    m.add_class::<trajectory::PyTrajectory>()?;
+    m.add_class::<trajectory::ContinuousPath>()?;
+    m.add_function(wrap_pyfunction!(trajectory::continuous_path, m)?)?;
+    let py = m.py();
+    let redundancy = PyModule::new(py, "redundancy")?;
+    redundancy.add_function(wrap_pyfunction!(
+        redundancy::weighted_least_norm,
+        &redundancy
+    )?)?;
+    redundancy.add_function(wrap_pyfunction!(redundancy::energy_optimal, &redundancy)?)?;
+    redundancy.add_function(wrap_pyfunction!(redundancy::joint_torques, &redundancy)?)?;
+    redundancy.add_function(wrap_pyfunction!(redundancy::energy_measure, &redundancy)?)?;
+    m.add_submodule(&redundancy)?;
+    let singularity = PyModule::new(py, "singularity")?;
+    singularity.add_function(wrap_pyfunction!(singularity::classify, &singularity)?)?;
+    m.add_submodule(&singularity)?;
+    m.add_class::<mpc::MpcPlanner>()?;
+    m.add_class::<beam::Beam>()?;
+    m.add_class::<space::SpaceRobot>()?;
     Ok(())
 }

@@ -20,6 +20,39 @@ library's message; a solver that did not converge reports it in its status.
 (4, 4)
 """
 
-from ._armkit import IkResult, Robot, __version__, builtin_robots
+import sys as _sys
 
-__all__ = ["IkResult", "Robot", "__version__", "builtin_robots"]
+from ._armkit import (
+    Beam,
+    ContinuousPath,
+    IkResult,
+    MpcPlanner,
+    Robot,
+    SpaceRobot,
+    Trajectory,
+    __version__,
+    builtin_robots,
+    continuous_path,
+    redundancy,
+    singularity,
+)
+
+# The extension's submodules, importable as `import armkit.redundancy`.
+for _module in (redundancy, singularity):
+    _sys.modules[f"{__name__}.{_module.__name__}"] = _module
+del _module, _sys
+
+__all__ = [
+    "Beam",
+    "ContinuousPath",
+    "IkResult",
+    "MpcPlanner",
+    "Robot",
+    "SpaceRobot",
+    "Trajectory",
+    "__version__",
+    "builtin_robots",
+    "continuous_path",
+    "redundancy",
+    "singularity",
+]

@@ -9,7 +9,8 @@ results are new C-ordered float64 arrays. Bad input raises ``ValueError``
 """
 
 from os import PathLike
-from typing import Literal, Optional, Sequence, Tuple, Union
+from types import ModuleType
+from typing import Any, Dict, Literal, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -149,3 +150,162 @@ class Robot:
         """``armkit bench-ik``'s targets: ``count`` configurations drawn
         uniformly within the limits (ChaCha8, ``seed``), shape (count, dof),
         and their end-effector poses, shape (count, 4, 4)."""
+
+class Trajectory:
+    """A joint-space trajectory: a piecewise polynomial over all joints.
+    Times in s; rad, rad/s, rad/s^2 (revolute) or m, m/s, m/s^2 (prismatic)."""
+
+    @staticmethod
+    def cubic(
+        q_start: ArrayLike, q_end: ArrayLike, duration: float,
+        v_start: Optional[ArrayLike] = None, v_end: Optional[ArrayLike] = None,
+    ) -> Trajectory:
+        """Cubic meeting boundary positions and velocities (default zero)."""
+    @staticmethod
+    def quintic(
+        q_start: ArrayLike, q_end: ArrayLike, duration: float,
+        v_start: Optional[ArrayLike] = None, v_end: Optional[ArrayLike] = None,
+        a_start: Optional[ArrayLike] = None, a_end: Optional[ArrayLike] = None,
+    ) -> Trajectory:
+        """Quintic meeting boundary positions, velocities and accelerations (default zero)."""
+    @staticmethod
+    def trapezoidal(q_start: ArrayLike, q_end: ArrayLike, duration: float, acceleration_time: float) -> Trajectory:
+        """Trapezoidal velocity, rest to rest, synchronized over the joints
+        (``acceleration_time`` s of ramp at each end)."""
+    @staticmethod
+    def minimum_time(
+        q_start: ArrayLike, q_end: ArrayLike, velocity_limits: ArrayLike, acceleration_limits: ArrayLike,
+        shape: Literal["trapezoidal", "cubic", "quintic"] = "trapezoidal",
+    ) -> Trajectory:
+        """The fastest rest-to-rest profile of ``shape`` within the limits."""
+    @staticmethod
+    def spline(
+        times: ArrayLike, positions: ArrayLike, v_start: Optional[ArrayLike] = None, v_end: Optional[ArrayLike] = None
+    ) -> Trajectory:
+        """The clamped C2 cubic spline through ``positions`` (K, dof) at ``times`` (K,) s."""
+    @property
+    def dof(self) -> int: ...
+    @property
+    def start_time(self) -> float:
+        """s."""
+    @property
+    def end_time(self) -> float:
+        """s."""
+    @property
+    def duration(self) -> float:
+        """s."""
+    @property
+    def knots(self) -> FloatArray:
+        """Segment boundaries, s, shape (segments + 1,)."""
+    def sample(self, t: ArrayLike) -> Tuple[FloatArray, FloatArray, FloatArray]:
+        """Position, velocity, acceleration at ``t`` (s, clamped to the span):
+        (dof,) each for a scalar ``t``, (N, dof) for ``t`` of shape (N,)."""
+
+class ContinuousPath:
+    """Result of ``continuous_path`` (seed 002)."""
+
+    status: Literal["tolerance_met", "tolerance_not_met"]
+    trajectory: Trajectory
+    """The joint trajectory, one polynomial per segment."""
+    configurations: FloatArray
+    """IK solutions at the knots, (segments + 1, dof)."""
+    checked_position_error: float
+    """Largest position error at the check points, m."""
+    checked_orientation_error: float
+    """Largest orientation error at the check points, rad."""
+    interior_position_error: float
+    """Largest position error on 100 points per segment, m."""
+    interior_orientation_error: float
+    """Largest orientation error on 100 points per segment, rad."""
+    passes: int
+    ik_solves: int
+    ik_method: str
+    def path_poses(self, t: ArrayLike) -> FloatArray:
+        """The Cartesian path's pose(s) at ``t`` (s): (4, 4) or (N, 4, 4), world frame, m."""
+
+def continuous_path(
+    robot: Robot, q_start: ArrayLike, T_goal: ArrayLike, duration: float,
+    law: Literal["quintic", "linear", "trapezoidal"] = "quintic",
+    acceleration_time: Optional[float] = None,
+    task: Literal["pose", "position", "auto"] = "auto",
+    tolerance: float = 1e-4, orientation_tolerance: float = 1e-3,
+    segments: Optional[int] = None, max_segments: int = 4096,
+) -> ContinuousPath:
+    """Seed 002's continuous path along the straight line from FK(q_start)
+    to ``T_goal`` ((4, 4), world frame, m) in ``duration`` s: IK at the knots
+    (closed form where the robot has one, else numeric), one polynomial per
+    segment, segments doubled where the path error exceeds ``tolerance`` (m)
+    / ``orientation_tolerance`` (rad). ``task="auto"``: position only for
+    arms under 6 DOF. Not meeting the tolerance is a status."""
+
+class MpcPlanner:
+    """Seed 000's incremental MPC (Clarabel QP), joint position and velocity
+    limits as constraints. Units s, m, rad; world frame."""
+
+    def __init__(
+        self, robot: Robot, horizon: int = 10, control_horizon: int = 1, sample_time: float = 0.05,
+        tracking: float = 10.0, terminal: float = 200.0, orientation: bool = True,
+        increment_weights: Optional[Sequence[float]] = None, velocity_limits: Optional[Sequence[float]] = None,
+    ) -> None: ...
+    @property
+    def solver(self) -> str:
+        """The QP backend's name."""
+    def set_target(self, T: ArrayLike) -> None:
+        """The target end-effector pose, (4, 4), world frame, m."""
+    def step(self, q: ArrayLike) -> Dict[str, Any]:
+        """One step at measured ``q`` (dof,): ``status`` ("solved", "clamped",
+        "recovering", "stopped"), ``velocity`` (dof,) to apply for one sample,
+        ``position_error`` (m), ``orientation_error`` (rad),
+        ``prediction_error`` (m), ``solve_time`` (s), ``limit_correction``."""
+    def run(
+        self, T: ArrayLike, q_start: ArrayLike, max_steps: int = 2000, position_tolerance: float = 1e-4,
+        orientation_tolerance: float = 1e-3, velocity_tolerance: float = 1e-3,
+    ) -> Dict[str, Any]:
+        """Closed loop to ``T`` from ``q_start``: arrays ``time`` (K,), ``q``
+        and ``velocity`` (K, dof), ``position`` (K, 3), ``position_error``,
+        ``orientation_error`` (K,), ``status`` (list); summary ``converged``,
+        ``steps``, ``final_position_error``, ``final_orientation_error``,
+        ``max_velocity_violation``, ``max_position_violation``."""
+
+class Beam:
+    """A simply supported beam: length m, Young's modulus Pa, second moment
+    m^4. Deflection positive downward, m; loads (K, 2) of (position m, force N)."""
+
+    def __init__(self, length: float, youngs_modulus: float, second_moment: float) -> None: ...
+    @staticmethod
+    def seed000() -> Beam:
+        """Seed 000's gantry beam (its Table 1)."""
+    @property
+    def length(self) -> float: ...
+    @property
+    def stiffness(self) -> float:
+        """E I, N m^2."""
+    def deflection(self, x: float, loads: ArrayLike) -> float: ...
+    def slope(self, x: float, loads: ArrayLike) -> float: ...
+    def deflection_under_load(self, position: float, force: float) -> float: ...
+
+class SpaceRobot:
+    """A free-floating space manipulator (arm on a spacecraft, no external
+    force); poses in the inertial frame, m. ``mode``: "attitude-held"
+    (seed 004) or "free-floating"."""
+
+    @staticmethod
+    def space6r() -> SpaceRobot:
+        """Seed 004's robot: space6r on a 400 kg satellite."""
+    @property
+    def dof(self) -> int: ...
+    @property
+    def total_mass(self) -> float:
+        """kg."""
+    def generalized_jacobian(
+        self, q: ArrayLike, base: Optional[ArrayLike] = None, mode: Literal["attitude-held", "free-floating"] = "attitude-held"
+    ) -> FloatArray:
+        """J* (6, dof), rows [vx vy vz wx wy wz]; ``base`` (4, 4), default identity."""
+    def step(
+        self, q: ArrayLike, joint_rates: ArrayLike, dt: float, base: Optional[ArrayLike] = None,
+        mode: Literal["attitude-held", "free-floating"] = "attitude-held",
+    ) -> Tuple[FloatArray, FloatArray]:
+        """Integrates ``joint_rates`` held over ``dt`` s: the new (base (4, 4), q (dof,))."""
+
+redundancy: ModuleType
+singularity: ModuleType
