@@ -3,7 +3,8 @@
 #
 #   1. cargo test --workspace --release
 #   2. the armkit wheel built by pip (pip fetches maturin, the build backend,
-#      from PyPI) into a fresh virtual environment with numpy and pytest,
+#      from PyPI) into a fresh virtual environment with numpy, pytest and
+#      mypy (its stubtest checks the type stubs),
 #      then pytest on crates/armkit-py/tests.
 #
 # Needs Rust and Python >= 3.9 with pip and venv. PYTHON picks the
@@ -21,7 +22,7 @@ WHEELS=target/py-wheels
 echo "== Python: wheel, then pytest (venv $VENV)"
 rm -rf "$VENV" "$WHEELS"
 "$PYTHON" -m venv "$VENV"
-"$VENV/bin/python" -m pip install -q --disable-pip-version-check numpy pytest
+"$VENV/bin/python" -m pip install -q --disable-pip-version-check numpy pytest mypy
 "$VENV/bin/python" -m pip wheel -q --disable-pip-version-check --no-deps -w "$WHEELS" crates/armkit-py
 "$VENV/bin/python" -m pip install -q --disable-pip-version-check "$WHEELS"/armkit-*.whl
 # From outside the source tree, so that the installed wheel is what is tested.

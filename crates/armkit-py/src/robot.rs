@@ -278,6 +278,9 @@ impl Robot {
     /// `[x, y, z, rx, ry, rz]` (a zero masks the component). Not converging
     /// is `result.status == "not_converged"`, never an exception.
     #[pyo3(signature = (T, q0=None, solver="auto", position_tolerance=1e-6, orientation_tolerance=1e-6, max_iterations=50, max_restarts=1000, time_budget=Some(0.005), seed=0, task_weights=None))]
+    #[pyo3(
+        text_signature = "(self, T, q0=None, solver='auto', position_tolerance=1e-06, orientation_tolerance=1e-06, max_iterations=50, max_restarts=1000, time_budget=0.005, seed=0, task_weights=None)"
+    )]
     #[allow(non_snake_case, clippy::too_many_arguments)]
     fn ik(
         &self,
@@ -325,6 +328,9 @@ impl Robot {
     /// not converged, always within the limits) and a bool array of shape
     /// (N,). GIL released, `threads` threads (default every core).
     #[pyo3(signature = (Ts, q0=None, solver="auto", position_tolerance=1e-6, orientation_tolerance=1e-6, max_iterations=50, max_restarts=1000, time_budget=Some(0.005), seed=0, task_weights=None, threads=None))]
+    #[pyo3(
+        text_signature = "(self, Ts, q0=None, solver='auto', position_tolerance=1e-06, orientation_tolerance=1e-06, max_iterations=50, max_restarts=1000, time_budget=0.005, seed=0, task_weights=None, threads=None)"
+    )]
     #[allow(non_snake_case, clippy::too_many_arguments, clippy::type_complexity)]
     fn ik_batch<'py>(
         &self,

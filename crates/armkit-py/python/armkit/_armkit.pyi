@@ -10,23 +10,28 @@ results are new C-ordered float64 arrays. Bad input raises ``ValueError``
 
 from os import PathLike
 from types import ModuleType
-from typing import Any, Dict, Literal, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, Literal, Optional, Sequence, Tuple, Union, final
 
 import numpy as np
 import numpy.typing as npt
 
 __version__: str
+__all__ = [
+    "__version__", "Beam", "ContinuousPath", "IkResult", "MpcPlanner", "Robot", "SpaceRobot", "Trajectory",
+    "builtin_robots", "continuous_path", "redundancy", "singularity",
+]
 
-ArrayLike = npt.ArrayLike
-FloatArray = npt.NDArray[np.float64]
-BoolArray = npt.NDArray[np.bool_]
-StrPath = Union[str, "PathLike[str]"]
-IkSolverName = Literal["auto", "closed-form", "lm", "nr", "dls", "sri"]
-JacobianFrameName = Literal["world", "end-effector"]
+_ArrayLike = npt.ArrayLike
+_FloatArray = npt.NDArray[np.float64]
+_BoolArray = npt.NDArray[np.bool_]
+_StrPath = Union[str, "PathLike[str]"]
+_IkSolverName = Literal["auto", "closed-form", "lm", "nr", "dls", "sri"]
+_JacobianFrameName = Literal["world", "end-effector"]
 
 def builtin_robots() -> list[str]:
     """Names of the built-in robots (``Robot.builtin(name)``)."""
 
+@final
 class IkResult:
     """Result of ``Robot.ik``: not converging is a status, never an exception."""
 
@@ -36,7 +41,7 @@ class IkResult:
     """``status == "converged"``."""
     solver: Literal["closed-form", "lm", "nr", "dls", "sri"]
     """The solver that produced ``q``."""
-    q: FloatArray
+    q: _FloatArray
     """Joint positions (rad or m), shape (dof,), always within the joint limits
     (the best effort when not converged)."""
     position_error: float
@@ -49,11 +54,12 @@ class IkResult:
     """Random restarts used."""
     elapsed: float
     """Wall-clock time of the solve, s."""
-    solutions: FloatArray
+    solutions: _FloatArray
     """Every solution found, shape (k, dof): all closed-form solutions within
     the limits, nearest the start first; for a numeric solver the converged
     ``q`` (k = 1) or none (k = 0)."""
 
+@final
 class Robot:
     """A serial robot model: joint positions in rad (revolute) or m
     (prismatic), poses in the world frame (m)."""
@@ -63,13 +69,13 @@ class Robot:
         """A built-in robot: ``puma560``, ``ur5``, ``panda``, ``stanford``,
         ``arm4``, ``space6r``, ``gantry9``, ``gantry9-flex``."""
     @staticmethod
-    def from_urdf(path: StrPath, base: Optional[str] = None, tip: Optional[str] = None) -> Robot:
+    def from_urdf(path: _StrPath, base: Optional[str] = None, tip: Optional[str] = None) -> Robot:
         """The serial chain from link ``base`` (default: the root) to link
         ``tip`` (default: the only leaf below the base) of a URDF file. Fixed
         joints are folded away; floating, planar and mimic joints on the
         chain are errors giving the line."""
     @staticmethod
-    def from_file(path: StrPath) -> Robot:
+    def from_file(path: _StrPath) -> Robot:
         """A DH description file, TOML or JSON (the format of the CLI's
         ``--robot-file``; a reference JSON loads through its ``dh`` block)."""
     @property
@@ -82,25 +88,25 @@ class Robot:
     def joint_names(self) -> list[str]:
         """Joint names, base to tip."""
     @property
-    def lower(self) -> FloatArray:
+    def lower(self) -> _FloatArray:
         """Lower position limits, rad or m, shape (dof,); -inf where none."""
     @property
-    def upper(self) -> FloatArray:
+    def upper(self) -> _FloatArray:
         """Upper position limits, rad or m, shape (dof,); +inf where none."""
     @property
-    def velocity_limits(self) -> Optional[FloatArray]:
+    def velocity_limits(self) -> Optional[_FloatArray]:
         """Velocity limits, rad/s or m/s, shape (dof,); None when a joint has none."""
-    def neutral_configuration(self) -> FloatArray:
+    def neutral_configuration(self) -> _FloatArray:
         """The mid-range configuration (0 for joints without finite limits), shape (dof,)."""
-    def check_limits(self, q: ArrayLike) -> None:
+    def check_limits(self, q: _ArrayLike) -> None:
         """Raises ValueError naming the first joint of ``q`` (dof,) outside its limits."""
-    def fk(self, q: ArrayLike, threads: Optional[int] = None) -> FloatArray:
+    def fk(self, q: _ArrayLike, threads: Optional[int] = None) -> _FloatArray:
         """End-effector pose in the world frame: (4, 4) homogeneous (m) for
         ``q`` of shape (dof,); (N, 4, 4) for ``q`` of shape (N, dof), computed
         with the GIL released on ``threads`` threads (default: every core)."""
     def jacobian(
-        self, q: ArrayLike, frame: JacobianFrameName = "world", threads: Optional[int] = None
-    ) -> FloatArray:
+        self, q: _ArrayLike, frame: _JacobianFrameName = "world", threads: Optional[int] = None
+    ) -> _FloatArray:
         """Geometric Jacobian of the end-effector frame, rows
         ``[vx, vy, vz, wx, wy, wz]`` (velocity of the end-effector origin, m/s,
         and angular velocity, rad/s, per unit joint velocity) in world or
@@ -108,9 +114,9 @@ class Robot:
         (batched as ``fk``)."""
     def ik(
         self,
-        T: ArrayLike,
-        q0: Optional[ArrayLike] = None,
-        solver: IkSolverName = "auto",
+        T: _ArrayLike,
+        q0: Optional[_ArrayLike] = None,
+        solver: _IkSolverName = "auto",
         position_tolerance: float = 1e-6,
         orientation_tolerance: float = 1e-6,
         max_iterations: int = 50,
@@ -129,9 +135,9 @@ class Robot:
         unless the time budget cuts the search short."""
     def ik_batch(
         self,
-        Ts: ArrayLike,
-        q0: Optional[ArrayLike] = None,
-        solver: IkSolverName = "auto",
+        Ts: _ArrayLike,
+        q0: Optional[_ArrayLike] = None,
+        solver: _IkSolverName = "auto",
         position_tolerance: float = 1e-6,
         orientation_tolerance: float = 1e-6,
         max_iterations: int = 50,
@@ -140,47 +146,48 @@ class Robot:
         seed: int = 0,
         task_weights: Optional[Sequence[float]] = None,
         threads: Optional[int] = None,
-    ) -> Tuple[FloatArray, BoolArray]:
+    ) -> Tuple[_FloatArray, _BoolArray]:
         """Inverse kinematics of ``Ts`` (N, 4, 4) from ``q0`` of shape (dof,)
         (one start for all), (N, dof) (one each) or None (mid-range), options
         as ``ik``. Returns ``(Q, converged)``: (N, dof) joint positions within
         the limits (the best effort where not converged) and an (N,) bool
         array. GIL released, ``threads`` threads (default: every core)."""
-    def benchmark_targets(self, count: int, seed: int = 42) -> Tuple[FloatArray, FloatArray]:
+    def benchmark_targets(self, count: int, seed: int = 42) -> Tuple[_FloatArray, _FloatArray]:
         """``armkit bench-ik``'s targets: ``count`` configurations drawn
         uniformly within the limits (ChaCha8, ``seed``), shape (count, dof),
         and their end-effector poses, shape (count, 4, 4)."""
 
+@final
 class Trajectory:
     """A joint-space trajectory: a piecewise polynomial over all joints.
     Times in s; rad, rad/s, rad/s^2 (revolute) or m, m/s, m/s^2 (prismatic)."""
 
     @staticmethod
     def cubic(
-        q_start: ArrayLike, q_end: ArrayLike, duration: float,
-        v_start: Optional[ArrayLike] = None, v_end: Optional[ArrayLike] = None,
+        q_start: _ArrayLike, q_end: _ArrayLike, duration: float,
+        v_start: Optional[_ArrayLike] = None, v_end: Optional[_ArrayLike] = None,
     ) -> Trajectory:
         """Cubic meeting boundary positions and velocities (default zero)."""
     @staticmethod
     def quintic(
-        q_start: ArrayLike, q_end: ArrayLike, duration: float,
-        v_start: Optional[ArrayLike] = None, v_end: Optional[ArrayLike] = None,
-        a_start: Optional[ArrayLike] = None, a_end: Optional[ArrayLike] = None,
+        q_start: _ArrayLike, q_end: _ArrayLike, duration: float,
+        v_start: Optional[_ArrayLike] = None, v_end: Optional[_ArrayLike] = None,
+        a_start: Optional[_ArrayLike] = None, a_end: Optional[_ArrayLike] = None,
     ) -> Trajectory:
         """Quintic meeting boundary positions, velocities and accelerations (default zero)."""
     @staticmethod
-    def trapezoidal(q_start: ArrayLike, q_end: ArrayLike, duration: float, acceleration_time: float) -> Trajectory:
+    def trapezoidal(q_start: _ArrayLike, q_end: _ArrayLike, duration: float, acceleration_time: float) -> Trajectory:
         """Trapezoidal velocity, rest to rest, synchronized over the joints
         (``acceleration_time`` s of ramp at each end)."""
     @staticmethod
     def minimum_time(
-        q_start: ArrayLike, q_end: ArrayLike, velocity_limits: ArrayLike, acceleration_limits: ArrayLike,
+        q_start: _ArrayLike, q_end: _ArrayLike, velocity_limits: _ArrayLike, acceleration_limits: _ArrayLike,
         shape: Literal["trapezoidal", "cubic", "quintic"] = "trapezoidal",
     ) -> Trajectory:
         """The fastest rest-to-rest profile of ``shape`` within the limits."""
     @staticmethod
     def spline(
-        times: ArrayLike, positions: ArrayLike, v_start: Optional[ArrayLike] = None, v_end: Optional[ArrayLike] = None
+        times: _ArrayLike, positions: _ArrayLike, v_start: Optional[_ArrayLike] = None, v_end: Optional[_ArrayLike] = None
     ) -> Trajectory:
         """The clamped C2 cubic spline through ``positions`` (K, dof) at ``times`` (K,) s."""
     @property
@@ -195,19 +202,20 @@ class Trajectory:
     def duration(self) -> float:
         """s."""
     @property
-    def knots(self) -> FloatArray:
+    def knots(self) -> _FloatArray:
         """Segment boundaries, s, shape (segments + 1,)."""
-    def sample(self, t: ArrayLike) -> Tuple[FloatArray, FloatArray, FloatArray]:
+    def sample(self, t: _ArrayLike) -> Tuple[_FloatArray, _FloatArray, _FloatArray]:
         """Position, velocity, acceleration at ``t`` (s, clamped to the span):
         (dof,) each for a scalar ``t``, (N, dof) for ``t`` of shape (N,)."""
 
+@final
 class ContinuousPath:
     """Result of ``continuous_path`` (seed 002)."""
 
     status: Literal["tolerance_met", "tolerance_not_met"]
     trajectory: Trajectory
     """The joint trajectory, one polynomial per segment."""
-    configurations: FloatArray
+    configurations: _FloatArray
     """IK solutions at the knots, (segments + 1, dof)."""
     checked_position_error: float
     """Largest position error at the check points, m."""
@@ -220,11 +228,11 @@ class ContinuousPath:
     passes: int
     ik_solves: int
     ik_method: str
-    def path_poses(self, t: ArrayLike) -> FloatArray:
+    def path_poses(self, t: _ArrayLike) -> _FloatArray:
         """The Cartesian path's pose(s) at ``t`` (s): (4, 4) or (N, 4, 4), world frame, m."""
 
 def continuous_path(
-    robot: Robot, q_start: ArrayLike, T_goal: ArrayLike, duration: float,
+    robot: Robot, q_start: _ArrayLike, T_goal: _ArrayLike, duration: float,
     law: Literal["quintic", "linear", "trapezoidal"] = "quintic",
     acceleration_time: Optional[float] = None,
     task: Literal["pose", "position", "auto"] = "auto",
@@ -238,27 +246,28 @@ def continuous_path(
     / ``orientation_tolerance`` (rad). ``task="auto"``: position only for
     arms under 6 DOF. Not meeting the tolerance is a status."""
 
+@final
 class MpcPlanner:
     """Seed 000's incremental MPC (Clarabel QP), joint position and velocity
     limits as constraints. Units s, m, rad; world frame."""
 
-    def __init__(
-        self, robot: Robot, horizon: int = 10, control_horizon: int = 1, sample_time: float = 0.05,
+    def __new__(
+        cls, robot: Robot, horizon: int = 10, control_horizon: int = 1, sample_time: float = 0.05,
         tracking: float = 10.0, terminal: float = 200.0, orientation: bool = True,
         increment_weights: Optional[Sequence[float]] = None, velocity_limits: Optional[Sequence[float]] = None,
-    ) -> None: ...
+    ) -> MpcPlanner: ...
     @property
     def solver(self) -> str:
         """The QP backend's name."""
-    def set_target(self, T: ArrayLike) -> None:
+    def set_target(self, T: _ArrayLike) -> None:
         """The target end-effector pose, (4, 4), world frame, m."""
-    def step(self, q: ArrayLike) -> Dict[str, Any]:
+    def step(self, q: _ArrayLike) -> Dict[str, Any]:
         """One step at measured ``q`` (dof,): ``status`` ("solved", "clamped",
         "recovering", "stopped"), ``velocity`` (dof,) to apply for one sample,
         ``position_error`` (m), ``orientation_error`` (rad),
         ``prediction_error`` (m), ``solve_time`` (s), ``limit_correction``."""
     def run(
-        self, T: ArrayLike, q_start: ArrayLike, max_steps: int = 2000, position_tolerance: float = 1e-4,
+        self, T: _ArrayLike, q_start: _ArrayLike, max_steps: int = 2000, position_tolerance: float = 1e-4,
         orientation_tolerance: float = 1e-3, velocity_tolerance: float = 1e-3,
     ) -> Dict[str, Any]:
         """Closed loop to ``T`` from ``q_start``: arrays ``time`` (K,), ``q``
@@ -267,11 +276,12 @@ class MpcPlanner:
         ``steps``, ``final_position_error``, ``final_orientation_error``,
         ``max_velocity_violation``, ``max_position_violation``."""
 
+@final
 class Beam:
     """A simply supported beam: length m, Young's modulus Pa, second moment
     m^4. Deflection positive downward, m; loads (K, 2) of (position m, force N)."""
 
-    def __init__(self, length: float, youngs_modulus: float, second_moment: float) -> None: ...
+    def __new__(cls, length: float, youngs_modulus: float, second_moment: float) -> Beam: ...
     @staticmethod
     def seed000() -> Beam:
         """Seed 000's gantry beam (its Table 1)."""
@@ -280,10 +290,11 @@ class Beam:
     @property
     def stiffness(self) -> float:
         """E I, N m^2."""
-    def deflection(self, x: float, loads: ArrayLike) -> float: ...
-    def slope(self, x: float, loads: ArrayLike) -> float: ...
+    def deflection(self, x: float, loads: _ArrayLike) -> float: ...
+    def slope(self, x: float, loads: _ArrayLike) -> float: ...
     def deflection_under_load(self, position: float, force: float) -> float: ...
 
+@final
 class SpaceRobot:
     """A free-floating space manipulator (arm on a spacecraft, no external
     force); poses in the inertial frame, m. ``mode``: "attitude-held"
@@ -298,13 +309,13 @@ class SpaceRobot:
     def total_mass(self) -> float:
         """kg."""
     def generalized_jacobian(
-        self, q: ArrayLike, base: Optional[ArrayLike] = None, mode: Literal["attitude-held", "free-floating"] = "attitude-held"
-    ) -> FloatArray:
+        self, q: _ArrayLike, base: Optional[_ArrayLike] = None, mode: Literal["attitude-held", "free-floating"] = "attitude-held"
+    ) -> _FloatArray:
         """J* (6, dof), rows [vx vy vz wx wy wz]; ``base`` (4, 4), default identity."""
     def step(
-        self, q: ArrayLike, joint_rates: ArrayLike, dt: float, base: Optional[ArrayLike] = None,
+        self, q: _ArrayLike, joint_rates: _ArrayLike, dt: float, base: Optional[_ArrayLike] = None,
         mode: Literal["attitude-held", "free-floating"] = "attitude-held",
-    ) -> Tuple[FloatArray, FloatArray]:
+    ) -> Tuple[_FloatArray, _FloatArray]:
         """Integrates ``joint_rates`` held over ``dt`` s: the new (base (4, 4), q (dof,))."""
 
 redundancy: ModuleType

@@ -8,6 +8,8 @@ import numpy as np
 
 from ._armkit import Robot
 
+__all__ = ["weighted_least_norm", "joint_torques", "energy_measure", "energy_optimal"]
+
 def weighted_least_norm(
     robot: Robot, q: npt.ArrayLike, twist: npt.ArrayLike,
     weights: Optional[Sequence[float]] = None, damping: Optional[float] = None,
