@@ -26,10 +26,10 @@ impl MpcPlanner {
     /// `control_horizon` (M), `sample_time` (s); task weights `tracking` on
     /// samples 1..N-1 and `terminal` on N, on position and, with
     /// `orientation`, on orientation; `increment_weights` (one per joint,
-    /// seed 000's priorities: larger moves less; default 1); velocity and
-    /// position limits default to the robot's.
+    /// seed 000's priorities: larger moves less; default 1); the velocity
+    /// and position limits are the robot's.
     #[new]
-    #[pyo3(signature = (robot, horizon=10, control_horizon=1, sample_time=0.05, tracking=10.0, terminal=200.0, orientation=true, increment_weights=None, velocity_limits=None))]
+    #[pyo3(signature = (robot, horizon=10, control_horizon=1, sample_time=0.05, tracking=10.0, terminal=200.0, orientation=true, increment_weights=None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         robot: &Robot,
@@ -40,7 +40,6 @@ impl MpcPlanner {
         terminal: f64,
         orientation: bool,
         increment_weights: Option<Vec<f64>>,
-        velocity_limits: Option<Vec<f64>>,
     ) -> PyResult<Self> {
         let options = MpcOptions {
             horizon,
@@ -52,7 +51,6 @@ impl MpcPlanner {
                 TaskWeights::position_only(tracking, terminal)
             },
             increment_weights,
-            velocity_limits,
             ..MpcOptions::default()
         };
         let planner = LibraryPlanner::new(&robot.model, options.clone()).or_raise()?;

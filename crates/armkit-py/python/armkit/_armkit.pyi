@@ -254,8 +254,13 @@ class MpcPlanner:
     def __new__(
         cls, robot: Robot, horizon: int = 10, control_horizon: int = 1, sample_time: float = 0.05,
         tracking: float = 10.0, terminal: float = 200.0, orientation: bool = True,
-        increment_weights: Optional[Sequence[float]] = None, velocity_limits: Optional[Sequence[float]] = None,
-    ) -> MpcPlanner: ...
+        increment_weights: Optional[Sequence[float]] = None,
+    ) -> MpcPlanner:
+        """A planner for ``robot``: horizon N, control horizon M, sample time
+        (s), task weights ``tracking`` (samples 1..N-1) and ``terminal`` (N)
+        on position and, with ``orientation``, orientation; one increment
+        weight per joint (seed 000's priorities: larger moves less). The
+        robot's velocity and position limits are the constraints."""
     @property
     def solver(self) -> str:
         """The QP backend's name."""
