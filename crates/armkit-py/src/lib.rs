@@ -51,6 +51,8 @@ fn _armkit(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_submodule(&redundancy)?;
     let singularity = PyModule::new(py, "singularity")?;
     singularity.add_function(wrap_pyfunction!(singularity::classify, &singularity)?)?;
+    singularity.add_function(wrap_pyfunction!(singularity::line_through, &singularity)?)?;
+    singularity.add_function(wrap_pyfunction!(singularity::track_line, &singularity)?)?;
     m.add_submodule(&singularity)?;
     m.add_class::<mpc::MpcPlanner>()?;
     m.add_class::<beam::Beam>()?;

@@ -1,11 +1,20 @@
-//! Singularity detection from Python (`armkit.singularity`).
+//! Singularity detection and avoidance from Python (`armkit.singularity`):
+//! classification of a configuration, and seed 004's tracking of a pose
+//! line through a singularity (plain, avoidance, DLS, SRI) on a fixed base.
 
+use armkit::ik::{ChiaveriniFilter, NakamuraDamping};
 use armkit::kinematics::{jacobian, Data, JacobianFrame};
-use armkit::singularity::{classify as library_classify, jacobian_determinant, ClassifyOptions};
+use armkit::singularity::{
+    classify as library_classify, jacobian_determinant, line_through as library_line_through,
+    ClassifyOptions, DetectionOptions, LineTask, Manipulator, Method, PathTracker, RunStatus,
+    TrackingOptions,
+};
+use numpy::ndarray::Dim;
+use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::arrays::{vector, vector_argument};
+use crate::arrays::{new_array, pose_argument, vector, vector_argument, write_pose};
 use crate::errors::OrRaise;
 use crate::robot::Robot;
 
@@ -42,4 +51,140 @@ pub fn classify<'py>(
     };
     out.set_item("determinant", determinant)?;
     Ok(out)
+}
+
+/// The tracking method named in Python.
+fn tracking_method(name: &str, k: usize) -> armkit::Result<Method> {
+    match name {
+        "plain" => Ok(Method::Plain),
+        "avoidance" => Ok(Method::Avoidance { k }),
+        "dls" => Ok(Method::DampedLeastSquares(NakamuraDamping::default())),
+        "sri" => Ok(Method::SingularityRobust(ChiaveriniFilter::default())),
+        other => Err(armkit::Error::invalid_argument(
+            "method",
+            format!("expected \"plain\", \"avoidance\", \"dls\" or \"sri\", got \"{other}\""),
+        )),
+    }
+}
+
+/// A straight pose line whose midpoint is the pose at `through` (rad or m)
+/// and whose direction is the end-effector motion of the joint displacement
+/// `joint_direction` there (seed 004's path construction: a `through` with
+/// `q5 = 0` crosses a wrist singularity at mid-path). Returns `(q_start,
+/// T_goal)`: the start configuration (on the branch of `through`) and the
+/// end pose ((4, 4), world frame, m).
+#[pyfunction]
+pub fn line_through<'py>(
+    py: Python<'py>,
+    robot: &Robot,
+    through: &Bound<'py, PyAny>,
+    joint_direction: &Bound<'py, PyAny>,
+) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray2<f64>>)> {
+    let dof = robot.model.dof();
+    let through = vector_argument(through, "through", dof)?;
+    let direction = vector_argument(joint_direction, "joint_direction", dof)?;
+    let manipulator = Manipulator::FixedBase(&robot.model);
+    let line = library_line_through(&manipulator, &through, &direction, 0.0).or_raise()?;
+    let goal = new_array(py, Dim([4, 4]), |out| {
+        write_pose(&line.goal, out);
+        Ok(())
+    })?;
+    Ok((vector(py, &line.start), goal))
+}
+
+/// Tracks the straight pose line from FK(`q_start`) to `T_goal` ((4, 4),
+/// world frame, m) in `duration` s (trapezoidal speed, `acceleration_time`
+/// s of ramp; seed 004: 20 s and 4 s), every `dt` s, at the velocity level
+/// with `method`: `"plain"` (J^-1), `"avoidance"` (seed 004: NR knots every
+/// `k`-th pose of the singular region, joined by a C2 cubic), `"dls"` or
+/// `"sri"`. The region is entered when |det J| < `determinant_threshold`
+/// (m^3 for a 6R arm) or a plain joint step exceeds `joint_step_threshold`
+/// (rad). Returns a dict of arrays (`time`, `q`, `joint_rates`,
+/// `position_error`, `orientation_error`, `determinant`, `in_region`) and
+/// the summary (`status`, `peak_joint_rate`, `max_position_error`,
+/// `max_orientation_error`, `final_position_error`,
+/// `time_in_singular_region`, `ik_solves`).
+#[pyfunction]
+#[pyo3(signature = (robot, q_start, T_goal, method="avoidance", k=5, duration=20.0, acceleration_time=4.0, dt=0.01, determinant_threshold=0.004, joint_step_threshold=0.005))]
+#[allow(non_snake_case, clippy::too_many_arguments)]
+pub fn track_line<'py>(
+    py: Python<'py>,
+    robot: &Robot,
+    q_start: &Bound<'py, PyAny>,
+    T_goal: &Bound<'py, PyAny>,
+    method: &str,
+    k: usize,
+    duration: f64,
+    acceleration_time: f64,
+    dt: f64,
+    determinant_threshold: f64,
+    joint_step_threshold: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let model = &robot.model;
+    let dof = model.dof();
+    let start = vector_argument(q_start, "q_start", dof)?;
+    let goal = pose_argument(T_goal, "T_goal")?;
+    let method = tracking_method(method, k).or_raise()?;
+    let task = LineTask {
+        start,
+        goal,
+        duration,
+        acceleration_time,
+    };
+    let options = TrackingOptions {
+        dt,
+        detection: DetectionOptions {
+            determinant_threshold,
+            joint_step_threshold,
+        },
+        ..TrackingOptions::default()
+    };
+    let run = py
+        .detach(|| PathTracker::new(Manipulator::FixedBase(model), task, options)?.run(&method))
+        .or_raise()?;
+    let out = PyDict::new(py);
+    out.set_item("time", vector(py, &run.time))?;
+    // The library keeps one series per joint: samples become rows here.
+    out.set_item(
+        "q",
+        samples_by_joint(py, &run.joint_positions, run.time.len())?,
+    )?;
+    out.set_item(
+        "joint_rates",
+        samples_by_joint(py, &run.joint_rates, run.time.len())?,
+    )?;
+    out.set_item("position_error", vector(py, &run.position_error))?;
+    out.set_item("orientation_error", vector(py, &run.orientation_error))?;
+    out.set_item("determinant", vector(py, &run.determinant))?;
+    out.set_item("in_region", PyArray1::from_slice(py, &run.in_region))?;
+    let status = match run.status {
+        RunStatus::Completed => "completed",
+        RunStatus::Singular { .. } => "singular",
+    };
+    out.set_item("status", status)?;
+    let summary = &run.summary;
+    out.set_item("peak_joint_rate", summary.peak_joint_rate)?;
+    out.set_item("max_position_error", summary.max_position_error)?;
+    out.set_item("max_orientation_error", summary.max_orientation_error)?;
+    out.set_item("final_position_error", summary.final_position_error)?;
+    out.set_item("time_in_singular_region", summary.time_in_singular_region)?;
+    out.set_item("ik_solves", summary.ik_solves)?;
+    Ok(out)
+}
+
+/// `series[j][i]` (joint j, sample i) as a (samples, joints) array.
+fn samples_by_joint<'py>(
+    py: Python<'py>,
+    series: &[Vec<f64>],
+    samples: usize,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let joints = series.len();
+    new_array(py, Dim([samples, joints]), |out| {
+        for (j, joint) in series.iter().enumerate() {
+            for (i, value) in joint.iter().take(samples).enumerate() {
+                out[i * joints + j] = *value;
+            }
+        }
+        Ok(())
+    })
 }

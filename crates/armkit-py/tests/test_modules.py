@@ -181,3 +181,25 @@ def test_singularity_classification():
     assert regular["kinds"] == [] and regular["rank"] == 6 and not regular["singular"]
     np.testing.assert_allclose(regular["singular_values"], np.linalg.svd(puma.jacobian([0.3, 0.5, -0.4, 0.2, 0.7, 0.1]), compute_uv=False))
     np.testing.assert_allclose(regular["determinant"], np.linalg.det(puma.jacobian([0.3, 0.5, -0.4, 0.2, 0.7, 0.1])), rtol=1e-9)
+
+
+def test_seed_004_avoidance_crosses_the_wrist_singularity_slowly():
+    arm = armkit.Robot.builtin("space6r")
+    q_start, goal = singularity.line_through(arm, [0.4, 1.2, -0.5, 0.6, 0.0, -0.3], [0.5, -0.3, 0.4, 0.0, 0.8, 0.0])
+    through = arm.fk([0.4, 1.2, -0.5, 0.6, 0.0, -0.3])
+    start = arm.fk(q_start)
+    np.testing.assert_allclose((start[:3, 3] + goal[:3, 3]) / 2, through[:3, 3], atol=1e-9)  # midpoint
+    plain = singularity.track_line(arm, q_start, goal, method="plain")
+    avoid = singularity.track_line(arm, q_start, goal, method="avoidance", k=5)
+    assert plain["status"] == avoid["status"] == "completed"
+    assert plain["peak_joint_rate"] > 10.0  # seed 004 Fig 5: the rates blow up
+    assert avoid["peak_joint_rate"] < 0.1 and avoid["ik_solves"] > 0
+    assert avoid["max_position_error"] < 1e-6
+    assert np.abs(avoid["joint_rates"]).max() == pytest.approx(avoid["peak_joint_rate"])
+    assert avoid["q"].shape == (len(avoid["time"]), 6) and avoid["in_region"].any()
+    np.testing.assert_allclose(np.abs(plain["position_error"]).max(), plain["max_position_error"])
+    # Plain tracking: each rate is held over one period (dt = 0.01 s).
+    np.testing.assert_allclose(np.diff(plain["q"], axis=0), plain["joint_rates"][:-1] * 0.01, atol=1e-12)
+    np.testing.assert_allclose(arm.fk(avoid["q"][-1]), goal, atol=1e-9)
+    with pytest.raises(ValueError, match=re.escape("invalid argument `k`: the knot stride must be >= 1")):
+        singularity.track_line(arm, q_start, goal, method="avoidance", k=0)
