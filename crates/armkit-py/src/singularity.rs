@@ -74,6 +74,7 @@ fn tracking_method(name: &str, k: usize) -> armkit::Result<Method> {
 /// T_goal)`: the start configuration (on the branch of `through`) and the
 /// end pose ((4, 4), world frame, m).
 #[pyfunction]
+#[allow(clippy::type_complexity)]
 pub fn line_through<'py>(
     py: Python<'py>,
     robot: &Robot,
