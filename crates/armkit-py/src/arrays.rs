@@ -9,6 +9,7 @@ use numpy::{PyArray, PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedAr
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
+use pyo3::types::{PyFloat, PyInt, PyList, PyTuple};
 
 use crate::errors::OrRaise;
 
@@ -35,6 +36,32 @@ pub fn float_array<'py>(
     converted
         .cast_into::<PyArrayDyn<f64>>()
         .map_err(|_| PyValueError::new_err(format!("{what}: expected an array of numbers")))
+}
+
+/// Reads a flat list or tuple of numbers into `out` without going through
+/// NumPy (the common `robot.fk([...])` call); false, with `out` unspecified,
+/// when `obj` is anything else (an array, nested lists, a non-number):
+/// read it with [`float_array`] then.
+pub fn read_flat_sequence(obj: &Bound<'_, PyAny>, out: &mut Vec<f64>) -> bool {
+    out.clear();
+    let read = |item: Bound<'_, PyAny>, out: &mut Vec<f64>| {
+        // Floats and ints only: anything else (a string, a nested list)
+        // takes the NumPy path, which reports it.
+        if item.is_instance_of::<PyFloat>() || item.is_instance_of::<PyInt>() {
+            if let Ok(value) = item.extract::<f64>() {
+                out.push(value);
+                return true;
+            }
+        }
+        false
+    };
+    if let Ok(list) = obj.cast::<PyList>() {
+        list.iter().all(|item| read(item, out))
+    } else if let Ok(tuple) = obj.cast::<PyTuple>() {
+        tuple.iter().all(|item| read(item, out))
+    } else {
+        false
+    }
 }
 
 /// `ValueError` for an array of the wrong shape.

@@ -42,6 +42,7 @@ impl SolverChoice {
 }
 
 /// The options of `Robot.ik` and `Robot.ik_batch` (seconds for the budget).
+#[derive(Clone, Debug, PartialEq)]
 pub struct IkArguments {
     pub solver: SolverChoice,
     pub options: IkOptions,

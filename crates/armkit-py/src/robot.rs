@@ -11,8 +11,8 @@ use numpy::{PyArray1, PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 
 use crate::arrays::{
-    copy_values, float_array, new_array, pose_argument, read_pose, shape_error, vector,
-    write_jacobian, write_pose, RowMajor,
+    copy_values, float_array, new_array, pose_argument, read_flat_sequence, read_pose, shape_error,
+    vector, write_jacobian, write_pose, RowMajor,
 };
 use crate::errors::{load_error, row_error, OrRaise};
 use crate::ik::{IkArguments, IkEngine, IkResult};
@@ -36,6 +36,9 @@ const IK_ROWS_PER_THREAD: usize = 8;
 pub struct Robot {
     pub(crate) model: Model,
     scratch: Mutex<Scratch>,
+    /// The IK engine of the last `ik` call, reused while the options stay
+    /// the same (building one clones the model).
+    ik_engine: Mutex<Option<(IkArguments, IkEngine)>>,
 }
 
 /// Workspace of the one-at-a-time calls: the kinematics data and the joint
@@ -69,7 +72,11 @@ pub(crate) fn jacobian_frame(name: &str) -> armkit::Result<JacobianFrame> {
 impl Robot {
     pub(crate) fn new(model: Model) -> Self {
         let scratch = Mutex::new(Scratch::new(&model));
-        Robot { model, scratch }
+        Robot {
+            model,
+            scratch,
+            ik_engine: Mutex::new(None),
+        }
     }
 
     /// Runs `f` with the workspace; a fresh one when another thread holds it.
@@ -210,16 +217,24 @@ impl Robot {
     #[pyo3(signature = (q, threads=None))]
     fn fk<'py>(&self, q: &Bound<'py, PyAny>, threads: Option<i64>) -> PyResult<Bound<'py, PyAny>> {
         let py = q.py();
+        let single = |s: &mut Scratch| -> PyResult<Bound<'py, PyAny>> {
+            let pose = forward_kinematics(&self.model, &mut s.data, &s.q).or_raise()?;
+            Ok(new_array(py, Dim([4, 4]), |out| {
+                write_pose(pose, out);
+                Ok(())
+            })?
+            .into_any())
+        };
+        if let Some(pose) =
+            self.with_scratch(|s| read_flat_sequence(q, &mut s.q).then(|| single(s)))
+        {
+            return pose;
+        }
         let array = float_array(q, "q")?;
         match array.ndim() {
             1 => self.with_scratch(|s| {
                 copy_values(&array, &mut s.q);
-                let pose = forward_kinematics(&self.model, &mut s.data, &s.q).or_raise()?;
-                Ok(new_array(py, Dim([4, 4]), |out| {
-                    write_pose(pose, out);
-                    Ok(())
-                })?
-                .into_any())
+                single(s)
             }),
             2 => self.batched(&array, &[4, 4], threads, |model, data, q, out| {
                 write_pose(forward_kinematics(model, data, q)?, out);
@@ -247,16 +262,22 @@ impl Robot {
         let py = q.py();
         let frame = jacobian_frame(frame).or_raise()?;
         let dof = self.model.dof();
+        let single = |s: &mut Scratch| -> PyResult<Bound<'py, PyAny>> {
+            let j = jacobian(&self.model, &mut s.data, &s.q, frame).or_raise()?;
+            Ok(new_array(py, Dim([6, dof]), |out| {
+                write_jacobian(j, out);
+                Ok(())
+            })?
+            .into_any())
+        };
+        if let Some(j) = self.with_scratch(|s| read_flat_sequence(q, &mut s.q).then(|| single(s))) {
+            return j;
+        }
         let array = float_array(q, "q")?;
         match array.ndim() {
             1 => self.with_scratch(|s| {
                 copy_values(&array, &mut s.q);
-                let j = jacobian(&self.model, &mut s.data, &s.q, frame).or_raise()?;
-                Ok(new_array(py, Dim([6, dof]), |out| {
-                    write_jacobian(j, out);
-                    Ok(())
-                })?
-                .into_any())
+                single(s)
             }),
             2 => self.batched(&array, &[6, dof], threads, |model, data, q, out| {
                 write_jacobian(jacobian(model, data, q, frame)?, out);
@@ -316,8 +337,24 @@ impl Robot {
                 values
             }
         };
-        let mut engine = IkEngine::new(&self.model, &arguments).or_raise()?;
-        let outcome = py.detach(|| engine.solve(&target, &start)).or_raise()?;
+        let outcome = match self.ik_engine.try_lock() {
+            Ok(mut cached) => {
+                let engine = match &mut *cached {
+                    Some((used, engine)) if *used == arguments => engine,
+                    slot => {
+                        let engine = IkEngine::new(&self.model, &arguments).or_raise()?;
+                        &mut slot.insert((arguments, engine)).1
+                    }
+                };
+                py.detach(|| engine.solve(&target, &start))
+            }
+            // Another thread is solving with this robot: a fresh engine.
+            Err(_) => {
+                let mut engine = IkEngine::new(&self.model, &arguments).or_raise()?;
+                py.detach(|| engine.solve(&target, &start))
+            }
+        }
+        .or_raise()?;
         IkResult::new(py, outcome, self.model.dof())
     }
 

@@ -24,6 +24,8 @@ CASES = [
     ("three dimensions", lambda: ROBOT.jacobian(np.zeros((2, 3, 6))), "q: expected an array of shape (6,) or (N, 6), got shape (2, 3, 6)"),
     ("a scalar", lambda: ROBOT.fk(1.0), "q: expected an array of shape (6,) or (N, 6), got shape ()"),
     ("not numbers", lambda: ROBOT.fk("abc"), "q: expected an array of numbers: could not convert string to float: 'abc'"),
+    ("a string in a list", lambda: ROBOT.fk([0, 0, "a", 0, 0, 0]), "q: expected an array of numbers: could not convert string to float: 'a'"),
+    ("a list too short", lambda: ROBOT.jacobian((0.0, 1.0)), "joint_positions: expected 6 values, got 2"),
     ("ragged rows", lambda: ROBOT.fk([[0.0] * 6, [0.0] * 5]), "q: expected an array of numbers: setting an array element with a sequence"),
     ("outside the limits", lambda: ROBOT.check_limits([0, 0, 4.0, 0, 0, 0]), "joint 2 (`q3`) = 4 is outside its limits [-3.141592653589793, 3.141592653589793]"),
     ("unknown frame", lambda: ROBOT.jacobian(np.zeros(6), frame="tool"), 'invalid argument `frame`: expected "world" or "end-effector", got "tool"'),

@@ -100,3 +100,17 @@ def test_ik_batch_with_one_start_per_target_stays_near_it():
     np.testing.assert_allclose(Q, Q0, atol=1e-6)
     Q, converged = robot.ik_batch(Ts, q0=robot.neutral_configuration())
     assert converged.all()
+
+
+def test_changing_options_between_calls_gives_what_a_fresh_robot_gives():
+    """Robot.ik reuses its solver while the options stay the same."""
+    robot = armkit.Robot.builtin("panda")
+    _, Ts = robot.benchmark_targets(6, seed=4)
+    options = [dict(), dict(task_weights=[1, 1, 1, 0, 0, 0]), dict(solver="dls", time_budget=None, max_restarts=5), dict()]
+    for T in Ts:
+        for kwargs in options:
+            reused = robot.ik(T, **kwargs)
+            fresh = armkit.Robot.builtin("panda").ik(T, **kwargs)
+            assert reused.status == fresh.status and reused.solver == fresh.solver
+            if kwargs.get("time_budget", 0.005) is None:
+                assert np.array_equal(reused.q, fresh.q)

@@ -111,6 +111,9 @@ def test_every_input_layout_gives_the_same_result(ur5):
         "column of a Fortran array": np.asfortranarray(Q)[5],
     }.items():
         assert np.array_equal(ur5.fk(qx), expected[5]), name
+    # Lists mixing Python ints, floats and NumPy scalars.
+    mixed = [int(round(v)) for v in q[:3]] + [np.float64(q[3]), np.int64(round(q[4])), float(q[5])]
+    assert np.array_equal(ur5.fk(mixed), ur5.fk(np.array(mixed, dtype=float)))
     # float32 and integers are numbers too: converted to float64 first.
     Q32 = Q.astype(np.float32)
     assert np.array_equal(ur5.fk(Q32), ur5.fk(Q32.astype(np.float64)))
