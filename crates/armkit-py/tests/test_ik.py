@@ -106,11 +106,11 @@ def test_changing_options_between_calls_gives_what_a_fresh_robot_gives():
     """Robot.ik reuses its solver while the options stay the same."""
     robot = armkit.Robot.builtin("panda")
     _, Ts = robot.benchmark_targets(6, seed=4)
-    options = [dict(), dict(task_weights=[1, 1, 1, 0, 0, 0]), dict(solver="dls", time_budget=None, max_restarts=5), dict()]
+    # No time budget: every answer is a deterministic function of the inputs.
+    options = [dict(), dict(task_weights=[1, 1, 1, 0, 0, 0]), dict(solver="dls", max_restarts=5), dict(seed=3)]
     for T in Ts:
         for kwargs in options:
-            reused = robot.ik(T, **kwargs)
-            fresh = armkit.Robot.builtin("panda").ik(T, **kwargs)
+            reused = robot.ik(T, time_budget=None, **kwargs)
+            fresh = armkit.Robot.builtin("panda").ik(T, time_budget=None, **kwargs)
             assert reused.status == fresh.status and reused.solver == fresh.solver
-            if kwargs.get("time_budget", 0.005) is None:
-                assert np.array_equal(reused.q, fresh.q)
+            assert np.array_equal(reused.q, fresh.q)
