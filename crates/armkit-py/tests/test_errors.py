@@ -93,6 +93,6 @@ def test_unreachable_target_is_a_status_not_an_exception():
     assert result.position_error > 3.0
     assert result.solutions.shape == (0, 6)
     ROBOT.check_limits(result.q)  # the best effort is within the limits
-    Q, converged = ROBOT.ik_batch(np.stack([T, far]), time_budget=0.002)
+    Q, converged = ROBOT.ik_batch(np.stack([T, far]), time_budget=None, max_restarts=20)
     assert converged.tolist() == [True, False]
     ROBOT.check_limits(Q[1])
