@@ -92,17 +92,20 @@ def verified(robot, Q, Ts, tolerance):
     return (position <= tolerance[0]) & (angle <= tolerance[1])
 
 
+IK_BUDGET = 0.005  # s per solve, as TRAC-IK's timeout; --ik-budget changes it
+
+
 def armkit_ik(robot, Ts, q0, label, add):
     """IK rows of armkit: a loop of single solves, then ik_batch on 1 and every core."""
     started = time.perf_counter()
-    results = [robot.ik(T, q0=q0) for T in Ts]
+    results = [robot.ik(T, q0=q0, time_budget=IK_BUDGET) for T in Ts]
     elapsed = (time.perf_counter() - started) / len(Ts)
     Q_ik = np.array([r.q for r in results])
     ok = verified(robot, Q_ik, Ts, ARMKIT_TOLERANCE) & np.array([r.converged for r in results])
     add("IK, per target" + label, "armkit", elapsed, f"{100 * ok.mean():.2f} % success")
     for threads, library in ((1, "armkit, 1 thread"), (None, f"armkit, {os.cpu_count()} threads")):
         started = time.perf_counter()
-        Q_ik, converged = robot.ik_batch(Ts, q0=q0, threads=threads)
+        Q_ik, converged = robot.ik_batch(Ts, q0=q0, threads=threads, time_budget=IK_BUDGET)
         elapsed = (time.perf_counter() - started) / len(Ts)
         ok = verified(robot, Q_ik, Ts, ARMKIT_TOLERANCE) & converged
         add("IK, batched, per target" + label, library, elapsed, f"{100 * ok.mean():.2f} % success")
@@ -262,12 +265,16 @@ def main():
     parser.add_argument("--batch", type=int, default=100000, help="configurations of the batched FK")
     parser.add_argument("--ik", type=int, default=1000, help="IK targets")
     parser.add_argument("--reps", type=int, default=5)
+    parser.add_argument("--ik-budget", default="0.005", help="armkit's IK time budget per solve, s, or 'none'")
     args = parser.parse_args()
+    global IK_BUDGET
+    IK_BUDGET = None if args.ik_budget == "none" else float(args.ik_budget)
     warnings.simplefilter("ignore")
     rows = []
     for name in args.robots.split(","):
         bench_robot(name, args, rows)
-    print(f"\narmkit {armkit.__version__}, numpy {np.__version__}, Python {platform.python_version()}, "
+    print(f"\narmkit IK time budget per solve: {IK_BUDGET} s")
+    print(f"armkit {armkit.__version__}, numpy {np.__version__}, Python {platform.python_version()}, "
           f"{os.cpu_count()} cores, {platform.processor() or platform.machine()}")
     print("\n| robot | what | library | time | note |\n| --- | --- | --- | --- | --- |")
     for robot, what, library, seconds, note in rows:
