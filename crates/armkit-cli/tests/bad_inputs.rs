@@ -724,6 +724,48 @@ const CASES: &[Case] = &[
         1,
     ),
     case("mpc", "unknown example", &["mpc", "--example", "ex9"], 1),
+    case(
+        "mpc",
+        "unknown reach aid",
+        &[
+            "mpc",
+            "--robot",
+            "ur5",
+            "--target",
+            "0.4,0.1,0.5,0,0,0",
+            "--reach",
+            "magic",
+        ],
+        2,
+    ),
+    case(
+        "mpc",
+        "unknown QP solver",
+        &[
+            "mpc",
+            "--robot",
+            "ur5",
+            "--target",
+            "0.4,0.1,0.5,0,0,0",
+            "--solver",
+            "qpoases",
+        ],
+        2,
+    ),
+    case(
+        "mpc",
+        "target out of reach",
+        &[
+            "mpc",
+            "--robot",
+            "ur5",
+            "--target",
+            "3,0,0,0,0,0",
+            "--max-steps",
+            "100",
+        ],
+        3,
+    ),
     case("mpc", "no target", &["mpc", "--robot", "ur5"], 2),
     // redundancy.
     case(

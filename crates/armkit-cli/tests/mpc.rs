@@ -76,8 +76,19 @@ fn an_unreachable_target_exits_3_without_crossing_a_limit() {
         "--json",
     ]);
     assert_eq!(output.status.code(), Some(3), "{}", stderr(&output));
+    // The cause, on stderr and in the JSON.
+    assert!(
+        stderr(&output).contains("not converged: unreachable: no configuration within the joint limits reaches the target"),
+        "{}",
+        stderr(&output)
+    );
     let v = json(&output);
     assert_eq!(v["converged"], false);
+    assert_eq!(v["status"], "unreachable");
+    assert!(v["status_detail"]
+        .as_str()
+        .unwrap()
+        .starts_with("unreachable"));
     assert!(v["final_position_error"].as_f64().unwrap() > 1.0);
     assert_eq!(v["max_velocity_violation"].as_f64().unwrap(), 0.0);
     assert_eq!(v["max_position_violation"].as_f64().unwrap(), 0.0);
@@ -152,4 +163,73 @@ fn bad_arguments_are_named() {
         "{}",
         stderr(&output)
     );
+}
+
+#[test]
+fn json_reports_solve_times_and_the_solver_for_m_1_and_5() {
+    for solver in ["active-set", "clarabel"] {
+        for m in ["1", "5"] {
+            let output = armkit(&[
+                "mpc",
+                "--example",
+                "1",
+                "--control-horizon",
+                m,
+                "--solver",
+                solver,
+                "--json",
+            ]);
+            assert!(output.status.success(), "{}", stderr(&output));
+            let v = json(&output);
+            let e = &v["examples"][0];
+            assert_eq!(e["solver"], solver);
+            assert_eq!(e["control_horizon"].as_u64().unwrap().to_string(), m);
+            assert_eq!(e["fallback_solves"], 0);
+            let times = &e["solve_time_us"];
+            let (median, p99, max) = (
+                times["median"].as_f64().unwrap(),
+                times["p99"].as_f64().unwrap(),
+                times["max"].as_f64().unwrap(),
+            );
+            assert!(
+                median > 0.0 && median <= p99 && p99 <= max,
+                "{solver} M={m}: {times}"
+            );
+            // Every planner step was timed (the hold steps included).
+            assert_eq!(
+                times["steps"].as_u64().unwrap(),
+                e["steps"].as_u64().unwrap() + 20
+            );
+            for check in e["checks"].as_array().unwrap() {
+                assert_eq!(check["passed"], true, "{solver} M={m}: {check}");
+            }
+        }
+    }
+}
+
+#[test]
+fn a_target_the_plain_planner_misses_is_reached_with_the_goal_posture() {
+    // A full-pose Panda target (the FK of a configuration within the
+    // limits) that seed 000's plain planner does not reach from mid-range:
+    // it stops against a joint limit and says which; the default goal
+    // posture reaches it.
+    let target = "-0.364789,0.167542,1.190217,-0.172271,0.626948,1.715823";
+    let plain = armkit(&[
+        "mpc", "--robot", "panda", "--target", target, "--reach", "off", "--json",
+    ]);
+    assert_eq!(plain.status.code(), Some(3), "{}", stderr(&plain));
+    let v = json(&plain);
+    assert_eq!(v["status"], "joint-limit", "{v}");
+    assert!(
+        stderr(&plain).contains("joint limit: stopped at the"),
+        "{}",
+        stderr(&plain)
+    );
+    let helped = armkit(&["mpc", "--robot", "panda", "--target", target, "--json"]);
+    assert!(helped.status.success(), "{}", stderr(&helped));
+    let v = json(&helped);
+    assert_eq!(v["status"], "converged");
+    assert_eq!(v["reach"], "goal-posture");
+    assert_eq!(v["max_position_violation"].as_f64().unwrap(), 0.0);
+    assert_eq!(v["max_velocity_violation"].as_f64().unwrap(), 0.0);
 }

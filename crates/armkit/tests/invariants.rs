@@ -411,7 +411,17 @@ fn mpc_invariants(scale: usize) {
                 TaskWeights::position_only(rng.gen_range(1.0..=100.0), 200.0)
             },
             increment_weights: Some((0..dof).map(|_| rng.gen_range(0.1..=100.0)).collect()),
-            velocity_limits: Some(velocity_limits.clone()),
+            joint_limits: Some(
+                model
+                    .joints()
+                    .iter()
+                    .zip(&velocity_limits)
+                    .map(|(joint, &v)| armkit::model::JointLimits {
+                        velocity: Some(v),
+                        ..joint.limits
+                    })
+                    .collect(),
+            ),
             ..MpcOptions::default()
         };
         let t = options.sample_time;

@@ -1010,9 +1010,19 @@ fn mpc_rejects_non_finite_numbers() {
         "increment_weights",
         |b| options_with(&|o| o.increment_weights = Some(with(&[1.0; 6], 2, b))),
     );
-    cases.rejects_each("MpcPlanner::new velocity_limits", "velocity_limits", |b| {
-        options_with(&|o| o.velocity_limits = Some(with(&[1.0; 6], 5, b)))
-    });
+    let limits_of_ur5: Vec<armkit::model::JointLimits> =
+        ur5.joints().iter().map(|j| j.limits).collect();
+    cases.rejects_each(
+        "MpcPlanner::new joint_limits velocity",
+        "joint_limits",
+        |b| {
+            options_with(&|o| {
+                let mut limits = limits_of_ur5.clone();
+                limits[5].velocity = Some(b);
+                o.joint_limits = Some(limits)
+            })
+        },
+    );
     cases.rejects_each(
         "MpcPlanner::new velocity_weights",
         "velocity_weights",
@@ -1030,11 +1040,13 @@ fn mpc_rejects_non_finite_numbers() {
     });
     // Infinite position limits mean "unbounded": only NaN is bad there.
     cases.rejects(
-        "MpcPlanner::new position_limits [NaN]",
-        "position_limits",
+        "MpcPlanner::new joint_limits position [NaN]",
+        "joint_limits",
         || {
             options_with(&|o| {
-                o.position_limits = Some((with(&[-3.0; 6], 1, f64::NAN), vec![3.0; 6]))
+                let mut limits = limits_of_ur5.clone();
+                limits[1].lower = f64::NAN;
+                o.joint_limits = Some(limits)
             })
         },
     );

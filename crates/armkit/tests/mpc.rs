@@ -17,7 +17,7 @@ use armkit::mpc::qp::{
     upper_index, upper_triangle_len, QpOutcome, QpProblem, QpSolver, QpSolverKind, QpStatus,
 };
 use armkit::mpc::scenario::{position_violation, Seed000Example};
-use armkit::mpc::{MpcOptions, MpcPlanner, StepStatus, TaskWeights, VelocityWeights};
+use armkit::mpc::{MpcOptions, MpcPlanner, ReachAid, StepStatus, TaskWeights, VelocityWeights};
 use armkit::Error;
 use rand::Rng;
 
@@ -228,6 +228,8 @@ fn without_active_constraints_the_qp_equals_the_closed_form_solution() {
                     task_weights: weights,
                     increment_weights: Some(r.clone()),
                     solver,
+                    // The closed form is seed 000's cost alone.
+                    reach: ReachAid::Off,
                     ..MpcOptions::default()
                 };
                 let t = options.sample_time;
@@ -577,17 +579,29 @@ fn bad_options_are_rejected_with_their_name() {
         ),
         (
             MpcOptions {
-                velocity_limits: Some(vec![1.0, 1.0, f64::NAN, 1.0, 1.0, 1.0]),
+                joint_limits: Some(
+                    (0..6)
+                        .map(|j| armkit::model::JointLimits {
+                            velocity: Some(if j == 2 { f64::NAN } else { 1.0 }),
+                            ..armkit::model::JointLimits::position(-3.0, 3.0)
+                        })
+                        .collect(),
+                ),
                 ..MpcOptions::default()
             },
-            "velocity_limits",
+            "joint 2: velocity limit must be finite and > 0, got NaN",
         ),
         (
             MpcOptions {
-                position_limits: Some((vec![0.0; 6], vec![1.0, 1.0, -1.0, 1.0, 1.0, 1.0])),
+                joint_limits: Some(
+                    [1.0, 1.0, -1.0, 1.0, 1.0, 1.0]
+                        .iter()
+                        .map(|&upper| armkit::model::JointLimits::position(0.0, upper))
+                        .collect(),
+                ),
                 ..MpcOptions::default()
             },
-            "joint 2: contradictory limits [0, -1]",
+            "joint 2: contradictory position limits [0, -1]",
         ),
         (
             MpcOptions {
@@ -678,4 +692,83 @@ fn the_measured_pose_feeds_the_prediction_back() {
     assert!(last_error < 1e-4, "{last_error}");
     let model_pose = *forward_kinematics(&model, &mut data, &q).unwrap();
     assert!(((model_pose.translation + sag) - target.translation).norm() < 1e-4);
+}
+
+#[test]
+fn a_target_beyond_a_joint_limit_is_reported_with_that_joint() {
+    // The UR5's base joint narrowed to +-0.3 rad; the target lies 1.2 rad
+    // round: the run stops against the base joint's upper limit and says so.
+    use armkit::mpc::active_set::BoundSide;
+    use armkit::mpc::scenario::{simulate_with, SimulationOptions};
+    use armkit::mpc::{diagnose_run, RunStatus};
+    let model = armkit::robots::by_name("ur5").unwrap();
+    let mut limits: Vec<armkit::model::JointLimits> =
+        model.joints().iter().map(|j| j.limits).collect();
+    limits[0].lower = -0.3;
+    limits[0].upper = 0.3;
+    let start = vec![0.0, -1.2, 1.4, -0.5, 1.2, 0.4];
+    let mut goal = start.clone();
+    goal[0] = 1.2;
+    let target = *forward_kinematics(&model, &mut Data::new(&model), &goal).unwrap();
+    for reach in [ReachAid::Off, ReachAid::default()] {
+        let options = MpcOptions {
+            task_weights: TaskWeights::position_only(10.0, 200.0),
+            joint_limits: Some(limits.clone()),
+            reach: reach.clone(),
+            ..MpcOptions::default()
+        };
+        let mut planner = MpcPlanner::new(&model, options).unwrap();
+        let simulation = SimulationOptions {
+            max_steps: 400,
+            ..SimulationOptions::default()
+        };
+        let run = simulate_with(&mut planner, &start, &target, &simulation, |_| {}).unwrap();
+        assert!(!run.summary.converged);
+        assert_eq!(run.summary.max_position_violation, 0.0);
+        let last = &run.samples.last().unwrap().q;
+        let status = diagnose_run(&planner, last, false).unwrap();
+        assert_eq!(
+            status,
+            RunStatus::JointLimit {
+                joint: 0,
+                name: model.joints()[0].name.clone(),
+                side: BoundSide::Upper
+            },
+            "reach {reach}: {status}"
+        );
+        assert_eq!(status.as_str(), "joint-limit");
+        assert!(
+            status.to_string().contains("upper limit of joint 0"),
+            "{status}"
+        );
+        // And a converged run says so.
+        assert_eq!(
+            diagnose_run(&planner, last, true).unwrap(),
+            RunStatus::Converged
+        );
+    }
+}
+
+#[test]
+fn every_status_has_a_name_and_a_display() {
+    use armkit::mpc::qp::QpStatus;
+    assert_eq!(StepStatus::Solved.as_str(), "solved");
+    assert_eq!(StepStatus::Clamped.to_string(), "clamped");
+    assert_eq!(StepStatus::Recovering.to_string(), "recovering");
+    assert_eq!(
+        StepStatus::Stopped(QpStatus::Infeasible).to_string(),
+        "stopped (infeasible)"
+    );
+    assert_eq!(
+        StepStatus::Stopped(QpStatus::IterationLimit).as_str(),
+        "stopped"
+    );
+    assert_eq!(QpStatus::SolvedInaccurate.to_string(), "solved-inaccurate");
+    assert_eq!(QpStatus::NumericalFailure.as_str(), "numerical-failure");
+    assert_eq!(ReachAid::Off.to_string(), "off");
+    assert_eq!(ReachAid::default().as_str(), "goal-posture");
+    assert_eq!(
+        armkit::mpc::qp::QpSolverKind::ActiveSet.to_string(),
+        "active-set"
+    );
 }

@@ -4,7 +4,7 @@
 //!
 //! * Forward kinematics and the Jacobian allocate nothing once `Data` exists: zero allocations across many calls.
 //! * One IK solve allocates exactly once (the report's joint vector) after `IkSolver::new`, whatever the number of iterations and restarts: the iterations themselves allocate nothing.
-//! * One MPC step (re-linearise, update the QP in place, solve) allocates nothing once the planner is built: a counting global allocator sees zero allocations over many steps of the planner and of OSQP; Clarabel makes one small allocation per solve inside its timers (measured and pinned).
+//! * One MPC step (re-linearise, update the QP in place, solve) allocates nothing once the planner is built: a counting global allocator sees zero allocations over many steps of the planner, of the active-set solver, of OSQP, and of the goal posture between its IK searches; Clarabel makes one small allocation per solve inside its timers (measured and pinned).
 //! * A redundancy solve allocates nothing once its workspace exists: a counting global allocator sees zero allocations across many solves (weighted least norm, damped, toward a preferred velocity, projector, seed 001's partitioned form and eq 17, torques, energy weights, null-space directions).
 //! * The free-floating hot paths allocate nothing once `SpaceData` exists: a counting global allocator sees zero allocations across many calls of `generalized_jacobian`, `step`, `center_of_mass`, `end_effector_pose` and `momentum`, in both base modes.
 //! * Sampling a trajectory allocates nothing: a counting global allocator sees zero allocations across many `sample_into` calls (joint space) and `CartesianTrajectory::sample` calls (built-in paths), counted per thread.
@@ -175,6 +175,53 @@ fn an_mpc_step_on_osqp_does_not_allocate() {
     for m in [1, 5] {
         let count = allocations_per_60_steps(m, |p| QpSolverKind::Osqp.build(p));
         assert_eq!(count, 0, "osqp M={m}: {count} allocations in 60 steps");
+    }
+}
+
+#[test]
+fn an_mpc_step_on_the_active_set_solver_does_not_allocate() {
+    for m in [1, 5] {
+        let count = allocations_per_60_steps(m, |p| QpSolverKind::ActiveSet.build(p));
+        assert_eq!(
+            count, 0,
+            "active-set M={m}: {count} allocations in 60 steps"
+        );
+    }
+}
+
+#[test]
+fn an_mpc_step_with_the_goal_posture_does_not_allocate_after_its_search() {
+    // The goal posture's IK search runs at the first step after
+    // `set_target` (and after a stall): it allocates; the steps that
+    // follow do not.
+    let example = Seed000Example::LargeMove;
+    let model = Seed000Example::model().unwrap();
+    for m in [1, 5] {
+        let options = MpcOptions {
+            control_horizon: m,
+            reach: armkit::mpc::ReachAid::default(),
+            ..example.options()
+        };
+        let t = options.sample_time;
+        let mut planner = MpcPlanner::new(&model, options).unwrap();
+        planner.set_target(&example.target()).unwrap();
+        let mut q = example.start();
+        let mut velocity = vec![0.0; q.len()];
+        for _ in 0..3 {
+            velocity.copy_from_slice(&planner.step(&q).unwrap().velocity);
+            q.iter_mut().zip(&velocity).for_each(|(q, v)| *q += t * v);
+        }
+        assert!(planner.goal_posture().is_some());
+        let before = allocations();
+        for _ in 0..40 {
+            velocity.copy_from_slice(&planner.step(&q).unwrap().velocity);
+            q.iter_mut().zip(&velocity).for_each(|(q, v)| *q += t * v);
+        }
+        let count = allocations() - before;
+        assert_eq!(
+            count, 0,
+            "goal posture M={m}: {count} allocations in 40 steps"
+        );
     }
 }
 

@@ -13,13 +13,17 @@
 //! `rotary_angles.svg` (c), `prismatic_velocities.svg` (d),
 //! `prismatic_positions.svg` (e); a group the robot lacks is skipped.
 //! The exit code is 3 when the run does not converge (or an example's check
-//! fails).
+//! fails); the cause (unreachable, which joint limit, singularity, step
+//! limit) is printed on stderr. `--json` adds the per-step QP solve times
+//! (median, p99, max, us) and the solver used.
 
-use std::path::{Path, PathBuf};
+mod report;
+
+use std::path::PathBuf;
 
 use armkit::mpc::qp::QpSolverKind;
 use armkit::mpc::scenario::{simulate_with, Seed000Example, SimulationOptions, Trajectory};
-use armkit::mpc::{MpcOptions, MpcPlanner, TaskWeights, VelocityWeights};
+use armkit::mpc::{diagnose_run, MpcOptions, MpcPlanner, ReachAid, TaskWeights, VelocityWeights};
 use clap::{Args, ValueEnum};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
@@ -27,8 +31,8 @@ use crate::common::{
     parse_fixed_numbers, parse_joint_positions, parse_pose, print_json, CliError, CliResult,
     LimitPolicy, Outcome, RobotArgs,
 };
-use crate::plot::Figure;
-use crate::report::{Animation, Check, Report, Table};
+pub use report::example_report;
+use report::{files_json, print_files, print_summary, summary_json, write_outputs};
 
 /// `armkit mpc` arguments.
 #[derive(Args, Debug)]
@@ -69,9 +73,14 @@ pub struct MpcArgs {
     /// Velocity term W = FACTOR x R (damps self-motion; 0 = seed 000's eq 20 as printed).
     #[arg(long, default_value_t = 0.01, value_name = "FACTOR")]
     pub velocity_weight: f64,
-    /// QP backend (default: OSQP when compiled in, else Clarabel).
+    /// QP backend (default: active-set, with Clarabel as its fallback).
     #[arg(long, value_enum)]
     pub solver: Option<SolverArg>,
+    /// Help out of local minima: `goal-posture` (IK goal posture pulled
+    /// toward, re-planned when stalled) or `off` (seed 000's plain planner).
+    /// Default: goal-posture for --target runs; seed 000's examples run off.
+    #[arg(long, value_enum)]
+    pub reach: Option<ReachArg>,
     /// Most planner steps.
     #[arg(long, default_value_t = 2000)]
     pub max_steps: usize,
@@ -86,9 +95,20 @@ pub struct MpcArgs {
     pub json: bool,
 }
 
+/// `--reach` values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum ReachArg {
+    /// The goal posture (IK with restarts), pulled toward in the cost.
+    GoalPosture,
+    /// Seed 000's plain planner.
+    Off,
+}
+
 /// `--solver` values.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum SolverArg {
+    /// The dense active-set solver (Goldfarb-Idnani), Clarabel as fallback.
+    ActiveSet,
     /// Clarabel (interior point, pure Rust).
     Clarabel,
     /// OSQP (ADMM; needs armkit's `osqp` feature).
@@ -98,9 +118,27 @@ pub enum SolverArg {
 impl From<SolverArg> for QpSolverKind {
     fn from(s: SolverArg) -> Self {
         match s {
+            SolverArg::ActiveSet => QpSolverKind::ActiveSet,
             SolverArg::Clarabel => QpSolverKind::Clarabel,
             SolverArg::Osqp => QpSolverKind::Osqp,
         }
+    }
+}
+
+impl MpcArgs {
+    /// Applies `--solver`, `--reach` and `--control-horizon` to `options`.
+    fn apply(&self, options: &mut MpcOptions) {
+        if let Some(solver) = self.solver {
+            options.solver = solver.into();
+        }
+        match self.reach {
+            Some(ReachArg::Off) => options.reach = ReachAid::Off,
+            Some(ReachArg::GoalPosture) if options.reach == ReachAid::Off => {
+                options.reach = ReachAid::default()
+            }
+            _ => {}
+        }
+        options.control_horizon = self.control_horizon;
     }
 }
 
@@ -147,53 +185,53 @@ fn run_target(args: &MpcArgs) -> CliResult<Outcome> {
         Some(text) => Some(parse_fixed_numbers(text, "--priorities", model.dof())?),
         None => None,
     };
-    let options = MpcOptions {
+    let mut options = MpcOptions {
         horizon: args.horizon,
-        control_horizon: args.control_horizon,
         sample_time: args.dt,
         task_weights: task_weights(&args.weights, args.terminal_factor)?,
         increment_weights: priorities,
         velocity_weights: VelocityWeights::Proportional(args.velocity_weight),
-        solver: args.solver.map_or_else(QpSolverKind::default, Into::into),
         ..MpcOptions::default()
     };
+    args.apply(&mut options);
     let simulation = SimulationOptions {
         max_steps: args.max_steps,
         ..SimulationOptions::default()
     };
-    let planner = MpcPlanner::new(&model, options)?;
-    let solver = planner.solver_name();
-    let run = run_with_progress(planner, &start, &target, &simulation, model.name())?;
+    let mut planner = MpcPlanner::new(&model, options)?;
+    let run = run_with_progress(&mut planner, &start, &target, &simulation, model.name())?;
+    let final_q = run.samples.last().map(|s| s.q.clone()).unwrap_or_default();
+    let status = diagnose_run(&planner, &final_q, run.summary.converged)?;
     let files = match &args.out {
         Some(dir) => write_outputs(dir, &run, model.name())?,
         None => Vec::new(),
     };
     let summary = &run.summary;
     if args.json {
-        let mut value = summary_json(&run);
+        let mut value = summary_json(&run, &planner);
         value["robot"] = model.name().into();
-        value["solver"] = solver.into();
-        value["final_q"] = run
-            .samples
-            .last()
-            .map(|s| s.q.clone())
-            .unwrap_or_default()
-            .into();
+        value["status"] = status.as_str().into();
+        value["status_detail"] = status.to_string().into();
+        value["final_q"] = final_q.into();
         value["files"] = files_json(&files);
         print_json(&value)?;
     } else {
         println!(
-            "{}: MPC to ({:.4}, {:.4}, {:.4}) m, N = {}, M = {}, T = {} s, {solver}",
+            "{}: MPC to ({:.4}, {:.4}, {:.4}) m, N = {}, M = {}, T = {} s, {}",
             model.name(),
             target.translation.x,
             target.translation.y,
             target.translation.z,
             args.horizon,
             args.control_horizon,
-            args.dt
+            args.dt,
+            planner.solver_name()
         );
-        print_summary(&run);
+        print_summary(&run, &planner);
         print_files(&files);
+    }
+    if !status.is_converged() {
+        eprintln!("armkit mpc: not converged: {status}");
     }
     Ok(if summary.converged {
         Outcome::Success
@@ -213,13 +251,10 @@ fn run_examples(args: &MpcArgs, id: &str) -> CliResult<Outcome> {
     let mut reports = Vec::new();
     for example in examples {
         let mut options = example.options();
-        if let Some(solver) = args.solver {
-            options.solver = solver.into();
-        }
-        let planner = MpcPlanner::new(&model, options)?;
-        let solver = planner.solver_name();
+        args.apply(&mut options);
+        let mut planner = MpcPlanner::new(&model, options)?;
         let run = run_with_progress(
-            planner,
+            &mut planner,
             &example.start(),
             &example.target(),
             &example.simulation(),
@@ -232,10 +267,9 @@ fn run_examples(args: &MpcArgs, id: &str) -> CliResult<Outcome> {
             None => Vec::new(),
         };
         if args.json {
-            let mut value = summary_json(&run);
+            let mut value = summary_json(&run, &planner);
             value["id"] = example.id().into();
             value["title"] = example.title().into();
-            value["solver"] = solver.into();
             value["checks"] = checks
                 .iter()
                 .map(
@@ -246,8 +280,13 @@ fn run_examples(args: &MpcArgs, id: &str) -> CliResult<Outcome> {
             value["files"] = files_json(&files);
             reports.push(value);
         } else {
-            println!("{} [{}, {solver}]", example.title(), example.id());
-            print_summary(&run);
+            println!(
+                "{} [{}, {}]",
+                example.title(),
+                example.id(),
+                planner.solver_name()
+            );
+            print_summary(&run, &planner);
             for check in &checks {
                 println!(
                     "  [{}] {}: {}",
@@ -271,7 +310,7 @@ fn run_examples(args: &MpcArgs, id: &str) -> CliResult<Outcome> {
 }
 
 fn run_with_progress(
-    planner: MpcPlanner,
+    planner: &mut MpcPlanner,
     start: &[f64],
     target: &armkit::math::Pose,
     simulation: &SimulationOptions,
@@ -294,282 +333,4 @@ fn run_with_progress(
     });
     progress.finish_and_clear();
     Ok(run?)
-}
-
-fn summary_json(run: &Trajectory) -> serde_json::Value {
-    let s = &run.summary;
-    serde_json::json!({
-        "converged": s.converged,
-        "final_position_error": s.final_position_error,
-        "final_orientation_error": s.final_orientation_error,
-        "tracks_orientation": run.tracks_orientation,
-        "steps": s.steps,
-        "sample_time": run.sample_time,
-        "max_velocity_violation": s.max_velocity_violation,
-        "max_position_violation": s.max_position_violation,
-        "non_solved_steps": s.non_solved_steps,
-        "max_prediction_error": s.max_prediction_error,
-    })
-}
-
-fn files_json(files: &[PathBuf]) -> serde_json::Value {
-    files
-        .iter()
-        .map(|f| f.display().to_string())
-        .collect::<Vec<_>>()
-        .into()
-}
-
-fn print_summary(run: &Trajectory) {
-    let s = &run.summary;
-    let orientation = if run.tracks_orientation {
-        format!("orientation error {:.3e} rad", s.final_orientation_error)
-    } else {
-        "orientation not tracked".to_string()
-    };
-    println!(
-        "  {} after {} steps ({:.2} s): position error {:.3e} m, {orientation}",
-        if s.converged {
-            "converged"
-        } else {
-            "NOT converged"
-        },
-        s.steps,
-        s.steps as f64 * run.sample_time,
-        s.final_position_error,
-    );
-    println!(
-        "  limits: max velocity violation {:.3e}, max position violation {:.3e}; {} steps not plainly solved",
-        s.max_velocity_violation, s.max_position_violation, s.non_solved_steps
-    );
-}
-
-fn print_files(files: &[PathBuf]) {
-    if !files.is_empty() {
-        println!(
-            "  wrote {}",
-            files
-                .iter()
-                .map(|f| f.display().to_string())
-                .collect::<Vec<_>>()
-                .join(", ")
-        );
-    }
-}
-
-/// Writes `mpc.csv` and the plots of Figs 7-9 into `dir`; returns the paths.
-fn write_outputs(dir: &Path, run: &Trajectory, title: &str) -> CliResult<Vec<PathBuf>> {
-    std::fs::create_dir_all(dir)
-        .map_err(|e| CliError(format!("{}: cannot create directory: {e}", dir.display())))?;
-    let mut files = Vec::new();
-    let csv = dir.join("mpc.csv");
-    write_file(&csv, &run.to_csv())?;
-    files.push(csv);
-    for (name, figure) in figures(run, title) {
-        let path = dir.join(format!("{name}.svg"));
-        let svg = figure
-            .to_svg(900, 500)
-            .map_err(|e| CliError(format!("{}: plot failed: {e}", path.display())))?;
-        write_file(&path, &svg)?;
-        files.push(path);
-    }
-    Ok(files)
-}
-
-fn write_file(path: &Path, text: &str) -> CliResult {
-    std::fs::write(path, text)
-        .map_err(|e| CliError(format!("{}: cannot write: {e}", path.display())))
-}
-
-/// What a joint panel plots.
-#[derive(Clone, Copy)]
-enum Quantity {
-    Velocity,
-    Position,
-}
-
-/// The panels of seed 000's Figs 7-9: (a) end-effector coordinates, (b)
-/// rotary joint velocities, (c) rotary joint angles, (d) prismatic joint
-/// velocities, (e) prismatic joint positions.
-fn figures(run: &Trajectory, title: &str) -> Vec<(&'static str, Figure)> {
-    let t: Vec<f64> = run.samples.iter().map(|s| s.time).collect();
-    let mut end_effector = Figure::new(
-        format!("{title}: (a) end-effector position"),
-        "t (s)",
-        "m",
-        t.clone(),
-    );
-    for (k, axis) in ["x", "y", "z"].iter().enumerate() {
-        end_effector =
-            end_effector.with_series(*axis, run.samples.iter().map(|s| s.position[k]).collect());
-    }
-    let mut figures = vec![("end_effector", end_effector)];
-    let groups = [
-        (
-            run.rotary_joints(),
-            [
-                (
-                    "rotary_velocities",
-                    "(b) rotary joint velocities",
-                    "rad/s",
-                    Quantity::Velocity,
-                ),
-                (
-                    "rotary_angles",
-                    "(c) rotary joint angles",
-                    "rad",
-                    Quantity::Position,
-                ),
-            ],
-        ),
-        (
-            run.prismatic_joints(),
-            [
-                (
-                    "prismatic_velocities",
-                    "(d) prismatic joint velocities",
-                    "m/s",
-                    Quantity::Velocity,
-                ),
-                (
-                    "prismatic_positions",
-                    "(e) prismatic joint positions",
-                    "m",
-                    Quantity::Position,
-                ),
-            ],
-        ),
-    ];
-    for (joints, panels) in groups {
-        if joints.is_empty() {
-            continue;
-        }
-        for (name, caption, unit, quantity) in panels {
-            let mut figure = Figure::new(format!("{title}: {caption}"), "t (s)", unit, t.clone());
-            for &j in &joints {
-                let values = run
-                    .samples
-                    .iter()
-                    .map(|s| match quantity {
-                        Quantity::Velocity => s.velocity[j],
-                        Quantity::Position => s.q[j],
-                    })
-                    .collect();
-                figure = figure.with_series(run.joint_names[j].clone(), values);
-            }
-            figures.push((name, figure));
-        }
-    }
-    figures
-}
-
-/// One of seed 000's examples as a report (a scenario's `[mpc]` table with
-/// `example = "ex1"`, `"ex2"`, `"ex3"`, `"ex2-paper-weights"` or
-/// `"ex3-undamped"`): the paper's claims as checks, Figs 7-9 as figures, the
-/// gantry moving.
-pub fn example_report(args: &MpcArgs) -> CliResult<Report> {
-    let id = args.example.as_deref().ok_or_else(|| {
-        CliError(
-            "[mpc] in a scenario runs one of seed 000's examples: give example = \"ex1\" \
-             (or ex2, ex3, ex2-paper-weights, ex3-undamped)"
-                .into(),
-        )
-    })?;
-    let example = Seed000Example::from_id(id)?;
-    let model = Seed000Example::model()?;
-    let mut options = example.options();
-    if let Some(solver) = args.solver {
-        options.solver = solver.into();
-    }
-    let planner = MpcPlanner::new(&model, options)?;
-    let solver = planner.solver_name();
-    let run = simulate_with(
-        planner,
-        &example.start(),
-        &example.target(),
-        &example.simulation(),
-        |_| {},
-    )?;
-    let checks = example
-        .checks(&run)
-        .into_iter()
-        .map(|c| Check::holds(c.name, c.passed, c.detail))
-        .collect();
-    let times: Vec<f64> = run.samples.iter().map(|s| s.time).collect();
-    let configurations: Vec<Vec<f64>> = run.samples.iter().map(|s| s.q.clone()).collect();
-    let mut table = Table::new(
-        "Joint motion",
-        &["joint", "travel", "peak |velocity|", "velocity limit"],
-    );
-    for (j, joint) in model.joints().iter().enumerate() {
-        let unit = if joint.kind.is_rotational() {
-            "rad"
-        } else {
-            "m"
-        };
-        table.push(vec![
-            run.joint_names[j].clone(),
-            format!("{:.4} {unit}", run.travel(j)),
-            format!("{:.4} {unit}/s", run.peak_speed(j)),
-            joint
-                .limits
-                .velocity
-                .map_or("-".into(), |v| format!("{v:.4} {unit}/s")),
-        ]);
-    }
-    let target = example.target().translation;
-    Ok(Report {
-        name: example.id().into(),
-        title: format!("Seed 000, {}", example.title()),
-        description: format!(
-            "The 9-DOF gantry with its flexible beam (gantry9-flex) moves its hand from [2.00, 2.38, 5.00] m \
-             to [{}, {}, {}] m under seed 000's incremental MPC (eqs 13-21): N = 10, M = 1, T = {} s, \
-             Q = 10 with terminal weight 200 on position, joint priorities R = {:?}, velocity limits of eq 23 \
-             and position limits of eq 24 as QP constraints, re-linearised (J = J0 M) every sample; QP solver {solver}. \
-             {} steps, final position error {:.2e} m.",
-            target.x,
-            target.y,
-            target.z,
-            run.sample_time,
-            example.increment_weights(),
-            run.summary.steps,
-            run.summary.final_position_error
-        ),
-        checks,
-        tables: vec![table],
-        figures: figures(&run, example.id())
-            .into_iter()
-            .map(|(stem, figure)| (stem.to_string(), figure))
-            .collect(),
-        notes: mpc_notes(example),
-        animation: Some(Animation::from_configurations(&model, &times, &configurations)?),
-    })
-}
-
-/// What differs from the paper in each example, and why.
-fn mpc_notes(example: Seed000Example) -> Vec<String> {
-    let mut notes = vec![
-        "The paper's start q0 = [-1, 2, 0, 0, pi/2, 0, 0, 0, 0] violates its own limits (d1 >= 0, q5 <= 1.22); we start at \
-         [2.0, 0.89, 0.76, pi/2, 0.5, 0.5, 0, 0.5, 0], inside every limit, which puts our gantry's hand at the paper's \
-         X0 = [2, 2.38, 5]. T is not printed: 0.05 s. Eq 20 gets a small velocity term W = 0.01 R: without it nothing \
-         penalises a constant self-motion of a redundant arm and the joints never settle (see ex3-undamped)."
-            .to_string(),
-    ];
-    match example {
-        Seed000Example::SmallMove => notes.push(
-            "Not as printed: with the paper's priorities 100/10/1 the beam joints travel 226 mm (d2) and 36 mm (d3) \
-             (ex2-paper-weights). Quadratic weights only scale a joint's share of the motion, never to zero; priorities \
-             1e5/1e4/1 keep the prismatic joints below 1 mm. No single weight set gives both Example 1's saturated \
-             prismatic joints and Example 2's still ones."
-                .to_string(),
-        ),
-        Seed000Example::EqualWeights => notes.push(
-            "The paper reports oscillation with every R = 10. Ours converges without oscillating because of the velocity \
-             term; with eq 20 as printed (ex3-undamped) the hand reaches the target but the rotary joints keep drifting \
-             along the self-motion, which matches the paper's 'rotary joints diverge'."
-                .to_string(),
-        ),
-        _ => {}
-    }
-    notes
 }

@@ -356,6 +356,36 @@ impl Condensation {
     }
 }
 
+impl Condensation {
+    /// Adds to the gradient `f` (`M nu`) the term of a joint-space output
+    /// `q(k+i)` (`Bt = T I`, `A = I`) with error `a = q(k) - q_g`
+    /// (`posture_error`, `nu`), drift `g = T v_old`, and scalar weights
+    /// `tracking` on samples `1..N-1` and `terminal` on sample `N`: the
+    /// formula of [`Condensation::fill_gradient`] with `Bt = T I`. The
+    /// Hessian's share, `T^2 w I`, is added to the Gram matrices by the
+    /// caller. Allocates nothing.
+    pub fn add_joint_gradient(
+        &self,
+        sample_time: f64,
+        posture_error: &[f64],
+        previous_velocity: &[f64],
+        tracking: f64,
+        terminal: f64,
+        gradient: &mut [f64],
+    ) {
+        let nu = posture_error.len();
+        let n = self.horizon as f64;
+        for l in 0..self.control_horizon {
+            for j in 0..nu {
+                let (a, g) = (posture_error[j], sample_time * previous_velocity[j]);
+                let weighted = tracking * (self.alpha[l] * a + self.beta[l] * g)
+                    + self.terminal[l] * terminal * (a + n * g);
+                gradient[l * nu + j] += sample_time * weighted;
+            }
+        }
+    }
+}
+
 /// `Bt' diag(w) Bt` (`nu x nu`, row-major) for `Bt` (`6 x nu`, row-major).
 /// Allocates nothing.
 pub fn weighted_gram(bt: &[f64], weights: &[f64; 6], out: &mut [f64]) {

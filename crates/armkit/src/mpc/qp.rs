@@ -1,5 +1,6 @@
 //! The small quadratic-programming interface the MPC planner solves every
-//! sample, and its backends (Clarabel, and OSQP behind the `osqp` feature).
+//! sample, and its backends (the dense active-set solver of
+//! [`super::active_set`], Clarabel, and OSQP behind the `osqp` feature).
 //!
 //! The problem is
 //!
@@ -219,9 +220,27 @@ pub enum QpStatus {
 }
 
 impl QpStatus {
+    /// Lower-case name: `solved`, `solved-inaccurate`, `infeasible`,
+    /// `iteration-limit`, `numerical-failure`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            QpStatus::Solved => "solved",
+            QpStatus::SolvedInaccurate => "solved-inaccurate",
+            QpStatus::Infeasible => "infeasible",
+            QpStatus::IterationLimit => "iteration-limit",
+            QpStatus::NumericalFailure => "numerical-failure",
+        }
+    }
+
     /// True for [`QpStatus::Solved`] and [`QpStatus::SolvedInaccurate`].
     pub fn has_solution(self) -> bool {
         matches!(self, QpStatus::Solved | QpStatus::SolvedInaccurate)
+    }
+}
+
+impl std::fmt::Display for QpStatus {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
     }
 }
 
@@ -253,17 +272,28 @@ pub trait QpSolver: Send {
         upper: &[f64],
         x: &mut [f64],
     ) -> QpOutcome;
+
+    /// How many solves so far were answered by a fallback backend (0 for a
+    /// backend without one).
+    fn fallback_solves(&self) -> usize {
+        0
+    }
 }
 
 /// Which QP backend the planner builds.
 ///
-/// Measured on this problem (gantry9, `N = 10`; `benches/mpc.rs`), OSQP is
-/// 5 to 7 times faster than Clarabel (warm start, and one factorisation per
-/// step where an interior-point method needs one per iteration): it is the
-/// default when compiled in. Clarabel is always available (pure Rust) and is
-/// the default otherwise.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+/// Measured on this problem (gantry9, `N = 10`; `benches/mpc.rs`): the
+/// dense active-set solver ([`super::active_set`]) is the fastest at the
+/// planner's sizes and needs no C code, so it is the default, with Clarabel
+/// as its fallback; Clarabel alone is the reference; OSQP needs the `osqp`
+/// feature (and cmake).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum QpSolverKind {
+    /// The dense Goldfarb-Idnani active-set solver written for the planner
+    /// ([`super::active_set::ActiveSetQp`]), exact up to round-off, with
+    /// Clarabel as its fallback when it cannot solve a problem. The default.
+    #[default]
+    ActiveSet,
     /// Clarabel 0.11 (interior point, pure Rust): accurate to 1e-8, no warm
     /// start; 10-17 iterations per MPC step.
     Clarabel,
@@ -272,42 +302,44 @@ pub enum QpSolverKind {
     Osqp,
 }
 
-impl Default for QpSolverKind {
-    /// OSQP when the `osqp` feature is on, Clarabel otherwise.
-    fn default() -> Self {
-        if cfg!(feature = "osqp") {
-            QpSolverKind::Osqp
-        } else {
-            QpSolverKind::Clarabel
-        }
-    }
-}
-
 impl QpSolverKind {
     /// Every backend this build offers.
     pub fn available() -> &'static [QpSolverKind] {
         #[cfg(feature = "osqp")]
         {
-            &[QpSolverKind::Clarabel, QpSolverKind::Osqp]
+            &[
+                QpSolverKind::ActiveSet,
+                QpSolverKind::Clarabel,
+                QpSolverKind::Osqp,
+            ]
         }
         #[cfg(not(feature = "osqp"))]
         {
-            &[QpSolverKind::Clarabel]
+            &[QpSolverKind::ActiveSet, QpSolverKind::Clarabel]
         }
     }
 
-    /// Lower-case name (`clarabel`, `osqp`).
+    /// Lower-case name (`active-set`, `clarabel`, `osqp`).
     pub fn name(self) -> &'static str {
         match self {
+            QpSolverKind::ActiveSet => "active-set",
             QpSolverKind::Clarabel => "clarabel",
             QpSolverKind::Osqp => "osqp",
         }
+    }
+
+    /// Same as [`QpSolverKind::name`].
+    pub fn as_str(self) -> &'static str {
+        self.name()
     }
 
     /// Builds the backend for `problem`. Errors when the backend was not
     /// compiled in or rejects the problem.
     pub fn build(self, problem: &QpProblem) -> Result<Box<dyn QpSolver>> {
         match self {
+            QpSolverKind::ActiveSet => Ok(Box::new(super::active_set::ActiveSetQp::with_fallback(
+                problem,
+            )?)),
             QpSolverKind::Clarabel => Ok(Box::new(ClarabelQp::new(problem)?)),
             #[cfg(feature = "osqp")]
             QpSolverKind::Osqp => Ok(Box::new(OsqpQp::new(problem)?)),
@@ -316,6 +348,39 @@ impl QpSolverKind {
                 "solver",
                 "OSQP is not compiled in: build armkit with the `osqp` feature",
             )),
+        }
+    }
+}
+
+impl std::fmt::Display for QpSolverKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// Clarabel's accuracy settings.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ClarabelAccuracy {
+    /// Gap and feasibility tolerances 1e-8 (Clarabel's defaults), no
+    /// iterative refinement: the planner's backend.
+    Planner,
+    /// Tolerances 1e-12 (kt ratio 1e-10) and iterative refinement: the reference the
+    /// active-set solver is checked against.
+    Reference,
+}
+
+impl ClarabelAccuracy {
+    fn tolerance(self) -> f64 {
+        match self {
+            ClarabelAccuracy::Planner => 1e-8,
+            ClarabelAccuracy::Reference => 1e-12,
+        }
+    }
+
+    fn ktratio_tolerance(self) -> f64 {
+        match self {
+            ClarabelAccuracy::Planner => 1e-6,
+            ClarabelAccuracy::Reference => 1e-10,
         }
     }
 }
@@ -334,8 +399,15 @@ pub struct ClarabelQp {
 }
 
 impl ClarabelQp {
-    /// Sets the backend up for `problem` (this allocates; solves do not).
+    /// Sets the backend up for `problem` (this allocates; solves do not),
+    /// with the planner's settings: Clarabel's default tolerances (1e-8),
+    /// no iterative refinement.
     pub fn new(problem: &QpProblem) -> Result<Self> {
+        Self::with_accuracy(problem, ClarabelAccuracy::Planner)
+    }
+
+    /// As [`ClarabelQp::new`] with the given accuracy settings.
+    pub fn with_accuracy(problem: &QpProblem, accuracy: ClarabelAccuracy) -> Result<Self> {
         use clarabel::algebra::CscMatrix as ClarabelCsc;
         use clarabel::solver::{DefaultSettingsBuilder, DefaultSolver, SupportedConeT};
         let n = problem.variables;
@@ -372,7 +444,11 @@ impl ClarabelQp {
             // Iterative refinement of the KKT solves costs ~30 % of the
             // solve on this small, well-regularised problem; the closed-form
             // and limit tests pass without it.
-            .iterative_refinement_enable(false)
+            .iterative_refinement_enable(accuracy == ClarabelAccuracy::Reference)
+            .tol_gap_abs(accuracy.tolerance())
+            .tol_gap_rel(accuracy.tolerance())
+            .tol_feas(accuracy.tolerance())
+            .tol_ktratio(accuracy.ktratio_tolerance())
             .build()
             .map_err(|e| numerical("Clarabel settings", e.to_string()))?;
         let solver = DefaultSolver::new(&p, &problem.gradient, &stacked, &b, &cones, settings)
@@ -389,6 +465,22 @@ impl ClarabelQp {
             q: problem.gradient.clone(),
             b,
         })
+    }
+}
+
+impl ClarabelQp {
+    /// The multipliers of the last solve's rows, `(lower side, upper side)`
+    /// (`m` values each, >= 0): a row is active on the side whose
+    /// multiplier exceeds its slack (complementarity), the classification
+    /// the active-set solver is checked against.
+    pub fn bound_multipliers(&self) -> (&[f64], &[f64]) {
+        let z = &self.solver.solution.z;
+        let m = self.b.len() / 2;
+        if z.len() == 2 * m {
+            (&z[m..], &z[..m])
+        } else {
+            (&[], &[])
+        }
     }
 }
 
