@@ -1,7 +1,9 @@
 //! Seed 000's MPC planner from Python: `armkit.MpcPlanner`.
 
+use armkit::mpc::qp::QpSolverKind;
 use armkit::mpc::scenario::{simulate, status_name, SimulationOptions};
-use armkit::mpc::{MpcOptions, MpcPlanner as LibraryPlanner, TaskWeights};
+use armkit::mpc::{MpcOptions, MpcPlanner as LibraryPlanner, ReachAid, TaskWeights};
+use armkit::Error;
 use numpy::ndarray::Dim;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -27,9 +29,13 @@ impl MpcPlanner {
     /// samples 1..N-1 and `terminal` on N, on position and, with
     /// `orientation`, on orientation; `increment_weights` (one per joint,
     /// seed 000's priorities: larger moves less; default 1); the velocity
-    /// and position limits are the robot's.
+    /// and position limits are the robot's. `solver`: the QP backend,
+    /// `"active-set"` (default, Clarabel as its fallback), `"clarabel"` or
+    /// `"osqp"` (when built in); `reach`: the goal-posture aid (IK of the
+    /// target pulls the predicted joints when progress stalls), on by
+    /// default, off for seed 000's planner as printed.
     #[new]
-    #[pyo3(signature = (robot, horizon=10, control_horizon=1, sample_time=0.05, tracking=10.0, terminal=200.0, orientation=true, increment_weights=None))]
+    #[pyo3(signature = (robot, horizon=10, control_horizon=1, sample_time=0.05, tracking=10.0, terminal=200.0, orientation=true, increment_weights=None, solver="active-set", reach=true))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         robot: &Robot,
@@ -40,7 +46,24 @@ impl MpcPlanner {
         terminal: f64,
         orientation: bool,
         increment_weights: Option<Vec<f64>>,
+        solver: &str,
+        reach: bool,
     ) -> PyResult<Self> {
+        let solver = QpSolverKind::available()
+            .iter()
+            .copied()
+            .find(|kind| kind.name() == solver)
+            .ok_or_else(|| {
+                let known: Vec<&str> = QpSolverKind::available().iter().map(|k| k.name()).collect();
+                Error::invalid_argument(
+                    "solver",
+                    format!(
+                        "unknown QP solver `{solver}`; this build has {}",
+                        known.join(", ")
+                    ),
+                )
+            })
+            .or_raise()?;
         let options = MpcOptions {
             horizon,
             control_horizon,
@@ -51,6 +74,12 @@ impl MpcPlanner {
                 TaskWeights::position_only(tracking, terminal)
             },
             increment_weights,
+            solver,
+            reach: if reach {
+                ReachAid::default()
+            } else {
+                ReachAid::Off
+            },
             ..MpcOptions::default()
         };
         let planner = LibraryPlanner::new(&robot.model, options.clone()).or_raise()?;

@@ -143,6 +143,13 @@ def test_mpc_reaches_the_target_within_the_limits():
         assert step["status"] == "solved"
         q = q + 0.05 * step["velocity"]
     assert planner.step(q)["position_error"] < 1e-4
+    # Clarabel, seed 000's planner as printed (no reach aid), the same target.
+    clarabel = armkit.MpcPlanner(panda, orientation=False, solver="clarabel", reach=False)
+    assert clarabel.solver == "clarabel"
+    run = clarabel.run(target, [0.0, -0.3, 0.0, -2.2, 0.0, 2.0, 0.8])
+    assert run["converged"] and run["max_position_violation"] == 0.0
+    with pytest.raises(ValueError, match=re.escape("invalid argument `solver`: unknown QP solver `cvx`")):
+        armkit.MpcPlanner(panda, solver="cvx")
 
 
 def test_beam_deflection_is_the_textbook_one():

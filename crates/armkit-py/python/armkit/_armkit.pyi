@@ -255,12 +255,15 @@ class MpcPlanner:
         cls, robot: Robot, horizon: int = 10, control_horizon: int = 1, sample_time: float = 0.05,
         tracking: float = 10.0, terminal: float = 200.0, orientation: bool = True,
         increment_weights: Optional[Sequence[float]] = None,
+        solver: Literal["active-set", "clarabel", "osqp"] = "active-set", reach: bool = True,
     ) -> MpcPlanner:
         """A planner for ``robot``: horizon N, control horizon M, sample time
         (s), task weights ``tracking`` (samples 1..N-1) and ``terminal`` (N)
         on position and, with ``orientation``, orientation; one increment
         weight per joint (seed 000's priorities: larger moves less). The
-        robot's velocity and position limits are the constraints."""
+        robot's velocity and position limits are the constraints. ``solver``:
+        the QP backend ("osqp" only when built in); ``reach``: the
+        goal-posture aid (off: seed 000's planner as printed)."""
     @property
     def solver(self) -> str:
         """The QP backend's name."""
