@@ -26,6 +26,8 @@ enum Command {
     Fk(commands::fk::FkArgs),
     /// The geometric Jacobian.
     Jacobian(commands::fk::JacobianArgs),
+    /// Rigid-body dynamics at one state: tau (RNEA), mass matrix, gravity and Coriolis torques, ddq (ABA) with --tau.
+    Dynamics(commands::dynamics::DynamicsArgs),
     /// Inverse kinematics of one pose (numeric or closed form).
     Ik(commands::ik::IkArgs),
     /// IK benchmark: success rate and solve times on random reachable targets.
@@ -53,6 +55,7 @@ fn run(command: &Command) -> CliResult<Outcome> {
         Command::Robots(args) => commands::robots::run(args),
         Command::Fk(args) => commands::fk::run_fk(args),
         Command::Jacobian(args) => commands::fk::run_jacobian(args),
+        Command::Dynamics(args) => commands::dynamics::run(args),
         Command::Ik(args) => commands::ik::run(args),
         Command::BenchIk(args) => commands::ik::run_bench(args),
         Command::Beam(args) => commands::beam::run(args),

@@ -11,6 +11,7 @@
 
 mod arrays;
 mod beam;
+mod dynamics;
 mod errors;
 mod ik;
 mod mpc;
@@ -49,6 +50,14 @@ fn _armkit(m: &Bound<'_, PyModule>) -> PyResult<()> {
     redundancy.add_function(wrap_pyfunction!(redundancy::joint_torques, &redundancy)?)?;
     redundancy.add_function(wrap_pyfunction!(redundancy::energy_measure, &redundancy)?)?;
     m.add_submodule(&redundancy)?;
+    let dynamics = PyModule::new(py, "dynamics")?;
+    dynamics.add_function(wrap_pyfunction!(dynamics::rnea, &dynamics)?)?;
+    dynamics.add_function(wrap_pyfunction!(dynamics::aba, &dynamics)?)?;
+    dynamics.add_function(wrap_pyfunction!(dynamics::mass_matrix, &dynamics)?)?;
+    dynamics.add_function(wrap_pyfunction!(dynamics::gravity_torques, &dynamics)?)?;
+    dynamics.add_function(wrap_pyfunction!(dynamics::coriolis_torques, &dynamics)?)?;
+    dynamics.add_function(wrap_pyfunction!(dynamics::kinetic_energy, &dynamics)?)?;
+    m.add_submodule(&dynamics)?;
     let singularity = PyModule::new(py, "singularity")?;
     singularity.add_function(wrap_pyfunction!(singularity::classify, &singularity)?)?;
     singularity.add_function(wrap_pyfunction!(singularity::line_through, &singularity)?)?;

@@ -21,6 +21,7 @@
 //! qlim = [-1.57, 1.57]  # optional; absent or null: no limits (a revolute joint then wraps)
 //! vlim = 2.0          # optional, rad/s or m/s
 //! alim = 10.0         # optional, rad/s^2 or m/s^2
+//! tlim = 150.0        # optional: torque (N m) or force (N) limit of the joint's motor
 //! mass = 3.0          # optional, kg
 //! com = [-0.25, 0, 0] # optional, m, in the link's DH frame
 //! inertia = [0.1, 0.1, 0.01, 0, 0, 0]  # optional: [Ixx, Iyy, Izz, Ixy, Iyz, Ixz] or a 3x3, kg m^2
@@ -106,6 +107,7 @@ struct LinkEntry {
     qlim: Option<[f64; 2]>,
     vlim: Option<f64>,
     alim: Option<f64>,
+    tlim: Option<f64>,
     mass: Option<f64>,
     com: Option<[f64; 3]>,
     inertia: Option<InertiaEntry>,
@@ -281,6 +283,7 @@ fn link_from_entry(entry: &LinkEntry) -> std::result::Result<DhLink, (&'static s
         upper,
         velocity: entry.vlim,
         acceleration: entry.alim,
+        effort: entry.tlim,
     };
     let inertia = match (entry.mass, &entry.com, &entry.inertia) {
         (None, None, None) => None,

@@ -33,6 +33,7 @@
 pub mod beam;
 #[cfg(feature = "io")]
 pub mod description;
+pub mod dynamics;
 pub mod error;
 pub mod ik;
 pub mod kinematics;

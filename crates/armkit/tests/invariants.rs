@@ -483,6 +483,7 @@ fn random_dh_model(rng: &mut ChaCha8Rng, convention: DhConvention) -> Model {
                     upper,
                     velocity: None,
                     acceleration: None,
+                    effort: None,
                 },
                 inertia: None,
             }

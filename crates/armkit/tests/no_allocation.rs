@@ -8,6 +8,7 @@
 //! * A redundancy solve allocates nothing once its workspace exists: a counting global allocator sees zero allocations across many solves (weighted least norm, damped, toward a preferred velocity, projector, seed 001's partitioned form and eq 17, torques, energy weights, null-space directions).
 //! * The free-floating hot paths allocate nothing once `SpaceData` exists: a counting global allocator sees zero allocations across many calls of `generalized_jacobian`, `step`, `center_of_mass`, `end_effector_pose` and `momentum`, in both base modes.
 //! * Sampling a trajectory allocates nothing: a counting global allocator sees zero allocations across many `sample_into` calls (joint space) and `CartesianTrajectory::sample` calls (built-in paths), counted per thread.
+//! * The dynamics algorithms allocate nothing once `DynamicsData` exists: RNEA, CRBA, M^-1, g, C v, ABA, energies, a simulation step (both integrators, with friction) and the seed 001 torques.
 //! * A singularity-tracking control period allocates nothing: a run's allocations (its recorded series) do not depend on its number of periods, for plain, avoidance, DLS and SRI.
 
 use std::alloc::{GlobalAlloc, Layout, System};
@@ -436,5 +437,65 @@ fn a_tracking_period_does_not_allocate() {
             "{}: {coarse} vs {fine} allocations",
             method.label()
         );
+    }
+}
+
+#[test]
+fn dynamics_does_not_allocate() {
+    use armkit::dynamics::energy_weights::{EnergyTorques, TorqueModel};
+    use armkit::dynamics::simulate::{Integrator, JointFriction, SimulationOptions, Simulator};
+    use armkit::dynamics::{
+        aba, coriolis_torques, gravity_torques, kinetic_energy, mass_matrix, mass_matrix_inverse,
+        nonlinear_effects, potential_energy, rnea, DynamicsData,
+    };
+    for name in ["space6r", "gantry9"] {
+        let model = armkit::robots::by_name(name).unwrap();
+        let n = model.dof();
+        let mut data = DynamicsData::new(&model).unwrap();
+        let q = model.neutral_configuration();
+        let v = vec![0.3; n];
+        let a = vec![-0.2; n];
+        let mut tau = vec![0.0; n];
+        let friction = JointFriction {
+            viscous: vec![0.1; n],
+            coulomb: vec![0.05; n],
+        };
+        let mut simulators: Vec<Simulator> =
+            [Integrator::SemiImplicitEuler, Integrator::RungeKutta4]
+                .into_iter()
+                .map(|integrator| {
+                    let options = SimulationOptions {
+                        integrator,
+                        friction: Some(friction.clone()),
+                        ..Default::default()
+                    };
+                    Simulator::new(&model, options).unwrap()
+                })
+                .collect();
+        let (mut qs, mut vs) = (q.clone(), v.clone());
+        let mut energy = EnergyTorques::new(&model).unwrap();
+        let load = Load::payload(50.0).with_standard_gravity();
+        let before = allocations();
+        for _ in 0..50 {
+            tau.copy_from_slice(rnea(&model, &mut data, &q, &v, &a).unwrap());
+            mass_matrix(&model, &mut data, &q).unwrap();
+            mass_matrix_inverse(&model, &mut data, &q).unwrap();
+            gravity_torques(&model, &mut data, &q).unwrap();
+            coriolis_torques(&model, &mut data, &q, &v).unwrap();
+            nonlinear_effects(&model, &mut data, &q, &v).unwrap();
+            aba(&model, &mut data, &q, &v, &tau).unwrap();
+            kinetic_energy(&model, &mut data, &q, &v).unwrap();
+            potential_energy(&model, &mut data, &q).unwrap();
+            for sim in simulators.iter_mut() {
+                sim.step(&model, &mut qs, &mut vs, &tau).unwrap();
+            }
+            for torque_model in [TorqueModel::Static, TorqueModel::Dynamic] {
+                energy
+                    .torques(&model, &q, &v, &a, &load, torque_model, &mut tau)
+                    .unwrap();
+            }
+        }
+        let after = allocations();
+        assert_eq!(after - before, 0, "{name}: {} allocations", after - before);
     }
 }

@@ -1,6 +1,7 @@
 //! One module per `armkit` subcommand.
 
 pub mod beam;
+pub mod dynamics;
 pub mod fk;
 pub mod ik;
 pub mod manipulability;
@@ -11,3 +12,4 @@ pub mod run;
 pub mod singularity;
 pub mod space;
 pub mod traj;
+pub mod traj_torques;

@@ -123,6 +123,8 @@ pub struct JointArgs {
     pub allow_out_of_limits: bool,
     #[command(flatten)]
     pub output: OutputArgs,
+    #[command(flatten)]
+    pub torques: super::traj_torques::TorqueArgs,
 }
 
 /// Runs `armkit traj`.
@@ -155,12 +157,15 @@ fn run_joint(args: &JointArgs) -> CliResult<Outcome> {
             })?
         }
     };
+    let (traj, torques) = super::traj_torques::check(&model, traj, &args.torques, &args.output)?;
     let mut summary = summarize(&model, &traj, &limits)?;
+    summary["torques"] = torques.json();
     summary["profile"] = serde_json::json!(format!("{:?}", args.profile).to_lowercase());
     summary["minimum_time"] = serde_json::json!(args.duration.is_none());
     let files = write_outputs(&model, &traj, &args.output)?;
     summary["files"] = serde_json::json!(files);
     report_summary(&summary, args.output.json)?;
+    torques.print(args.output.json);
     Ok(Outcome::Success)
 }
 

@@ -33,12 +33,13 @@ from ._armkit import (
     __version__,
     builtin_robots,
     continuous_path,
+    dynamics,
     redundancy,
     singularity,
 )
 
 # The extension's submodules, importable as `import armkit.redundancy`.
-for _module in (redundancy, singularity):
+for _module in (dynamics, redundancy, singularity):
     _sys.modules[f"{__name__}.{_module.__name__}"] = _module
 del _module, _sys
 
@@ -53,6 +54,7 @@ __all__ = [
     "__version__",
     "builtin_robots",
     "continuous_path",
+    "dynamics",
     "redundancy",
     "singularity",
 ]

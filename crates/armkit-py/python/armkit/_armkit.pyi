@@ -18,7 +18,7 @@ import numpy.typing as npt
 __version__: str
 __all__ = [
     "__version__", "Beam", "ContinuousPath", "IkResult", "MpcPlanner", "Robot", "SpaceRobot", "Trajectory",
-    "builtin_robots", "continuous_path", "redundancy", "singularity",
+    "builtin_robots", "continuous_path", "dynamics", "redundancy", "singularity",
 ]
 
 _ArrayLike = npt.ArrayLike
@@ -326,5 +326,6 @@ class SpaceRobot:
     ) -> Tuple[_FloatArray, _FloatArray]:
         """Integrates ``joint_rates`` held over ``dt`` s: the new (base (4, 4), q (dof,))."""
 
+dynamics: ModuleType
 redundancy: ModuleType
 singularity: ModuleType

@@ -85,6 +85,12 @@ impl JointSpec {
         self
     }
 
+    /// Sets the effort (torque or force) limit magnitude (N m or N).
+    pub fn with_effort_limit(mut self, effort: f64) -> Self {
+        self.limits.effort = Some(effort);
+        self
+    }
+
     /// Sets the child link's mass properties (child link frame).
     pub fn with_inertia(mut self, inertia: LinkInertia) -> Self {
         self.inertia = Some(inertia);
@@ -264,7 +270,11 @@ fn validate_joint(spec: &JointSpec) -> std::result::Result<(), (&'static str, St
     if spec.kind == JointKind::Continuous && limits.is_bounded() {
         return Err(("qlim", "a continuous joint has no position limits".into()));
     }
-    for (field, value) in [("vlim", limits.velocity), ("alim", limits.acceleration)] {
+    for (field, value) in [
+        ("vlim", limits.velocity),
+        ("alim", limits.acceleration),
+        ("tlim", limits.effort),
+    ] {
         if let Some(v) = value {
             if !(v.is_finite() && v > 0.0) {
                 return Err((field, format!("must be finite and > 0, got {v}")));

@@ -56,12 +56,13 @@ impl JointKind {
     }
 }
 
-/// Position, velocity and acceleration limits of one joint.
+/// Position, velocity, acceleration and torque limits of one joint.
 ///
-/// Units: rad, rad/s, rad/s^2 for rotational joints; m, m/s, m/s^2 for
-/// prismatic ones. Position limits may be infinite (continuous joints, or
-/// joints the source gives no limits for); velocity and acceleration limits
-/// are symmetric bounds on the magnitude, `None` when unknown.
+/// Units: rad, rad/s, rad/s^2, N m for rotational joints; m, m/s, m/s^2, N
+/// for prismatic ones. Position limits may be infinite (continuous joints, or
+/// joints the source gives no limits for); velocity, acceleration and effort
+/// (torque or force) limits are symmetric bounds on the magnitude, `None`
+/// when unknown.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct JointLimits {
     /// Lower position limit.
@@ -72,6 +73,9 @@ pub struct JointLimits {
     pub velocity: Option<f64>,
     /// Maximum acceleration magnitude, if known.
     pub acceleration: Option<f64>,
+    /// Maximum torque (N m) or force (N) magnitude the joint's motor can
+    /// deliver, if known (URDF `<limit effort>`, DH files' `tlim`).
+    pub effort: Option<f64>,
 }
 
 impl JointLimits {
@@ -81,6 +85,7 @@ impl JointLimits {
         upper: f64::INFINITY,
         velocity: None,
         acceleration: None,
+        effort: None,
     };
 
     /// Position limits only.

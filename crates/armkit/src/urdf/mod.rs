@@ -15,8 +15,8 @@
 //! * `prismatic` joints: translation along `<axis>`, limits in m;
 //! * `fixed` joints: folded into the next joint's placement (or the
 //!   end-effector placement after the last moving joint);
-//! * `<limit velocity>` (rad/s or m/s) and, from URDF 1.2, `acceleration`:
-//!   a value of 0 or infinity means "not given";
+//! * `<limit velocity>` (rad/s or m/s), `effort` (N m or N) and, from URDF
+//!   1.2, `acceleration`: a value of 0 or infinity means "not given";
 //! * `<origin xyz rpy>` with `R = Rz(yaw) Ry(pitch) Rx(roll)` (and
 //!   `quat_xyzw` from URDF 1.1, which `urdf-rs` converts);
 //! * `<inertial>`: each moving joint gets the [`LinkInertia`] of the rigid body
@@ -30,7 +30,7 @@
 //!   contribute nothing; a body with no mass at all has no inertia (`None`).
 //!
 //! Mesh references (`package://...`), visuals, collisions, materials,
-//! `<dynamics>`, `<calibration>`, `<safety_controller>`, effort limits,
+//! `<dynamics>`, `<calibration>`, `<safety_controller>`,
 //! transmissions and Gazebo tags are ignored: kinematics and mass only.
 //!
 //! Errors are [`Error::Parse`] naming the file and the element (with its
@@ -353,6 +353,7 @@ fn joint_limits(
     for (field, value) in [
         ("velocity", limit.velocity),
         ("acceleration", limit.acceleration),
+        ("effort", limit.effort),
     ] {
         if value.is_nan() || value < 0.0 {
             return Err(format!(
@@ -364,6 +365,7 @@ fn joint_limits(
     let rates = JointLimits {
         velocity: optional_rate(limit.velocity),
         acceleration: optional_rate(limit.acceleration),
+        effort: optional_rate(limit.effort),
         ..JointLimits::UNLIMITED
     };
     if kind == JointKind::Continuous {

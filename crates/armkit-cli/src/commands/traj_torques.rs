@@ -1,0 +1,158 @@
+//! `armkit traj joint --torques` / `--fit-torque-limits`: the joint torques
+//! along the trajectory (inverse dynamics, issue 18) against the motors'
+//! limits, the uniform slow-down that meets them, and `torques.svg`.
+
+use armkit::dynamics::torque_limits::{
+    scale_to_torque_limits, torque_profile, TorqueCheckOptions, TorqueReport, TorqueStatus,
+};
+use armkit::trajectory::Trajectory;
+use armkit::Model;
+use clap::Args;
+
+use super::traj::OutputArgs;
+use crate::common::{parse_fixed_numbers, CliResult};
+use crate::plot::Figure;
+
+/// The torque options of `armkit traj joint`.
+#[derive(Args, Debug, Clone, Default)]
+pub struct TorqueArgs {
+    /// Report each joint's peak torque (inverse dynamics, gravity (0,0,-9.81);
+    /// needs link masses) against its limit; with --plots also torques.svg.
+    #[arg(long)]
+    pub torques: bool,
+    /// Slow the trajectory down uniformly until every torque is within its
+    /// limit (implies --torques).
+    #[arg(long)]
+    pub fit_torque_limits: bool,
+    /// Torque limits, N m or N, one per joint (default: the model's effort limits).
+    #[arg(long, value_name = "T1,T2,...", allow_hyphen_values = true)]
+    pub torque_limits: Option<String>,
+}
+
+/// What the torque check found: JSON for the summary, text lines, files.
+#[derive(Default)]
+pub struct TorqueSummary {
+    json: serde_json::Value,
+    text: Vec<String>,
+}
+
+impl TorqueSummary {
+    /// The summary's `torques` entry (`null` when no check was asked for).
+    pub fn json(&self) -> serde_json::Value {
+        self.json.clone()
+    }
+
+    /// Prints the text lines (nothing in JSON mode: the summary holds them).
+    pub fn print(&self, json: bool) {
+        if !json {
+            for line in &self.text {
+                println!("{line}");
+            }
+        }
+    }
+}
+
+/// Checks (and with `--fit-torque-limits` rescales) `traj`; returns the
+/// trajectory to write and the summary. Writes `torques.svg` into `--plots`.
+pub fn check(
+    model: &Model,
+    traj: Trajectory,
+    args: &TorqueArgs,
+    output: &OutputArgs,
+) -> CliResult<(Trajectory, TorqueSummary)> {
+    if args.torque_limits.is_some() && !(args.torques || args.fit_torque_limits) {
+        return Err("--torque-limits needs --torques or --fit-torque-limits"
+            .to_string()
+            .into());
+    }
+    if !(args.torques || args.fit_torque_limits) {
+        return Ok((traj, TorqueSummary::default()));
+    }
+    let limits = args
+        .torque_limits
+        .as_ref()
+        .map(|t| parse_fixed_numbers(t, "--torque-limits", model.dof()))
+        .transpose()?;
+    let options = TorqueCheckOptions {
+        limits,
+        ..Default::default()
+    };
+    let (traj, factor, report) = if args.fit_torque_limits {
+        let scaled = scale_to_torque_limits(model, &traj, &options)?;
+        (scaled.trajectory, Some(scaled.factor), scaled.after)
+    } else {
+        let report = torque_profile(model, &traj, &options)?;
+        (traj, None, report)
+    };
+    let mut summary = describe(&report, factor);
+    if let Some(dir) = &output.plots {
+        std::fs::create_dir_all(dir)?;
+        let path = dir.join("torques.svg");
+        let svg = torque_figure(model.name(), &report)
+            .to_svg(800, 450)
+            .map_err(|e| format!("{}: plot: {e}", path.display()))?;
+        std::fs::write(&path, svg).map_err(|e| format!("{}: {e}", path.display()))?;
+        summary.text.push(format!("wrote {}", path.display()));
+        summary.json["plot"] = serde_json::json!(path.display().to_string());
+    }
+    Ok((traj, summary))
+}
+
+fn describe(report: &TorqueReport, factor: Option<f64>) -> TorqueSummary {
+    let mut text = Vec::new();
+    if let Some(k) = factor {
+        text.push(format!(
+            "torque limits: slowed down by a factor {k:.6} (duration {:.6} s)",
+            report.times.last().unwrap_or(&0.0) - report.times.first().unwrap_or(&0.0)
+        ));
+    }
+    text.push(format!(
+        "joint torques ({} samples, gravity 9.81 m/s^2 along -z): {}",
+        report.times.len(),
+        report.status
+    ));
+    let peaks: Vec<serde_json::Value> = report
+        .peaks
+        .iter()
+        .map(|p| {
+            let limit = p.limit.map_or("no limit".to_string(), |l| {
+                format!("limit {l:.3} ({:.1} %)", 100.0 * p.peak / l)
+            });
+            text.push(format!(
+                "  {}: peak |tau| {:.3} at {:.4} s, {limit}",
+                p.name, p.peak, p.time
+            ));
+            serde_json::json!({"joint": p.name, "peak": p.peak, "time_s": p.time, "limit": p.limit, "ratio": p.ratio()})
+        })
+        .collect();
+    if report.status == TorqueStatus::GravityExceedsLimits {
+        text.push(
+            "warning: gravity alone exceeds a torque limit on this path: no timing can meet it"
+                .into(),
+        );
+    }
+    TorqueSummary {
+        json: serde_json::json!({
+            "status": report.status.as_str(),
+            "time_scaling_factor": factor,
+            "peaks": peaks,
+        }),
+        text,
+    }
+}
+
+fn torque_figure(robot: &str, report: &TorqueReport) -> Figure {
+    let mut figure = Figure::new(
+        format!("{robot}: joint torques (inverse dynamics)"),
+        "t (s)",
+        "tau (N m or N)",
+        report.times.clone(),
+    );
+    for (j, peak) in report.peaks.iter().enumerate() {
+        figure = figure.with_series(
+            format!("joint {} ({})", j + 1, peak.name),
+            report.torques.iter().map(|tau| tau[j]).collect(),
+        );
+    }
+    figure
+}

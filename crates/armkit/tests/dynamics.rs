@@ -1,0 +1,772 @@
+//! Rigid-body dynamics (issue 18): RNEA, CRBA, ABA, gravity and Coriolis
+//! torques against Pinocchio 4.1's reference data through the URDF loader,
+//! and consistency checks on every built-in with masses and on random arms:
+//! M symmetric positive definite, M's columns from the RNEA, ABA inverting
+//! the RNEA, gravity torques as the gradient of the potential energy (finite
+//! differences), the inverse of M, and energy conservation in simulation.
+
+mod common;
+
+use armkit::dynamics::simulate::{Integrator, JointFriction, SimulationOptions, Simulator};
+use armkit::dynamics::{
+    aba, coriolis_torques, gravity_torques, kinetic_energy, mass_matrix, mass_matrix_inverse,
+    nonlinear_effects, potential_energy, rnea, DynamicsData,
+};
+use armkit::math::{DMatrix, Matrix3, Pose, Rotation3, Vector3};
+use armkit::model::{JointSpec, LinkInertia, ModelBuilder};
+use armkit::urdf::{load, ChainSelection};
+use armkit::Model;
+use common::{data_path, random_configuration, rng};
+use rand::Rng;
+
+struct DynamicsSample {
+    q: Vec<f64>,
+    v: Vec<f64>,
+    a: Vec<f64>,
+    tau: Vec<f64>,
+    mass_matrix: Vec<Vec<f64>>,
+    gravity: Vec<f64>,
+    coriolis: Vec<f64>,
+    tau_in: Vec<f64>,
+    ddq: Vec<f64>,
+    kinetic_energy: f64,
+}
+
+fn reference(file: &str) -> (Vec<f64>, String, String, String, Vec<DynamicsSample>) {
+    let text = std::fs::read_to_string(data_path(file)).unwrap();
+    let value: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let vector = |v: &serde_json::Value| -> Vec<f64> { serde_json::from_value(v.clone()).unwrap() };
+    let samples = value["samples"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| DynamicsSample {
+            q: vector(&s["q"]),
+            v: vector(&s["v"]),
+            a: vector(&s["a"]),
+            tau: vector(&s["tau"]),
+            mass_matrix: serde_json::from_value(s["mass_matrix"].clone()).unwrap(),
+            gravity: vector(&s["gravity"]),
+            coriolis: vector(&s["coriolis"]),
+            tau_in: vector(&s["tau_in"]),
+            ddq: vector(&s["ddq"]),
+            kinetic_energy: s["kinetic_energy"].as_f64().unwrap(),
+        })
+        .collect();
+    (
+        vector(&value["gravity"]),
+        // The stripped copy in tests/data/urdf is named after the robot
+        // (the file's `urdf` field gives the package's original name).
+        format!("{}.urdf", value["robot"].as_str().unwrap()),
+        value["base"].as_str().unwrap().to_string(),
+        value["tip"].as_str().unwrap().to_string(),
+        samples,
+    )
+}
+
+/// Largest violation of `|x - y| <= 1e-9 |y| + 1e-10`, as a multiple of that
+/// bound (<= 1 passes).
+fn violation(x: &[f64], y: &[f64]) -> f64 {
+    assert_eq!(x.len(), y.len());
+    x.iter()
+        .zip(y)
+        .map(|(x, y)| (x - y).abs() / (1e-9 * y.abs() + 1e-10))
+        .fold(0.0, f64::max)
+}
+
+fn check_against_pinocchio(file: &str) {
+    let (gravity, urdf, base, tip, samples) = reference(file);
+    assert_eq!(samples.len(), 50);
+    let model = load(
+        data_path(&format!("urdf/{urdf}")),
+        &ChainSelection::between(base, tip),
+    )
+    .unwrap();
+    let mut data = DynamicsData::new(&model)
+        .unwrap()
+        .with_gravity(Vector3::from_column_slice(&gravity))
+        .unwrap();
+    let mut worst = [0.0_f64; 6];
+    for s in &samples {
+        let checks = [
+            violation(rnea(&model, &mut data, &s.q, &s.v, &s.a).unwrap(), &s.tau),
+            violation(
+                mass_matrix(&model, &mut data, &s.q)
+                    .unwrap()
+                    .transpose()
+                    .as_slice(),
+                &s.mass_matrix.concat(),
+            ),
+            violation(
+                gravity_torques(&model, &mut data, &s.q).unwrap(),
+                &s.gravity,
+            ),
+            violation(
+                coriolis_torques(&model, &mut data, &s.q, &s.v).unwrap(),
+                &s.coriolis,
+            ),
+            violation(
+                aba(&model, &mut data, &s.q, &s.v, &s.tau_in).unwrap(),
+                &s.ddq,
+            ),
+            violation(
+                &[kinetic_energy(&model, &mut data, &s.q, &s.v).unwrap()],
+                &[s.kinetic_energy],
+            ),
+        ];
+        for (w, c) in worst.iter_mut().zip(checks) {
+            *w = w.max(c);
+        }
+    }
+    let names = [
+        "tau",
+        "mass_matrix",
+        "gravity",
+        "coriolis",
+        "ddq",
+        "kinetic_energy",
+    ];
+    for (name, w) in names.iter().zip(worst) {
+        println!("{file}: {name}: worst error {w:.2e} x (1e-9 relative + 1e-10)");
+        assert!(
+            w <= 1.0,
+            "{file}: {name} off by {w} x (1e-9 relative + 1e-10)"
+        );
+    }
+}
+
+#[test]
+fn panda_urdf_equals_pinocchio() {
+    check_against_pinocchio("reference_dynamics_panda.json");
+}
+
+#[test]
+fn ur5_urdf_equals_pinocchio() {
+    check_against_pinocchio("reference_dynamics_ur5.json");
+}
+
+/// A random serial arm: random joint kinds (one in four prismatic), axes,
+/// origins and mass properties (positive definite inertias).
+fn random_arm(seed: u64, dof: usize) -> Model {
+    let mut r = rng(seed);
+    let mut builder = ModelBuilder::new(format!("random{seed}"));
+    for j in 0..dof {
+        let mut unit = || {
+            Vector3::new(
+                r.gen_range(-1.0..1.0),
+                r.gen_range(-1.0..1.0),
+                r.gen_range(-1.0..1.0),
+            )
+        };
+        let axis = unit();
+        let offset = unit() * 0.4;
+        let com = unit() * 0.2;
+        let rotation = Rotation3::from_euler_angles(
+            r.gen_range(-3.0..3.0),
+            r.gen_range(-1.5..1.5),
+            r.gen_range(-3.0..3.0),
+        );
+        let principal = Vector3::new(
+            r.gen_range(0.01..0.1),
+            r.gen_range(0.01..0.1),
+            r.gen_range(0.01..0.1),
+        );
+        let inertia = rotation * Matrix3::from_diagonal(&principal) * rotation.transpose();
+        let spec = if r.gen_range(0..4) == 0 {
+            JointSpec::prismatic(format!("p{j}"), -0.5, 0.5)
+        } else {
+            JointSpec::revolute(format!("r{j}"), -3.0, 3.0)
+        };
+        builder = builder.joint(
+            spec.with_axis(axis)
+                .with_origin(Pose::new(rotation.into_inner(), offset))
+                .with_inertia(LinkInertia {
+                    mass: r.gen_range(0.5..5.0),
+                    com,
+                    inertia,
+                }),
+        );
+    }
+    builder.build().unwrap()
+}
+
+/// Every built-in with mass properties and no coupling, and random arms.
+fn models_with_masses() -> Vec<Model> {
+    let mut models: Vec<Model> = armkit::robots::names()
+        .map(|name| armkit::robots::by_name(name).unwrap())
+        .filter(|m| m.has_inertias() && m.coupling().is_none())
+        .collect();
+    let builtins: Vec<&str> = models.iter().map(|m| m.name()).collect();
+    assert_eq!(
+        builtins,
+        ["space6r", "gantry9"],
+        "built-ins with masses changed"
+    );
+    for seed in 0..4 {
+        models.push(random_arm(seed, 3 + seed as usize * 2));
+    }
+    models
+}
+
+fn random_vector(r: &mut impl Rng, n: usize, scale: f64) -> Vec<f64> {
+    (0..n).map(|_| r.gen_range(-scale..scale)).collect()
+}
+
+#[test]
+fn mass_matrix_is_symmetric_positive_definite_with_rnea_columns() {
+    let mut r = rng(18);
+    for model in models_with_masses() {
+        let n = model.dof();
+        let mut data = DynamicsData::new(&model).unwrap();
+        let mut no_gravity = DynamicsData::new(&model)
+            .unwrap()
+            .with_gravity(Vector3::zeros())
+            .unwrap();
+        for _ in 0..10 {
+            let q = random_configuration(&model, &mut r);
+            let m = mass_matrix(&model, &mut data, &q).unwrap().clone();
+            let scale = m.amax();
+            assert!(
+                (&m - m.transpose()).amax() <= 1e-14 * scale,
+                "{}: not symmetric",
+                model.name()
+            );
+            let eigen = m.clone().symmetric_eigenvalues();
+            assert!(eigen.min() > 0.0, "{}: eigenvalues {eigen}", model.name());
+            for j in 0..n {
+                let mut e = vec![0.0; n];
+                e[j] = 1.0;
+                let column = rnea(&model, &mut no_gravity, &q, &vec![0.0; n], &e).unwrap();
+                for i in 0..n {
+                    assert!(
+                        (column[i] - m[(i, j)]).abs() <= 1e-12 * scale,
+                        "{}: M[{i}][{j}] = {} but RNEA gives {}",
+                        model.name(),
+                        m[(i, j)],
+                        column[i]
+                    );
+                }
+            }
+            // The inverse.
+            let inverse = mass_matrix_inverse(&model, &mut data, &q).unwrap().clone();
+            let identity = &m * &inverse;
+            assert!(
+                (identity - DMatrix::identity(n, n)).amax() < 1e-9,
+                "{}",
+                model.name()
+            );
+        }
+    }
+}
+
+#[test]
+fn aba_inverts_rnea_and_matches_m_inverse() {
+    let mut r = rng(19);
+    for model in models_with_masses() {
+        let n = model.dof();
+        let mut data = DynamicsData::new(&model).unwrap();
+        for _ in 0..10 {
+            let q = random_configuration(&model, &mut r);
+            let v = random_vector(&mut r, n, 2.0);
+            let tau = random_vector(&mut r, n, 50.0);
+            let ddq = aba(&model, &mut data, &q, &v, &tau).unwrap().to_vec();
+            let back = rnea(&model, &mut data, &q, &v, &ddq).unwrap().to_vec();
+            let scale = tau.iter().fold(1.0_f64, |m, t| m.max(t.abs()));
+            for j in 0..n {
+                assert!(
+                    (back[j] - tau[j]).abs() < 1e-9 * scale,
+                    "{}: RNEA(ABA(tau))[{j}] = {} vs {}",
+                    model.name(),
+                    back[j],
+                    tau[j]
+                );
+            }
+            // ddq = M^-1 (tau - nle) from the CRBA and the RNEA: a second algorithm.
+            let nle = nonlinear_effects(&model, &mut data, &q, &v)
+                .unwrap()
+                .to_vec();
+            let inverse = mass_matrix_inverse(&model, &mut data, &q).unwrap().clone();
+            let rhs = DMatrix::from_fn(n, 1, |i, _| tau[i] - nle[i]);
+            let expected = inverse * rhs;
+            for j in 0..n {
+                let tolerance = 1e-8 * expected.amax().max(1.0);
+                assert!((ddq[j] - expected[j]).abs() < tolerance, "{}", model.name());
+            }
+            // The kinetic energy equals v' M v / 2.
+            let m = mass_matrix(&model, &mut data, &q).unwrap().clone();
+            let vv = DMatrix::from_column_slice(n, 1, &v);
+            let quadratic = 0.5 * (vv.transpose() * m * &vv)[(0, 0)];
+            let energy = kinetic_energy(&model, &mut data, &q, &v).unwrap();
+            assert!(
+                (energy - quadratic).abs() < 1e-12 * quadratic.max(1.0),
+                "{}",
+                model.name()
+            );
+        }
+    }
+}
+
+#[test]
+fn gravity_torques_are_the_gradient_of_the_potential_energy() {
+    let mut r = rng(20);
+    for model in models_with_masses() {
+        let n = model.dof();
+        let mut data = DynamicsData::new(&model)
+            .unwrap()
+            .with_gravity(Vector3::new(0.3, -1.2, -9.81))
+            .unwrap();
+        for _ in 0..5 {
+            let q = random_configuration(&model, &mut r);
+            let g = gravity_torques(&model, &mut data, &q).unwrap().to_vec();
+            let scale = g.iter().fold(1.0_f64, |m, t| m.max(t.abs()));
+            let h = 1e-6;
+            for j in 0..n {
+                let mut plus = q.clone();
+                let mut minus = q.clone();
+                plus[j] += h;
+                minus[j] -= h;
+                let derivative = (potential_energy(&model, &mut data, &plus).unwrap()
+                    - potential_energy(&model, &mut data, &minus).unwrap())
+                    / (2.0 * h);
+                assert!(
+                    (derivative - g[j]).abs() < 1e-6 * scale,
+                    "{}: dU/dq[{j}] = {derivative} but g = {}",
+                    model.name(),
+                    g[j]
+                );
+            }
+            // g + C v is the RNEA with a = 0.
+            let v = random_vector(&mut r, n, 1.0);
+            let c = coriolis_torques(&model, &mut data, &q, &v)
+                .unwrap()
+                .to_vec();
+            let nle = nonlinear_effects(&model, &mut data, &q, &v)
+                .unwrap()
+                .to_vec();
+            for j in 0..n {
+                assert!((nle[j] - g[j] - c[j]).abs() < 1e-10 * scale);
+            }
+        }
+    }
+}
+
+/// Total energy `T + U` over a simulated motion with gravity on and no
+/// torque (or gravity off): the largest relative drift.
+fn energy_drift(model: &Model, integrator: Integrator, time_step: f64, duration: f64) -> f64 {
+    let n = model.dof();
+    let options = SimulationOptions {
+        time_step,
+        integrator,
+        friction: None,
+    };
+    let mut sim = Simulator::new(model, options).unwrap();
+    sim.data_mut().set_gravity(Vector3::zeros()).unwrap();
+    let mut data = DynamicsData::new(model)
+        .unwrap()
+        .with_gravity(Vector3::zeros())
+        .unwrap();
+    let mut r = rng(21);
+    let mut q = random_configuration(model, &mut r);
+    let mut v = random_vector(&mut r, n, 1.0);
+    let zero = vec![0.0; n];
+    let initial = kinetic_energy(model, &mut data, &q, &v).unwrap();
+    let mut worst: f64 = 0.0;
+    let steps = (duration / time_step).round() as usize;
+    for _ in 0..steps {
+        sim.step(model, &mut q, &mut v, &zero).unwrap();
+        let energy = kinetic_energy(model, &mut data, &q, &v).unwrap();
+        worst = worst.max((energy - initial).abs() / initial);
+    }
+    worst
+}
+
+#[test]
+fn free_motion_conserves_energy() {
+    // Gravity off, tau = 0: the kinetic energy is constant. RK4 with a 1 ms
+    // step over 1 s; the drift (reported in the README) is measured here.
+    for model in models_with_masses() {
+        let drift = energy_drift(&model, Integrator::RungeKutta4, 1e-3, 1.0);
+        println!(
+            "{}: RK4, h = 1 ms, 1 s: relative energy drift {drift:.2e}",
+            model.name()
+        );
+        assert!(drift < 1e-7, "{}: RK4 drift {drift:e}", model.name());
+        let drift = energy_drift(&model, Integrator::SemiImplicitEuler, 1e-3, 1.0);
+        println!(
+            "{}: semi-implicit Euler, h = 1 ms, 1 s: relative energy drift {drift:.2e}",
+            model.name()
+        );
+        assert!(
+            drift < 2e-2,
+            "{}: semi-implicit Euler drift {drift:e}",
+            model.name()
+        );
+    }
+}
+
+#[test]
+fn friction_dissipates_energy() {
+    let model = armkit::robots::by_name("space6r").unwrap();
+    let friction = JointFriction {
+        viscous: vec![0.5; 6],
+        coulomb: vec![0.1; 6],
+    };
+    let options = SimulationOptions {
+        friction: Some(friction),
+        ..Default::default()
+    };
+    let mut sim = Simulator::new(&model, options).unwrap();
+    sim.data_mut().set_gravity(Vector3::zeros()).unwrap();
+    let mut data = DynamicsData::new(&model)
+        .unwrap()
+        .with_gravity(Vector3::zeros())
+        .unwrap();
+    let mut q = vec![0.2, -0.3, 0.5, 0.1, 0.4, -0.2];
+    let mut v = vec![0.5, -0.4, 0.3, 0.6, -0.2, 0.8];
+    let mut last = kinetic_energy(&model, &mut data, &q, &v).unwrap();
+    for _ in 0..50 {
+        for _ in 0..10 {
+            sim.step(&model, &mut q, &mut v, &[0.0; 6]).unwrap();
+        }
+        let energy = kinetic_energy(&model, &mut data, &q, &v).unwrap();
+        assert!(
+            energy < last,
+            "friction must take energy out: {energy} after {last}"
+        );
+        last = energy;
+    }
+}
+
+#[test]
+fn bad_input_is_a_clear_error() {
+    let model = armkit::robots::by_name("space6r").unwrap();
+    let mut data = DynamicsData::new(&model).unwrap();
+    let q = [0.0; 6];
+    let err = rnea(&model, &mut data, &q, &[0.0; 5], &q)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("joint_velocities") && err.contains("expected 6"),
+        "{err}"
+    );
+    let mut v = [0.0; 6];
+    v[2] = f64::NAN;
+    let err = aba(&model, &mut data, &q, &v, &q).unwrap_err().to_string();
+    assert!(err.contains("joint_velocities[2] is not finite"), "{err}");
+    let err = aba(&model, &mut data, &q, &q, &[1.0; 7])
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("joint_torques"), "{err}");
+    let err = mass_matrix(&model, &mut data, &[f64::INFINITY; 6])
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("joint_positions[0] is not finite"), "{err}");
+    let err = data
+        .set_gravity(Vector3::new(0.0, f64::NAN, 0.0))
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("gravity[1]"), "{err}");
+    // Workspace for another model.
+    let ur5 = armkit::robots::by_name("gantry9").unwrap();
+    let err = rnea(&ur5, &mut data, &[0.0; 9], &[0.0; 9], &[0.0; 9])
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("another model"), "{err}");
+    // No masses: the first link is named.
+    let puma = armkit::robots::by_name("puma560").unwrap();
+    let err = DynamicsData::new(&puma).unwrap_err().to_string();
+    assert!(
+        err.contains("link 0") && err.contains("no mass properties"),
+        "{err}"
+    );
+    // The flexible gantry is refused, saying why.
+    let flex = armkit::robots::by_name("gantry9-flex").unwrap();
+    let err = DynamicsData::new(&flex).unwrap_err().to_string();
+    assert!(err.contains("coupling") && err.contains("gantry9"), "{err}");
+    // A rigid model's workspace used with the coupled model.
+    let gantry = armkit::robots::by_name("gantry9").unwrap();
+    let mut gantry_data = DynamicsData::new(&gantry).unwrap();
+    let err = gravity_torques(&flex, &mut gantry_data, &flex.neutral_configuration())
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("coupling"), "{err}");
+    // Options.
+    let err = Simulator::new(
+        &model,
+        SimulationOptions {
+            time_step: 0.0,
+            ..Default::default()
+        },
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(err.contains("time_step"), "{err}");
+    let friction = JointFriction {
+        viscous: vec![0.1; 6],
+        coulomb: vec![-1.0; 6],
+    };
+    let err = Simulator::new(
+        &model,
+        SimulationOptions {
+            friction: Some(friction),
+            ..Default::default()
+        },
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        err.contains("friction.coulomb") && err.contains(">= 0"),
+        "{err}"
+    );
+}
+
+#[test]
+fn one_link_pendulum_matches_closed_form() {
+    // A point mass m at distance l on a horizontal revolute axis (y):
+    // M = m l^2, g(q) = m g l sin(q) for q measured from hanging down.
+    let (m, l, g) = (2.0, 0.7, 9.81);
+    let model = ModelBuilder::new("pendulum")
+        .joint(
+            JointSpec::revolute("swing", -3.0, 3.0)
+                .with_axis(Vector3::y())
+                .with_inertia(LinkInertia::point_mass(m, Vector3::new(0.0, 0.0, -l))),
+        )
+        .build()
+        .unwrap();
+    let mut data = DynamicsData::new(&model).unwrap();
+    let q = 0.4;
+    let mm = mass_matrix(&model, &mut data, &[q]).unwrap()[(0, 0)];
+    assert!((mm - m * l * l).abs() < 1e-14);
+    let torque = gravity_torques(&model, &mut data, &[q]).unwrap()[0];
+    assert!((torque - m * g * l * q.sin()).abs() < 1e-13, "{torque}");
+    let ddq = aba(&model, &mut data, &[q], &[1.3], &[0.0]).unwrap()[0];
+    assert!((ddq + g / l * q.sin()).abs() < 1e-13, "{ddq}");
+}
+
+#[test]
+fn effort_limits_are_read_from_urdf_and_dh_files() {
+    let panda = load(
+        data_path("urdf/panda.urdf"),
+        &ChainSelection::between("panda_link0", "panda_link8"),
+    )
+    .unwrap();
+    let efforts: Vec<Option<f64>> = panda.joints().iter().map(|j| j.limits.effort).collect();
+    let expected = [87.0, 87.0, 87.0, 87.0, 12.0, 12.0, 12.0].map(Some);
+    assert_eq!(efforts, expected);
+    let text = "convention = \"standard\"\n[[links]]\ntype = \"R\"\nd = 0\na = 1\nalpha = 0\n\
+                qlim = [-1, 1]\ntlim = 35.5\nmass = 2.0\n";
+    let model =
+        armkit::description::parse_str(text, armkit::description::Format::Toml, "<t>").unwrap();
+    assert_eq!(model.joints()[0].limits.effort, Some(35.5));
+    let bad = text.replace("35.5", "-3");
+    let err = armkit::description::parse_str(&bad, armkit::description::Format::Toml, "<t>")
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("tlim") && err.contains("> 0"), "{err}");
+}
+
+#[test]
+fn time_scaling_brings_torques_within_limits_tightly() {
+    use armkit::dynamics::torque_limits::{
+        scale_to_torque_limits, torque_profile, TorqueCheckOptions, TorqueStatus,
+    };
+    use armkit::trajectory::profile::{rest_to_rest, ProfileShape};
+    let panda = load(
+        data_path("urdf/panda.urdf"),
+        &ChainSelection::between("panda_link0", "panda_link8"),
+    )
+    .unwrap();
+    let q0 = [0.0, -0.5, 0.0, -2.0, 0.0, 1.5, 0.0];
+    let qf = [1.5, 0.5, -1.0, -1.0, 1.0, 2.5, 1.0];
+    // 0.3 s is far too fast for the Panda's motors.
+    let traj = rest_to_rest(ProfileShape::Quintic, &q0, &qf, 0.3, None).unwrap();
+    let options = TorqueCheckOptions::default();
+    let scaled = scale_to_torque_limits(&panda, &traj, &options).unwrap();
+    assert_eq!(scaled.before.status, TorqueStatus::ExceedsLimits);
+    assert_eq!(scaled.after.status, TorqueStatus::WithinLimits);
+    assert!(scaled.factor > 1.5, "factor {}", scaled.factor);
+    assert!((scaled.trajectory.duration() - 0.3 * scaled.factor).abs() < 1e-12);
+    // Tight: some joint sits at its limit after scaling, and a slightly
+    // faster version exceeds it.
+    let worst = scaled
+        .after
+        .peaks
+        .iter()
+        .map(|p| p.ratio().unwrap())
+        .fold(0.0, f64::max);
+    assert!(worst > 1.0 - 1e-6 && worst <= 1.0, "{worst}");
+    let faster = traj.time_scaled(scaled.factor * (1.0 - 1e-4)).unwrap();
+    let report = torque_profile(&panda, &faster, &options).unwrap();
+    assert_eq!(report.status, TorqueStatus::ExceedsLimits);
+    // The scaling law: at the same point of the path tau_k = g + (tau - g) / k^2,
+    // checked against the RNEA run on the scaled trajectory.
+    let k2 = scaled.factor * scaled.factor;
+    for (i, (before, after)) in scaled
+        .before
+        .torques
+        .iter()
+        .zip(&scaled.after.torques)
+        .enumerate()
+    {
+        let g = &scaled.before.gravity[i];
+        for j in 0..7 {
+            let predicted = g[j] + (before[j] - g[j]) / k2;
+            assert!((predicted - after[j]).abs() < 1e-9 * (1.0 + before[j].abs()));
+        }
+    }
+    // Gravity alone above a limit: no timing helps, reported, unchanged.
+    let tight = TorqueCheckOptions {
+        limits: Some(vec![87.0, 1.0, 87.0, 87.0, 12.0, 12.0, 12.0]),
+        ..Default::default()
+    };
+    let scaled = scale_to_torque_limits(&panda, &traj, &tight).unwrap();
+    assert_eq!(scaled.after.status, TorqueStatus::GravityExceedsLimits);
+    assert_eq!(scaled.factor, 1.0);
+    // Bad options.
+    let err = torque_profile(
+        &panda,
+        &traj,
+        &TorqueCheckOptions {
+            samples: 1,
+            ..Default::default()
+        },
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(err.contains("samples"), "{err}");
+    let err = torque_profile(
+        &panda,
+        &traj,
+        &TorqueCheckOptions {
+            limits: Some(vec![1.0; 3]),
+            ..Default::default()
+        },
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        err.contains("torque_limits") && err.contains("expected 7"),
+        "{err}"
+    );
+}
+
+#[test]
+fn dynamic_torques_at_rest_equal_the_static_holding_torques() {
+    // Two independent implementations: redundancy's centre-of-mass Jacobians
+    // plus J' w, and this module's RNEA plus J' w.
+    use armkit::dynamics::energy_weights::{EnergyTorques, TorqueModel};
+    use armkit::redundancy::Load;
+    let mut r = rng(22);
+    for model in models_with_masses() {
+        let n = model.dof();
+        let mut workspace = EnergyTorques::new(&model).unwrap();
+        let load = Load::payload(50.0).with_gravity(Vector3::new(0.5, -0.2, -9.81));
+        let zero = vec![0.0; n];
+        for _ in 0..5 {
+            let q = random_configuration(&model, &mut r);
+            let (mut fixed, mut moving) = (vec![0.0; n], vec![0.0; n]);
+            workspace
+                .torques(
+                    &model,
+                    &q,
+                    &zero,
+                    &zero,
+                    &load,
+                    TorqueModel::Static,
+                    &mut fixed,
+                )
+                .unwrap();
+            workspace
+                .torques(
+                    &model,
+                    &q,
+                    &zero,
+                    &zero,
+                    &load,
+                    TorqueModel::Dynamic,
+                    &mut moving,
+                )
+                .unwrap();
+            let scale = fixed.iter().fold(1.0_f64, |m, t| m.max(t.abs()));
+            for j in 0..n {
+                assert!(
+                    (fixed[j] - moving[j]).abs() < 1e-10 * scale,
+                    "{}: joint {j}",
+                    model.name()
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn seed001_energy_under_static_and_dynamic_torques() {
+    // The four-way comparison of the redundancy study on gantry9: the static
+    // measure equals the study's own, the dynamic one adds the inertia.
+    use armkit::dynamics::energy_weights::{energy_along_motion, TorqueModel};
+    use armkit::redundancy::{
+        compare_distributions, ComparisonCase, JointWeights, LinePath, Load, TorqueFloor,
+        TrackingOptions, SEED000_PRIORITY_WEIGHTS,
+    };
+    let model = armkit::robots::by_name("gantry9").unwrap();
+    let q0 = [3.0, 2.5, 1.0, 0.3, 0.4, -0.5, 0.2, 0.8, 0.1];
+    let mut data = armkit::Data::new(&model);
+    let start = *armkit::forward_kinematics(&model, &mut data, &q0).unwrap();
+    let goal = Pose::from_translation(Vector3::new(0.4, 0.3, -0.3)) * start;
+    let path = LinePath::new(start, goal, 4.0).unwrap();
+    let load = Load::payload(50.0).with_standard_gravity();
+    let priorities = JointWeights::new(&SEED000_PRIORITY_WEIGHTS).unwrap();
+    let cases =
+        ComparisonCase::four_way(9, load, TorqueFloor::default(), priorities, &[0, 1]).unwrap();
+    let results = compare_distributions(
+        &model,
+        &q0,
+        &path,
+        &load,
+        &cases,
+        &TrackingOptions::default(),
+    )
+    .unwrap();
+    for result in &results {
+        let samples = &result.report.samples;
+        let times: Vec<f64> = samples.iter().map(|s| s.time).collect();
+        let q: Vec<Vec<f64>> = samples.iter().map(|s| s.q.clone()).collect();
+        let q_dot: Vec<Vec<f64>> = samples.iter().map(|s| s.q_dot.clone()).collect();
+        let fixed =
+            energy_along_motion(&model, &times, &q, &q_dot, &load, TorqueModel::Static).unwrap();
+        let moving =
+            energy_along_motion(&model, &times, &q, &q_dot, &load, TorqueModel::Dynamic).unwrap();
+        println!(
+            "{:15} F static {:.4e} W^2 s, dynamic {:.4e} W^2 s ({:+.2} %)",
+            result.name,
+            fixed.energy,
+            moving.energy,
+            100.0 * (moving.energy / fixed.energy - 1.0)
+        );
+        assert!((fixed.energy - result.summary.energy).abs() < 1e-9 * fixed.energy);
+        assert!(moving.energy > 0.0 && (moving.energy - fixed.energy).abs() > 1e-12 * fixed.energy);
+    }
+    // Bad input.
+    let err = energy_along_motion(
+        &model,
+        &[0.0],
+        &[q0.to_vec()],
+        &[vec![0.0; 9]],
+        &load,
+        TorqueModel::Dynamic,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(err.contains("at least 2 samples"), "{err}");
+    let err = energy_along_motion(
+        &model,
+        &[0.0, 0.0],
+        &[q0.to_vec(), q0.to_vec()],
+        &[vec![0.0; 9], vec![0.0; 9]],
+        &load,
+        TorqueModel::Dynamic,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(err.contains("increase strictly"), "{err}");
+}
