@@ -22,6 +22,7 @@ starts from mid-range). Rows:
 - batched FK of --batch configurations: armkit `robot.fk(Q)` on one thread
   and on every core; the peers have no batched call, so their figure is the
   per-call loop;
+- RNEA per call and batched (armkit `dynamics.rnea`; Pinocchio `rnea`);
 - IK per target (a Python loop of single solves) and batched (armkit
   `ik_batch` on one thread and on every core), on the URDF chain and, for
   armkit, on the built-in DH robot of the same name (`armkit bench-ik`'s
@@ -209,6 +210,15 @@ def bench_robot(name, args, rows):
         best_call(lambda: robot.fk(Q), args.reps) / args.batch)
     armkit_ik(robot, Ts, q0, "", add)
 
+    # dynamics (RNEA) where the URDF has inertials
+    V = rng.uniform(-1, 1, Q.shape)
+    A = rng.uniform(-2, 2, Q.shape)
+    states = list(zip(Q[: args.calls], V[: args.calls], A[: args.calls]))
+    rnea = armkit.dynamics.rnea
+    add("RNEA, per call", "armkit", best_per_call(lambda s: rnea(robot, *s), states, args.reps))
+    add(f"RNEA, batch of {args.batch}, per state", "armkit, 1 thread",
+        best_call(lambda: rnea(robot, Q, V, A, threads=1), args.reps) / args.batch)
+
     # --- Pinocchio
     try:
         pinocchio = Pinocchio(path, base, tip, robot.joint_names)
@@ -219,6 +229,11 @@ def bench_robot(name, args, rows):
         add("Jacobian, per call", "Pinocchio (Python)", best_per_call(pinocchio.jacobian, qs, args.reps))
         for q in qs[:10]:  # same chain, same answer
             assert np.abs(pinocchio.fk(q).homogeneous - robot.fk(q)).max() < 1e-12
+        pin_rnea = pinocchio.pin.rnea
+        model, data = pinocchio.model, pinocchio.data
+        for q, v, a in states[:10]:
+            assert np.abs(pin_rnea(model, data, q, v, a) - rnea(robot, q, v, a)).max() < 1e-9
+        add("RNEA, per call", "Pinocchio (Python)", best_per_call(lambda s: pin_rnea(model, data, *s), states, args.reps))
 
     # --- Robotics Toolbox
     try:

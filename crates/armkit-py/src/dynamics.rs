@@ -7,13 +7,15 @@
 //! in N m or N, mass matrix in kg m^2 / kg, energies in J; gravity a
 //! world-frame acceleration, default (0, 0, -9.81) m/s^2.
 
-use armkit::dynamics::{self as library, DynamicsData};
+use armkit::dynamics::{self as library, DynamicsData, DEFAULT_GRAVITY};
 use armkit::math::Vector3;
 use armkit::Model;
 use numpy::{PyArrayDyn, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 
-use crate::arrays::{float_array, new_array, shape_error, RowMajor};
+use crate::arrays::{
+    copy_values, float_array, new_array, read_flat_sequence, shape_error, RowMajor,
+};
 use crate::errors::{row_error, OrRaise};
 use crate::parallel::{for_each_row, thread_count, RowsMut};
 use crate::robot::Robot;
@@ -27,6 +29,8 @@ type Algorithm =
 
 /// Evaluates `algorithm` on `inputs` (each (dof,) or each (N, dof)), giving
 /// an array of shape `item` (a float when `item` is empty) or (N, *item).
+/// One state runs on the robot's cached workspace with the GIL held (a few
+/// microseconds at most); a batch runs on `threads` threads without it.
 fn evaluate<'py>(
     py: Python<'py>,
     robot: &Robot,
@@ -38,11 +42,22 @@ fn evaluate<'py>(
 ) -> PyResult<Bound<'py, PyAny>> {
     let model = &robot.model;
     let dof = model.dof();
-    let mut data = DynamicsData::new(model).or_raise()?;
-    if let Some(g) = gravity {
-        armkit::error::check_finite_vector("gravity", &g, 3).or_raise()?;
-        data.set_gravity(Vector3::new(g[0], g[1], g[2]))
-            .or_raise()?;
+    let gravity = match gravity {
+        None => DEFAULT_GRAVITY,
+        Some(g) => {
+            armkit::error::check_finite_vector("gravity", &g, 3).or_raise()?;
+            Vector3::new(g[0], g[1], g[2])
+        }
+    };
+    let width: usize = item.iter().product();
+    // One state given as flat lists: no NumPy at all.
+    let mut values: Vec<Vec<f64>> = vec![Vec::new(); inputs.len()];
+    if inputs
+        .iter()
+        .zip(values.iter_mut())
+        .all(|((obj, _), out)| read_flat_sequence(obj, out))
+    {
+        return single(py, robot, gravity, &values, item, algorithm);
     }
     let arrays: Vec<Bound<'py, PyArrayDyn<f64>>> = inputs
         .iter()
@@ -72,48 +87,66 @@ fn evaluate<'py>(
             return Err(shape_error(what, &expected, array.shape()));
         }
     }
-    let values: Vec<RowMajor<'py>> = arrays.iter().map(RowMajor::new).collect::<PyResult<_>>()?;
-    let slices: Vec<&[f64]> = values.iter().map(RowMajor::as_slice).collect();
-    let width: usize = item.iter().product();
-    match rows {
-        None => {
-            let mut out = vec![0.0; width];
-            algorithm(model, &mut data, &slices, &mut out).or_raise()?;
-            if item.is_empty() {
-                return Ok(out[0].into_pyobject(py)?.into_any());
-            }
-            Ok(new_array(py, numpy::ndarray::IxDyn(item), |values| {
-                values.copy_from_slice(&out);
-                Ok(())
-            })?
-            .into_any())
+    let Some(n) = rows else {
+        for (array, out) in arrays.iter().zip(values.iter_mut()) {
+            copy_values(array, out);
         }
-        Some(n) => {
-            let threads = thread_count(threads)?;
-            let mut dims = vec![n];
-            dims.extend_from_slice(item);
-            let out = new_array(py, numpy::ndarray::IxDyn(&dims), |out| {
-                py.detach(|| {
-                    for_each_row(
-                        n,
-                        threads,
-                        DYNAMICS_ROWS_PER_THREAD,
-                        RowsMut::new(out, width),
-                        || data.clone(),
-                        |data, row, local, out| {
-                            let state: Vec<&[f64]> = slices
-                                .iter()
-                                .map(|s| &s[row * dof..(row + 1) * dof])
-                                .collect();
-                            algorithm(model, data, &state, out.row(local))
-                        },
-                    )
-                })
-                .map_err(|e| row_error(inputs[0].1, e.row, &e.error))
-            })?;
-            Ok(out.into_any())
-        }
+        return single(py, robot, gravity, &values, item, algorithm);
+    };
+    let mut data = DynamicsData::new(model).or_raise()?;
+    data.set_gravity(gravity).or_raise()?;
+    let inputs_by_row: Vec<RowMajor<'py>> =
+        arrays.iter().map(RowMajor::new).collect::<PyResult<_>>()?;
+    let slices: Vec<&[f64]> = inputs_by_row.iter().map(RowMajor::as_slice).collect();
+    let threads = thread_count(threads)?;
+    let mut dims = vec![n];
+    dims.extend_from_slice(item);
+    let out = new_array(py, numpy::ndarray::IxDyn(&dims), |out| {
+        py.detach(|| {
+            for_each_row(
+                n,
+                threads,
+                DYNAMICS_ROWS_PER_THREAD,
+                RowsMut::new(out, width),
+                || data.clone(),
+                |data, row, local, out| {
+                    let state: Vec<&[f64]> = slices
+                        .iter()
+                        .map(|s| &s[row * dof..(row + 1) * dof])
+                        .collect();
+                    algorithm(model, data, &state, out.row(local))
+                },
+            )
+        })
+        .map_err(|e| row_error(inputs[0].1, e.row, &e.error))
+    })?;
+    Ok(out.into_any())
+}
+
+/// One state on the robot's cached dynamics workspace.
+fn single<'py>(
+    py: Python<'py>,
+    robot: &Robot,
+    gravity: Vector3<f64>,
+    values: &[Vec<f64>],
+    item: &[usize],
+    algorithm: &Algorithm,
+) -> PyResult<Bound<'py, PyAny>> {
+    let slices: Vec<&[f64]> = values.iter().map(Vec::as_slice).collect();
+    let mut out = vec![0.0; item.iter().product()];
+    robot
+        .with_dynamics(gravity, |data| {
+            algorithm(&robot.model, data, &slices, &mut out)
+        })
+        .or_raise()?;
+    if item.is_empty() {
+        return Ok(out[0].into_pyobject(py)?.into_any());
     }
+    Ok(new_array(py, numpy::ndarray::IxDyn(item), |values| {
+        values.copy_from_slice(&out);
+        Ok(())
+    })?
+    .into_any())
 }
 
 /// Inverse dynamics (RNEA): the joint torques `tau` (N m or N) that give

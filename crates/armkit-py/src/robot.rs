@@ -4,7 +4,9 @@
 use std::path::PathBuf;
 use std::sync::Mutex;
 
+use armkit::dynamics::DynamicsData;
 use armkit::kinematics::{forward_kinematics, jacobian, Data, JacobianFrame};
+use armkit::math::Vector3;
 use armkit::Model;
 use numpy::ndarray::Dim;
 use numpy::{PyArray1, PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
@@ -39,6 +41,8 @@ pub struct Robot {
     /// The IK engine of the last `ik` call, reused while the options stay
     /// the same (building one clones the model).
     ik_engine: Mutex<Option<(IkArguments, IkEngine)>>,
+    /// The dynamics workspace of one-state calls, made on first use.
+    dynamics: Mutex<Option<DynamicsData>>,
 }
 
 /// Workspace of the one-at-a-time calls: the kinematics data and the joint
@@ -76,6 +80,7 @@ impl Robot {
             model,
             scratch,
             ik_engine: Mutex::new(None),
+            dynamics: Mutex::new(None),
         }
     }
 
@@ -84,6 +89,31 @@ impl Robot {
         match self.scratch.try_lock() {
             Ok(mut scratch) => f(&mut scratch),
             Err(_) => f(&mut Scratch::new(&self.model)),
+        }
+    }
+
+    /// Runs `f` with a dynamics workspace (gravity set), the cached one
+    /// unless another thread holds it. Errors: the model has no mass
+    /// properties, or a coupling.
+    pub(crate) fn with_dynamics<R>(
+        &self,
+        gravity: Vector3<f64>,
+        f: impl FnOnce(&mut DynamicsData) -> armkit::Result<R>,
+    ) -> armkit::Result<R> {
+        match self.dynamics.try_lock() {
+            Ok(mut cached) => {
+                let data = match &mut *cached {
+                    Some(data) => data,
+                    slot => slot.insert(DynamicsData::new(&self.model)?),
+                };
+                data.set_gravity(gravity)?;
+                f(data)
+            }
+            Err(_) => {
+                let mut data = DynamicsData::new(&self.model)?;
+                data.set_gravity(gravity)?;
+                f(&mut data)
+            }
         }
     }
 

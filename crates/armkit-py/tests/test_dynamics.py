@@ -85,3 +85,16 @@ def test_dynamics_bad_input():
         dynamics.rnea(armkit.Robot.builtin("panda"), q, q, q)  # the DH panda has no masses
     with pytest.raises(ValueError, match="coupling"):
         dynamics.mass_matrix(armkit.Robot.builtin("gantry9-flex"), np.zeros(9))
+
+
+def test_gravity_between_calls_on_the_cached_workspace():
+    robot = panda()
+    q = [0.1, -0.5, 0.2, -2.0, 0.1, 1.5, 0.8]  # a list: the path without NumPy
+    g = dynamics.gravity_torques(robot, q)
+    assert np.abs(g).max() > 1.0
+    assert np.array_equal(dynamics.gravity_torques(robot, q, gravity=[0.0, 0.0, 0.0]), np.zeros(7))
+    np.testing.assert_allclose(dynamics.gravity_torques(robot, q, gravity=[0.0, 0.0, -2 * 9.81]), 2 * g, rtol=1e-12)
+    assert np.array_equal(dynamics.gravity_torques(robot, np.array(q)), g)
+    # RNEA at rest is gravity; the same from a batch of one.
+    assert np.array_equal(dynamics.rnea(robot, q, [0.0] * 7, [0.0] * 7), g)
+    assert np.array_equal(dynamics.rnea(robot, [q], [[0.0] * 7], [[0.0] * 7])[0], g)
