@@ -22,6 +22,8 @@ enum Command {
     Run(commands::run::RunArgs),
     /// List the built-in robots.
     Robots(commands::robots::RobotsArgs),
+    /// A robot's chain: its joints, which mimic which, and the limits.
+    Info(commands::info::InfoArgs),
     /// Forward kinematics: the end-effector pose.
     Fk(commands::fk::FkArgs),
     /// The geometric Jacobian.
@@ -53,6 +55,7 @@ fn run(command: &Command) -> CliResult<Outcome> {
         Command::Demo(args) => commands::run::demo(args),
         Command::Run(args) => commands::run::run(args),
         Command::Robots(args) => commands::robots::run(args),
+        Command::Info(args) => commands::info::run(args),
         Command::Fk(args) => commands::fk::run_fk(args),
         Command::Jacobian(args) => commands::fk::run_jacobian(args),
         Command::Dynamics(args) => commands::dynamics::run(args),

@@ -138,6 +138,26 @@ const FILES: &[(&str, &str)] = &[
         "unknown-joint-type.urdf",
         "<robot name=\"r\"><link name=\"a\"/><link name=\"b\"/><joint name=\"j\" type=\"hinge\"><parent link=\"a\"/><child link=\"b\"/></joint></robot>",
     ),
+    (
+        "mimic-leader-missing.urdf",
+        "<robot name=\"r\"><link name=\"a\"/><link name=\"b\"/><link name=\"c\"/><joint name=\"j1\" type=\"revolute\"><parent link=\"a\"/><child link=\"b\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint><joint name=\"j2\" type=\"revolute\"><parent link=\"b\"/><child link=\"c\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/><mimic joint=\"ghost\"/></joint></robot>",
+    ),
+    (
+        "mimic-cycle.urdf",
+        "<robot name=\"r\"><link name=\"a\"/><link name=\"b\"/><link name=\"c\"/><link name=\"e\"/><link name=\"f\"/><joint name=\"j3\" type=\"revolute\"><parent link=\"a\"/><child link=\"e\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/><mimic joint=\"j4\"/></joint><joint name=\"j4\" type=\"revolute\"><parent link=\"a\"/><child link=\"f\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/><mimic joint=\"j3\"/></joint><joint name=\"j1\" type=\"revolute\"><parent link=\"a\"/><child link=\"b\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint><joint name=\"j2\" type=\"revolute\"><parent link=\"b\"/><child link=\"c\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/><mimic joint=\"j3\"/></joint></robot>",
+    ),
+    (
+        "mimic-infinite-multiplier.urdf",
+        "<robot name=\"r\"><link name=\"a\"/><link name=\"b\"/><link name=\"c\"/><joint name=\"j1\" type=\"revolute\"><parent link=\"a\"/><child link=\"b\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint><joint name=\"j2\" type=\"revolute\"><parent link=\"b\"/><child link=\"c\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/><mimic joint=\"j1\" multiplier=\"inf\"/></joint></robot>",
+    ),
+    (
+        "mimic-no-range.urdf",
+        "<robot name=\"r\"><link name=\"a\"/><link name=\"b\"/><link name=\"c\"/><joint name=\"j1\" type=\"revolute\"><parent link=\"a\"/><child link=\"b\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint><joint name=\"j2\" type=\"revolute\"><parent link=\"b\"/><child link=\"c\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/><mimic joint=\"j1\" offset=\"3\"/></joint></robot>",
+    ),
+    (
+        "mimic-ok.urdf",
+        "<robot name=\"r\"><link name=\"a\"/><link name=\"b\"/><link name=\"c\"/><joint name=\"j1\" type=\"revolute\"><parent link=\"a\"/><child link=\"b\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint><joint name=\"j2\" type=\"revolute\"><parent link=\"b\"/><child link=\"c\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/><mimic joint=\"j1\" multiplier=\"2\"/></joint></robot>",
+    ),
     // Scenario files.
     ("scenario-syntax.toml", "name = \n"),
     ("scenario-no-name.toml", "title = \"t\"\n[beam]\n"),
@@ -1500,6 +1520,60 @@ const CASES: &[Case] = &[
         ],
         1,
     ),
+    // Mimic joints and `armkit info` (issue 20).
+    case(
+        "urdf",
+        "mimic joint whose leader is missing",
+        &["fk", "--urdf", "mimic-leader-missing.urdf", "--q", "0"],
+        1,
+    ),
+    case(
+        "urdf",
+        "mimic joints forming a cycle",
+        &[
+            "fk",
+            "--urdf",
+            "mimic-cycle.urdf",
+            "--base",
+            "a",
+            "--tip",
+            "c",
+            "--q",
+            "0",
+        ],
+        1,
+    ),
+    case(
+        "urdf",
+        "mimic joint with a non-finite multiplier",
+        &["info", "--urdf", "mimic-infinite-multiplier.urdf"],
+        1,
+    ),
+    case(
+        "urdf",
+        "mimic joint whose limits leave its leader no range",
+        &["info", "--urdf", "mimic-no-range.urdf"],
+        1,
+    ),
+    case(
+        "urdf",
+        "q of the chain's length (mimic joints are not in q)",
+        &["fk", "--urdf", "mimic-ok.urdf", "--q", "0,0"],
+        1,
+    ),
+    case(
+        "urdf",
+        "mimic joint pushed past its limits through its leader",
+        &["fk", "--urdf", "mimic-ok.urdf", "--q", "0.8"],
+        1,
+    ),
+    case(
+        "info",
+        "--tip without --urdf",
+        &["info", "--robot", "ur5", "--tip", "x"],
+        1,
+    ),
+    case("info", "unknown robot", &["info", "--robot", "nobody"], 1),
 ];
 
 fn repository_root() -> PathBuf {

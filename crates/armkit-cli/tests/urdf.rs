@@ -142,3 +142,66 @@ fn urdf_errors_are_one_line_with_the_file_and_element() {
     assert!(!output.status.success());
     assert!(stderr(&output).contains("--urdf"), "{}", stderr(&output));
 }
+
+/// `armkit info` lists the chain, which joints mimic which, and the limits
+/// (issue 20); `fk` takes the independent joints only.
+#[test]
+fn info_lists_mimic_joints_and_the_limits_they_impose() {
+    let output = armkit(&[
+        "info",
+        "--urdf",
+        "tests/data/urdf/mimicbot.urdf",
+        "--base",
+        "base",
+        "--tip",
+        "fingertip",
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let text = stdout(&output);
+    assert!(
+        text.starts_with("robot mimicbot: 9 chain joints, 7 independent (dof)"),
+        "{text}"
+    );
+    assert!(text.contains("middle_joint  revolute           -0.2          1.2         3  mimics knuckle: 0.8 * q[6] + 0.1"), "{text}");
+    assert!(text.contains("distal_joint  revolute           -0.5          0.9         2  mimics knuckle: -0.96 * q[6] - 0.12"), "{text}");
+    assert!(
+        text.contains("q[6] knuckle       revolute           -0.3     0.395833  2.083333"),
+        "{text}"
+    );
+
+    let value = json(&armkit(&[
+        "info",
+        "--urdf",
+        "tests/data/urdf/mimicbot.urdf",
+        "--tip",
+        "finger_b_tip",
+        "--json",
+    ]));
+    assert_eq!(value["dof"], 7);
+    assert_eq!(value["joints"][6]["name"], "finger_a_joint");
+    assert_eq!(value["chain_joints"][6]["name"], "finger_b_joint");
+    assert_eq!(value["couplings"][0]["kind"], "mimic");
+    assert_eq!(value["couplings"][0]["multiplier"], 0.75);
+    assert_eq!(value["chain_joints"][5]["lower"], serde_json::Value::Null);
+
+    // The gantry's beam is listed as an additive coupling.
+    let text = stdout(&armkit(&["info", "--robot", "gantry9-flex"]));
+    assert!(text.contains("q[2] + f(q[1] = q2)"), "{text}");
+    assert!(
+        text.contains("coupling: q3 adds the deflection w of a simply supported 10 m beam"),
+        "{text}"
+    );
+
+    // fk takes the 7 independent joints.
+    let value = json(&armkit(&[
+        "fk",
+        "--urdf",
+        "tests/data/urdf/mimicbot.urdf",
+        "--tip",
+        "fingertip",
+        "--q",
+        "0,0,0,0,0,0,0.2",
+        "--json",
+    ]));
+    assert!(value.is_object(), "{value}");
+}

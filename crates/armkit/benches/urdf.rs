@@ -1,7 +1,10 @@
 //! FK and FK + Jacobian of the Panda loaded from URDF (panda_link0 to
 //! panda_link8), beside the built-in DH Panda (`robots::panda()`): a URDF
 //! model runs on the same FK loop, so the timings should be in the same
-//! ballpark. Also the time to load the URDF file.
+//! ballpark. Also the time to load the URDF file, and mimic joints: the
+//! mimicbot finger chain (9 chain joints, 7 independent: FK expands `q`, the
+//! Jacobian folds the mimic columns) beside the same chain with the mimic
+//! joints made independent (9 dof, no folding).
 //!
 //! Run: `cargo bench -p armkit --bench urdf`.
 
@@ -53,5 +56,23 @@ fn panda_urdf_vs_dh(c: &mut Criterion) {
     });
 }
 
-criterion_group!(benches, panda_urdf_vs_dh);
+fn mimic_joints(c: &mut Criterion) {
+    let path = format!(
+        "{}/../../tests/data/urdf/mimicbot.urdf",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let text = std::fs::read_to_string(path).unwrap();
+    let selection = ChainSelection::between("base", "fingertip");
+    let with_mimic = urdf::parse_str(&text, "mimicbot.urdf", &selection).unwrap();
+    let independent: String = text
+        .lines()
+        .filter(|line| !line.trim_start().starts_with("<mimic"))
+        .collect::<Vec<_>>()
+        .join("\n");
+    let without_mimic = urdf::parse_str(&independent, "mimicbot.urdf", &selection).unwrap();
+    bench_model(c, "mimicbot-finger", &with_mimic);
+    bench_model(c, "mimicbot-finger-no-mimic", &without_mimic);
+}
+
+criterion_group!(benches, panda_urdf_vs_dh, mimic_joints);
 criterion_main!(benches);

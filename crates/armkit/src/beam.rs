@@ -65,8 +65,13 @@
 //! ```
 
 use crate::error::{check_positive, Error, Result};
-use crate::model::{CouplingLaw, JointCoupling};
-use crate::robots::GANTRY9_BEAM_LENGTH;
+use std::sync::Arc;
+
+use crate::model::{CouplingCurve, CouplingLaw, JointCoupling};
+
+/// Span of seed 000's beam between its supports, m (Table 1): the gantry's
+/// beam ([`crate::robots::GANTRY9_BEAM_LENGTH`] is this value).
+pub const SEED000_BEAM_LENGTH: f64 = 10.0;
 
 /// The gravitational acceleration (m/s^2) that reproduces seed 000's Table 1:
 /// the paper's theoretical deflections are computed with `g = 10`.
@@ -184,11 +189,11 @@ impl SimplySupportedBeam {
     }
 
     /// Seed 000's beam (Table 1): alloy steel, `E = 200 GPa`, span
-    /// `L = 10 m` (= [`GANTRY9_BEAM_LENGTH`]), solid square section of side
+    /// `L = 10 m` (= [`SEED000_BEAM_LENGTH`]), solid square section of side
     /// 0.2 m, `I = 0.2^4 / 12 = 1.333e-4 m^4`; `E I = 2.667e7 N m^2`.
     pub fn seed000() -> Self {
         SimplySupportedBeam {
-            length: GANTRY9_BEAM_LENGTH,
+            length: SEED000_BEAM_LENGTH,
             youngs_modulus: SEED000_YOUNGS_MODULUS,
             second_moment: SEED000_SECTION_SIDE.powi(4) / 12.0,
         }
@@ -394,6 +399,27 @@ impl CarriageDeflection {
     }
 }
 
+/// The beam's deflection as the gantry's coupling curve: `d3' = d3 + w(d2)`
+/// (seed 000 eq 4 corrected), slope `m2 = dw/dd2` (eq 9).
+impl CouplingCurve for CarriageDeflection {
+    fn value_and_slope(&self, x: f64) -> (f64, f64) {
+        self.deflection_and_slope(x)
+    }
+
+    fn describe(&self) -> String {
+        format!(
+            "the deflection w of a simply supported {} m beam (E I = {:e} N m^2) under a {} N carriage",
+            self.beam.length(),
+            self.beam.stiffness(),
+            self.force
+        )
+    }
+
+    fn validate(&self) -> Result<()> {
+        CarriageDeflection::validate(self)
+    }
+}
+
 /// Whether a gantry's beam bends under its carriage.
 ///
 /// Everywhere gantry9 is built ([`crate::robots::gantry9_with_beam`]), this
@@ -425,7 +451,7 @@ impl GantryBeam {
             GantryBeam::Flexible(deflection) => Some(JointCoupling {
                 source: carriage,
                 target: vertical,
-                law: CouplingLaw::BeamDeflection(*deflection),
+                law: CouplingLaw::Additive(Arc::new(*deflection)),
             }),
         }
     }

@@ -322,7 +322,7 @@ pub fn space6r_mass_properties() -> [LinkInertia; 6] {
 pub const GANTRY9_BEAM_HEIGHT: f64 = 6.0;
 
 /// Length of gantry9's beam between its supports, m (seed 000, Table 1).
-pub const GANTRY9_BEAM_LENGTH: f64 = 10.0;
+pub const GANTRY9_BEAM_LENGTH: f64 = crate::beam::SEED000_BEAM_LENGTH;
 
 /// Seed 000's 9-DOF gantry (Wang, Li, Xi), modified DH, our dimensions; rigid
 /// beam (the deflection coupling is in [`crate::beam`]).

@@ -78,6 +78,39 @@ fn fk_and_jacobian_do_not_allocate() {
 }
 
 #[test]
+fn fk_jacobian_and_force_folding_with_mimic_joints_do_not_allocate() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../tests/data/urdf/mimicbot.urdf"
+    );
+    let model = armkit::urdf::load(
+        path,
+        &armkit::urdf::ChainSelection::between("base", "fingertip"),
+    )
+    .unwrap();
+    assert!(model.has_mimic_joints());
+    let mut data = Data::new(&model);
+    let q = model.neutral_configuration();
+    let mut chain = vec![0.0; model.chain_joints().len()];
+    let mut forces = vec![0.0; model.dof()];
+    let before = allocations();
+    for _ in 0..100 {
+        forward_kinematics(&model, &mut data, &q).unwrap();
+        jacobian(&model, &mut data, &q, JacobianFrame::World).unwrap();
+        jacobian(&model, &mut data, &q, JacobianFrame::EndEffector).unwrap();
+        model.chain_positions(&q, &mut chain).unwrap();
+        model.fold_chain_forces(&q, &chain, &mut forces).unwrap();
+    }
+    let after = allocations();
+    assert_eq!(
+        after - before,
+        0,
+        "mimicbot: {} allocations",
+        after - before
+    );
+}
+
+#[test]
 fn an_ik_solve_allocates_only_its_report() {
     for name in ["ur5", "panda", "gantry9", "arm4"] {
         let model = armkit::robots::by_name(name).unwrap();

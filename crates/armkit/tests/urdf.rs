@@ -405,24 +405,38 @@ fn a_floating_joint_off_the_chain_is_ignored() {
 }
 
 #[test]
-fn a_mimic_joint_on_the_chain_is_an_error_and_off_it_is_ignored() {
+fn a_mimic_joint_follows_its_leader_off_the_chain() {
     let text = std::fs::read_to_string(urdf_path("panda.urdf")).unwrap();
-    assert_eq!(
-        parse_error(
-            &text,
-            &ChainSelection::between("panda_hand", "panda_rightfinger")
-        ),
-        "test.urdf: joint `panda_finger_joint2` (line 181) mimics joint `panda_finger_joint1`: \
-         mimic (coupled) joints are not supported on the chain"
-    );
-    // The other finger is not a mimic joint.
-    let model = parse_str(
+    // panda_finger_joint2 mimics panda_finger_joint1, on the other finger:
+    // the configuration is the leader's position.
+    let right = parse_str(
+        &text,
+        "t",
+        &ChainSelection::between("panda_hand", "panda_rightfinger"),
+    )
+    .unwrap();
+    assert_eq!(right.dof(), 1);
+    assert_eq!(right.joints()[0].name, "panda_finger_joint1");
+    assert_eq!(right.chain_joints()[0].name, "panda_finger_joint2");
+    assert_eq!(right.position_limits(), (vec![0.0], vec![0.04]));
+    assert!(right.has_mimic_joints());
+    let left = parse_str(
         &text,
         "t",
         &ChainSelection::between("panda_hand", "panda_leftfinger"),
     )
     .unwrap();
-    assert_eq!(model.dof(), 1);
+    assert_eq!(left.dof(), 1);
+    assert!(!left.has_mimic_joints());
+    // Both fingers open by the same amount, in opposite directions.
+    let mut right_data = Data::new(&right);
+    let mut left_data = Data::new(&left);
+    for q in [0.0, 0.013, 0.04] {
+        let r = *forward_kinematics(&right, &mut right_data, &[q]).unwrap();
+        let l = *forward_kinematics(&left, &mut left_data, &[q]).unwrap();
+        assert!((r.translation.y + l.translation.y).abs() < 1e-15, "{q}");
+        assert!(((r.translation.y - l.translation.y).abs() - 2.0 * q).abs() < 1e-15);
+    }
 }
 
 #[test]
@@ -588,7 +602,7 @@ fn bad_joint_values_are_named() {
     let cases = [
         (
             revolute(""),
-            "joint `j` (line 4) is revolute but has no <limit> element (lower, upper and velocity are required)",
+            "joint `j` (line 4) is revolute but has no <limit> element: the URDF specification requires <limit> (lower, upper, velocity, effort) on revolute and prismatic joints",
         ),
         (
             revolute("<limit lower=\"1\" upper=\"-1\" velocity=\"1\"/>"),
@@ -711,4 +725,56 @@ fn a_byte_order_mark_and_a_missing_axis_are_accepted() {
     assert!((pose.translation - Vector3::new(0.25, 0.0, 0.0)).norm() < 1e-15);
     // velocity="0" means no velocity limit given.
     assert_eq!(model.joints()[0].limits.velocity, None);
+}
+
+/// Issue 20: elements the kinematics and mass properties do not read never
+/// block a load, however they are written; what the model reads still
+/// fails with the file, line and element.
+#[test]
+fn elements_the_model_does_not_read_never_block_a_load() {
+    let text = "<?xml version=\"1.0\"?>\n<robot name=\"r\">\n\
+        <material name=\"skin\"><texture /></material>\n\
+        <link name=\"a\">\n\
+          <visual><geometry><mesh filename=\"package://nowhere.stl\" scale=\"x y z\"/></geometry>\
+            <material name=\"m\"><color rgba=\"not numbers\"/><texture /></material></visual>\n\
+          <collision><geometry><box/></geometry></collision>\n\
+        </link>\n\
+        <link name=\"b\"><inertial><mass value=\"2\"/><inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"1\"/></inertial>\
+          <visual><origin xyz=\"nan\"/></visual><sensor name=\"cam\" type=\"camera\"/></link>\n\
+        <joint name=\"j\" type=\"revolute\"><parent link=\"a\"/><child link=\"b\"/>\
+          <limit lower=\"-1\" upper=\"1\" velocity=\"2\" effort=\"3\"/>\
+          <calibration rising=\"abc\"/><dynamics damping=\"lots\"/>\
+          <safety_controller soft_lower_limit=\"?\" k_velocity=\"\"/></joint>\n\
+        <transmission name=\"t\"><type>junk</type><joint/></transmission>\n\
+        <gazebo reference=\"b\"><sensor><plugin/></sensor><unknown_tag/></gazebo>\n\
+        <vendor_extension anything=\"goes\"><deeply><nested/></deeply></vendor_extension>\n\
+        </robot>\n";
+    let model = parse_str(text, "lenient.urdf", &ChainSelection::default()).unwrap();
+    assert_eq!(model.dof(), 1);
+    assert_eq!(model.joints()[0].limits.velocity, Some(2.0));
+    assert_eq!(model.joints()[0].inertia.unwrap().mass, 2.0);
+
+    // What the model reads is still checked, with the line.
+    let broken = text.replace("<mass value=\"2\"/>", "<mass value=\"heavy\"/>");
+    let message = parse_str(&broken, "lenient.urdf", &ChainSelection::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        message.starts_with("lenient.urdf: link `b` (line 8):"),
+        "{message}"
+    );
+    let broken = text.replace("velocity=\"2\"", "velocity=\"fast\"");
+    let message = parse_str(&broken, "lenient.urdf", &ChainSelection::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        message.starts_with("lenient.urdf: joint `j` (line 9):"),
+        "{message}"
+    );
+    // Malformed XML anywhere is still an error (the file is not XML).
+    let broken = text.replace("<unknown_tag/>", "<unknown_tag>");
+    let message = parse_str(&broken, "lenient.urdf", &ChainSelection::default())
+        .unwrap_err()
+        .to_string();
+    assert!(message.contains("malformed XML at line 11"), "{message}");
 }

@@ -4,6 +4,7 @@ pub mod beam;
 pub mod dynamics;
 pub mod fk;
 pub mod ik;
+pub mod info;
 pub mod manipulability;
 pub mod mpc;
 pub mod redundancy;

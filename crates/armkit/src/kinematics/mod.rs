@@ -43,29 +43,41 @@ pub enum JacobianFrame {
 #[derive(Clone, Debug)]
 pub struct Data {
     dof: usize,
+    /// One per chain joint (mimic joints included).
     effective_positions: Vec<f64>,
     /// `(sin, cos)` of each effective joint position (used for rotational joints).
     joint_sin_cos: Vec<(f64, f64)>,
     joint_frames: Vec<Pose>,
     end_effector: Pose,
     jacobian: Matrix6xX<f64>,
+    /// The chain's Jacobian `J0` (6 x chain joints) before `J = J0 M`; empty
+    /// when the chain's joints are the configuration's (no mimic joint).
+    chain_jacobian: Matrix6xX<f64>,
 }
 
 impl Data {
     /// A workspace for `model`.
     pub fn new(model: &Model) -> Self {
         let dof = model.dof();
+        let chain = model.chain_joints().len();
+        let folded = if model.joint_map().is_identity() {
+            0
+        } else {
+            chain
+        };
         Data {
             dof,
-            effective_positions: vec![0.0; dof],
-            joint_sin_cos: vec![(0.0, 1.0); dof],
-            joint_frames: vec![Pose::identity(); dof],
+            effective_positions: vec![0.0; chain],
+            joint_sin_cos: vec![(0.0, 1.0); chain],
+            joint_frames: vec![Pose::identity(); chain],
             end_effector: Pose::identity(),
             jacobian: Matrix6xX::zeros(dof),
+            chain_jacobian: Matrix6xX::zeros(folded),
         }
     }
 
-    /// World pose of each joint's frame after its motion, from the last
+    /// World pose of each chain joint's frame after its motion (one per
+    /// [`Model::chain_joints`], mimic joints included), from the last
     /// forward kinematics: origin on the joint axis, z along the axis. For a
     /// modified-DH model these are the DH frames; for a standard-DH model,
     /// joint j's frame is DH frame j-1 turned by the joint.
@@ -83,14 +95,15 @@ impl Data {
         &self.jacobian
     }
 
-    /// Joint positions the chain was evaluated at, after any coupling (e.g.
-    /// the gantry's `d3' = d3 + w(d2)`); equal to `q` for uncoupled models.
+    /// Joint positions the chain was evaluated at, one per chain joint, after
+    /// the couplings (mimic joints from their leaders, the gantry's
+    /// `d3' = d3 + w(d2)`); equal to `q` for uncoupled models.
     pub fn effective_positions(&self) -> &[f64] {
         &self.effective_positions
     }
 
     fn check_model(&self, model: &Model) -> Result<()> {
-        if self.dof != model.dof() {
+        if self.dof != model.dof() || self.joint_frames.len() != model.chain_joints().len() {
             return Err(Error::DimensionMismatch {
                 what: "data (workspace made for another model)",
                 expected: model.dof(),
@@ -102,7 +115,8 @@ impl Data {
 }
 
 /// Forward kinematics: every joint frame and the end-effector pose, in the
-/// world frame, for joint positions `q` (rad or m, one per joint).
+/// world frame, for joint positions `q` (rad or m, one per independent
+/// joint; the couplings give the chain's other joints).
 ///
 /// Returns the end-effector pose. Errors: `q` of the wrong size or not
 /// finite, `data` made for another model, or a pose that overflows to an
@@ -112,11 +126,7 @@ impl Data {
 pub fn forward_kinematics<'d>(model: &Model, data: &'d mut Data, q: &[f64]) -> Result<&'d Pose> {
     data.check_model(model)?;
     model.check_joint_positions(q)?;
-    data.effective_positions.copy_from_slice(q);
-    if let Some(coupling) = model.coupling() {
-        let (offset, _) = coupling.law.offset_and_slope(q[coupling.source]);
-        data.effective_positions[coupling.target] += offset;
-    }
+    model.joint_map().expand(q, &mut data.effective_positions);
     // All the trigonometry first, in a loop of its own: the calls are
     // independent, so the processor overlaps them, where inside the chain
     // below each would wait for the previous frame product.
@@ -124,7 +134,7 @@ pub fn forward_kinematics<'d>(model: &Model, data: &'d mut Data, q: &[f64]) -> R
     let mut frame = Pose::identity();
     for (j, placement) in model.joint_placements().iter().enumerate() {
         frame = &frame * placement;
-        if model.joints()[j].kind.is_rotational() {
+        if model.chain_joints()[j].kind.is_rotational() {
             rotate_about_local_z(&mut frame, data.joint_sin_cos[j]);
         } else {
             frame.translation += frame.rotation.column(2) * data.effective_positions[j];
@@ -167,8 +177,10 @@ fn rotate_about_local_z(frame: &mut Pose, (s, c): (f64, f64)) {
 ///
 /// Column j is `[z_j x (p_e - p_j); z_j]` for a rotational joint and
 /// `[z_j; 0]` for a prismatic one (`z_j`, `p_j` the joint's axis and origin,
-/// `p_e` the end-effector origin). With a coupling, `J = J0 M` (seed 000,
-/// eq 10). Allocates nothing.
+/// `p_e` the end-effector origin), for each chain joint; the couplings then
+/// fold these into one column per independent joint, `J = J0 M` with
+/// `M = d q_chain / d q` (a mimic joint's column times its multiplier added
+/// to its leader's; seed 000, eq 10 for the beam). Allocates nothing.
 pub fn jacobian<'d>(
     model: &Model,
     data: &'d mut Data,
@@ -177,10 +189,18 @@ pub fn jacobian<'d>(
 ) -> Result<&'d Matrix6xX<f64>> {
     forward_kinematics(model, data, q)?;
     let end = data.end_effector.translation;
+    let map = model.joint_map();
+    // Without mimic joints the chain's columns are the result (before the
+    // additive couplings, folded in place).
+    let chain_jacobian = if map.is_identity() {
+        &mut data.jacobian
+    } else {
+        &mut data.chain_jacobian
+    };
     for (j, joint_frame) in data.joint_frames.iter().enumerate() {
         let axis: Vector3<f64> = joint_frame.rotation.column(2).into_owned();
-        let mut column = data.jacobian.column_mut(j);
-        if model.joints()[j].kind.is_rotational() {
+        let mut column = chain_jacobian.column_mut(j);
+        if model.chain_joints()[j].kind.is_rotational() {
             let linear = axis.cross(&(end - joint_frame.translation));
             column.fixed_rows_mut::<3>(0).copy_from(&linear);
             column.fixed_rows_mut::<3>(3).copy_from(&axis);
@@ -189,14 +209,7 @@ pub fn jacobian<'d>(
             column.fixed_rows_mut::<3>(3).fill(0.0);
         }
     }
-    if let Some(coupling) = model.coupling() {
-        // J0 M: column(source) += slope * column(target).
-        let (_, slope) = coupling.law.offset_and_slope(q[coupling.source]);
-        let target = data.jacobian.column(coupling.target).into_owned();
-        data.jacobian
-            .column_mut(coupling.source)
-            .axpy(slope, &target, 1.0);
-    }
+    map.fold_jacobian(q, &data.chain_jacobian, &mut data.jacobian);
     if frame == JacobianFrame::EndEffector {
         let rt = data.end_effector.rotation.transpose();
         for mut column in data.jacobian.column_iter_mut() {

@@ -1,5 +1,6 @@
 //! Building a [`Model`] from joints with any axis, checked.
 
+use super::coupling::{JointMap, MimicJoint};
 use super::{DhConvention, DhLink, Joint, JointKind, JointLimits, LinkInertia, Model};
 use crate::error::{Error, Result};
 use crate::math::{rotation_z_to, Pose, Vector3};
@@ -123,6 +124,8 @@ pub struct ModelBuilder {
     base: Pose,
     tool: Pose,
     elements: Vec<Element>,
+    off_chain: Vec<JointSpec>,
+    mimics: Vec<MimicJoint>,
     dh: Option<(DhConvention, Vec<DhLink>)>,
 }
 
@@ -134,6 +137,8 @@ impl ModelBuilder {
             base: Pose::identity(),
             tool: Pose::identity(),
             elements: Vec::new(),
+            off_chain: Vec::new(),
+            mimics: Vec::new(),
             dh: None,
         }
     }
@@ -159,6 +164,25 @@ impl ModelBuilder {
     /// Appends a fixed transform (a fixed joint).
     pub fn fixed(mut self, placement: Pose) -> Self {
         self.elements.push(Element::Fixed(placement));
+        self
+    }
+
+    /// Declares joint `mimic.joint` a mimic joint: its position follows
+    /// `mimic.leader`'s, `q = multiplier * q_leader + offset`, and it leaves
+    /// the configuration (see [`crate::model::CouplingLaw::Mimic`]). The
+    /// leader may be on the chain, another mimic joint (resolved to the
+    /// first independent leader) or an [`off_chain_joint`](Self::off_chain_joint).
+    pub fn mimic(mut self, mimic: MimicJoint) -> Self {
+        self.mimics.push(mimic);
+        self
+    }
+
+    /// Adds a joint that is not on the chain but that a mimic joint of the
+    /// chain follows (e.g. the other finger of a parallel gripper): it
+    /// becomes an entry of the configuration, with its kind and limits. Its
+    /// origin, axis and inertia are not used.
+    pub fn off_chain_joint(mut self, joint: JointSpec) -> Self {
+        self.off_chain.push(joint);
         self
     }
 
@@ -225,14 +249,32 @@ impl ModelBuilder {
                 "the chain has no moving joint (an empty chain)".into(),
             ));
         }
+        let mut off_chain = Vec::with_capacity(self.off_chain.len());
+        for spec in &self.off_chain {
+            validate_joint(spec).map_err(|(field, reason)| Error::InvalidModel {
+                link: joints.len() + off_chain.len(),
+                name: spec.name.clone(),
+                field: field.into(),
+                reason,
+            })?;
+            off_chain.push(Joint {
+                name: spec.name.clone(),
+                kind: spec.kind,
+                limits: spec.limits,
+                inertia: None,
+            });
+        }
+        let resolved = super::mimic::resolve(&self.name, &joints, &off_chain, &self.mimics)?;
         Ok(Model {
             name: self.name,
-            joints,
+            joints: resolved.joints,
+            chain_joints: joints,
             placements,
             tail: pending * self.tool,
             base: self.base,
             tool: self.tool,
-            coupling: None,
+            map: JointMap::new(resolved.drives),
+            couplings: resolved.couplings,
             dh: self.dh,
         })
     }

@@ -1,71 +1,333 @@
-//! Couplings between joint variables, such as the gantry beam's deflection.
+//! Joint couplings: chain joints whose position depends on another joint's.
+//!
+//! One concept covers both couplings armkit knows (issue 20):
+//!
+//! * [`CouplingLaw::Mimic`], a URDF `<mimic>` joint: `q_m = multiplier *
+//!   q_leader + offset`. The mimic joint leaves the configuration: the
+//!   model's `q` holds the independent joints only ([`super::Model::dof`]).
+//! * [`CouplingLaw::Additive`], seed 000's flexible beam: `d3' = d3 + w(d2)`
+//!   (eq 4 corrected), a nonlinear curve `f` of the source added to a target
+//!   joint that stays independent. The model owns only the curve's interface
+//!   ([`CouplingCurve`]); [`crate::beam`] implements it.
+//!
+//! Both are resolved once, at build time, into one map from the
+//! configuration `q` (length `dof`) to the positions of the chain's joints
+//! (length [`super::Model::chain_joints`]): forward kinematics expands `q`
+//! through it, and the Jacobian folds the chain's columns back,
+//! `J = J0 M` with `M = d q_chain / d q` (seed 000, eqs 8-10 for the beam),
+//! in one code path ([`crate::kinematics`]).
+//!
+//! ```
+//! use armkit::model::{JointSpec, MimicJoint, ModelBuilder};
+//! use armkit::kinematics::{forward_kinematics, Data};
+//! // Two revolute joints; the second follows the first at half its angle.
+//! let model = ModelBuilder::new("finger")
+//!     .joint(JointSpec::revolute("proximal", -1.0, 1.0))
+//!     .joint(JointSpec::revolute("distal", -0.4, 0.4))
+//!     .mimic(MimicJoint::new("distal", "proximal", 0.5, 0.0))
+//!     .build()
+//!     .unwrap();
+//! assert_eq!(model.dof(), 1); // only `proximal` is in the configuration
+//! assert_eq!(model.chain_joints().len(), 2);
+//! // distal's limits (+-0.4) bound proximal to +-0.8 (the tighter bound wins).
+//! assert_eq!(model.joints()[0].limits.upper, 0.8);
+//! let mut data = Data::new(&model);
+//! forward_kinematics(&model, &mut data, &[0.6]).unwrap();
+//! assert_eq!(data.effective_positions(), &[0.6, 0.3]);
+//! ```
 
-use super::{JointKind, Model};
-use crate::beam::CarriageDeflection;
+use std::fmt::Debug;
+use std::sync::Arc;
+
 use crate::error::{Error, Result};
+use crate::math::Matrix6xX;
 
-/// How a coupled joint's extra displacement depends on its source joint.
-#[derive(Clone, Debug, PartialEq)]
+/// A scalar curve `f(x)` with its slope, the law of an additive coupling
+/// (e.g. a beam's deflection under a carriage, [`crate::beam`]).
+///
+/// Units are the joints': `x` is the source joint's position, `f(x)` a
+/// displacement of the target joint (m for a prismatic target).
+pub trait CouplingCurve: Debug + Send + Sync {
+    /// `(f(x), df/dx)` at `x`. Called in forward kinematics: must not
+    /// allocate, and should return NaN (not panic) for a NaN `x`.
+    fn value_and_slope(&self, x: f64) -> (f64, f64);
+
+    /// One line saying what the curve is, for listings (`armkit info`).
+    fn describe(&self) -> String;
+
+    /// Checks the curve's parameters when it is attached to a model
+    /// (default: nothing to check).
+    fn validate(&self) -> Result<()> {
+        Ok(())
+    }
+}
+
+/// How a coupled (target) joint's position follows its source joint.
+#[derive(Clone, Debug)]
 pub enum CouplingLaw {
-    /// The deflection `w(a)` (m, positive downward) of a simply supported beam
-    /// under a carriage at `a = q[source]` (seed 000, eq 1 with the load at
-    /// the point of interest; eq 4 corrected: `d3' = d3 + w(d2)`).
-    BeamDeflection(CarriageDeflection),
+    /// `q_target = multiplier * q_source + offset` (URDF `<mimic>`): the
+    /// target is not in the configuration. Offset in the target's units.
+    Mimic {
+        /// Dimensionless factor (or m/rad across joint kinds).
+        multiplier: f64,
+        /// Constant term, rad or m.
+        offset: f64,
+    },
+    /// `q_target' = q_target + f(q_source)`: the target stays independent
+    /// (seed 000's beam, `d3' = d3 + w(d2)`).
+    Additive(Arc<dyn CouplingCurve>),
 }
 
 impl CouplingLaw {
-    /// The extra displacement of the target joint and its derivative with
-    /// respect to the source joint's position: `(f(x), df/dx)`.
+    /// The law's contribution to the target and its derivative with respect
+    /// to the source position: `(m x + offset, m)` for a mimic (the whole
+    /// target position), `(f(x), f'(x))` for an additive curve (added to the
+    /// target's own position).
     pub fn offset_and_slope(&self, source_position: f64) -> (f64, f64) {
         match self {
-            CouplingLaw::BeamDeflection(beam) => beam.deflection_and_slope(source_position),
+            CouplingLaw::Mimic { multiplier, offset } => {
+                (multiplier * source_position + offset, *multiplier)
+            }
+            CouplingLaw::Additive(curve) => curve.value_and_slope(source_position),
         }
     }
 
-    /// Checks the law's parameters (a beam deflection: the carriage weight
-    /// is finite and >= 0).
-    pub fn validate(&self) -> Result<()> {
+    /// One line for listings: `q = 0.5 q_leader + 0` or the curve's description.
+    pub fn describe(&self) -> String {
         match self {
-            CouplingLaw::BeamDeflection(beam) => beam.validate(),
+            CouplingLaw::Mimic { multiplier, offset } => {
+                format!("mimic: multiplier {multiplier}, offset {offset}")
+            }
+            CouplingLaw::Additive(curve) => format!("adds {}", curve.describe()),
         }
     }
 }
 
-/// Joint `target` moves by `q[target] + f(q[source])`.
+/// A coupling on a built model: chain joint `target` follows configuration
+/// entry `source` through `law`.
 ///
-/// Forward kinematics uses the effective position; the Jacobian becomes
-/// `J = J0 M`, `M` the identity with `M[target][source] = df/dx` (seed 000,
-/// eqs 8-10, corrected), recomputed at every configuration.
-#[derive(Clone, Debug, PartialEq)]
+/// `source` indexes the configuration `q` (and [`super::Model::joints`]);
+/// `target` indexes the chain ([`super::Model::chain_joints`],
+/// [`crate::kinematics::Data::joint_frames`]). For a model without mimic
+/// joints the two numberings coincide (gantry9-flex: source 1 = `d2`,
+/// target 2 = `d3`).
+#[derive(Clone, Debug)]
 pub struct JointCoupling {
-    /// Index of the joint whose position drives the coupling.
+    /// Index in the configuration of the joint whose position drives the coupling.
     pub source: usize,
-    /// Index of the (prismatic) joint that is displaced.
+    /// Index in the chain of the joint that is driven.
     pub target: usize,
-    /// The law `f`.
+    /// The law.
     pub law: CouplingLaw,
 }
 
-impl JointCoupling {
-    pub(crate) fn validate(&self, model: &Model) -> Result<()> {
-        let dof = model.dof();
-        self.law.validate()?;
-        let bad = |reason: String| Error::invalid_argument("coupling", reason);
-        if self.source >= dof || self.target >= dof {
-            return Err(bad(format!(
-                "joint indices source {} and target {} must be below the model's {dof} joints",
-                self.source, self.target
-            )));
+/// A URDF-style mimic declaration for [`super::ModelBuilder::mimic`]:
+/// joint `joint` follows joint `leader`, `q = multiplier * q_leader + offset`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MimicJoint {
+    /// The mimic (follower) joint's name.
+    pub joint: String,
+    /// The name of the joint it follows (on the chain, another mimic joint,
+    /// or a joint added with [`super::ModelBuilder::off_chain_joint`]).
+    pub leader: String,
+    /// Factor (URDF default 1).
+    pub multiplier: f64,
+    /// Offset, rad or m (URDF default 0).
+    pub offset: f64,
+}
+
+impl MimicJoint {
+    /// `joint` follows `leader`: `q = multiplier * q_leader + offset`.
+    pub fn new(
+        joint: impl Into<String>,
+        leader: impl Into<String>,
+        multiplier: f64,
+        offset: f64,
+    ) -> Self {
+        MimicJoint {
+            joint: joint.into(),
+            leader: leader.into(),
+            multiplier,
+            offset,
         }
-        if self.source == self.target {
-            return Err(bad("source and target must be different joints".into()));
-        }
-        if model.joints()[self.target].kind != JointKind::Prismatic {
-            return Err(bad(format!(
-                "target joint {} must be prismatic",
-                self.target
-            )));
-        }
-        Ok(())
     }
+}
+
+/// Where one chain joint's position comes from.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Drive {
+    /// `q_chain = q[index]`.
+    Independent(usize),
+    /// `q_chain = multiplier * q[leader] + offset`.
+    Mimic {
+        leader: usize,
+        multiplier: f64,
+        offset: f64,
+    },
+}
+
+/// The configuration-to-chain map, resolved at build time.
+#[derive(Clone, Debug)]
+pub(crate) struct JointMap {
+    /// One per chain joint.
+    drives: Vec<Drive>,
+    /// True when the chain joints are the configuration, in order.
+    identity: bool,
+    /// Additive curves: (configuration source, chain target, curve).
+    additive: Vec<(usize, usize, Arc<dyn CouplingCurve>)>,
+}
+
+impl JointMap {
+    pub(crate) fn new(drives: Vec<Drive>) -> Self {
+        let identity = drives
+            .iter()
+            .enumerate()
+            .all(|(j, d)| *d == Drive::Independent(j));
+        JointMap {
+            drives,
+            identity,
+            additive: Vec::new(),
+        }
+    }
+
+    pub(crate) fn drives(&self) -> &[Drive] {
+        &self.drives
+    }
+
+    /// True when the chain's joints are the configuration's, in order
+    /// (no mimic joint): the Jacobian is then computed in place.
+    pub(crate) fn is_identity(&self) -> bool {
+        self.identity
+    }
+
+    pub(crate) fn set_additive(&mut self, additive: Vec<(usize, usize, Arc<dyn CouplingCurve>)>) {
+        self.additive = additive;
+    }
+
+    /// Chain joint positions from the configuration `q` (sizes checked by
+    /// the caller): drives first, then the additive curves. Allocates nothing.
+    pub(crate) fn expand(&self, q: &[f64], chain: &mut [f64]) {
+        if self.identity {
+            chain.copy_from_slice(q);
+        } else {
+            for (value, drive) in chain.iter_mut().zip(&self.drives) {
+                *value = match *drive {
+                    Drive::Independent(i) => q[i],
+                    Drive::Mimic {
+                        leader,
+                        multiplier,
+                        offset,
+                    } => multiplier * q[leader] + offset,
+                };
+            }
+        }
+        for (source, target, curve) in &self.additive {
+            chain[*target] += curve.value_and_slope(q[*source]).0;
+        }
+    }
+
+    /// `J = J0 M`: folds the chain Jacobian `chain` (6 x chain joints) into
+    /// `out` (6 x dof). For an identity map `chain` is unused and `out`
+    /// already holds `J0` (only the additive columns change, in place: seed
+    /// 000 eq 10, `column(source) += slope * column(target)`).
+    pub(crate) fn fold_jacobian(
+        &self,
+        q: &[f64],
+        chain: &Matrix6xX<f64>,
+        out: &mut Matrix6xX<f64>,
+    ) {
+        if self.identity {
+            for (source, target, curve) in &self.additive {
+                let (_, slope) = curve.value_and_slope(q[*source]);
+                let column = out.column(*target).into_owned();
+                out.column_mut(*source).axpy(slope, &column, 1.0);
+            }
+            return;
+        }
+        out.fill(0.0);
+        for (j, drive) in self.drives.iter().enumerate() {
+            let (index, factor) = match *drive {
+                Drive::Independent(i) => (i, 1.0),
+                Drive::Mimic {
+                    leader, multiplier, ..
+                } => (leader, multiplier),
+            };
+            out.column_mut(index).axpy(factor, &chain.column(j), 1.0);
+        }
+        for (source, target, curve) in &self.additive {
+            let (_, slope) = curve.value_and_slope(q[*source]);
+            out.column_mut(*source)
+                .axpy(slope, &chain.column(*target), 1.0);
+        }
+    }
+
+    /// `tau = M' tau0`: generalized forces on the chain joints (`chain`,
+    /// one per chain joint) as forces on the configuration (`out`, one per
+    /// independent joint). Allocates nothing.
+    pub(crate) fn fold_forces(&self, q: &[f64], chain: &[f64], out: &mut [f64]) {
+        out.fill(0.0);
+        for (&value, drive) in chain.iter().zip(&self.drives) {
+            match *drive {
+                Drive::Independent(i) => out[i] += value,
+                Drive::Mimic {
+                    leader, multiplier, ..
+                } => out[leader] += multiplier * value,
+            }
+        }
+        for (source, target, curve) in &self.additive {
+            let (_, slope) = curve.value_and_slope(q[*source]);
+            out[*source] += slope * chain[*target];
+        }
+    }
+}
+
+/// The error for a bad mimic declaration or coupling, naming the joint.
+pub(crate) fn mimic_error(model: &str, joint: &str, reason: impl Into<String>) -> Error {
+    Error::InvalidModelStructure {
+        model: model.to_string(),
+        reason: format!("mimic joint `{joint}`: {}", reason.into()),
+    }
+}
+
+/// Checks an additive coupling against a model's map and chain; `Ok` gives
+/// the triple the map stores.
+pub(crate) fn check_additive(
+    coupling: &JointCoupling,
+    dof: usize,
+    map: &JointMap,
+    target_is_prismatic: bool,
+) -> Result<(usize, usize, Arc<dyn CouplingCurve>)> {
+    let bad = |reason: String| Error::invalid_argument("coupling", reason);
+    let CouplingLaw::Additive(curve) = &coupling.law else {
+        return Err(bad(
+            "a mimic coupling is declared with ModelBuilder::mimic (a mimic joint), not added to a built model".into(),
+        ));
+    };
+    curve.validate()?;
+    let chain_len = map.drives.len();
+    if coupling.source >= dof || coupling.target >= chain_len {
+        return Err(bad(format!(
+            "source {} must index the model's {dof} independent joints and target {} its {chain_len} chain joints",
+            coupling.source, coupling.target
+        )));
+    }
+    match map.drives[coupling.target] {
+        Drive::Independent(i) if i == coupling.source => {
+            return Err(bad("source and target must be different joints".into()))
+        }
+        Drive::Independent(_) => {}
+        Drive::Mimic { .. } => {
+            return Err(bad(format!(
+                "target joint {} is a mimic joint (its position follows its leader)",
+                coupling.target
+            )))
+        }
+    }
+    if !target_is_prismatic {
+        return Err(bad(format!(
+            "target joint {} must be prismatic",
+            coupling.target
+        )));
+    }
+    Ok((coupling.source, coupling.target, Arc::clone(curve)))
 }

@@ -30,9 +30,11 @@
 mod builder;
 mod coupling;
 mod dh;
+mod mimic;
 
 pub use builder::{JointSpec, ModelBuilder};
-pub use coupling::{CouplingLaw, JointCoupling};
+pub(crate) use coupling::JointMap;
+pub use coupling::{CouplingCurve, CouplingLaw, JointCoupling, MimicJoint};
 pub use dh::{DhConvention, DhLink};
 
 use crate::error::{check_finite_vector, Error, Result};
@@ -204,19 +206,27 @@ pub struct Joint {
 ///
 /// Frames: the world frame is the one in which [`Model::base`] places the
 /// robot; poses and Jacobians are reported in it unless stated otherwise.
-/// Joint positions `q` are in joint order, rad or m.
+/// Joint positions `q` (the configuration) hold the independent joints
+/// ([`Model::joints`], [`Model::dof`] of them), rad or m; mimic joints of the
+/// chain follow them ([`Model::chain_joints`], [`coupling`](self::coupling)).
 #[derive(Clone, Debug)]
 pub struct Model {
     name: String,
+    /// The configuration's joints (independent), limits tightened by mimics.
     joints: Vec<Joint>,
-    /// Placement of joint j's frame (before its motion) in the frame of
-    /// joint j-1 after its motion; for j = 0, in the world frame (base folded in).
+    /// Every moving joint of the chain, base to tip, with its own limits.
+    chain_joints: Vec<Joint>,
+    /// Placement of chain joint j's frame (before its motion) in the frame of
+    /// chain joint j-1 after its motion; for j = 0, in the world frame (base folded in).
     placements: Vec<Pose>,
     /// Placement of the end-effector (tool) frame in the last joint's frame.
     tail: Pose,
     base: Pose,
     tool: Pose,
-    coupling: Option<JointCoupling>,
+    /// Configuration -> chain positions (mimic joints and additive curves).
+    map: JointMap,
+    /// Mimic couplings (one per mimic joint), then additive ones.
+    couplings: Vec<JointCoupling>,
     dh: Option<(DhConvention, Vec<DhLink>)>,
 }
 
@@ -226,19 +236,32 @@ impl Model {
         &self.name
     }
 
-    /// Number of moving joints (degrees of freedom).
+    /// Number of independent joints (degrees of freedom): the length of a
+    /// configuration `q`. Mimic joints are not counted.
     pub fn dof(&self) -> usize {
         self.joints.len()
     }
 
-    /// The moving joints, base to tip.
+    /// The independent joints, one per entry of `q`, base to tip (a leader
+    /// off the chain at the place of its first follower). A leader's limits
+    /// are tightened by its mimic joints' (the tighter bound wins), so that
+    /// `q` within these limits keeps every mimic joint within its own.
+    /// Equal to [`Model::chain_joints`] when the chain has no mimic joint.
     pub fn joints(&self) -> &[Joint] {
         &self.joints
     }
 
-    /// Placement of each joint's frame, before its motion, in the previous
+    /// Every moving joint of the chain, base to tip, mimic joints included,
+    /// with their own limits and the mass properties of the links they move
+    /// (the joints [`crate::kinematics::Data::joint_frames`] reports).
+    pub fn chain_joints(&self) -> &[Joint] {
+        &self.chain_joints
+    }
+
+    /// Placement of each chain joint's frame, before its motion, in the previous
     /// joint's frame after its motion (the first in the world frame). Every
-    /// joint moves about or along the local z axis of its frame.
+    /// joint moves about or along the local z axis of its frame. One per
+    /// [`Model::chain_joints`].
     pub fn joint_placements(&self) -> &[Pose] {
         &self.placements
     }
@@ -259,9 +282,70 @@ impl Model {
         &self.tool
     }
 
-    /// The joint coupling (e.g. gantry beam deflection), if any.
+    /// The first joint coupling (a mimic joint, or e.g. the gantry beam's
+    /// deflection), if any; see [`Model::couplings`] for all of them.
     pub fn coupling(&self) -> Option<&JointCoupling> {
-        self.coupling.as_ref()
+        self.couplings.first()
+    }
+
+    /// Every coupling: one per mimic joint of the chain (resolved to its
+    /// independent leader), then the additive ones (the gantry's beam).
+    pub fn couplings(&self) -> &[JointCoupling] {
+        &self.couplings
+    }
+
+    /// True when some chain joint is a mimic joint (the chain has more
+    /// joints than the configuration).
+    pub fn has_mimic_joints(&self) -> bool {
+        self.couplings
+            .iter()
+            .any(|c| matches!(c.law, CouplingLaw::Mimic { .. }))
+    }
+
+    pub(crate) fn joint_map(&self) -> &JointMap {
+        &self.map
+    }
+
+    /// The chain joints' positions (one per [`Model::chain_joints`]) for the
+    /// configuration `q`: mimic joints from their leaders, additive
+    /// couplings added (what forward kinematics evaluates the chain at).
+    /// Errors: `q` or `chain_positions` of the wrong size, `q` not finite.
+    /// Allocates nothing.
+    pub fn chain_positions(&self, q: &[f64], chain_positions: &mut [f64]) -> Result<()> {
+        self.check_joint_positions(q)?;
+        if chain_positions.len() != self.chain_joints.len() {
+            return Err(Error::DimensionMismatch {
+                what: "chain_positions",
+                expected: self.chain_joints.len(),
+                got: chain_positions.len(),
+            });
+        }
+        self.map.expand(q, chain_positions);
+        Ok(())
+    }
+
+    /// Generalized forces on the chain's joints (`chain_forces`, N m or N,
+    /// one per chain joint) as forces on the configuration: `tau = M' tau0`,
+    /// `M = d q_chain / d q` at `q` (a mimic joint's torque goes to its
+    /// leader times the multiplier; seed 000 eq 10 for the beam). Errors:
+    /// wrong sizes, non-finite values. Allocates nothing.
+    pub fn fold_chain_forces(
+        &self,
+        q: &[f64],
+        chain_forces: &[f64],
+        forces: &mut [f64],
+    ) -> Result<()> {
+        self.check_joint_positions(q)?;
+        check_finite_vector("chain_forces", chain_forces, self.chain_joints.len())?;
+        if forces.len() != self.dof() {
+            return Err(Error::DimensionMismatch {
+                what: "forces",
+                expected: self.dof(),
+                got: forces.len(),
+            });
+        }
+        self.map.fold_forces(q, chain_forces, forces);
+        Ok(())
     }
 
     /// The DH table the model was built from, if it was built from one.
@@ -269,14 +353,51 @@ impl Model {
         self.dh.as_ref().map(|(c, links)| (*c, links.as_slice()))
     }
 
-    /// A copy of this model with the coupling replaced (or removed with `None`).
-    /// The coupling's joint indices are checked against the model.
+    /// A copy of this model with its additive coupling replaced by
+    /// `coupling` (or removed with `None`); mimic joints stay. See
+    /// [`Model::with_additive_couplings`].
     pub fn with_coupling(&self, coupling: Option<JointCoupling>) -> Result<Model> {
-        if let Some(c) = &coupling {
-            c.validate(self)?;
+        self.with_additive_couplings(coupling.into_iter().collect())
+    }
+
+    /// A copy of this model whose additive couplings
+    /// ([`CouplingLaw::Additive`]) are `couplings`; mimic joints stay.
+    /// Errors (field `coupling`): a mimic law (declare mimic joints with
+    /// [`ModelBuilder::mimic`]), indices out of range, a target that is a
+    /// mimic joint, not prismatic, or its own source, a target that is the
+    /// source of another coupling, a curve whose parameters are invalid.
+    pub fn with_additive_couplings(&self, couplings: Vec<JointCoupling>) -> Result<Model> {
+        let mut additive = Vec::with_capacity(couplings.len());
+        for coupling in &couplings {
+            let prismatic = self
+                .chain_joints
+                .get(coupling.target)
+                .is_some_and(|j| j.kind == JointKind::Prismatic);
+            additive.push(coupling::check_additive(
+                coupling,
+                self.dof(),
+                &self.map,
+                prismatic,
+            )?);
+        }
+        // The Jacobian folds additive columns in place: a target must not
+        // be another coupling's source (its column would already be folded).
+        for (_, target, _) in &additive {
+            if let crate::model::coupling::Drive::Independent(i) = self.map.drives()[*target] {
+                if additive.iter().any(|(source, ..)| *source == i) {
+                    return Err(Error::invalid_argument(
+                        "coupling",
+                        format!("joint {target} is the target of one coupling and the source of another"),
+                    ));
+                }
+            }
         }
         let mut model = self.clone();
-        model.coupling = coupling;
+        model.map.set_additive(additive);
+        model
+            .couplings
+            .retain(|c| matches!(c.law, CouplingLaw::Mimic { .. }));
+        model.couplings.extend(couplings);
         Ok(model)
     }
 
@@ -328,8 +449,8 @@ impl Model {
         self.joints.iter().map(|j| j.limits.velocity).collect()
     }
 
-    /// True when every link has mass properties.
+    /// True when every link of the chain has mass properties.
     pub fn has_inertias(&self) -> bool {
-        self.joints.iter().all(|j| j.inertia.is_some())
+        self.chain_joints.iter().all(|j| j.inertia.is_some())
     }
 }

@@ -190,6 +190,17 @@ fn accumulate_gravity_torques(
     gravity: &Vector3<f64>,
     torques: &mut [f64],
 ) -> Result<()> {
+    if model.has_mimic_joints() {
+        // The loop below pairs the chain's frames with the configuration's
+        // joints, which differ when mimic joints follow their leaders.
+        return Err(Error::invalid_argument(
+            "load.gravity",
+            format!(
+                "model `{}` has mimic joints: gravity torques are not modelled for them yet (use a load without gravity)",
+                model.name()
+            ),
+        ));
+    }
     let joints = model.joints();
     let frames = data.joint_frames();
     // Each link's weight -m g is held by the joints up to its own;

@@ -29,19 +29,33 @@
 //!   (parallel-axis theorem). Links with zero mass or no `<inertial>`
 //!   contribute nothing; a body with no mass at all has no inertia (`None`).
 //!
-//! Mesh references (`package://...`), visuals, collisions, materials,
-//! `<dynamics>`, `<calibration>`, `<safety_controller>`,
-//! transmissions and Gazebo tags are ignored: kinematics and mass only.
+//! * `<mimic joint multiplier offset>`: the joint follows its leader,
+//!   `q = multiplier * q_leader + offset` (defaults 1 and 0), and leaves the
+//!   configuration ([`crate::model::CouplingLaw::Mimic`]). The leader may be
+//!   off the chain (the other finger of a parallel gripper): it then joins
+//!   the configuration with its own kind and limits. A mimic of a mimic
+//!   resolves to the first independent leader.
+//!
+//! Only `<link>` (its `<inertial>`) and `<joint>` (`origin`, `parent`,
+//! `child`, `axis`, `limit`, `mimic`) are read. Everything else (visuals,
+//! collisions, materials and textures, `<dynamics>`, `<calibration>`,
+//! `<safety_controller>`, transmissions, Gazebo and sensor tags, vendor
+//! extensions) is skipped before parsing, so that however it is written it
+//! never blocks a load. `<limit effort>` becomes
+//! [`crate::model::JointLimits::effort`] (torque or force limit).
 //!
 //! Errors are [`Error::Parse`] naming the file and the element (with its
 //! line): malformed XML (line and column, the element left open), a joint
 //! whose parent or child link does not exist, a kinematic loop (a link that is
 //! the child of two joints, or a cycle), a floating, planar or spherical joint
-//! on the chain, a mimic joint on the chain, a base or tip link that does not
-//! exist, a tip that is not below the base, several leaves when no tip is
-//! given (the error lists them), a revolute or prismatic joint without
-//! `<limit>`, a zero axis, non-finite numbers, negative masses. Joints and
-//! links off the chain are checked only as far as the tree structure needs.
+//! on the chain, a base or tip link that does not exist, a tip that is not
+//! below the base, several leaves when no tip is given (the error lists
+//! them), a revolute or prismatic joint without `<limit>` (the URDF
+//! specification requires it), a zero axis, non-finite numbers, negative
+//! masses, a mimic joint whose leader does not exist or is fixed, mimic
+//! joints that form a cycle, a non-finite multiplier or offset. Joints and
+//! links off the chain are checked only as far as the tree structure and the
+//! mimic joints need.
 //!
 //! ```
 //! use armkit::kinematics::{forward_kinematics, Data};
@@ -96,7 +110,9 @@ use std::path::Path;
 
 use crate::error::{Error, Result};
 use crate::math::{Matrix3, Pose, Vector3};
-use crate::model::{JointKind, JointLimits, JointSpec, LinkInertia, Model, ModelBuilder};
+use crate::model::{
+    JointKind, JointLimits, JointSpec, LinkInertia, MimicJoint, Model, ModelBuilder,
+};
 
 use tree::{SourceLines, Tree};
 
@@ -186,6 +202,9 @@ pub fn parse_str(text: &str, source_name: &str, selection: &ChainSelection) -> R
             document.root
         )));
     }
+    // Only what the model reads goes to urdf-rs (same offsets and lines).
+    let text = xml::kinematic_text(text, &document);
+    let text = text.as_str();
     let robot = urdf_rs::read_from_string(text)
         .map_err(|e| fail(locate_urdf_rs_error(text, &document, &e)))?;
     let tree = Tree::new(&robot, SourceLines::new(&document, &robot)).map_err(fail)?;
@@ -195,8 +214,21 @@ pub fn parse_str(text: &str, source_name: &str, selection: &ChainSelection) -> R
     } else {
         robot.name.as_str()
     };
-    let builder = chain_builder(name, &robot, &tree, &chain).map_err(fail)?;
+    let limited = joints_with_limit(&document);
+    let builder = chain_builder(name, &robot, &tree, &chain, &limited).map_err(fail)?;
     builder.build().map_err(|e| fail(e.to_string()))
+}
+
+/// Names of the joints that have a `<limit>` element (urdf-rs fills a
+/// missing one with zeros, which a written `<limit lower="0" upper="0"
+/// effort="0" velocity="0"/>` cannot be told from).
+fn joints_with_limit(document: &xml::Document) -> Vec<&str> {
+    document
+        .children
+        .iter()
+        .filter(|e| e.name == "joint" && e.children.iter().any(|(child, _)| child == "limit"))
+        .filter_map(|e| e.name_attribute.as_deref())
+        .collect()
 }
 
 /// `urdf-rs` messages name neither the element nor the line. Parsing each
@@ -252,9 +284,11 @@ fn chain_builder(
     robot: &urdf_rs::Robot,
     tree: &Tree<'_>,
     chain: &tree::Chain,
+    limited: &[&str],
 ) -> std::result::Result<ModelBuilder, String> {
     let mut builder = ModelBuilder::new(name);
     let mut any_moving = false;
+    let mut off_chain_leaders = Vec::new();
     for (position, &j) in chain.joints.iter().enumerate() {
         let joint = &robot.joints[j];
         let origin = pose_of(&joint.origin)
@@ -279,12 +313,16 @@ fn chain_builder(
                 ));
             }
         };
-        if let Some(mimic) = &joint.mimic {
-            return Err(format!(
-                "{} mimics joint `{}`: mimic (coupled) joints are not supported on the chain",
-                tree.joint(j),
-                mimic.joint
-            ));
+        if joint.mimic.is_some() {
+            builder = add_mimic(
+                builder,
+                robot,
+                tree,
+                chain,
+                j,
+                limited,
+                &mut off_chain_leaders,
+            )?;
         }
         let axis = Vector3::from(joint.axis.xyz.0);
         if !(axis.iter().all(|v| v.is_finite()) && axis.norm() > 1e-12) {
@@ -303,7 +341,7 @@ fn chain_builder(
             kind,
             origin,
             axis,
-            limits: joint_limits(tree, j, &joint.limit, kind)?,
+            limits: joint_limits(tree, j, &joint.limit, kind, limited)?,
             inertia: None,
         };
         if let Some(inertia) = body_inertia(robot, tree, tree.child_link(j), next_moving)? {
@@ -317,6 +355,76 @@ fn chain_builder(
             "the chain from `{}` to `{}` has no moving joint (only fixed joints)",
             robot.links[chain.base].name, robot.links[chain.tip].name
         ));
+    }
+    Ok(builder)
+}
+
+/// Declares chain joint `j`'s `<mimic>`, and follows its leaders off the
+/// chain (each becomes an off-chain joint of the model, with its limits,
+/// recorded in `added`) until one is on the chain, independent, or already
+/// added (possibly a cycle, which the model reports naming the joints).
+fn add_mimic(
+    mut builder: ModelBuilder,
+    robot: &urdf_rs::Robot,
+    tree: &Tree<'_>,
+    chain: &tree::Chain,
+    j: usize,
+    limited: &[&str],
+    added: &mut Vec<usize>,
+) -> std::result::Result<ModelBuilder, String> {
+    let mut follower = j;
+    while let Some(mimic) = &robot.joints[follower].mimic {
+        let leader = robot
+            .joints
+            .iter()
+            .position(|joint| joint.name == mimic.joint)
+            .ok_or_else(|| {
+                format!(
+                    "{}: <mimic joint=\"{}\">: the file has no joint named `{}` (a mimic joint follows an existing joint)",
+                    tree.joint(follower),
+                    mimic.joint,
+                    mimic.joint
+                )
+            })?;
+        let leader_kind = match robot.joints[leader].joint_type {
+            urdf_rs::JointType::Revolute => JointKind::Revolute,
+            urdf_rs::JointType::Continuous => JointKind::Continuous,
+            urdf_rs::JointType::Prismatic => JointKind::Prismatic,
+            ref other => {
+                return Err(format!(
+                    "{} mimics {}, which is {}: a mimic joint must follow a revolute, continuous or prismatic joint",
+                    tree.joint(follower),
+                    tree.joint(leader),
+                    type_name(other)
+                ))
+            }
+        };
+        builder = builder.mimic(MimicJoint::new(
+            robot.joints[follower].name.clone(),
+            mimic.joint.clone(),
+            mimic.multiplier.unwrap_or(1.0),
+            mimic.offset.unwrap_or(0.0),
+        ));
+        if chain.joints.contains(&leader) || added.contains(&leader) {
+            break;
+        }
+        added.push(leader);
+        let limits = joint_limits(
+            tree,
+            leader,
+            &robot.joints[leader].limit,
+            leader_kind,
+            limited,
+        )?;
+        builder = builder.off_chain_joint(JointSpec {
+            name: robot.joints[leader].name.clone(),
+            kind: leader_kind,
+            origin: Pose::identity(),
+            axis: Vector3::z(),
+            limits,
+            inertia: None,
+        });
+        follower = leader;
     }
     Ok(builder)
 }
@@ -349,6 +457,7 @@ fn joint_limits(
     joint: usize,
     limit: &urdf_rs::JointLimit,
     kind: JointKind,
+    limited: &[&str],
 ) -> std::result::Result<JointLimits, String> {
     for (field, value) in [
         ("velocity", limit.velocity),
@@ -372,11 +481,12 @@ fn joint_limits(
         // URDF: a continuous joint has no position limits; any given are ignored.
         return Ok(rates);
     }
-    // urdf-rs fills a missing <limit> with zeros; urdfdom rejects revolute
-    // and prismatic joints without one, and so do we.
-    if limit.lower == 0.0 && limit.upper == 0.0 && limit.velocity == 0.0 && limit.effort == 0.0 {
+    // urdfdom rejects revolute and prismatic joints without <limit>, and so
+    // do we (urdf-rs fills a missing one with zeros: the scan says whether
+    // the element is there).
+    if !limited.contains(&tree.joint_name(joint)) {
         return Err(format!(
-            "{} is {} but has no <limit> element (lower, upper and velocity are required)",
+            "{} is {} but has no <limit> element: the URDF specification requires <limit> (lower, upper, velocity, effort) on revolute and prismatic joints",
             tree.joint(joint),
             if kind == JointKind::Prismatic {
                 "prismatic"

@@ -143,6 +143,11 @@ impl<'r> Tree<'r> {
         )
     }
 
+    /// The name of joint `index`.
+    pub(super) fn joint_name(&self, index: usize) -> &'r str {
+        self.robot.joints[index].name.as_str()
+    }
+
     fn link_name(&self, index: usize) -> &'r str {
         self.robot.links[index].name.as_str()
     }

@@ -22,6 +22,8 @@ pub(super) struct TopElement {
     pub line: usize,
     /// Byte range of the whole element, start tag to end tag.
     pub span: Range<usize>,
+    /// Its own child elements: tag name and byte range, in document order.
+    pub children: Vec<(String, Range<usize>)>,
 }
 
 /// What the scan found in a well-formed document.
@@ -232,6 +234,8 @@ pub(super) fn scan(text: &str) -> Result<Document, String> {
     let mut root: Option<(String, Range<usize>)> = None;
     let mut root_closed = false;
     let mut children = Vec::new();
+    // Children of the top-level element being read.
+    let mut grandchildren = Vec::new();
     let mut i = 0;
     while i < bytes.len() {
         if bytes[i] != b'<' {
@@ -286,8 +290,15 @@ pub(super) fn scan(text: &str) -> Result<Document, String> {
                 ));
             }
             let end = close + 1;
-            if stack.len() == 1 {
-                children.push(top_element(text, open, end));
+            if stack.len() == 2 {
+                grandchildren.push((open.name, open.start..end));
+            } else if stack.len() == 1 {
+                children.push(top_element(
+                    text,
+                    open,
+                    end,
+                    std::mem::take(&mut grandchildren),
+                ));
             } else if stack.is_empty() {
                 root_closed = true;
             }
@@ -311,8 +322,10 @@ pub(super) fn scan(text: &str) -> Result<Document, String> {
             };
             if !tag.self_closing {
                 stack.push(open);
+            } else if stack.len() == 2 {
+                grandchildren.push((open.name, open.start..tag.end));
             } else if stack.len() == 1 {
-                children.push(top_element(text, open, tag.end));
+                children.push(top_element(text, open, tag.end, Vec::new()));
             } else if stack.is_empty() {
                 root_closed = true;
             }
@@ -340,13 +353,64 @@ pub(super) fn scan(text: &str) -> Result<Document, String> {
     })
 }
 
-fn top_element(text: &str, open: OpenElement, end: usize) -> TopElement {
+fn top_element(
+    text: &str,
+    open: OpenElement,
+    end: usize,
+    children: Vec<(String, Range<usize>)>,
+) -> TopElement {
     TopElement {
         line: line_and_column(text, open.start).0,
         name: open.name,
         name_attribute: open.name_attribute,
         span: open.start..end,
+        children,
     }
+}
+
+/// The elements a chain's kinematics and mass properties read: `<link>`
+/// (its `<inertial>`) and `<joint>` (`origin`, `parent`, `child`, `axis`,
+/// `limit`, `mimic`). Everything else (visual, collision, material,
+/// texture, transmission, gazebo, sensor, calibration, dynamics,
+/// safety_controller, vendor extensions) is blanked before `urdf-rs` parses
+/// the text, so that however it is written it cannot block a load.
+fn is_read(top: &str, child: Option<&str>) -> bool {
+    match (top, child) {
+        ("link" | "joint", None) => true,
+        ("link", Some(child)) => child == "inertial",
+        ("joint", Some(child)) => matches!(
+            child,
+            "origin" | "parent" | "child" | "axis" | "limit" | "mimic"
+        ),
+        _ => false,
+    }
+}
+
+/// `text` with every element [`is_read`] rejects replaced by spaces
+/// (newlines kept), so byte offsets and line numbers stay those of `text`.
+pub(super) fn kinematic_text(text: &str, document: &Document) -> String {
+    let mut bytes = text.as_bytes().to_vec();
+    let mut blank = |range: &Range<usize>| {
+        for b in &mut bytes[range.clone()] {
+            if *b != b'\n' {
+                *b = b' ';
+            }
+        }
+    };
+    for element in &document.children {
+        if !is_read(&element.name, None) {
+            blank(&element.span);
+            continue;
+        }
+        for (name, span) in &element.children {
+            if !is_read(&element.name, Some(name)) {
+                blank(span);
+            }
+        }
+    }
+    // Only whole elements (from `<` to `>`, ASCII) were blanked, with ASCII
+    // spaces: the text is still UTF-8.
+    String::from_utf8(bytes).unwrap_or_else(|_| text.to_string())
 }
 
 #[cfg(test)]
@@ -365,6 +429,35 @@ mod tests {
         assert_eq!(doc.children[1].line, 5);
         assert!(text[doc.children[1].span.clone()].ends_with("</joint>"));
         assert_eq!(&text[doc.root_start_tag.clone()], "<robot name=\"r\">");
+    }
+
+    #[test]
+    fn kinematic_text_blanks_what_the_model_does_not_read() {
+        let text = "<robot name=\"r\">\n<material name=\"m\"><texture/></material>\n<link name=\"a\">\n  <visual><geometry><mesh/></geometry><material name=\"x\"><texture /></material></visual>\n  <inertial><mass value=\"1\"/></inertial>\n</link>\n<joint name=\"j\" type=\"fixed\"><parent link=\"a\"/><child link=\"b\"/><calibration rising=\"x\"/><safety_controller/></joint>\n<gazebo><sensor/></gazebo>\n</robot>\n";
+        let doc = scan(text).unwrap();
+        let kept = kinematic_text(text, &doc);
+        assert_eq!(kept.len(), text.len());
+        assert_eq!(kept.lines().count(), text.lines().count());
+        for gone in [
+            "material",
+            "texture",
+            "visual",
+            "gazebo",
+            "sensor",
+            "calibration",
+            "safety_controller",
+        ] {
+            assert!(!kept.contains(gone), "{gone}: {kept}");
+        }
+        for stays in [
+            "<inertial><mass value=\"1\"/></inertial>",
+            "<parent link=\"a\"/>",
+            "<child link=\"b\"/>",
+            "<link name=\"a\">",
+            "<joint name=\"j\"",
+        ] {
+            assert!(kept.contains(stays), "{stays}: {kept}");
+        }
     }
 
     #[test]
