@@ -141,3 +141,23 @@ def test_model_properties():
     urdf = armkit.Robot.from_urdf(DATA / "urdf" / "panda.urdf", tip="panda_link8")
     assert urdf.joint_names[0] == "panda_joint1"
     assert repr(urdf) == "Robot('panda', dof=7)"
+
+
+def test_mimic_joints_follow_their_leaders():
+    """A URDF chain with mimic joints: dof counts the independent joints;
+    the Jacobian (J = J0 M) equals finite differences of FK; IK and batches work."""
+    robot = armkit.Robot.from_urdf(DATA / "urdf" / "mimicbot.urdf", tip="fingertip")
+    assert robot.dof == 7 and robot.joint_names[-1] == "knuckle"
+    q = robot.neutral_configuration() + 0.05
+    J = robot.jacobian(q)
+    h = 1e-6
+    for j in range(robot.dof):
+        dq = np.zeros(robot.dof)
+        dq[j] = h
+        np.testing.assert_allclose(J[:3, j], (robot.fk(q + dq)[:3, 3] - robot.fk(q - dq)[:3, 3]) / (2 * h), atol=1e-8)
+    Q = np.random.default_rng(2).uniform(np.maximum(robot.lower, -3), np.minimum(robot.upper, 3), (200, 7))
+    assert np.array_equal(robot.fk(Q), np.array([robot.fk(x) for x in Q]))
+    goal = robot.fk(q + 0.1)
+    result = robot.ik(goal, time_budget=None)
+    assert result.converged
+    np.testing.assert_allclose(robot.fk(result.q), goal, atol=1e-6)
