@@ -899,6 +899,18 @@ const CASES: &[Case] = &[
     // space.
     case(
         "space",
+        "study with a zero duration",
+        &["space", "study", "--duration", "0"],
+        1,
+    ),
+    case(
+        "space",
+        "study start with 2 joints",
+        &["space", "study", "--start", "0.1,0.2"],
+        1,
+    ),
+    case(
+        "space",
         "robot without mass properties",
         &["space", "jacobian", "--robot", "ur5", "--q", "0,0,0,0,0,0"],
         1,

@@ -6,9 +6,10 @@ use common::*;
 
 use armkit::math::{Pose, Vector3};
 use armkit::redundancy::{
-    compare_distributions, ComparisonCase, JointWeights, LinePath, Load, TorqueFloor,
-    TrackingOptions, SEED000_PRIORITY_WEIGHTS,
+    compare_distributions, ComparisonCase, DistributionOptions, JointWeights, Load, TorqueFloor,
+    SEED000_PRIORITY_WEIGHTS,
 };
+use armkit::trajectory::{CartesianTrajectory, TimeLaw};
 
 #[test]
 fn default_gantry_comparison_matches_the_library_and_writes_files() {
@@ -25,7 +26,7 @@ fn default_gantry_comparison_matches_the_library_and_writes_files() {
     let mut data = armkit::Data::new(&model);
     let start = *armkit::forward_kinematics(&model, &mut data, &q0).unwrap();
     let goal = Pose::from_translation(Vector3::new(0.4, 0.3, -0.3)) * start;
-    let path = LinePath::new(start, goal, 4.0).unwrap();
+    let path = CartesianTrajectory::line(start, goal, TimeLaw::Quintic, 4.0).unwrap();
     let load = Load::payload(50.0).with_standard_gravity();
     let cases = ComparisonCase::four_way(
         9,
@@ -41,7 +42,7 @@ fn default_gantry_comparison_matches_the_library_and_writes_files() {
         &path,
         &load,
         &cases,
-        &TrackingOptions::default(),
+        &DistributionOptions::default(),
     )
     .unwrap();
     let rows = value["distributions"].as_array().unwrap();

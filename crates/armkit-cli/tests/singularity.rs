@@ -7,7 +7,7 @@ use common::*;
 
 use armkit::math::Pose;
 use armkit::singularity::{
-    seed004_path, Baselines, Manipulator, Method, PathTracker, TrackingOptions,
+    seed004_path, AvoidanceOptions, Baselines, Manipulator, Method, PathTracker,
 };
 
 fn relative_difference(a: f64, b: f64) -> f64 {
@@ -37,7 +37,7 @@ fn default_json_matches_the_library_on_the_held_space6r() {
         base: Pose::identity(),
     })
     .unwrap();
-    let options = TrackingOptions::default();
+    let options = AvoidanceOptions::default();
     assert_eq!(
         value["determinant_threshold"].as_f64().unwrap(),
         options.detection.determinant_threshold

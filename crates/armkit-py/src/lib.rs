@@ -20,6 +20,7 @@ mod redundancy;
 mod robot;
 mod singularity;
 mod space;
+mod study;
 mod trajectory;
 
 use pyo3::prelude::*;
@@ -63,6 +64,11 @@ fn _armkit(m: &Bound<'_, PyModule>) -> PyResult<()> {
     singularity.add_function(wrap_pyfunction!(singularity::line_through, &singularity)?)?;
     singularity.add_function(wrap_pyfunction!(singularity::track_line, &singularity)?)?;
     m.add_submodule(&singularity)?;
+    let study = PyModule::new(py, "study")?;
+    study.add_function(wrap_pyfunction!(study::run, &study)?)?;
+    study.add_function(wrap_pyfunction!(study::names, &study)?)?;
+    study.add_class::<study::StudyReport>()?;
+    m.add_submodule(&study)?;
     m.add_class::<mpc::MpcPlanner>()?;
     m.add_class::<beam::Beam>()?;
     m.add_class::<space::SpaceRobot>()?;

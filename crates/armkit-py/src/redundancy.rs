@@ -39,6 +39,21 @@ fn joint_weights(values: Option<Vec<f64>>, dof: usize) -> armkit::Result<JointWe
     Ok(weights)
 }
 
+/// The velocities of a solve, or `ValueError` when `J A^-1 J'` was
+/// numerically singular (the message gives the smallest singular value and
+/// suggests damping).
+fn solved(solve: armkit::linalg::Solve<&[f64]>) -> PyResult<&[f64]> {
+    match solve {
+        armkit::linalg::Solve::Solved(q_dot) => Ok(q_dot),
+        armkit::linalg::Solve::Singular {
+            smallest_singular_value,
+        } => Err(pyo3::exceptions::PyValueError::new_err(format!(
+            "the weighted Jacobian is numerically singular at q (smallest singular value \
+             {smallest_singular_value:.3e}): no joint velocities realize every twist; give damping"
+        ))),
+    }
+}
+
 fn solver_options(damping: Option<f64>) -> SolverOptions {
     SolverOptions {
         damping: damping.map_or(Damping::None, Damping::Constant),
@@ -91,7 +106,7 @@ pub fn weighted_least_norm<'py>(
     let mut solver = WeightedLeastNorm::new(dof, solver_options(damping)).or_raise()?;
     let mut data = Data::new(model);
     let j = jacobian(model, &mut data, &q, JacobianFrame::World).or_raise()?;
-    let q_dot = solver.solve(j, &weights, &twist).or_raise()?;
+    let q_dot = solved(solver.solve(j, &weights, &twist).or_raise()?)?;
     Ok(vector(py, q_dot))
 }
 
@@ -154,7 +169,7 @@ pub fn energy_optimal<'py>(
         JointWeights::from_torques(&torques, TorqueFloor::Relative(torque_floor)).or_raise()?;
     let mut solver = WeightedLeastNorm::new(dof, SolverOptions::default()).or_raise()?;
     let j = jacobian(model, &mut data, &q, JacobianFrame::World).or_raise()?;
-    let q_dot = solver.solve(j, &weights, &twist).or_raise()?.to_vec();
+    let q_dot = solved(solver.solve(j, &weights, &twist).or_raise()?)?.to_vec();
     let energy = library_energy_measure(&q_dot, &torques).or_raise()?;
     Ok((vector(py, &q_dot), vector(py, &torques), energy))
 }

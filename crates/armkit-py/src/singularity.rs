@@ -6,9 +6,10 @@ use armkit::ik::{ChiaveriniFilter, NakamuraDamping};
 use armkit::kinematics::{jacobian, Data, JacobianFrame};
 use armkit::singularity::{
     classify as library_classify, jacobian_determinant, line_through as library_line_through,
-    ClassifyOptions, DetectionOptions, LineTask, Manipulator, Method, PathTracker, RunStatus,
-    TrackingOptions,
+    AvoidanceOptions, ClassifyOptions, DetectionOptions, LineTask, Manipulator, Method,
+    PathTracker,
 };
+use armkit::tracking::TrackingOptions;
 use numpy::ndarray::Dim;
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
@@ -132,13 +133,16 @@ pub fn track_line<'py>(
         duration,
         acceleration_time,
     };
-    let options = TrackingOptions {
-        dt,
+    let options = AvoidanceOptions {
+        tracking: TrackingOptions {
+            dt,
+            ..TrackingOptions::default()
+        },
         detection: DetectionOptions {
             determinant_threshold,
             joint_step_threshold,
         },
-        ..TrackingOptions::default()
+        ..AvoidanceOptions::default()
     };
     let run = py
         .detach(|| PathTracker::new(Manipulator::FixedBase(model), task, options)?.run(&method))
@@ -158,11 +162,7 @@ pub fn track_line<'py>(
     out.set_item("orientation_error", vector(py, &run.orientation_error))?;
     out.set_item("determinant", vector(py, &run.determinant))?;
     out.set_item("in_region", PyArray1::from_slice(py, &run.in_region))?;
-    let status = match run.status {
-        RunStatus::Completed => "completed",
-        RunStatus::Singular { .. } => "singular",
-    };
-    out.set_item("status", status)?;
+    out.set_item("status", run.status.as_str())?;
     let summary = &run.summary;
     out.set_item("peak_joint_rate", summary.peak_joint_rate)?;
     out.set_item("max_position_error", summary.max_position_error)?;

@@ -23,5 +23,5 @@ def test_package_ships_the_stubs_and_py_typed():
     from pathlib import Path
 
     folder = Path(armkit.__file__).parent
-    for name in ("py.typed", "_armkit.pyi", "dynamics.pyi", "redundancy.pyi", "singularity.pyi"):
+    for name in ("py.typed", "_armkit.pyi", "dynamics.pyi", "redundancy.pyi", "singularity.pyi", "study.pyi"):
         assert (folder / name).is_file(), name

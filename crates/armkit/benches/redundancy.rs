@@ -8,10 +8,11 @@
 use armkit::kinematics::{forward_kinematics, jacobian, Data, JacobianFrame};
 use armkit::math::{Matrix6xX, Pose, Vector3, Vector6};
 use armkit::redundancy::{
-    best_partition, joint_torques, Damping, Distribution, JointWeights, LinePath, Load,
-    PartitionedSolver, ResolvedRateTracker, SolverOptions, TorqueFloor, TrackingOptions,
-    WeightedLeastNorm, SEED000_PRIORITY_WEIGHTS,
+    best_partition, joint_torques, Damping, Distribution, DistributionOptions, JointWeights, Load,
+    PartitionedSolver, ResolvedRateTracker, SolverOptions, TorqueFloor, WeightedLeastNorm,
+    SEED000_PRIORITY_WEIGHTS,
 };
+use armkit::trajectory::{CartesianTrajectory, TimeLaw};
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
 
@@ -44,6 +45,8 @@ fn solves(c: &mut Criterion) {
                 black_box(
                     exact
                         .solve(black_box(&j), &weights, black_box(&twist))
+                        .unwrap()
+                        .solved()
                         .unwrap()[0],
                 );
             })
@@ -54,6 +57,8 @@ fn solves(c: &mut Criterion) {
                 black_box(
                     exact
                         .solve_toward(black_box(&j), &weights, &twist, &preferred)
+                        .unwrap()
+                        .solved()
                         .unwrap()[0],
                 );
             })
@@ -71,7 +76,13 @@ fn solves(c: &mut Criterion) {
         .unwrap();
         c.bench_function(&format!("weighted_least_norm_adaptive/{name}"), |b| {
             b.iter(|| {
-                black_box(damped.solve(black_box(&j), &weights, &twist).unwrap()[0]);
+                black_box(
+                    damped
+                        .solve(black_box(&j), &weights, &twist)
+                        .unwrap()
+                        .solved()
+                        .unwrap()[0],
+                );
             })
         });
         let partition = best_partition(&j, None, 1e10).unwrap().partition;
@@ -117,7 +128,7 @@ fn tracking(c: &mut Criterion) {
     let mut data = Data::new(&model);
     let start = *forward_kinematics(&model, &mut data, &GANTRY_Q).unwrap();
     let goal = Pose::from_translation(Vector3::new(0.4, 0.3, -0.3)) * start;
-    let path = LinePath::new(start, goal, 4.0).unwrap();
+    let path = CartesianTrajectory::line(start, goal, TimeLaw::Quintic, 4.0).unwrap();
     let load = Load::payload(50.0).with_standard_gravity();
     let mut tracker = ResolvedRateTracker::new(
         &model,
@@ -125,7 +136,7 @@ fn tracking(c: &mut Criterion) {
             load,
             floor: TorqueFloor::default(),
         },
-        TrackingOptions::default(),
+        DistributionOptions::default(),
     )
     .unwrap();
     c.bench_function("tracking/gantry9 energy-optimal, 400 steps", |b| {
@@ -133,5 +144,42 @@ fn tracking(c: &mut Criterion) {
     });
 }
 
-criterion_group!(benches, solves, energy, tracking);
+/// The shared kernels and the bare tracking loop (new hot paths of the
+/// velocity-level layer): the damped least-squares rates of a 6 x 9
+/// Jacobian, and a 100-period least-squares run on a fixed base recording
+/// every sample.
+fn kernels(c: &mut Criterion) {
+    use armkit::linalg::{damped_least_squares_rates, GRAM_THRESHOLD};
+    use armkit::tracking::{track_samples, FixedBase, LeastSquares, TrackingOptions};
+    let j = jacobian_at("gantry9", &GANTRY_Q);
+    let twist = Vector6::new(0.1, 0.05, -0.05, 0.0, 0.1, 0.0);
+    let mut rates = [0.0; 9];
+    c.bench_function("linalg/damped_least_squares_rates gantry9", |b| {
+        b.iter(|| {
+            damped_least_squares_rates(black_box(&j), &twist, 0.01, GRAM_THRESHOLD, &mut rates)
+                .is_singular()
+        })
+    });
+    let model = armkit::robots::by_name("ur5").unwrap();
+    let q0 = [0.3, -1.2, 1.4, -1.5, -1.4, 0.2];
+    let mut data = Data::new(&model);
+    let start = *forward_kinematics(&model, &mut data, &q0).unwrap();
+    let goal = Pose::from_translation(Vector3::new(0.0, 0.1, 0.05)) * start;
+    let path = CartesianTrajectory::line(start, goal, TimeLaw::Quintic, 1.0).unwrap();
+    c.bench_function("tracking/ur5 least squares, 100 periods", |b| {
+        b.iter(|| {
+            let mut plant = FixedBase::new(&model, &mut data, &q0).unwrap();
+            let report = track_samples(
+                &mut plant,
+                &mut LeastSquares { damping: 0.0 },
+                &path,
+                &TrackingOptions::default(),
+            )
+            .unwrap();
+            black_box(report.status)
+        })
+    });
+}
+
+criterion_group!(benches, solves, energy, tracking, kernels);
 criterion_main!(benches);

@@ -13,8 +13,8 @@ use armkit::ik::{
 };
 use armkit::math::Pose;
 use armkit::singularity::{
-    detect, seed004_path, Baselines, DetectionOptions, Manipulator, Method, PathTracker,
-    TrackingOptions,
+    detect, seed004_path, AvoidanceOptions, Baselines, DetectionOptions, Manipulator, Method,
+    PathTracker,
 };
 use armkit::space::space6r_free_floating;
 use armkit::{jacobian, Data, JacobianFrame};
@@ -25,7 +25,7 @@ fn singularity(c: &mut Criterion) {
     let arm = armkit::robots::space6r().unwrap();
     let manipulator = Manipulator::FixedBase(&arm);
     let line = seed004_path(&manipulator).unwrap();
-    let options = TrackingOptions::default();
+    let options = AvoidanceOptions::default();
     let tracker = PathTracker::new(manipulator, line.task(20.0, 4.0), options).unwrap();
     let (_, h) = tracker.steps();
 

@@ -47,7 +47,11 @@ fn main() -> Result<(), armkit::Error> {
     let mut solver = WeightedLeastNorm::new(9, SolverOptions::default())?;
     let mut solutions = Vec::new();
     for (name, weights) in &cases {
-        let q_dot = solver.solve(&j, weights, &twist)?.to_vec();
+        let q_dot = solver
+            .solve(&j, weights, &twist)?
+            .solved()
+            .ok_or_else(|| armkit::Error::invalid_argument("jacobian", "is singular"))?
+            .to_vec();
         let residual = (&j * DVector::from_column_slice(&q_dot) - twist).norm();
         solutions.push((name, q_dot, residual));
     }

@@ -16,8 +16,8 @@
 
 use armkit::math::Pose;
 use armkit::singularity::{
-    classify, manipulability_ellipsoid, seed004_path, Baselines, ClassifyOptions, Comparison,
-    JacobianPart, Manipulator, PathTracker, TrackingOptions, SEED004_THROUGH,
+    classify, manipulability_ellipsoid, seed004_path, AvoidanceOptions, Baselines, ClassifyOptions,
+    Comparison, JacobianPart, Manipulator, PathTracker, SEED004_THROUGH,
 };
 use armkit::space::space6r_free_floating;
 use armkit::{jacobian, Data, JacobianFrame};
@@ -28,7 +28,7 @@ fn print_table(title: &str, comparison: &Comparison) {
 }
 
 fn main() -> Result<(), armkit::Error> {
-    let options = TrackingOptions::default();
+    let options = AvoidanceOptions::default();
     let baselines = Baselines::for_detection(&options.detection);
     let ks = [1, 5, 10];
 

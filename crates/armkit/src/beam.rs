@@ -73,12 +73,7 @@ use crate::model::{CouplingCurve, CouplingLaw, JointCoupling};
 /// beam ([`crate::robots::GANTRY9_BEAM_LENGTH`] is this value).
 pub const SEED000_BEAM_LENGTH: f64 = 10.0;
 
-/// The gravitational acceleration (m/s^2) that reproduces seed 000's Table 1:
-/// the paper's theoretical deflections are computed with `g = 10`.
-pub const SEED000_GRAVITY: f64 = 10.0;
-
-/// Standard gravity, m/s^2 (for physical loads rather than the paper's numbers).
-pub const STANDARD_GRAVITY: f64 = 9.80665;
+pub use crate::seeds::{SEED000_GRAVITY, STANDARD_GRAVITY};
 
 /// Mass hanging from one carriage in seed 000, kg (arm and payload; Table 1's
 /// `P1 = P2 = 400 kg`).

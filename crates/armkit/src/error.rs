@@ -8,8 +8,13 @@
 /// Result alias used across armkit.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
 
-/// What went wrong, with enough context to fix it.
+/// What went wrong, with enough context to fix it: always bad input (or a
+/// numerical failure of a computation on valid input, such as an overflow).
+/// A solver's non-convergence or a singular matrix is an outcome (a status
+/// in a report), never an `Error`. New variants may be added: match with a
+/// wildcard arm.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum Error {
     /// A robot model is inconsistent: names the link (0-based index of the
     /// moving joint or fixed element in the chain) and the field.

@@ -37,13 +37,17 @@ pub mod dynamics;
 pub mod error;
 pub mod ik;
 pub mod kinematics;
+pub mod linalg;
 pub mod math;
 pub mod model;
 pub mod mpc;
 pub mod redundancy;
 pub mod robots;
+pub mod seeds;
 pub mod singularity;
 pub mod space;
+pub mod study;
+pub mod tracking;
 pub mod trajectory;
 #[cfg(feature = "urdf")]
 pub mod urdf;

@@ -140,7 +140,7 @@ impl Pose {
     }
 
     /// A transform from a 4 x 4 homogeneous matrix, checked: finite entries,
-    /// last row `[0 0 0 1]`, and a proper rotation (orthonormal to 1e-6,
+    /// last row `[0 0 0 1]`, and a proper rotation (orthonormal to [`ROTATION_TOLERANCE`],
     /// determinant +1). The error string says which check failed.
     pub fn from_matrix4(m: &Matrix4<f64>) -> Result<Pose, String> {
         if m.iter().any(|v| !v.is_finite()) {
@@ -151,8 +151,8 @@ impl Pose {
             return Err(format!("last row must be [0, 0, 0, 1], got {last:?}"));
         }
         let rotation: Matrix3<f64> = m.fixed_view::<3, 3>(0, 0).into_owned();
-        let orthonormality = (rotation.transpose() * rotation - Matrix3::identity()).amax();
-        if orthonormality > 1e-6 {
+        let orthonormality = rotation_orthonormality(&rotation);
+        if orthonormality > ROTATION_TOLERANCE {
             return Err(format!(
                 "rotation block is not orthonormal (|R'R - I| = {orthonormality:.3e})"
             ));
@@ -192,6 +192,40 @@ impl Pose {
             .chain(self.translation.iter())
             .all(|v| v.is_finite())
     }
+
+    /// The one pose validation: every entry finite, and a proper rotation
+    /// (`|R'R - I|` entries at most [`ROTATION_TOLERANCE`], determinant +1).
+    /// The error string says which check failed.
+    ///
+    /// ```
+    /// use armkit::math::{Matrix3, Pose, Vector3};
+    /// assert!(Pose::identity().check_rigid().is_ok());
+    /// let mirrored = Pose::new(-Matrix3::identity(), Vector3::zeros());
+    /// assert!(mirrored.check_rigid().unwrap_err().contains("not a proper rotation"));
+    /// ```
+    pub fn check_rigid(&self) -> Result<(), String> {
+        if !self.is_finite() {
+            return Err("has a non-finite entry".into());
+        }
+        let orthonormality = rotation_orthonormality(&self.rotation);
+        let determinant = self.rotation.determinant();
+        if orthonormality > ROTATION_TOLERANCE || determinant < 0.0 {
+            return Err(format!(
+                "rotation is not a proper rotation matrix (|R'R - I| = {orthonormality:.3e}, det = {determinant:.3})"
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Largest entry of `|R'R - I|` accepted for a rotation matrix anywhere in
+/// armkit (poses, targets, paths, transforms read from files).
+/// Dimensionless.
+pub const ROTATION_TOLERANCE: f64 = 1e-6;
+
+/// `max |R'R - I|` (entrywise), 0 for an exact rotation.
+pub fn rotation_orthonormality(rotation: &Matrix3<f64>) -> f64 {
+    (rotation.transpose() * rotation - Matrix3::identity()).amax()
 }
 
 impl Mul for Pose {

@@ -705,15 +705,16 @@ fn seed001_energy_under_static_and_dynamic_torques() {
     // measure equals the study's own, the dynamic one adds the inertia.
     use armkit::dynamics::energy_weights::{energy_along_motion, TorqueModel};
     use armkit::redundancy::{
-        compare_distributions, ComparisonCase, JointWeights, LinePath, Load, TorqueFloor,
-        TrackingOptions, SEED000_PRIORITY_WEIGHTS,
+        compare_distributions, ComparisonCase, DistributionOptions, JointWeights, Load,
+        TorqueFloor, SEED000_PRIORITY_WEIGHTS,
     };
+    use armkit::trajectory::{CartesianTrajectory, TimeLaw};
     let model = armkit::robots::by_name("gantry9").unwrap();
     let q0 = [3.0, 2.5, 1.0, 0.3, 0.4, -0.5, 0.2, 0.8, 0.1];
     let mut data = armkit::Data::new(&model);
     let start = *armkit::forward_kinematics(&model, &mut data, &q0).unwrap();
     let goal = Pose::from_translation(Vector3::new(0.4, 0.3, -0.3)) * start;
-    let path = LinePath::new(start, goal, 4.0).unwrap();
+    let path = CartesianTrajectory::line(start, goal, TimeLaw::Quintic, 4.0).unwrap();
     let load = Load::payload(50.0).with_standard_gravity();
     let priorities = JointWeights::new(&SEED000_PRIORITY_WEIGHTS).unwrap();
     let cases =
@@ -724,14 +725,14 @@ fn seed001_energy_under_static_and_dynamic_torques() {
         &path,
         &load,
         &cases,
-        &TrackingOptions::default(),
+        &DistributionOptions::default(),
     )
     .unwrap();
     for result in &results {
         let samples = &result.report.samples;
         let times: Vec<f64> = samples.iter().map(|s| s.time).collect();
         let q: Vec<Vec<f64>> = samples.iter().map(|s| s.q.clone()).collect();
-        let q_dot: Vec<Vec<f64>> = samples.iter().map(|s| s.q_dot.clone()).collect();
+        let q_dot: Vec<Vec<f64>> = samples.iter().map(|s| s.joint_rates.clone()).collect();
         let fixed =
             energy_along_motion(&model, &times, &q, &q_dot, &load, TorqueModel::Static).unwrap();
         let moving =

@@ -30,18 +30,17 @@ use armkit::redundancy::energy::{
     energy_measure, gravity_torques, joint_torques, Load, TorqueFloor,
 };
 use armkit::redundancy::nullspace::{joint_limit_cost, joint_limit_gradient};
-use armkit::redundancy::tracking::{
-    Distribution, LinePath as RedundancyLine, ResolvedRateTracker, TrackingOptions,
-};
 use armkit::redundancy::{
     best_partition, Damping, JointWeights, Partition, PartitionedSolver, SolverOptions,
     WeightedLeastNorm,
 };
+use armkit::redundancy::{Distribution, DistributionOptions, ResolvedRateTracker};
 use armkit::space::{
     center_of_mass, end_effector_pose, generalized_jacobian, momentum, space6r_free_floating, step,
     track_pose_path, BaseMode, FreeFloatingModel, FreeFloatingState, SinusoidalJointMotion,
-    SpaceData, TrackingOptions as SpaceTrackingOptions,
+    SpaceData,
 };
+use armkit::tracking::{Feedback, LeastSquares, TrackingOptions};
 use armkit::trajectory::cartesian::{
     ArcOrientation, ArcPath, CartesianTrajectory, LinePath, TimeLaw,
 };
@@ -55,6 +54,7 @@ use armkit::trajectory::profile::{
     cubic, minimum_time, quintic, rest_to_rest, trapezoidal, ProfileShape,
 };
 use armkit::trajectory::spline::clamped_cubic_spline;
+use armkit::trajectory::TimeFn;
 use armkit::trajectory::{JointState, Trajectory};
 use armkit::Model;
 
@@ -291,19 +291,21 @@ fn redundancy_rejects_non_finite_numbers() {
     cases.rejects_each("WeightedLeastNorm::solve jacobian", "jacobian", |b| {
         let mut bad = j.clone();
         bad[(1, 7)] = b;
-        wln.solve(&bad, &weights, &twist).map(<[f64]>::to_vec)
+        wln.solve(&bad, &weights, &twist)
+            .map(|o| o.map(<[f64]>::to_vec))
     });
     cases.rejects_each("WeightedLeastNorm::solve twist", "twist", |b| {
         let mut bad = twist;
         bad[0] = b;
-        wln.solve(&j, &weights, &bad).map(<[f64]>::to_vec)
+        wln.solve(&j, &weights, &bad)
+            .map(|o| o.map(<[f64]>::to_vec))
     });
     cases.rejects_each(
         "WeightedLeastNorm::solve_toward preferred",
         "preferred",
         |b| {
             wln.solve_toward(&j, &weights, &twist, &with(&ones, 8, b))
-                .map(<[f64]>::to_vec)
+                .map(|o| o.map(<[f64]>::to_vec))
         },
     );
     cases.rejects_each(
@@ -312,7 +314,8 @@ fn redundancy_rejects_non_finite_numbers() {
         |b| {
             let mut bad = j.clone();
             bad[(5, 0)] = b;
-            wln.null_space_projector(&bad, &weights).cloned()
+            wln.null_space_projector(&bad, &weights)
+                .map(|o| o.map(Clone::clone))
         },
     );
     cases.rejects_each(
@@ -398,19 +401,19 @@ fn redundancy_rejects_non_finite_numbers() {
     let start = fk(&gantry, &q);
     let mut goal = start;
     goal.translation.x += 0.1;
-    cases.rejects_each("redundancy LinePath::new goal", "goal", |b| {
-        RedundancyLine::new(start, bad_pose(&goal, 1, b), 1.0)
+    cases.rejects_each("CartesianTrajectory::line goal", "goal", |b| {
+        CartesianTrajectory::line(start, bad_pose(&goal, 1, b), TimeLaw::Quintic, 1.0)
     });
-    cases.rejects_each("redundancy LinePath::new duration", "duration", |b| {
-        RedundancyLine::new(start, goal, b)
+    cases.rejects_each("CartesianTrajectory::line duration", "duration", |b| {
+        CartesianTrajectory::line(start, goal, TimeLaw::Quintic, b)
     });
-    for (name, set) in [("time_step", 0usize), ("feedback_gain", 1)] {
+    for (name, set) in [("dt", 0usize), ("feedback_gain", 1)] {
         cases.rejects_each(&format!("ResolvedRateTracker::new {name}"), name, |b| {
-            let mut options = TrackingOptions::default();
+            let mut options = DistributionOptions::default();
             if set == 0 {
-                options.time_step = b;
+                options.tracking.dt = b;
             } else {
-                options.feedback_gain = b;
+                options.tracking.feedback = Feedback::Proportional { gain: b };
             }
             ResolvedRateTracker::new(&gantry, Distribution::Weights(weights.clone()), options)
                 .map(|_| ())
@@ -419,10 +422,10 @@ fn redundancy_rejects_non_finite_numbers() {
     let mut tracker = ResolvedRateTracker::new(
         &gantry,
         Distribution::Weights(weights.clone()),
-        TrackingOptions::default(),
+        DistributionOptions::default(),
     )
     .unwrap();
-    let line = RedundancyLine::new(start, goal, 0.05).unwrap();
+    let line = CartesianTrajectory::line(start, goal, TimeLaw::Quintic, 0.05).unwrap();
     cases.rejects_each("ResolvedRateTracker::run q0", "joint_positions", |b| {
         tracker
             .run(&gantry, &with(&q, 0, b), &line)
@@ -909,62 +912,55 @@ fn space_robot_rejects_non_finite_numbers() {
         |b| SinusoidalJointMotion::random(6, 1, 0.1, b),
     );
     let tip = end_effector_pose(&model, &mut data, &base, &q).unwrap();
-    let options = SpaceTrackingOptions::default();
+    let options = TrackingOptions::default();
+    let law = LeastSquares { damping: 0.0 };
     cases.rejects_each("track_pose_path path pose", "path", |b| {
+        let path = TimeFn::new(0.1, |t| if t > 0.05 { bad_pose(&tip, 0, b) } else { tip })?;
         track_pose_path(
             &model,
             &mut data,
             BaseMode::AttitudeHeld,
             &state,
-            |t| {
-                if t > 0.05 {
-                    bad_pose(&tip, 0, b)
-                } else {
-                    tip
-                }
-            },
-            0.1,
+            &path,
+            law,
             &options,
         )
         .map(|r| r.status)
     });
     cases.rejects_each("track_pose_path duration", "duration", |b| {
+        let path = TimeFn::new(b, |_| tip)?;
         track_pose_path(
             &model,
             &mut data,
             BaseMode::AttitudeHeld,
             &state,
-            |_| tip,
-            b,
+            &path,
+            law,
             &options,
         )
         .map(|r| r.status)
     });
     cases.rejects_each("track_pose_path dt", "dt", |b| {
-        let options = SpaceTrackingOptions { dt: b, ..options };
+        let options = TrackingOptions { dt: b, ..options };
         track_pose_path(
             &model,
             &mut data,
             BaseMode::AttitudeHeld,
             &state,
-            |_| tip,
-            0.1,
+            &TimeFn::new(0.1, |_| tip)?,
+            law,
             &options,
         )
         .map(|r| r.status)
     });
     cases.rejects_each("track_pose_path damping", "damping", |b| {
-        let options = SpaceTrackingOptions {
-            damping: b,
-            ..options
-        };
         track_pose_path(
             &model,
             &mut data,
             BaseMode::AttitudeHeld,
             &state,
-            |_| tip,
-            0.1,
+            &TimeFn::new(0.1, |_| tip)?,
+            LeastSquares { damping: b },
             &options,
         )
         .map(|r| r.status)
@@ -976,8 +972,8 @@ fn space_robot_rejects_non_finite_numbers() {
             &mut data,
             BaseMode::AttitudeHeld,
             &initial,
-            |_| tip,
-            0.1,
+            &TimeFn::new(0.1, |_| tip)?,
+            law,
             &options,
         )
         .map(|r| r.status)

@@ -10,6 +10,7 @@
 //! * Sampling a trajectory allocates nothing: a counting global allocator sees zero allocations across many `sample_into` calls (joint space) and `CartesianTrajectory::sample` calls (built-in paths), counted per thread.
 //! * The dynamics algorithms allocate nothing once `DynamicsData` exists: RNEA, CRBA, M^-1, g, C v, ABA, energies, a simulation step (both integrators, with friction) and the seed 001 torques.
 //! * A singularity-tracking control period allocates nothing: a run's allocations (its recorded series) do not depend on its number of periods, for plain, avoidance, DLS and SRI.
+//! * The linear-algebra kernels (Gram factor, damped least-squares rates, manipulability) and a period of the tracking loop (fixed base, least squares, a recorder that stores nothing) allocate nothing.
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
@@ -319,12 +320,16 @@ fn redundancy_solves_do_not_allocate() {
         weights
             .set_from_torques(&torques, TorqueFloor::default())
             .unwrap();
-        exact.solve(&j, &weights, &twist).unwrap();
-        exact
+        assert!(!exact.solve(&j, &weights, &twist).unwrap().is_singular());
+        assert!(!exact
             .solve_toward(&j, &weights, &twist, &preferred)
-            .unwrap();
-        exact.null_space_projector(&j, &weights).unwrap();
-        damped.solve(&j, &weights, &twist).unwrap();
+            .unwrap()
+            .is_singular());
+        assert!(!exact
+            .null_space_projector(&j, &weights)
+            .unwrap()
+            .is_singular());
+        assert!(!damped.solve(&j, &weights, &twist).unwrap().is_singular());
         partitioned.solve(&j, &weights, &twist, &partition).unwrap();
         partitioned
             .solve_energy_optimal(&j, &torques, &twist, &partition)
@@ -433,16 +438,20 @@ fn sampling_does_not_allocate() {
 #[test]
 fn a_tracking_period_does_not_allocate() {
     use armkit::ik::{ChiaveriniFilter, NakamuraDamping};
-    use armkit::singularity::{line_through, Manipulator, Method, PathTracker, TrackingOptions};
+    use armkit::singularity::{line_through, AvoidanceOptions, Manipulator, Method, PathTracker};
+    use armkit::tracking::TrackingOptions;
     let arm = armkit::robots::space6r().unwrap();
     let manipulator = Manipulator::FixedBase(&arm);
     let through = [0.2, 0.9, -0.6, 0.4, 1.1, 0.3];
     let direction = [0.2, -0.1, 0.15, 0.1, 0.1, -0.1];
     let line = line_through(&manipulator, &through, &direction, 0.0).unwrap();
     let counts = |dt: f64, method: &Method| {
-        let options = TrackingOptions {
-            dt,
-            ..TrackingOptions::default()
+        let options = AvoidanceOptions {
+            tracking: TrackingOptions {
+                dt,
+                ..TrackingOptions::default()
+            },
+            ..AvoidanceOptions::default()
         };
         let tracker = PathTracker::new(manipulator, line.task(5.0, 1.0), options).unwrap();
         let before = allocations();
@@ -530,5 +539,98 @@ fn dynamics_does_not_allocate() {
         }
         let after = allocations();
         assert_eq!(after - before, 0, "{name}: {} allocations", after - before);
+    }
+}
+
+/// The linear-algebra kernels allocate nothing, and neither does a period
+/// of the tracking loop on a fixed-base plant with the least-squares law:
+/// a run's allocations (its samples) grow with its periods, by the same
+/// count per period whatever the duration (one sample: joint positions and
+/// rates), so the loop itself adds none.
+#[test]
+fn linalg_kernels_and_the_tracking_loop_do_not_allocate() {
+    use armkit::linalg::{damped_least_squares_rates, factor_gram, gram, manipulability};
+    use armkit::tracking::{track, FixedBase, LeastSquares, Recorder, SampleState};
+    use armkit::trajectory::TimedPath;
+    let model = armkit::robots::by_name("gantry9").unwrap();
+    let mut data = Data::new(&model);
+    let q = [3.0, 2.5, 1.0, 0.3, 0.4, -0.5, 0.2, 0.8, 0.1];
+    let j = jacobian(&model, &mut data, &q, JacobianFrame::World)
+        .unwrap()
+        .clone();
+    let twist = Vector6::new(0.1, 0.05, -0.05, 0.0, 0.1, 0.0);
+    let mut rates = [0.0; 9];
+    let before = allocations();
+    for _ in 0..100 {
+        assert!(!factor_gram(&gram(&j), 1e-12).is_singular());
+        assert!(!damped_least_squares_rates(&j, &twist, 0.01, 1e-14, &mut rates).is_singular());
+        assert!(manipulability(&j) > 0.0);
+    }
+    assert_eq!(allocations() - before, 0);
+
+    /// Counts samples without storing them.
+    struct Count(usize);
+    impl Recorder for Count {
+        fn state(&mut self, _: &SampleState<'_>) -> armkit::Result<()> {
+            self.0 += 1;
+            Ok(())
+        }
+        fn rates(&mut self, _: &[f64], _: Option<&armkit::tracking::RateOutcome>) {}
+    }
+    let start = *forward_kinematics(&model, &mut data, &q).unwrap();
+    let goal = Pose::from_translation(Vector3::new(0.1, 0.0, -0.05)) * start;
+    let loop_allocations = |duration: f64| {
+        let path = CartesianTrajectory::line(start, goal, TimeLaw::Quintic, duration).unwrap();
+        let mut data = Data::new(&model);
+        let mut plant = FixedBase::new(&model, &mut data, &q).unwrap();
+        let mut recorder = Count(0);
+        let mut rates = [0.0; 9];
+        let options = armkit::tracking::TrackingOptions::default();
+        let before = allocations();
+        let status = track(
+            &mut plant,
+            &mut LeastSquares { damping: 0.0 },
+            &path as &dyn TimedPath,
+            &options,
+            &mut recorder,
+            &mut rates,
+        )
+        .unwrap();
+        let after = allocations();
+        assert!(status.is_completed() && recorder.0 > 10);
+        after - before
+    };
+    assert_eq!(loop_allocations(0.5), 0);
+    assert_eq!(loop_allocations(2.0), 0);
+}
+
+#[test]
+fn the_simulated_plant_does_not_allocate() {
+    use armkit::mpc::{ActuatorPrecision, Plant, PlantModel};
+    let model = armkit::robots::gantry9_flex().unwrap();
+    let kinds: Vec<_> = model.joints().iter().map(|j| j.kind).collect();
+    let limited = PlantModel::LimitedPrecision {
+        prismatic: ActuatorPrecision {
+            position_resolution: 1e-3,
+            deadband: 1e-3,
+            velocity_resolution: 1e-4,
+        },
+        rotary: ActuatorPrecision::EXACT,
+    };
+    for plant_model in [PlantModel::Exact, limited] {
+        let mut q = model.neutral_configuration();
+        let mut plant = Plant::new(plant_model, &kinds, &q).unwrap();
+        let u = vec![0.013; q.len()];
+        let before = allocations();
+        for _ in 0..100 {
+            plant.advance(&mut q, &u, 0.05).unwrap();
+        }
+        let after = allocations();
+        assert_eq!(
+            after - before,
+            0,
+            "{plant_model:?}: {} allocations",
+            after - before
+        );
     }
 }

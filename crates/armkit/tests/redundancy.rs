@@ -15,10 +15,12 @@ use armkit::redundancy::nullspace::{
 };
 use armkit::redundancy::{
     best_partition, compare_distributions, energy_measure, gravity_torques, joint_torques,
-    ComparisonCase, Damping, Distribution, Formulation, JointWeights, LinePath, Load, Partition,
-    PartitionedSolver, ResolvedRateTracker, SecondaryObjective, SolverOptions, TorqueFloor,
-    TrackingOptions, TrackingStatus, WeightedLeastNorm, SEED000_PRIORITY_WEIGHTS,
+    ComparisonCase, Damping, Distribution, DistributionOptions, Formulation, JointWeights, Load,
+    Partition, PartitionedSolver, ResolvedRateTracker, SecondaryObjective, SolverOptions,
+    TorqueFloor, WeightedLeastNorm, SEED000_PRIORITY_WEIGHTS,
 };
+use armkit::tracking::{TrackingOptions, TrackingStatus};
+use armkit::trajectory::{CartesianTrajectory, TimeLaw};
 use rand::seq::SliceRandom;
 use rand::Rng;
 
@@ -114,6 +116,8 @@ fn partitioned_form_equals_weighted_least_norm_for_random_robots() {
         let a = least_norm
             .solve(&case.jacobian, &case.weights, &case.twist)
             .unwrap()
+            .solved()
+            .unwrap()
             .to_vec();
         let b = partitioned
             .solve(&case.jacobian, &case.weights, &case.twist, &case.partition)
@@ -146,6 +150,8 @@ fn unit_weights_give_the_pseudo_inverse() {
         let a = least_norm
             .solve(&case.jacobian, &unit, &case.twist)
             .unwrap()
+            .solved()
+            .unwrap()
             .to_vec();
         let b = partitioned
             .solve(&case.jacobian, &unit, &case.twist, &case.partition)
@@ -167,11 +173,15 @@ fn weighted_solution_is_optimal_and_exact() {
         let q_dot = solver
             .solve(&case.jacobian, &case.weights, &case.twist)
             .unwrap()
+            .solved()
+            .unwrap()
             .to_vec();
         let residual = (&case.jacobian * as_dvector(&q_dot) - case.twist).amax();
         assert!(residual < 1e-10, "J q_dot - V = {residual:e}");
         let projector = solver
             .null_space_projector(&case.jacobian, &case.weights)
+            .unwrap()
+            .solved()
             .unwrap()
             .clone();
         let jn = (&case.jacobian * &projector).amax();
@@ -214,11 +224,15 @@ fn locked_joints_do_not_move_and_huge_weights_approach_locking() {
         let with_lock = solver
             .solve(&case.jacobian, &locked, &case.twist)
             .unwrap()
+            .solved()
+            .unwrap()
             .to_vec();
         assert_eq!(with_lock[locked_joint], 0.0);
         assert!((&case.jacobian * as_dvector(&with_lock) - case.twist).amax() < 1e-10);
         let with_huge = solver
             .solve(&case.jacobian, &huge, &case.twist)
+            .unwrap()
+            .solved()
             .unwrap()
             .to_vec();
         let scale = with_lock.iter().fold(1.0_f64, |m, v| m.max(v.abs()));
@@ -266,7 +280,12 @@ fn a_larger_weight_never_moves_a_joint_more() {
         let mut previous = f64::INFINITY;
         for exponent in -3..=6 {
             weights.set(joint, 10f64.powi(exponent)).unwrap();
-            let v = solver.solve(&case.jacobian, &weights, &case.twist).unwrap()[joint].abs();
+            let v = solver
+                .solve(&case.jacobian, &weights, &case.twist)
+                .unwrap()
+                .solved()
+                .unwrap()[joint]
+                .abs();
             assert!(v <= previous * (1.0 + 1e-9) + 1e-12, "{v} > {previous}");
             previous = v;
         }
@@ -301,6 +320,8 @@ fn damped_solution_solves_the_regularised_problem() {
         let q_dot = as_dvector(
             solver
                 .solve(&case.jacobian, &case.weights, &case.twist)
+                .unwrap()
+                .solved()
                 .unwrap(),
         );
         assert_eq!(solver.last_damping(), lambda);
@@ -328,7 +349,7 @@ fn damping_keeps_velocities_bounded_at_a_singularity() {
     let twist = Vector6::new(0.0, 0.0, 0.1, 0.0, 0.0, 0.0); // straight up: out of reach
     let weights = JointWeights::uniform(7);
     let mut exact = WeightedLeastNorm::new(7, SolverOptions::default()).unwrap();
-    let err = exact.solve(&j, &weights, &twist).unwrap_err().to_string();
+    let err = exact.solve(&j, &weights, &twist).unwrap().to_string();
     assert!(err.contains("singular"), "{err}");
     let adaptive = SolverOptions {
         damping: Damping::Adaptive {
@@ -338,7 +359,12 @@ fn damping_keeps_velocities_bounded_at_a_singularity() {
         ..SolverOptions::default()
     };
     let mut damped = WeightedLeastNorm::new(7, adaptive).unwrap();
-    let q_dot = damped.solve(&j, &weights, &twist).unwrap().to_vec();
+    let q_dot = damped
+        .solve(&j, &weights, &twist)
+        .unwrap()
+        .solved()
+        .unwrap()
+        .to_vec();
     assert!(damped.last_damping() > 0.09, "{}", damped.last_damping());
     assert!(q_dot.iter().all(|v| v.abs() < 10.0), "{q_dot:?}");
     // Away from singularities the adaptive damping is exactly zero.
@@ -346,9 +372,19 @@ fn damping_keeps_velocities_bounded_at_a_singularity() {
     let j = jacobian(&model, &mut data, &q, JacobianFrame::World)
         .unwrap()
         .clone();
-    let a = damped.solve(&j, &weights, &twist).unwrap().to_vec();
+    let a = damped
+        .solve(&j, &weights, &twist)
+        .unwrap()
+        .solved()
+        .unwrap()
+        .to_vec();
     assert_eq!(damped.last_damping(), 0.0);
-    let b = exact.solve(&j, &weights, &twist).unwrap().to_vec();
+    let b = exact
+        .solve(&j, &weights, &twist)
+        .unwrap()
+        .solved()
+        .unwrap()
+        .to_vec();
     assert!(max_abs_difference(&a, &b) < 1e-14);
 }
 
@@ -514,9 +550,9 @@ fn bad_input_gets_clear_errors() {
         "invalid argument `torque_floor`: relative fraction must be in (0, 1], got 0"
     );
     let model = armkit::robots::by_name("gantry9").unwrap();
-    let options = TrackingOptions {
-        feedback_gain: 200.0,
-        ..TrackingOptions::default()
+    let options = DistributionOptions {
+        tracking: TrackingOptions::proportional(0.01, 200.0),
+        ..DistributionOptions::default()
     };
     let err = ResolvedRateTracker::new(
         &model,
@@ -528,7 +564,7 @@ fn bad_input_gets_clear_errors() {
     let err = ResolvedRateTracker::new(
         &model,
         Distribution::Weights(JointWeights::uniform(7)),
-        TrackingOptions::default(),
+        DistributionOptions::default(),
     )
     .unwrap_err();
     assert_eq!(message(err), "weights: expected 9 values, got 7");
@@ -543,7 +579,10 @@ fn bad_input_gets_clear_errors() {
         message(energy_measure(&[1.0, 2.0], &[1.0]).unwrap_err()),
         "torques: expected 2 values, got 1"
     );
-    assert!(LinePath::new(Pose::identity(), Pose::identity(), 0.0).is_err());
+    assert!(
+        CartesianTrajectory::line(Pose::identity(), Pose::identity(), TimeLaw::Quintic, 0.0)
+            .is_err()
+    );
 }
 
 /// Potential energy of the links, `-sum m g . c` (J).
@@ -696,7 +735,12 @@ fn eq17_from_torques_matches_the_weighted_form_and_its_floor_limit() {
     let mut previous_f = f64::INFINITY;
     for fraction in [1e-2, 1e-3, 1e-4, 1e-5, 1e-6] {
         let w = JointWeights::from_torques(&tau, TorqueFloor::Relative(fraction)).unwrap();
-        let floored = solver.solve(&j, &w, &twist).unwrap().to_vec();
+        let floored = solver
+            .solve(&j, &w, &twist)
+            .unwrap()
+            .solved()
+            .unwrap()
+            .to_vec();
         let gap = max_abs_difference(&floored, &raw);
         let f = energy_measure(&floored, &tau).unwrap();
         assert!(
@@ -723,7 +767,12 @@ fn eq17_from_torques_matches_the_weighted_form_and_its_floor_limit() {
         .unwrap()
         .to_vec();
     let w = JointWeights::new(&nonzero.iter().map(|t| t * t).collect::<Vec<_>>()).unwrap();
-    let eq19 = solver.solve(&j, &w, &twist).unwrap().to_vec();
+    let eq19 = solver
+        .solve(&j, &w, &twist)
+        .unwrap()
+        .solved()
+        .unwrap()
+        .to_vec();
     assert!(max_abs_difference(&eq17, &eq19) < 1e-9);
 }
 
@@ -780,15 +829,21 @@ fn gantry_start() -> [f64; 9] {
     [3.0, 2.5, 1.0, 0.3, 0.4, -0.5, 0.2, 0.8, 0.1]
 }
 
-fn line_from(model: &Model, q0: &[f64], shift: Vector3<f64>, turn: f64, duration: f64) -> LinePath {
+fn line_from(
+    model: &Model,
+    q0: &[f64],
+    shift: Vector3<f64>,
+    turn: f64,
+    duration: f64,
+) -> CartesianTrajectory {
     let mut data = Data::new(model);
     let start = *forward_kinematics(model, &mut data, q0).unwrap();
     let goal = Pose::from_translation(shift) * start * Pose::rot_z(turn);
-    LinePath::new(start, goal, duration).unwrap()
+    CartesianTrajectory::line(start, goal, TimeLaw::Quintic, duration).unwrap()
 }
 
 /// Velocity and position limits hold at every sample.
-fn assert_limits_respected(model: &Model, samples: &[armkit::redundancy::TrackingSample]) {
+fn assert_limits_respected(model: &Model, samples: &[armkit::tracking::TrackingSample]) {
     for sample in samples {
         for (j, joint) in model.joints().iter().enumerate() {
             let limits = joint.limits;
@@ -801,7 +856,7 @@ fn assert_limits_respected(model: &Model, samples: &[armkit::redundancy::Trackin
                 sample.time
             );
             if let Some(v) = limits.velocity {
-                assert!(sample.q_dot[j].abs() <= v * (1.0 + 1e-12));
+                assert!(sample.joint_rates[j].abs() <= v * (1.0 + 1e-12));
             }
         }
     }
@@ -831,9 +886,9 @@ fn tracking_follows_lines_on_gantry9_and_panda_with_every_method() {
     ];
     for distribution in &distributions {
         for secondary in secondaries {
-            let options = TrackingOptions {
+            let options = DistributionOptions {
                 secondary,
-                ..TrackingOptions::default()
+                ..DistributionOptions::default()
             };
             let mut tracker =
                 ResolvedRateTracker::new(&gantry, distribution.clone(), options).unwrap();
@@ -850,9 +905,9 @@ fn tracking_follows_lines_on_gantry9_and_panda_with_every_method() {
     let q0 = [0.0, -0.3, 0.0, -2.2, 0.0, 2.0, 0.8];
     let path = line_from(&panda, &q0, Vector3::new(0.15, 0.1, -0.1), -0.4, 2.0);
     let run = |formulation: Formulation| {
-        let options = TrackingOptions {
+        let options = DistributionOptions {
             formulation,
-            ..TrackingOptions::default()
+            ..DistributionOptions::default()
         };
         let mut tracker = ResolvedRateTracker::new(
             &panda,
@@ -882,7 +937,12 @@ fn projected_limit_gradient(model: &Model, q: &[f64]) -> f64 {
         .clone();
     let weights = JointWeights::uniform(model.dof());
     let mut solver = WeightedLeastNorm::new(model.dof(), SolverOptions::default()).unwrap();
-    let projector = solver.null_space_projector(&j, &weights).unwrap().clone();
+    let projector = solver
+        .null_space_projector(&j, &weights)
+        .unwrap()
+        .solved()
+        .unwrap()
+        .clone();
     let mut gradient = vec![0.0; model.dof()];
     joint_limit_gradient(model, q, &mut gradient).unwrap();
     (projector * as_dvector(&gradient)).norm()
@@ -893,10 +953,10 @@ fn null_space_objectives_improve_without_disturbing_the_task() {
     let panda = armkit::robots::by_name("panda").unwrap();
     // Joint 1 near its lower limit, joint 7 near its upper one.
     let q0 = [-2.4, -0.3, 0.0, -2.2, 0.0, 2.0, 2.5];
-    let run = |secondary: SecondaryObjective, path: &LinePath| {
-        let options = TrackingOptions {
+    let run = |secondary: SecondaryObjective, path: &CartesianTrajectory| {
+        let options = DistributionOptions {
             secondary,
-            ..TrackingOptions::default()
+            ..DistributionOptions::default()
         };
         let mut tracker = ResolvedRateTracker::new(
             &panda,
@@ -927,7 +987,7 @@ fn null_space_objectives_improve_without_disturbing_the_task() {
     assert!(end < 1e-2 * start, "projected gradient {start} -> {end}");
     // Moving, it ends farther from the limits than without it.
     let path = line_from(&panda, &q0, Vector3::new(0.0, 0.1, 0.0), 0.0, 3.0);
-    let final_q = |r: armkit::redundancy::TrackingReport| r.samples.last().unwrap().q.clone();
+    let final_q = |r: armkit::tracking::TrackingReport| r.samples.last().unwrap().q.clone();
     let plain = final_q(run(SecondaryObjective::None, &path));
     let limits = final_q(run(SecondaryObjective::JointLimits { gain: 10.0 }, &path));
     assert!(
@@ -944,10 +1004,10 @@ fn null_space_objectives_improve_without_disturbing_the_task() {
     let mut data = Data::new(&gantry);
     let mut w =
         |q: &[f64]| manipulability(jacobian(&gantry, &mut data, q, JacobianFrame::World).unwrap());
-    let run = |secondary: SecondaryObjective, path: &LinePath| {
-        let options = TrackingOptions {
+    let run = |secondary: SecondaryObjective, path: &CartesianTrajectory| {
+        let options = DistributionOptions {
             secondary,
-            ..TrackingOptions::default()
+            ..DistributionOptions::default()
         };
         let mut tracker = ResolvedRateTracker::new(
             &gantry,
@@ -990,7 +1050,7 @@ fn velocity_limits_scale_and_position_limits_lock_or_stop() {
     let mut tracker = ResolvedRateTracker::new(
         &gantry,
         Distribution::Weights(JointWeights::new(&SEED000_PRIORITY_WEIGHTS).unwrap()),
-        TrackingOptions::default(),
+        DistributionOptions::default(),
     )
     .unwrap();
     let report = tracker.run(&gantry, &q0, &path).unwrap();
@@ -1000,7 +1060,7 @@ fn velocity_limits_scale_and_position_limits_lock_or_stop() {
         report.velocity_scaled_steps
     );
     let at_limit = report.samples.iter().any(|s| {
-        s.q_dot
+        s.joint_rates
             .iter()
             .zip(gantry.joints())
             .any(|(v, joint)| (v.abs() - joint.limits.velocity.unwrap()).abs() < 1e-9)
@@ -1018,7 +1078,7 @@ fn velocity_limits_scale_and_position_limits_lock_or_stop() {
         let mut tracker = ResolvedRateTracker::new(
             &gantry,
             Distribution::Weights(weights),
-            TrackingOptions::default(),
+            DistributionOptions::default(),
         )
         .unwrap();
         tracker.run(&gantry, &q0, &roll).unwrap()
@@ -1094,7 +1154,7 @@ fn four_way_comparison_on_gantry9() {
         &path,
         &load,
         &cases,
-        &TrackingOptions::default(),
+        &DistributionOptions::default(),
     )
     .unwrap();
     println!("distribution      F (W^2 s)   travel d1..d3 (m), q4..q9 (rad)");
@@ -1172,7 +1232,7 @@ fn the_torque_floor_regularises_free_self_motion() {
             &path,
             &load,
             &cases,
-            &TrackingOptions::default(),
+            &DistributionOptions::default(),
         )
         .unwrap()
     };
@@ -1180,7 +1240,7 @@ fn the_torque_floor_regularises_free_self_motion() {
         r.report
             .samples
             .iter()
-            .flat_map(|s| s.q_dot.iter())
+            .flat_map(|s| s.joint_rates.iter())
             .fold(0.0_f64, |m, v| m.max(v.abs()))
     };
     let tiny = run(TorqueFloor::Relative(1e-3));

@@ -7,12 +7,12 @@ use armkit::kinematics::singular_values;
 use armkit::math::{Matrix6, Pose, Vector3};
 use armkit::singularity::{
     calibrate_determinant_threshold, classify, find_singularities, line_through,
-    manipulability_ellipsoid, nearest_singularity, seed004_path, Baselines, ClassifyOptions,
-    Comparison, DetectionOptions, JacobianPart, LineTask, Manipulator, Method, PathTracker,
-    RunStatus, SearchOptions, SearchStatus, SearchTarget, SingularityKind, TrackingOptions,
-    SEED004_THROUGH,
+    manipulability_ellipsoid, nearest_singularity, seed004_path, AvoidanceOptions, Baselines,
+    ClassifyOptions, Comparison, DetectionOptions, JacobianPart, LineTask, Manipulator, Method,
+    PathTracker, SearchOptions, SearchStatus, SearchTarget, SingularityKind, SEED004_THROUGH,
 };
 use armkit::space::{center_of_mass, space6r_free_floating, SpaceData};
+use armkit::tracking::{TrackingOptions, TrackingStatus};
 use armkit::trajectory::spline::clamped_cubic_spline;
 use armkit::{jacobian, Data, JacobianFrame};
 
@@ -23,7 +23,7 @@ fn print_table(title: &str, comparison: &Comparison) {
 }
 
 fn compare(manipulator: Manipulator<'_>, task: LineTask) -> Comparison {
-    let options = TrackingOptions::default();
+    let options = AvoidanceOptions::default();
     let tracker = PathTracker::new(manipulator, task, options).unwrap();
     tracker
         .compare(&Baselines::for_detection(&options.detection), &KS)
@@ -33,7 +33,7 @@ fn compare(manipulator: Manipulator<'_>, task: LineTask) -> Comparison {
 /// The seed-004 claims, common to both bases.
 fn check_seed_claims(comparison: &Comparison) {
     let plain = &comparison.plain;
-    assert_eq!(plain.status, RunStatus::Completed);
+    assert_eq!(plain.status, TrackingStatus::Completed);
     for run in &comparison.k_sweep {
         let s = &run.summary;
         // Plain tracking's peak joint rate at least 10 times avoidance's.
@@ -97,7 +97,7 @@ fn check_seed_claims(comparison: &Comparison) {
         &comparison.damped_least_squares,
         &comparison.singularity_robust,
     ] {
-        assert_eq!(run.status, RunStatus::Completed);
+        assert_eq!(run.status, TrackingStatus::Completed);
         assert!(run.summary.peak_joint_rate < 0.5);
         assert!(run.summary.max_position_error > 10.0 * sweep[2].summary.max_position_error);
     }
@@ -130,7 +130,7 @@ fn the_paper_rule_for_the_threshold_on_the_plain_run() {
     let arm = armkit::robots::space6r().unwrap();
     let manipulator = Manipulator::FixedBase(&arm);
     let line = seed004_path(&manipulator).unwrap();
-    let options = TrackingOptions::default();
+    let options = AvoidanceOptions::default();
     let tracker = PathTracker::new(manipulator, line.task(20.0, 4.0), options).unwrap();
     let plain = tracker.run(&Method::Plain).unwrap();
     let eps_dq = options.detection.joint_step_threshold;
@@ -221,8 +221,12 @@ fn a_path_far_from_singularities_is_the_same_with_and_without_avoidance() {
         0.0,
     )
     .unwrap();
-    let tracker =
-        PathTracker::new(manipulator, line.task(5.0, 1.0), TrackingOptions::default()).unwrap();
+    let tracker = PathTracker::new(
+        manipulator,
+        line.task(5.0, 1.0),
+        AvoidanceOptions::default(),
+    )
+    .unwrap();
     let plain = tracker.run(&Method::Plain).unwrap();
     for k in KS {
         let avoid = tracker.run(&Method::Avoidance { k }).unwrap();
@@ -250,7 +254,7 @@ fn bad_input_is_an_error_naming_the_argument() {
     let manipulator = Manipulator::FixedBase(&arm);
     let line = seed004_path(&manipulator).unwrap();
     let task = line.task(20.0, 4.0);
-    let tracker = PathTracker::new(manipulator, task.clone(), TrackingOptions::default()).unwrap();
+    let tracker = PathTracker::new(manipulator, task.clone(), AvoidanceOptions::default()).unwrap();
     // k = 0.
     let message = error_message(tracker.run(&Method::Avoidance { k: 0 }));
     assert!(
@@ -272,36 +276,39 @@ fn bad_input_is_an_error_naming_the_argument() {
         (-1.0, "determinant_threshold"),
         (f64::NAN, "determinant_threshold"),
     ] {
-        let mut options = TrackingOptions::default();
+        let mut options = AvoidanceOptions::default();
         options.detection.determinant_threshold = value;
         let message = error_message(PathTracker::new(manipulator, task.clone(), options));
         assert!(message.contains(field), "{message}");
     }
     for value in [0.0, -0.1, f64::NAN] {
-        let mut options = TrackingOptions::default();
+        let mut options = AvoidanceOptions::default();
         options.detection.joint_step_threshold = value;
         let message = error_message(PathTracker::new(manipulator, task.clone(), options));
         assert!(message.contains("joint_step_threshold"), "{message}");
     }
     for (options, field) in [
         (
-            TrackingOptions {
-                dt: 0.0,
-                ..TrackingOptions::default()
+            AvoidanceOptions {
+                tracking: TrackingOptions {
+                    dt: 0.0,
+                    ..TrackingOptions::default()
+                },
+                ..AvoidanceOptions::default()
             },
             "dt",
         ),
         (
-            TrackingOptions {
+            AvoidanceOptions {
                 ik_tolerance: f64::NAN,
-                ..TrackingOptions::default()
+                ..AvoidanceOptions::default()
             },
             "ik_tolerance",
         ),
         (
-            TrackingOptions {
+            AvoidanceOptions {
                 ik_max_iterations: 0,
-                ..TrackingOptions::default()
+                ..AvoidanceOptions::default()
             },
             "ik_max_iterations",
         ),
@@ -315,7 +322,7 @@ fn bad_input_is_an_error_naming_the_argument() {
     let message = error_message(PathTracker::new(
         manipulator,
         bad,
-        TrackingOptions::default(),
+        AvoidanceOptions::default(),
     ));
     assert!(message.contains("start"), "{message}");
     let mut bad = task.clone();
@@ -323,7 +330,7 @@ fn bad_input_is_an_error_naming_the_argument() {
     let message = error_message(PathTracker::new(
         manipulator,
         bad,
-        TrackingOptions::default(),
+        AvoidanceOptions::default(),
     ));
     assert!(message.contains("start"), "{message}");
     let mut bad = task.clone();
@@ -331,7 +338,7 @@ fn bad_input_is_an_error_naming_the_argument() {
     let message = error_message(PathTracker::new(
         manipulator,
         bad,
-        TrackingOptions::default(),
+        AvoidanceOptions::default(),
     ));
     assert!(message.contains("acceleration"), "{message}");
     let mut bad = task.clone();
@@ -339,7 +346,7 @@ fn bad_input_is_an_error_naming_the_argument() {
     let message = error_message(PathTracker::new(
         manipulator,
         bad,
-        TrackingOptions::default(),
+        AvoidanceOptions::default(),
     ));
     assert!(message.contains("goal"), "{message}");
     // A path out of reach: a goal 3 m away (space6r reaches about 1.9 m).
@@ -348,7 +355,7 @@ fn bad_input_is_an_error_naming_the_argument() {
     let message = error_message(PathTracker::new(
         manipulator,
         far,
-        TrackingOptions::default(),
+        AvoidanceOptions::default(),
     ));
     assert!(
         message.contains("goal") && message.contains("out of reach"),
@@ -386,7 +393,7 @@ fn the_c2_fit_is_continuous_and_the_run_follows_it() {
     let tracker = PathTracker::new(
         manipulator,
         line.task(20.0, 4.0),
-        TrackingOptions::default(),
+        AvoidanceOptions::default(),
     )
     .unwrap();
     let (_, h) = tracker.steps();

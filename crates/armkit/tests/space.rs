@@ -12,8 +12,10 @@ use armkit::math::{Matrix3, Matrix6xX, Pose, Rotation3, Vector3, Vector6};
 use armkit::space::{
     center_of_mass, end_effector_pose, generalized_jacobian, momentum, space6r_base_body,
     space6r_free_floating, step, track_pose_path, BaseBody, BaseMode, FreeFloatingModel,
-    FreeFloatingState, SinusoidalJointMotion, SpaceData, TrackingOptions, TrackingStatus,
+    FreeFloatingState, SinusoidalJointMotion, SpaceData,
 };
+use armkit::tracking::{LeastSquares, TrackingOptions, TrackingStatus};
+use armkit::trajectory::TimeFn;
 use rand::Rng;
 
 const MODES: [BaseMode; 2] = [BaseMode::AttitudeHeld, BaseMode::FreeFloating];
@@ -207,8 +209,8 @@ fn bad_arguments_are_named() {
         &mut data,
         mode,
         &state,
-        |_| Pose::identity(),
-        1.0,
+        &TimeFn::new(1.0, |_| Pose::identity()).unwrap(),
+        LeastSquares { damping: 0.0 },
         &options,
     )
     .unwrap_err()
@@ -604,9 +606,16 @@ fn resolved_rate_tracking_follows_a_straight_line() {
                 dt,
                 ..Default::default()
             };
-            let report =
-                track_pose_path(&model, &mut data, mode, &initial, path, duration, &options)
-                    .unwrap();
+            let report = track_pose_path(
+                &model,
+                &mut data,
+                mode,
+                &initial,
+                &TimeFn::new(duration, path).unwrap(),
+                LeastSquares { damping: 0.0 },
+                &options,
+            )
+            .unwrap();
             assert_eq!(report.status, TrackingStatus::Completed);
             assert_eq!(report.samples.len(), (duration / dt).round() as usize + 1);
             let last = report.samples.last().unwrap();

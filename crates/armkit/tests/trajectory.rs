@@ -1231,3 +1231,18 @@ fn sampling_is_clamped_and_checked() {
     let shifted = traj.shifted_to(10.0).unwrap();
     assert_eq!(shifted.sample(10.5).unwrap(), traj.sample(0.5).unwrap());
 }
+
+#[test]
+fn trajectory_limits_speak_the_models_joint_limits() {
+    use armkit::trajectory::limits::TrajectoryLimits;
+    for name in ["panda", "gantry9", "ur5"] {
+        let model = armkit::robots::by_name(name).unwrap();
+        let limits = TrajectoryLimits::from_model(&model);
+        for (j, joint) in model.joints().iter().enumerate() {
+            assert_eq!(limits.joint(j), Some(joint.limits), "{name} joint {j}");
+        }
+        assert_eq!(limits.joint(model.dof()), None);
+        let per_joint: Vec<_> = model.joints().iter().map(|j| j.limits).collect();
+        assert_eq!(TrajectoryLimits::from_joint_limits(&per_joint), limits);
+    }
+}

@@ -52,6 +52,10 @@ const SHIPPED: &[(&str, &str)] = &[
         "seed004-singularity.toml",
         include_str!("../../../../scenarios/seed004-singularity.toml"),
     ),
+    (
+        "seed004-space.toml",
+        include_str!("../../../../scenarios/seed004-space.toml"),
+    ),
 ];
 
 /// Runs one scenario file and writes its report.

@@ -15,85 +15,21 @@ pub use animation::Animation;
 use crate::common::CliResult;
 use crate::plot::Figure;
 
-/// How a check's value is compared with its threshold.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Comparison {
-    /// Passes when `value <= threshold`.
-    AtMost,
-    /// Passes when `value >= threshold`.
-    AtLeast,
-}
+/// One verifiable claim and how it is compared: the library's
+/// ([`armkit::study`]), so that a study's checks are the report's.
+pub use armkit::study::{Check, Comparison};
 
-/// One verifiable claim of a scenario: a measured value against a threshold.
-#[derive(Clone, Debug)]
-pub struct Check {
-    /// What is checked, in words.
-    pub name: String,
-    /// The measured value.
-    pub value: f64,
-    /// The threshold it is compared with.
-    pub threshold: f64,
-    /// How.
-    pub comparison: Comparison,
-    /// Unit of value and threshold (may be empty).
-    pub unit: String,
-    /// The measured figures in words, for checks that are a yes/no claim
-    /// (may be empty).
-    pub detail: String,
-}
-
-impl Check {
-    /// A check that passes when `value <= threshold`.
-    pub fn at_most(name: impl Into<String>, value: f64, threshold: f64, unit: &str) -> Self {
-        Check {
-            name: name.into(),
-            value,
-            threshold,
-            comparison: Comparison::AtMost,
-            unit: unit.into(),
-            detail: String::new(),
-        }
-    }
-
-    /// A check that passes when `value >= threshold`.
-    pub fn at_least(name: impl Into<String>, value: f64, threshold: f64, unit: &str) -> Self {
-        Check {
-            name: name.into(),
-            value,
-            threshold,
-            comparison: Comparison::AtLeast,
-            unit: unit.into(),
-            detail: String::new(),
-        }
-    }
-
-    /// A yes/no claim: value 1 when it holds, 0 when not, threshold 1, with
-    /// the figures behind it in `detail`.
-    pub fn holds(name: impl Into<String>, holds: bool, detail: impl Into<String>) -> Self {
-        let mut check = Check::at_least(name, if holds { 1.0 } else { 0.0 }, 1.0, "");
-        check.detail = detail.into();
-        check
-    }
-
-    /// True when the value meets the threshold (NaN never does).
-    pub fn passed(&self) -> bool {
-        match self.comparison {
-            Comparison::AtMost => self.value <= self.threshold,
-            Comparison::AtLeast => self.value >= self.threshold,
-        }
-    }
-
-    fn to_json(&self) -> serde_json::Value {
-        serde_json::json!({
-            "name": self.name,
-            "value": finite_or_null(self.value),
-            "threshold": self.threshold,
-            "comparison": match self.comparison { Comparison::AtMost => "<=", Comparison::AtLeast => ">=" },
-            "unit": self.unit,
-            "detail": self.detail,
-            "pass": self.passed(),
-        })
-    }
+/// A check as `summary.json` writes it.
+fn check_json(check: &Check) -> serde_json::Value {
+    serde_json::json!({
+        "name": check.name,
+        "value": finite_or_null(check.value),
+        "threshold": check.threshold,
+        "comparison": check.comparison.as_str(),
+        "unit": check.unit,
+        "detail": check.detail,
+        "pass": check.passed(),
+    })
 }
 
 fn finite_or_null(v: f64) -> serde_json::Value {
@@ -204,6 +140,38 @@ impl ReportSummary {
 }
 
 impl Report {
+    /// A library study's report ([`armkit::study::StudyReport`]) as a
+    /// scenario report: its checks and notes, one figure per series.
+    pub fn from_study(
+        name: impl Into<String>,
+        title: impl Into<String>,
+        description: impl Into<String>,
+        study: armkit::study::StudyReport,
+    ) -> Report {
+        let figures = study
+            .series
+            .into_iter()
+            .map(|series| {
+                let mut figure =
+                    Figure::new(series.title, series.x_label, series.y_label, series.x);
+                for (label, values) in series.columns {
+                    figure = figure.with_series(label, values);
+                }
+                (series.name, figure)
+            })
+            .collect();
+        Report {
+            name: name.into(),
+            title: title.into(),
+            description: description.into(),
+            checks: study.checks,
+            tables: Vec::new(),
+            figures,
+            notes: study.notes,
+            animation: None,
+        }
+    }
+
     /// Number of checks that pass.
     pub fn passed(&self) -> usize {
         self.checks.iter().filter(|c| c.passed()).count()
@@ -216,7 +184,7 @@ impl Report {
             "title": self.title,
             "passed": self.passed(),
             "total": self.checks.len(),
-            "checks": self.checks.iter().map(Check::to_json).collect::<Vec<_>>(),
+            "checks": self.checks.iter().map(check_json).collect::<Vec<_>>(),
             "notes": self.notes,
         })
     }
@@ -301,6 +269,21 @@ pub fn write_index(out_dir: &Path, summaries: &[ReportSummary]) -> CliResult<Pat
     let path = out_dir.join("index.html");
     write_atomic(&path, html::index_page(summaries, out_dir).as_bytes())?;
     Ok(path)
+}
+
+/// Writes `text` to `path` (a command's output file); the error names the file.
+pub fn write_text(path: &Path, text: &str) -> CliResult {
+    std::fs::write(path, text)
+        .map_err(|e| crate::common::CliError(format!("{}: cannot write: {e}", path.display())))
+}
+
+/// Numbers joined by `, ` with `decimals` digits after the point.
+pub fn join(values: &[f64], decimals: usize) -> String {
+    values
+        .iter()
+        .map(|v| format!("{v:.decimals$}"))
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// Writes `bytes` to `path` through a temporary file in the same folder and

@@ -9,7 +9,7 @@ use clap::{Args, FromArgMatches};
 use toml::Spanned;
 
 use super::Locator;
-use crate::commands::{beam, mpc, redundancy, singularity, traj};
+use crate::commands::{beam, mpc, redundancy, singularity, space, traj};
 use crate::common::{accept_hyphen_values, CliError, CliResult};
 use crate::report::Report;
 
@@ -31,10 +31,12 @@ pub enum Method {
     /// `[singularity]`: seed 004's line through a wrist singularity tracked
     /// four ways; options of `armkit singularity`.
     Singularity(Box<singularity::SingularityArgs>),
+    Space(Box<space::SpaceStudyArgs>),
 }
 
 /// The method tables a scenario file may hold (exactly one is given).
-pub const METHOD_TABLES: &str = "[beam], [mpc], [redundancy], [continuous_path], [singularity]";
+pub const METHOD_TABLES: &str =
+    "[beam], [mpc], [redundancy], [continuous_path], [singularity], [space]";
 
 impl Method {
     /// Parses the one method table given, with the robot's arguments
@@ -65,6 +67,7 @@ impl Method {
             "mpc" => Method::Mpc(Box::new(parsed.args(name, locator)?)),
             "redundancy" => Method::Redundancy(Box::new(parsed.args(name, locator)?)),
             "singularity" => Method::Singularity(Box::new(parsed.args(name, locator)?)),
+            "space" => Method::Space(Box::new(parsed.args(name, locator)?)),
             _ => Method::ContinuousPath(Box::new(parsed.args(name, locator)?)),
         })
     }
@@ -77,6 +80,7 @@ impl Method {
             Method::Redundancy(args) => redundancy::report(args),
             Method::ContinuousPath(args) => traj::line_report(args),
             Method::Singularity(args) => singularity::report(args),
+            Method::Space(args) => space::study_report(args),
         }
     }
 }

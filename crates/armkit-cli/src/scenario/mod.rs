@@ -55,6 +55,7 @@ struct ScenarioFile {
     redundancy: Option<Spanned<OptionTable>>,
     continuous_path: Option<Spanned<OptionTable>>,
     singularity: Option<Spanned<OptionTable>>,
+    space: Option<Spanned<OptionTable>>,
 }
 
 /// A parsed, validated scenario.
@@ -121,6 +122,7 @@ pub fn parse(text: &str, source_name: &str, base_dir: &Path) -> CliResult<Scenar
         ("redundancy", file.redundancy),
         ("continuous_path", file.continuous_path),
         ("singularity", file.singularity),
+        ("space", file.space),
     ];
     let method = Method::parse(tables, &robot_argv, &locator)?;
     Ok(Scenario {
@@ -231,7 +233,7 @@ mod tests {
         assert!(error("title = \"t\"\n[beam]\n").contains("missing field `name`"));
         assert_eq!(
             error("name = \"b\"\ntitle = \"t\"\n"),
-            "s.toml: line 1, column 1: no method table: expected exactly one of [beam], [mpc], [redundancy], [continuous_path], [singularity]"
+            "s.toml: line 1, column 1: no method table: expected exactly one of [beam], [mpc], [redundancy], [continuous_path], [singularity], [space]"
         );
         assert_eq!(
             error("name = \"a b\"\ntitle = \"t\"\n[beam]\n"),

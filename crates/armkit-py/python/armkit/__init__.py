@@ -36,10 +36,11 @@ from ._armkit import (
     dynamics,
     redundancy,
     singularity,
+    study,
 )
 
 # The extension's submodules, importable as `import armkit.redundancy`.
-for _module in (dynamics, redundancy, singularity):
+for _module in (dynamics, redundancy, singularity, study):
     _sys.modules[f"{__name__}.{_module.__name__}"] = _module
 del _module, _sys
 
@@ -57,4 +58,5 @@ __all__ = [
     "dynamics",
     "redundancy",
     "singularity",
+    "study",
 ]

@@ -18,7 +18,7 @@ import numpy.typing as npt
 __version__: str
 __all__ = [
     "__version__", "Beam", "ContinuousPath", "IkResult", "MpcPlanner", "Robot", "SpaceRobot", "Trajectory",
-    "builtin_robots", "continuous_path", "dynamics", "redundancy", "singularity",
+    "builtin_robots", "continuous_path", "dynamics", "redundancy", "singularity", "study",
 ]
 
 _ArrayLike = npt.ArrayLike
@@ -329,3 +329,4 @@ class SpaceRobot:
 dynamics: ModuleType
 redundancy: ModuleType
 singularity: ModuleType
+study: ModuleType

@@ -76,6 +76,7 @@ mod constraints;
 mod options;
 mod outcome;
 mod planner;
+mod plant;
 pub mod prediction;
 pub mod qp;
 mod reach;
@@ -85,6 +86,7 @@ mod timing;
 pub use options::{MpcOptions, ReachAid, TaskWeights, VelocityWeights};
 pub use outcome::{diagnose_run, RunStatus};
 pub use planner::{MpcPlanner, StepReport, StepStatus};
+pub use plant::{ActuatorPrecision, Plant, PlantModel};
 pub use reach::{GoalPostureOptions, GoalSearch};
 pub use timing::SolveTimes;
 

@@ -44,6 +44,10 @@ use crate::error::{check_positive, Error, Result};
 use crate::math::{Pose, Vector3};
 use crate::model::{JointKind, Model};
 
+mod checks;
+
+pub use checks::ExampleCheck;
+
 /// When a run counts as converged, and how long it may take.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SimulationOptions {
@@ -143,7 +147,7 @@ pub struct RunSummary {
 
 /// A recorded closed-loop run.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Trajectory {
+pub struct MpcRun {
     /// Sample time, s.
     pub sample_time: f64,
     /// Joint names, in order.
@@ -160,7 +164,11 @@ pub struct Trajectory {
     pub summary: RunSummary,
 }
 
-impl Trajectory {
+/// The former name of [`MpcRun`], kept while the CLI's `commands/mpc.rs`
+/// still uses it (distinct from [`crate::trajectory::Trajectory`]).
+pub type Trajectory = MpcRun;
+
+impl MpcRun {
     /// Indices of the prismatic joints.
     pub fn prismatic_joints(&self) -> Vec<usize> {
         (0..self.joint_kinds.len())
@@ -249,7 +257,7 @@ pub fn simulate(
     start: &[f64],
     target: &Pose,
     simulation: &SimulationOptions,
-) -> Result<Trajectory> {
+) -> Result<MpcRun> {
     let planner = MpcPlanner::new(model, options)?;
     simulate_with(planner, start, target, simulation, |_| {})
 }
@@ -263,7 +271,7 @@ pub fn simulate_with(
     target: &Pose,
     simulation: &SimulationOptions,
     mut progress: impl FnMut(usize),
-) -> Result<Trajectory> {
+) -> Result<MpcRun> {
     simulation.validate()?;
     let planner = planner.borrow_mut();
     let model = planner.model().clone();
@@ -367,7 +375,7 @@ pub fn simulate_with(
     summary.final_position_error = position_error;
     summary.final_orientation_error = orientation_error;
     summary.max_velocity_violation = summary.max_velocity_violation.max(0.0);
-    Ok(Trajectory {
+    Ok(MpcRun {
         sample_time: t,
         joint_names: model.joints().iter().map(|j| j.name.clone()).collect(),
         joint_kinds: model.joints().iter().map(|j| j.kind).collect(),
@@ -406,7 +414,7 @@ pub const SEED000_START: [f64; 9] = [
 
 /// The paper's joint priorities `R` (sec 5): rail 100, beam joints 10,
 /// rotary joints 1.
-pub const SEED000_PRIORITIES: [f64; 9] = [100.0, 10.0, 10.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0];
+pub use crate::seeds::SEED000_PRIORITY_WEIGHTS as SEED000_PRIORITIES;
 
 /// Priorities spread far enough apart for Example 2's claim: rail 1e5, beam
 /// joints 1e4, rotary joints 1. With quadratic weights every increment lies
@@ -574,7 +582,7 @@ impl Seed000Example {
     }
 
     /// Runs the example.
-    pub fn run(self) -> Result<Trajectory> {
+    pub fn run(self) -> Result<MpcRun> {
         simulate(
             &Self::model()?,
             self.options(),
@@ -582,138 +590,5 @@ impl Seed000Example {
             &self.target(),
             &self.simulation(),
         )
-    }
-
-    /// The claims the paper's text (or our explanation) makes for this
-    /// example, evaluated on `run`.
-    pub fn checks(self, run: &Trajectory) -> Vec<Check> {
-        let prismatic = run.prismatic_joints();
-        let mut checks = vec![
-            Check::new(
-                "no joint velocity limit crossed",
-                run.summary.max_velocity_violation == 0.0,
-                format!("max violation {:.3e}", run.summary.max_velocity_violation),
-            ),
-            Check::new(
-                "no joint position limit crossed",
-                run.summary.max_position_violation == 0.0,
-                format!("max violation {:.3e}", run.summary.max_position_violation),
-            ),
-        ];
-        let peak_prismatic: Vec<f64> = prismatic.iter().map(|&j| run.peak_speed(j)).collect();
-        let travel_prismatic: Vec<f64> = prismatic.iter().map(|&j| run.travel(j)).collect();
-        let converged = Check::new(
-            "converges: at the target (1e-4 m) and at rest (1e-3)",
-            run.summary.converged,
-            format!(
-                "{} steps ({:.2} s), final error {:.2e} m",
-                run.summary.steps,
-                run.summary.steps as f64 * run.sample_time,
-                run.summary.final_position_error
-            ),
-        );
-        let travel = format!(
-            "travel d1, d2, d3 = {}",
-            format_values(&travel_prismatic, "m")
-        );
-        match self {
-            Seed000Example::LargeMove => {
-                checks.push(converged);
-                let saturated = peak_prismatic.iter().filter(|&&p| p >= 0.6 - 1e-9).count();
-                checks.push(Check::new(
-                    "prismatic velocities reach 0.6 m/s without exceeding it",
-                    saturated > 0 && peak_prismatic.iter().all(|&p| p <= 0.6),
-                    format!(
-                        "peak |v| d1, d2, d3 = {}",
-                        format_values(&peak_prismatic, "m/s")
-                    ),
-                ));
-                let final_speed = run.samples.iter().rev().nth(1).map_or(f64::NAN, |s| {
-                    s.velocity.iter().fold(0.0, |m, v| m.max(v.abs()))
-                });
-                checks.push(Check::new(
-                    "all joint velocities settle to zero",
-                    run.summary.converged && final_speed <= 1e-3,
-                    format!("largest |v| at the last step {final_speed:.2e}"),
-                ));
-            }
-            Seed000Example::SmallMove => {
-                checks.push(converged);
-                checks.push(Check::new(
-                    "prismatic joints travel less than 1 mm",
-                    travel_prismatic.iter().all(|&d| d < 1e-3),
-                    travel,
-                ));
-            }
-            Seed000Example::SmallMovePaperWeights => {
-                checks.push(converged);
-                checks.push(Check::new(
-                    "with R = 100/10/1 the prismatic joints do move (> 1 mm): a 10:1 priority only scales their share",
-                    travel_prismatic.iter().any(|&d| d >= 1e-3),
-                    travel,
-                ));
-            }
-            Seed000Example::EqualWeights => {
-                checks.push(Check::new(
-                    "prismatic joints move (more than 1 mm)",
-                    travel_prismatic.iter().any(|&d| d >= 1e-3),
-                    travel,
-                ));
-                checks.push(converged);
-            }
-            Seed000Example::EqualWeightsUndamped => {
-                let reached = run.samples.iter().any(|s| s.position_error <= 1e-4);
-                checks.push(Check::new(
-                    "the hand reaches the target (1e-4 m)",
-                    reached,
-                    format!("final error {:.2e} m", run.summary.final_position_error),
-                ));
-                let last_speed = run.samples.iter().rev().nth(1).map_or(f64::NAN, |s| {
-                    s.velocity.iter().fold(0.0, |m, v| m.max(v.abs()))
-                });
-                checks.push(Check::new(
-                    "but the joints never settle: self-motion is undamped without a velocity term",
-                    !run.summary.converged && last_speed > 1e-3,
-                    format!(
-                        "after {} steps largest |v| = {last_speed:.3}; rotary travel {}",
-                        run.summary.steps,
-                        format_values(
-                            &run.rotary_joints()
-                                .iter()
-                                .map(|&j| run.travel(j))
-                                .collect::<Vec<_>>(),
-                            "rad"
-                        )
-                    ),
-                ));
-            }
-        }
-        checks
-    }
-}
-
-fn format_values(values: &[f64], unit: &str) -> String {
-    let parts: Vec<String> = values.iter().map(|v| format!("{v:.4}")).collect();
-    format!("[{}] {unit}", parts.join(", "))
-}
-
-/// One check of an example: what is claimed, whether it holds, the numbers.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Check {
-    /// The claim.
-    pub name: String,
-    /// Whether it holds.
-    pub passed: bool,
-    /// The measured values.
-    pub detail: String,
-}
-
-impl Check {
-    fn new(name: &str, passed: bool, detail: String) -> Self {
-        Check {
-            name: name.to_string(),
-            passed,
-            detail,
-        }
     }
 }

@@ -39,7 +39,7 @@
 //! let model = armkit::robots::by_name("gantry9").unwrap();
 //! let mut data = Data::new(&model);
 //! let q = [3.0, 2.5, 1.0, 0.3, 0.4, -0.5, 0.2, 0.8, 0.1];
-//! // Hold a 50 N payload, with the links' own weight (g = 9.81 m/s^2 along -z).
+//! // Hold a 50 N payload, with the links' own weight (seed 001's g = 9.81 m/s^2 along -z).
 //! let load = Load::payload(50.0).with_standard_gravity();
 //! let mut tau = [0.0; 9];
 //! joint_torques(&model, &mut data, &q, &load, &mut tau).unwrap();
@@ -55,8 +55,7 @@ use crate::kinematics::{jacobian, Data, JacobianFrame};
 use crate::math::{Vector3, Vector6};
 use crate::model::Model;
 
-/// Standard gravity, m/s^2, acting along the world's -z axis.
-pub const STANDARD_GRAVITY: f64 = 9.81;
+pub use crate::seeds::STANDARD_GRAVITY;
 
 /// What the robot holds: an end-effector wrench and, optionally, gravity on
 /// its own links.
@@ -104,9 +103,17 @@ impl Load {
         self
     }
 
-    /// This load with standard gravity, `9.81 m/s^2` along world -z.
+    /// This load with seed 001's gravity ([`crate::seeds::SEED001_GRAVITY`],
+    /// 9.81 m/s^2) along world -z. For the exact conventional value use
+    /// [`Load::with_gravity`] with [`STANDARD_GRAVITY`] (9.80665 m/s^2).
     pub fn with_standard_gravity(self) -> Self {
-        self.with_gravity(Vector3::new(0.0, 0.0, -STANDARD_GRAVITY))
+        self.with_seed001_gravity()
+    }
+
+    /// This load with seed 001's gravity ([`crate::seeds::SEED001_GRAVITY`])
+    /// along world -z.
+    pub fn with_seed001_gravity(self) -> Self {
+        self.with_gravity(Vector3::new(0.0, 0.0, -crate::seeds::SEED001_GRAVITY))
     }
 
     /// Checks that every number is finite.
@@ -136,8 +143,22 @@ pub fn joint_torques(
 ) -> Result<()> {
     load.validate()?;
     check_torque_buffer(model, torques)?;
-    let j = jacobian(model, data, q, JacobianFrame::World)?;
-    for (tau, column) in torques.iter_mut().zip(j.column_iter()) {
+    jacobian(model, data, q, JacobianFrame::World)?;
+    torques_at_evaluated(model, data, q, load, torques)
+}
+
+/// [`joint_torques`] from a `data` that already holds the forward kinematics
+/// and the world-frame Jacobian at `q` (a tracking plant's evaluation):
+/// the same arithmetic without evaluating the model again. The load is
+/// assumed validated and the buffer sized.
+pub(crate) fn torques_at_evaluated(
+    model: &Model,
+    data: &Data,
+    q: &[f64],
+    load: &Load,
+    torques: &mut [f64],
+) -> Result<()> {
+    for (tau, column) in torques.iter_mut().zip(data.jacobian().column_iter()) {
         *tau = column.dot(&load.wrench);
     }
     if let Some(gravity) = load.gravity {

@@ -26,9 +26,10 @@
 //! * Secondary objectives in the null space, in the same weighted metric
 //!   ([`nullspace`]): Liegeois' gradient projection for joint-limit avoidance
 //!   and for manipulability.
-//! * A resolved-rate tracking loop ([`tracking`]) that follows a Cartesian
-//!   path with position feedback, scaling joint velocities to their limits and
-//!   never crossing a joint position limit.
+//! * A resolved-rate tracker ([`ResolvedRateTracker`]): this module's rate
+//!   law in the one tracking loop ([`crate::tracking`]), following a timed
+//!   Cartesian path with position feedback, scaling joint velocities to
+//!   their limits and never crossing a joint position limit.
 //!
 //! ```
 //! use armkit::kinematics::{jacobian, Data, JacobianFrame};
@@ -43,7 +44,7 @@
 //! let weights = JointWeights::new(&[100.0, 10.0, 10.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0]).unwrap();
 //! let mut solver = WeightedLeastNorm::new(9, SolverOptions::default()).unwrap();
 //! let twist = Vector6::new(0.1, 0.0, -0.05, 0.0, 0.0, 0.0); // m/s, rad/s
-//! let q_dot = solver.solve(&j, &weights, &twist).unwrap();
+//! let q_dot = solver.solve(&j, &weights, &twist).unwrap().solved().unwrap();
 //! let achieved = &j * armkit::math::DVector::from_column_slice(q_dot);
 //! assert!((achieved - twist).norm() < 1e-10);
 //! ```
@@ -51,7 +52,7 @@
 pub mod energy;
 pub mod nullspace;
 mod partition;
-pub mod tracking;
+mod tracking;
 mod weighted;
 
 pub use energy::{
@@ -60,20 +61,15 @@ pub use energy::{
 pub use nullspace::SecondaryObjective;
 pub use partition::{best_partition, Partition, PartitionChoice, PartitionedSolver};
 pub use tracking::{
-    compare_distributions, CartesianPath, ComparisonCase, ComparisonResult, Distribution,
-    Formulation, LinePath, MotionSummary, ResolvedRateTracker, TrackingOptions, TrackingReport,
-    TrackingSample, TrackingStatus,
+    compare_distributions, ComparisonCase, ComparisonResult, Distribution, DistributionOptions,
+    Formulation, MotionSummary, ResolvedRateTracker,
 };
 pub use weighted::WeightedLeastNorm;
 
 use crate::error::{check_finite, check_finite_vector, Error, Result};
-use crate::math::{Matrix6, Matrix6xX};
+use crate::math::Matrix6xX;
 
-/// Seed 000's joint priorities for the 9-DOF gantry (sec 4.4, example 1):
-/// weight 100 on the rail joint `d1` (lowest priority: long, heavy, imprecise),
-/// 10 on the beam joints `d2`, `d3`, and 1 on the six arm joints (highest
-/// priority). Dimensionless; joint order of [`crate::robots::gantry9`].
-pub const SEED000_PRIORITY_WEIGHTS: [f64; 9] = [100.0, 10.0, 10.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0];
+pub use crate::seeds::SEED000_PRIORITY_WEIGHTS;
 
 /// Positive per-joint weights `a_i` of the velocity cost `sum a_i q_dot_i^2`
 /// (seed 001, eq 18), or a locked joint.
@@ -288,10 +284,11 @@ impl Damping {
 pub struct SolverOptions {
     /// Damping near singularities. Default: [`Damping::None`].
     pub damping: Damping,
-    /// An undamped solve fails with [`Error::Numerical`] when the smallest
-    /// pivot of the Cholesky factor of `J A^-1 J'`, squared, is below this
-    /// fraction of its largest diagonal entry (about the reciprocal of its
-    /// condition number). Default `1e-12`; in `(0, 1)`.
+    /// A solve is [`crate::linalg::Solve::Singular`] when the smallest
+    /// pivot of the Cholesky factor of `J A^-1 J' (+ lambda^2 I)`, squared,
+    /// is below this fraction of its largest diagonal entry (about the
+    /// reciprocal of its condition number; see [`crate::linalg::factor_gram`]).
+    /// Default [`crate::linalg::WEIGHTED_GRAM_THRESHOLD`] (1e-12); in `(0, 1)`.
     pub singular_threshold: f64,
 }
 
@@ -299,7 +296,7 @@ impl Default for SolverOptions {
     fn default() -> Self {
         SolverOptions {
             damping: Damping::None,
-            singular_threshold: 1e-12,
+            singular_threshold: crate::linalg::WEIGHTED_GRAM_THRESHOLD,
         }
     }
 }
@@ -328,23 +325,4 @@ fn check_jacobian(jacobian: &Matrix6xX<f64>, dof: usize) -> Result<()> {
         });
     }
     check_finite("jacobian", jacobian.as_slice())
-}
-
-/// `J A^-1 J' = sum_i (1 / a_i) J_i J_i'` (6 x 6, symmetric), from the
-/// columns `J_i`; locked joints (inverse weight 0) drop out. Allocates
-/// nothing. Only the lower triangle is accumulated (21 of 36 products per
-/// column), then mirrored.
-fn weighted_gram(jacobian: &Matrix6xX<f64>, inverse_weights: &[f64]) -> Matrix6<f64> {
-    let mut lower = [[0.0_f64; 6]; 6];
-    for (column, &inv) in jacobian.column_iter().zip(inverse_weights) {
-        if inv != 0.0 {
-            for r in 0..6 {
-                let scaled = inv * column[r];
-                for (c, entry) in lower[r].iter_mut().enumerate().take(r + 1) {
-                    *entry += scaled * column[c];
-                }
-            }
-        }
-    }
-    Matrix6::from_fn(|r, c| if c <= r { lower[r][c] } else { lower[c][r] })
 }

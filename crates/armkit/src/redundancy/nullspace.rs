@@ -32,7 +32,7 @@
 //!     // Hold the end effector still (V = 0) and move in the null space.
 //!     task.preferred_velocity(&model, &q, &weights, &mut z).unwrap();
 //!     let j = jacobian(&model, &mut data, &q, JacobianFrame::World).unwrap();
-//!     let q_dot = solver.solve_toward(j, &weights, &Vector6::zeros(), &z).unwrap();
+//!     let q_dot = solver.solve_toward(j, &weights, &Vector6::zeros(), &z).unwrap().solved().unwrap();
 //!     for (qi, vi) in q.iter_mut().zip(q_dot) { *qi += 0.01 * vi; }
 //! }
 //! assert!(joint_limit_cost(&model, &q).unwrap() < before);
@@ -41,7 +41,6 @@
 use super::JointWeights;
 use crate::error::{check_finite_vector, Error, Result};
 use crate::kinematics::{jacobian, Data, JacobianFrame};
-use crate::math::{Matrix6, Matrix6xX};
 use crate::model::Model;
 
 /// A secondary objective pursued in the null space of the Jacobian.
@@ -120,15 +119,8 @@ pub fn joint_limit_gradient(model: &Model, q: &[f64], gradient: &mut [f64]) -> R
     Ok(())
 }
 
-/// Yoshikawa's manipulability `sqrt(det(J J'))` of a 6 x n Jacobian (units
-/// mix those of its rows); 0 at a singularity. Allocates nothing.
-pub fn manipulability(jacobian: &Matrix6xX<f64>) -> f64 {
-    let mut gram = Matrix6::zeros();
-    for column in jacobian.column_iter() {
-        gram.ger(1.0, &column, &column, 1.0);
-    }
-    gram.determinant().max(0.0).sqrt()
-}
+/// Yoshikawa's manipulability of a 6 x n Jacobian (the one kernel, [`crate::linalg::manipulability`]).
+pub use crate::linalg::manipulability;
 
 fn check_output(what: &'static str, buffer: &[f64], dof: usize) -> Result<()> {
     if buffer.len() != dof {

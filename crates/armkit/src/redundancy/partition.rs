@@ -17,6 +17,7 @@
 
 use super::{check_jacobian, JointWeights};
 use crate::error::{check_finite, check_finite_vector, Error, Result};
+use crate::linalg::{cholesky_solve_in_place, Solve};
 use crate::math::{DMatrix, DVector, Matrix6, Matrix6xX, Vector6};
 
 /// A split of a robot's joints into six generalized joints (seed 001's `q`)
@@ -417,16 +418,20 @@ impl PartitionedSolver {
                 };
             }
         }
-        cholesky_solve_in_place(&mut self.system, &mut self.extra_velocities, k).map_err(
-            |ratio| Error::Numerical {
+        if let Solve::Singular {
+            smallest_singular_value,
+        } = cholesky_solve_in_place(&mut self.system, &mut self.extra_velocities, k)
+        {
+            return Err(Error::Numerical {
                 context: "seed 001 eq 19".into(),
                 reason: format!(
-                    "A_p + G0p' A_Q G0p is singular (pivot ratio {ratio:.1e}): some motion \
+                    "A_p + G0p' A_Q G0p is singular (smallest pivot {:.1e}): some motion \
                      of zero-weight joints leaves the end effector still, so the cost \
-                     cannot choose among the solutions (give those joints a weight > 0)"
+                     cannot choose among the solutions (give those joints a weight > 0)",
+                    smallest_singular_value * smallest_singular_value
                 ),
-            },
-        )?;
+            });
+        }
         // Eq 8: q_dot = G0 V - G0p phi_dot.
         let mut generalized_velocities = base;
         for c in 0..k {
@@ -449,59 +454,6 @@ fn one_norm(m: &Matrix6<f64>) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// Solves `M x = b` in place for a symmetric positive definite `M` (the
-/// leading `n x n` block), by Cholesky: `M` is overwritten by its factor,
-/// `b` by `x`. Fails with the pivot ratio `min L_ii^2 / max M_ii` when it is
-/// below `1e-14` (numerically singular). Allocates nothing.
-fn cholesky_solve_in_place(
-    m: &mut DMatrix<f64>,
-    b: &mut DVector<f64>,
-    n: usize,
-) -> std::result::Result<(), f64> {
-    let largest = (0..n).map(|i| m[(i, i)]).fold(0.0, f64::max);
-    if n == 0 {
-        return Ok(());
-    }
-    if largest.is_nan() || largest <= 0.0 {
-        return Err(0.0);
-    }
-    let tolerance = 1e-14 * largest;
-    for j in 0..n {
-        let mut diagonal = m[(j, j)];
-        for p in 0..j {
-            diagonal -= m[(j, p)] * m[(j, p)];
-        }
-        if diagonal.is_nan() || diagonal <= tolerance {
-            return Err(diagonal.max(0.0) / largest);
-        }
-        let pivot = diagonal.sqrt();
-        m[(j, j)] = pivot;
-        for i in j + 1..n {
-            let mut value = m[(i, j)];
-            for p in 0..j {
-                value -= m[(i, p)] * m[(j, p)];
-            }
-            m[(i, j)] = value / pivot;
-        }
-    }
-    // Forward substitution L y = b, then back substitution L' x = y.
-    for i in 0..n {
-        let mut value = b[i];
-        for p in 0..i {
-            value -= m[(i, p)] * b[p];
-        }
-        b[i] = value / m[(i, i)];
-    }
-    for i in (0..n).rev() {
-        let mut value = b[i];
-        for p in i + 1..n {
-            value -= m[(p, i)] * b[p];
-        }
-        b[i] = value / m[(i, i)];
-    }
-    Ok(())
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -517,19 +469,6 @@ mod tests {
         assert_eq!(count, 84);
         let mut picks = [0, 1, 2, 3, 4, 5];
         assert!(!next_combination(&mut picks, 6));
-    }
-
-    #[test]
-    fn in_place_cholesky_solves_and_detects_singularity() {
-        let mut m = DMatrix::from_row_slice(3, 3, &[4.0, 2.0, 0.6, 2.0, 5.0, 1.0, 0.6, 1.0, 3.0]);
-        let original = m.clone();
-        let x = DVector::from_vec(vec![1.0, -2.0, 0.5]);
-        let mut b = &original * &x;
-        cholesky_solve_in_place(&mut m, &mut b, 3).unwrap();
-        assert!((b - x).norm() < 1e-14);
-        let mut singular = DMatrix::from_row_slice(2, 2, &[1.0, 1.0, 1.0, 1.0]);
-        let mut b = DVector::from_vec(vec![1.0, 1.0]);
-        assert!(cholesky_solve_in_place(&mut singular, &mut b, 2).is_err());
     }
 
     #[test]

@@ -1,9 +1,10 @@
 //! The weighted least-norm solution `q_dot = A^-1 J' (J A^-1 J')^-1 V` and its
 //! damped form, with workspaces sized once.
 
-use super::{check_jacobian, weighted_gram, Damping, JointWeights, SolverOptions};
+use super::{check_jacobian, Damping, JointWeights, SolverOptions};
 use crate::error::{check_finite, check_finite_vector, Error, Result};
-use crate::math::{DMatrix, DVector, Matrix6, Matrix6xX, Vector6};
+use crate::linalg::{factor_gram, weighted_gram, Solve};
+use crate::math::{DMatrix, DVector, Matrix6xX, Vector6};
 
 /// Weighted least-norm redundancy resolution for a fixed number of joints.
 ///
@@ -27,7 +28,7 @@ use crate::math::{DMatrix, DVector, Matrix6, Matrix6xX, Vector6};
 /// let j = Matrix6xX::from_fn(7, |r, c| if r == c { 1.0 } else if (r, c) == (0, 6) { 0.5 } else { 0.0 });
 /// let twist = Vector6::new(1.0, 0.0, 0.0, 0.0, 0.0, 0.0);
 /// let mut solver = WeightedLeastNorm::new(7, SolverOptions::default()).unwrap();
-/// let q_dot = solver.solve(&j, &JointWeights::uniform(7), &twist).unwrap().to_vec();
+/// let q_dot = solver.solve(&j, &JointWeights::uniform(7), &twist).unwrap().solved().unwrap().to_vec();
 /// // Joints 0 and 6 share the x motion: 1 = q0 + 0.5 q6, least norm.
 /// assert!((q_dot[0] + 0.5 * q_dot[6] - 1.0).abs() < 1e-12);
 /// assert!((q_dot[6] - 0.5 * q_dot[0]).abs() < 1e-12); // (q0, q6) parallel to (1, 0.5)
@@ -80,17 +81,18 @@ impl WeightedLeastNorm {
 
     /// Joint velocities (rad/s or m/s) meeting `J q_dot = V` with the least
     /// weighted cost: `q_dot = A^-1 J' (J A^-1 J')^-1 V` (damped if the
-    /// options say so). Allocates nothing.
+    /// options say so), or [`Solve::Singular`] when `J A^-1 J'` is
+    /// numerically singular (the unlocked joints' Jacobian has rank < 6; see
+    /// [`SolverOptions::singular_threshold`]). Allocates nothing.
     ///
-    /// Errors: sizes (`jacobian` 6 x dof, `weights` for dof joints), NaN or
-    /// infinite entries, and, undamped, a singular `J A^-1 J'`
-    /// ([`Error::Numerical`]: the unlocked joints' Jacobian has rank < 6).
+    /// Errors (bad input only): sizes (`jacobian` 6 x dof, `weights` for dof
+    /// joints), NaN or infinite entries.
     pub fn solve(
         &mut self,
         jacobian: &Matrix6xX<f64>,
         weights: &JointWeights,
         twist: &Vector6<f64>,
-    ) -> Result<&[f64]> {
+    ) -> Result<Solve<&[f64]>> {
         self.solve_internal(jacobian, weights, twist, None)
     }
 
@@ -108,7 +110,7 @@ impl WeightedLeastNorm {
         weights: &JointWeights,
         twist: &Vector6<f64>,
         preferred: &[f64],
-    ) -> Result<&[f64]> {
+    ) -> Result<Solve<&[f64]>> {
         check_finite_vector("preferred", preferred, self.dof)?;
         self.solve_internal(jacobian, weights, twist, Some(preferred))
     }
@@ -116,15 +118,24 @@ impl WeightedLeastNorm {
     /// The weighted null-space projector `N = I - A^-1 J' (J A^-1 J')^-1 J`
     /// (n x n, damped if the options say so): `J N = 0` when undamped, and
     /// `N z` is the motion nearest `z` (in the metric `A`) that does not move
-    /// the end effector. Allocates nothing. Errors: as
-    /// [`WeightedLeastNorm::solve`].
+    /// the end effector. Allocates nothing. Errors and the singular outcome:
+    /// as [`WeightedLeastNorm::solve`].
     pub fn null_space_projector(
         &mut self,
         jacobian: &Matrix6xX<f64>,
         weights: &JointWeights,
-    ) -> Result<&DMatrix<f64>> {
+    ) -> Result<Solve<&DMatrix<f64>>> {
         self.check_inputs(jacobian, weights)?;
-        let cholesky = self.factor(jacobian, weights)?;
+        let cholesky = match self.factor(jacobian, weights) {
+            Solve::Solved(cholesky) => cholesky,
+            Solve::Singular {
+                smallest_singular_value,
+            } => {
+                return Ok(Solve::Singular {
+                    smallest_singular_value,
+                })
+            }
+        };
         for (c, column) in jacobian.column_iter().enumerate() {
             let solved = cholesky.solve(&column.into_owned());
             self.solved_columns.set_column(c, &solved);
@@ -137,7 +148,7 @@ impl WeightedLeastNorm {
                     identity - row_factor * jr.dot(&self.solved_columns.column(c));
             }
         }
-        Ok(&self.projector)
+        Ok(Solve::Solved(&self.projector))
     }
 
     fn check_inputs(&self, jacobian: &Matrix6xX<f64>, weights: &JointWeights) -> Result<()> {
@@ -152,10 +163,19 @@ impl WeightedLeastNorm {
         weights: &JointWeights,
         twist: &Vector6<f64>,
         preferred: Option<&[f64]>,
-    ) -> Result<&[f64]> {
+    ) -> Result<Solve<&[f64]>> {
         self.check_inputs(jacobian, weights)?;
         check_finite("twist", twist.as_slice())?;
-        let cholesky = self.factor(jacobian, weights)?;
+        let cholesky = match self.factor(jacobian, weights) {
+            Solve::Solved(cholesky) => cholesky,
+            Solve::Singular {
+                smallest_singular_value,
+            } => {
+                return Ok(Solve::Singular {
+                    smallest_singular_value,
+                })
+            }
+        };
         let residual = match preferred {
             Some(z) => {
                 self.velocities.copy_from_slice(z);
@@ -175,15 +195,16 @@ impl WeightedLeastNorm {
         {
             *velocity += inv * column.dot(&multipliers);
         }
-        Ok(self.velocities.as_slice())
+        Ok(Solve::Solved(self.velocities.as_slice()))
     }
 
-    /// Cholesky factor of `J A^-1 J' + lambda^2 I`, setting `self.damping`.
+    /// Cholesky factor of `J A^-1 J' + lambda^2 I` ([`factor_gram`] with the
+    /// options' threshold), setting `self.damping`.
     fn factor(
         &mut self,
         jacobian: &Matrix6xX<f64>,
         weights: &JointWeights,
-    ) -> Result<nalgebra::Cholesky<f64, nalgebra::U6>> {
+    ) -> Solve<nalgebra::Cholesky<f64, nalgebra::U6>> {
         let mut gram = weighted_gram(jacobian, weights.inverse());
         self.damping = match self.options.damping {
             Damping::None => 0.0,
@@ -204,21 +225,6 @@ impl WeightedLeastNorm {
         for i in 0..6 {
             gram[(i, i)] += lambda_squared;
         }
-        let largest_diagonal = gram.diagonal().max();
-        let singular = || Error::Numerical {
-            context: "weighted least-norm solve".into(),
-            reason: "J A^-1 J' is singular: the Jacobian of the unlocked joints has rank < 6 \
-                     at this configuration (use damping, or unlock joints)"
-                .into(),
-        };
-        if largest_diagonal.is_nan() || largest_diagonal <= 0.0 {
-            return Err(singular());
-        }
-        let cholesky = Matrix6::cholesky(gram).ok_or_else(singular)?;
-        let smallest_pivot = cholesky.l_dirty().diagonal().min();
-        if smallest_pivot * smallest_pivot < self.options.singular_threshold * largest_diagonal {
-            return Err(singular());
-        }
-        Ok(cholesky)
+        factor_gram(&gram, self.options.singular_threshold)
     }
 }

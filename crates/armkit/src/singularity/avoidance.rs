@@ -1,7 +1,8 @@
 //! Velocity-level tracking of a straight-line pose path, with seed 004's
 //! singularity avoidance and the damped baselines.
 
-use super::detection::{below_threshold, detect, jacobian_determinant, DetectionOptions, Trigger};
+use super::detection::{below_threshold, jacobian_determinant, DetectionOptions, Trigger};
+use super::method_law::MethodLaw;
 use super::plant::{KnotSolve, Plant};
 use super::Manipulator;
 use crate::error::{check_finite_vector, check_positive, Error, Result};
@@ -10,6 +11,7 @@ use crate::ik::{
     NakamuraDamping,
 };
 use crate::math::{DMatrix, Pose, Vector6};
+use crate::tracking::{track, TrackingOptions, TrackingStatus};
 use crate::trajectory::cartesian::{CartesianTrajectory, LinePath, TimeLaw};
 use crate::trajectory::spline::clamped_cubic_spline;
 use crate::trajectory::JointState;
@@ -81,13 +83,15 @@ pub struct LineTask {
     pub acceleration_time: f64,
 }
 
-/// Options of a tracking run. Defaults: `dt` 0.01 s, the detection defaults
-/// ([`DetectionOptions`]), IK tolerance 1e-8 (m and rad), 50 IK iterations.
+/// Options of a [`PathTracker`]. Defaults: the tracking defaults (`dt`
+/// 0.01 s, [`crate::tracking::Feedback::NextPose`]: seed 004's
+/// `e(t + h) / h`), the detection defaults ([`DetectionOptions`]), IK
+/// tolerance 1e-8 (m and rad), 50 IK iterations.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TrackingOptions {
-    /// Control period, s (> 0); the duration is split into
+pub struct AvoidanceOptions {
+    /// Control period and feedback; the duration is split into
     /// `ceil(duration / dt)` equal steps.
-    pub dt: f64,
+    pub tracking: TrackingOptions,
     /// The singular-region tests.
     pub detection: DetectionOptions,
     /// `eps_T`: position (m) and orientation (rad) tolerance of the
@@ -98,10 +102,10 @@ pub struct TrackingOptions {
     pub ik_max_iterations: usize,
 }
 
-impl Default for TrackingOptions {
+impl Default for AvoidanceOptions {
     fn default() -> Self {
-        TrackingOptions {
-            dt: 0.01,
+        AvoidanceOptions {
+            tracking: TrackingOptions::default(),
             detection: DetectionOptions::default(),
             ik_tolerance: 1e-8,
             ik_max_iterations: 50,
@@ -109,10 +113,10 @@ impl Default for TrackingOptions {
     }
 }
 
-impl TrackingOptions {
+impl AvoidanceOptions {
     /// Checks every field; the error names it.
     pub fn validate(&self) -> Result<()> {
-        check_positive("dt", self.dt)?;
+        self.tracking.validate()?;
         self.detection.validate()?;
         check_positive("ik_tolerance", self.ik_tolerance)?;
         if self.ik_max_iterations == 0 {
@@ -120,19 +124,6 @@ impl TrackingOptions {
         }
         Ok(())
     }
-}
-
-/// How a run ended.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum RunStatus {
-    /// The whole path was tracked.
-    Completed,
-    /// The plain inverse met an exactly singular Jacobian at `time` (s); the
-    /// run stopped there.
-    Singular {
-        /// Time of the step that could not be solved, s.
-        time: f64,
-    },
 }
 
 /// One singular region crossed by the avoidance method.
@@ -161,9 +152,9 @@ pub struct SingularRegion {
     pub max_knot_error: (f64, f64),
 }
 
-/// Summary figures of a run.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct RunSummary {
+/// Summary figures of a [`MethodRun`].
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct MethodSummary {
     /// Largest `|q_dot_j|` over joints and samples, rad/s or m/s.
     pub peak_joint_rate: f64,
     /// Largest position error from the planned pose, m.
@@ -194,7 +185,7 @@ pub struct MethodRun {
     /// The method.
     pub method: Method,
     /// Completed, or where it stopped.
-    pub status: RunStatus,
+    pub status: TrackingStatus,
     /// Sample times, s.
     pub time: Vec<f64>,
     /// `joint_positions[j][i]`: joint j at sample i, rad or m.
@@ -215,7 +206,7 @@ pub struct MethodRun {
     /// The singular regions (avoidance only).
     pub regions: Vec<SingularRegion>,
     /// Peak rate, errors, time in the singular region.
-    pub summary: RunSummary,
+    pub summary: MethodSummary,
 }
 
 /// A path to track, checked and planned once; [`PathTracker::run`] then
@@ -223,7 +214,7 @@ pub struct MethodRun {
 pub struct PathTracker<'m> {
     manipulator: Manipulator<'m>,
     task: LineTask,
-    options: TrackingOptions,
+    pub(super) options: AvoidanceOptions,
     trajectory: CartesianTrajectory,
     steps: usize,
     h: f64,
@@ -256,7 +247,7 @@ impl<'m> PathTracker<'m> {
     pub fn new(
         manipulator: Manipulator<'m>,
         task: LineTask,
-        options: TrackingOptions,
+        options: AvoidanceOptions,
     ) -> Result<PathTracker<'m>> {
         options.validate()?;
         let n = manipulator.dof();
@@ -274,10 +265,9 @@ impl<'m> PathTracker<'m> {
         )?;
         plant.evaluate_state()?;
         let line = LinePath::new(*plant.pose(), task.goal)
-            .map_err(|e| rename_argument(e, "end", "goal"))?;
+            .map_err(|e| crate::trajectory::rename_argument(e, "end", "goal"))?;
         let trajectory = CartesianTrajectory::new(line, timing)?;
-        let steps = ((task.duration / options.dt) - 1e-9).ceil().max(1.0) as usize;
-        let h = task.duration / steps as f64;
+        let (steps, h) = options.tracking.periods(task.duration);
         let tracker = PathTracker {
             manipulator,
             task,
@@ -301,7 +291,7 @@ impl<'m> PathTracker<'m> {
     }
 
     /// The options.
-    pub fn options(&self) -> &TrackingOptions {
+    pub fn options(&self) -> &AvoidanceOptions {
         &self.options
     }
 
@@ -353,7 +343,7 @@ impl<'m> PathTracker<'m> {
     ///
     /// Errors: bad method parameters, and numerical failures of the model
     /// evaluation. An exactly singular Jacobian under the plain method is a
-    /// status ([`RunStatus::Singular`]).
+    /// status ([`TrackingStatus::Singular`]).
     pub fn run(&self, method: &Method) -> Result<MethodRun> {
         method.validate()?;
         let n = self.manipulator.dof();
@@ -366,7 +356,7 @@ impl<'m> PathTracker<'m> {
         let capacity = self.steps + 1;
         let mut run = MethodRun {
             method: *method,
-            status: RunStatus::Completed,
+            status: TrackingStatus::Completed,
             time: Vec::with_capacity(capacity),
             // One buffer per joint, each sized once (`vec![v; n]` would
             // clone empty buffers and regrow them every run).
@@ -378,90 +368,27 @@ impl<'m> PathTracker<'m> {
             in_region: Vec::with_capacity(capacity),
             base_position: Vec::with_capacity(capacity),
             regions: Vec::new(),
-            summary: RunSummary {
-                peak_joint_rate: 0.0,
-                max_position_error: 0.0,
-                max_orientation_error: 0.0,
-                final_position_error: 0.0,
-                final_orientation_error: 0.0,
-                time_in_singular_region: 0.0,
-                mean_region_position_error: 0.0,
-                mean_region_orientation_error: 0.0,
-                ik_solves: 0,
-            },
+            summary: MethodSummary::default(),
         };
-        let h = self.h;
+        let mut law = MethodLaw {
+            tracker: self,
+            method: *method,
+            active: None,
+            previous_rates: vec![0.0; n],
+            candidate: vec![0.0; n],
+            fit_state: JointState::zeros(n),
+            regions: Vec::new(),
+        };
         let mut rates = vec![0.0; n];
-        let mut previous_rates = vec![0.0; n];
-        let mut candidate = vec![0.0; n];
-        let mut fit_state = JointState::zeros(n);
-        // The active region: its fit and the sample index where it ends.
-        let mut active: Option<(crate::trajectory::Trajectory, usize)> = None;
-        for i in 0..=self.steps {
-            let t = i as f64 * h;
-            plant.evaluate_state()?;
-            let pose = *plant.pose();
-            let error = pose_error(&self.trajectory.pose_at(t), &pose);
-            let determinant = jacobian_determinant(plant.jacobian());
-            run.time.push(t);
-            for (series, q) in run.joint_positions.iter_mut().zip(plant.q()) {
-                series.push(*q);
-            }
-            run.position_error.push(error.fixed_rows::<3>(0).norm());
-            run.orientation_error.push(error.fixed_rows::<3>(3).norm());
-            run.determinant.push(determinant);
-            let base = plant.base_pose().translation;
-            run.base_position.push([base.x, base.y, base.z]);
-            if i == self.steps {
-                rates.fill(0.0);
-                push_rates(&mut run, &rates, false);
-                break;
-            }
-            if active.as_ref().is_some_and(|(_, end)| i >= *end) {
-                active = None;
-            }
-            if active.is_none() {
-                let twist = pose_error(&self.trajectory.pose_at(t + h), &pose) / h;
-                let solved = self.rates(method, &plant, &twist, &mut rates);
-                match method {
-                    Method::Avoidance { k } => {
-                        for (c, r) in candidate.iter_mut().zip(&rates) {
-                            *c = if solved { r * h } else { f64::INFINITY };
-                        }
-                        let detection =
-                            detect(plant.jacobian(), &candidate, &self.options.detection)?;
-                        if let Some(trigger) = detection.trigger {
-                            let (fit, end, region) =
-                                self.plan_region(&mut plant, i, *k, trigger, &previous_rates)?;
-                            run.regions.push(region);
-                            active = Some((fit, end));
-                        } else if !solved {
-                            run.status = RunStatus::Singular { time: t };
-                        }
-                    }
-                    _ if !solved => run.status = RunStatus::Singular { time: t },
-                    _ => {}
-                }
-                if run.status != RunStatus::Completed {
-                    rates.fill(0.0);
-                    push_rates(&mut run, &rates, false);
-                    break;
-                }
-            }
-            let in_region = if let Some((fit, _)) = &active {
-                fit.sample_into(t + h, &mut fit_state)?;
-                for ((rate, target), q) in rates.iter_mut().zip(&fit_state.position).zip(plant.q())
-                {
-                    *rate = (target - q) / h;
-                }
-                true
-            } else {
-                false
-            };
-            push_rates(&mut run, &rates, in_region);
-            plant.advance(&rates, h)?;
-            previous_rates.copy_from_slice(&rates);
-        }
+        run.status = track(
+            &mut plant,
+            &mut law,
+            &self.trajectory,
+            &self.options.tracking,
+            &mut run,
+            &mut rates,
+        )?;
+        run.regions = law.regions;
         run.summary = self.summarize(&run);
         Ok(run)
     }
@@ -469,7 +396,7 @@ impl<'m> PathTracker<'m> {
     /// The method's joint rates for `twist` at the plant's last evaluation
     /// (the avoidance method's candidate is the plain inverse); false when
     /// the plain inverse meets an exactly singular Jacobian.
-    fn rates(
+    pub(super) fn rates(
         &self,
         method: &Method,
         plant: &Plant<'_>,
@@ -493,7 +420,7 @@ impl<'m> PathTracker<'m> {
 
     /// Plans the singular region entered at sample `entry` (seed 004, sec
     /// 2.3.2, steps 2-4): the knots, their IK, and the C2 fit.
-    fn plan_region(
+    pub(super) fn plan_region(
         &self,
         plant: &mut Plant<'_>,
         entry: usize,
@@ -650,7 +577,7 @@ impl<'m> PathTracker<'m> {
         Ok(())
     }
 
-    fn summarize(&self, run: &MethodRun) -> RunSummary {
+    fn summarize(&self, run: &MethodRun) -> MethodSummary {
         let peak_joint_rate = run
             .joint_rates
             .iter()
@@ -669,7 +596,7 @@ impl<'m> PathTracker<'m> {
             }
         }
         let mean = |sum: f64| if count == 0 { 0.0 } else { sum / count as f64 };
-        RunSummary {
+        MethodSummary {
             peak_joint_rate,
             max_position_error: max(&run.position_error),
             max_orientation_error: max(&run.orientation_error),
@@ -680,196 +607,5 @@ impl<'m> PathTracker<'m> {
             mean_region_orientation_error: mean(orientation_sum),
             ik_solves: run.regions.iter().map(|r| r.ik_solves).sum(),
         }
-    }
-
-    /// Runs plain tracking, the avoidance method with `k` = `ks[0]`, the
-    /// two baselines, and the avoidance method for every `k` of `ks` (the
-    /// error against `k`, seed 004 Figs 7-8), all from the same start.
-    ///
-    /// Errors: an empty `ks`, a `k` of 0, bad baseline parameters, and the
-    /// errors of [`PathTracker::run`].
-    pub fn compare(&self, baselines: &Baselines, ks: &[usize]) -> Result<Comparison> {
-        let Some(&first) = ks.first() else {
-            return Err(Error::invalid_argument(
-                "ks",
-                "give at least one knot stride k",
-            ));
-        };
-        for &k in ks {
-            Method::Avoidance { k }.validate()?;
-        }
-        baselines.nakamura.validate()?;
-        baselines.chiaverini.validate()?;
-        let mut k_sweep = Vec::with_capacity(ks.len());
-        for &k in ks {
-            k_sweep.push(self.run(&Method::Avoidance { k })?);
-        }
-        let avoidance = match k_sweep
-            .iter()
-            .find(|r| r.method == Method::Avoidance { k: first })
-        {
-            Some(run) => run.clone(),
-            None => self.run(&Method::Avoidance { k: first })?,
-        };
-        Ok(Comparison {
-            plain: self.run(&Method::Plain)?,
-            avoidance,
-            damped_least_squares: self.run(&Method::DampedLeastSquares(baselines.nakamura))?,
-            singularity_robust: self.run(&Method::SingularityRobust(baselines.chiaverini))?,
-            k_sweep,
-        })
-    }
-}
-
-/// Parameters of the two baselines of [`PathTracker::compare`].
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Baselines {
-    /// Damped least squares with Nakamura's adaptive damping.
-    pub nakamura: NakamuraDamping,
-    /// Chiaverini's singularity-robust inverse.
-    pub chiaverini: ChiaveriniFilter,
-}
-
-impl Baselines {
-    /// Baselines damping the same region as the detection: Nakamura's
-    /// threshold `w_0` = the determinant threshold (`|det J|` is the
-    /// manipulability of a square Jacobian), `lambda_0` = 0.05; Chiaverini's
-    /// defaults (`epsilon` = 0.05, `lambda_max` = 0.05, `beta` = 1e-4).
-    /// ([`NakamuraDamping::default`]'s threshold, 1e-3 m^3, would start
-    /// damping only at a 4 times smaller `|det J|`, inside the region.)
-    pub fn for_detection(detection: &DetectionOptions) -> Baselines {
-        Baselines {
-            nakamura: NakamuraDamping {
-                threshold: detection.determinant_threshold,
-                max_damping: 0.05,
-            },
-            chiaverini: ChiaveriniFilter::default(),
-        }
-    }
-}
-
-/// The runs of [`PathTracker::compare`].
-#[derive(Clone, Debug, PartialEq)]
-pub struct Comparison {
-    /// Plain resolved rate.
-    pub plain: MethodRun,
-    /// Seed 004's avoidance with the first `k`.
-    pub avoidance: MethodRun,
-    /// Damped least squares (Nakamura).
-    pub damped_least_squares: MethodRun,
-    /// Singularity-robust inverse (Chiaverini).
-    pub singularity_robust: MethodRun,
-    /// Seed 004's avoidance for each `k` given.
-    pub k_sweep: Vec<MethodRun>,
-}
-
-impl Comparison {
-    /// The four methods of the table, in order: plain, avoidance, dls, sri.
-    pub fn methods(&self) -> [&MethodRun; 4] {
-        [
-            &self.plain,
-            &self.avoidance,
-            &self.damped_least_squares,
-            &self.singularity_robust,
-        ]
-    }
-}
-
-/// A plain-text table: one row per run (plain, each `k`, DLS, SRI) with the
-/// peak joint rate (rad/s), the maximum and final position (m) and
-/// orientation (rad) errors, the time in the singular region (s) and the IK
-/// solves; then one line per singular region of the avoidance runs.
-impl std::fmt::Display for Comparison {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        writeln!(
-            f,
-            "{:>14} {:>10} {:>10} {:>10} {:>10} {:>10} {:>8} {:>6}",
-            "method",
-            "peak rad/s",
-            "max pos m",
-            "max ori",
-            "final pos",
-            "final ori",
-            "region s",
-            "IK"
-        )?;
-        let rows = std::iter::once(&self.plain)
-            .chain(&self.k_sweep)
-            .chain([&self.damped_least_squares, &self.singularity_robust]);
-        for run in rows {
-            let s = &run.summary;
-            writeln!(
-                f,
-                "{:>14} {:>10.4} {:>10.3e} {:>10.3e} {:>10.3e} {:>10.3e} {:>8.2} {:>6}",
-                run.method.label(),
-                s.peak_joint_rate,
-                s.max_position_error,
-                s.max_orientation_error,
-                s.final_position_error,
-                s.final_orientation_error,
-                s.time_in_singular_region,
-                s.ik_solves
-            )?;
-        }
-        for run in &self.k_sweep {
-            for r in &run.regions {
-                writeln!(
-                    f,
-                    "{}: region {:.2} s .. {:.2} s ({}), {} knots, {} IK iterations, {} dropped",
-                    run.method.label(),
-                    r.start_time,
-                    r.end_time,
-                    r.trigger.as_str(),
-                    r.knot_times.len(),
-                    r.ik_iterations,
-                    r.dropped_knots
-                )?;
-            }
-        }
-        Ok(())
-    }
-}
-
-/// The paper's way of setting the determinant threshold (seed 004, sec
-/// 2.3.1: "find where the joint angles jump, hence the joint range of the
-/// singular region and the determinant threshold"): the largest `|det J|` at
-/// a sample of `plain` (a [`Method::Plain`] run) where a joint moved more
-/// than `joint_step_threshold` (rad or m) in one control period. `None` if no
-/// joint ever did.
-pub fn calibrate_determinant_threshold(
-    plain: &MethodRun,
-    joint_step_threshold: f64,
-) -> Option<f64> {
-    let h = match plain.time.as_slice() {
-        [a, b, ..] => b - a,
-        _ => return None,
-    };
-    (0..plain.time.len())
-        .filter(|&i| {
-            plain
-                .joint_rates
-                .iter()
-                .any(|rates| (rates[i] * h).abs() > joint_step_threshold)
-        })
-        .map(|i| plain.determinant[i])
-        .reduce(f64::max)
-}
-
-fn push_rates(run: &mut MethodRun, rates: &[f64], in_region: bool) {
-    for (series, r) in run.joint_rates.iter_mut().zip(rates) {
-        series.push(*r);
-    }
-    run.in_region.push(in_region);
-}
-
-/// The same error with the argument renamed (`LinePath::new` names its
-/// arguments `start` and `end`; here the end is the task's goal).
-fn rename_argument(error: Error, from: &str, to: &str) -> Error {
-    match error {
-        Error::InvalidArgument { name, reason } if name == from => Error::InvalidArgument {
-            name: to.into(),
-            reason,
-        },
-        other => other,
     }
 }

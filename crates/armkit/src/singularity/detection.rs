@@ -18,22 +18,19 @@ pub fn jacobian_determinant(jacobian: &Matrix6xX<f64>) -> f64 {
             .determinant()
             .abs();
     }
-    let mut gram = Matrix6::zeros();
     if n > 6 {
-        for column in jacobian.column_iter() {
-            gram += column * column.transpose();
-        }
-    } else {
-        for r in 0..6 {
-            for c in 0..6 {
-                gram[(r, c)] = if r < n && c < n {
-                    jacobian.column(r).dot(&jacobian.column(c))
-                } else if r == c {
-                    1.0
-                } else {
-                    0.0
-                };
-            }
+        return crate::linalg::manipulability(jacobian);
+    }
+    let mut gram = Matrix6::zeros();
+    for r in 0..6 {
+        for c in 0..6 {
+            gram[(r, c)] = if r < n && c < n {
+                jacobian.column(r).dot(&jacobian.column(c))
+            } else if r == c {
+                1.0
+            } else {
+                0.0
+            };
         }
     }
     gram.determinant().max(0.0).sqrt()
@@ -66,6 +63,8 @@ pub(crate) fn below_threshold(determinant: f64, threshold: f64) -> bool {
 /// * `joint_step_threshold` 0.005 rad per control period: space6r's joint
 ///   speed limit, 0.5 rad/s, over 0.01 s.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "io", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "io", serde(deny_unknown_fields))]
 pub struct DetectionOptions {
     /// `eps_det`: the motion is singular where `|det J| <`
     /// this ([`jacobian_determinant`]; m^3 for a 6R arm), > 0.

@@ -29,7 +29,7 @@
 //! [`PathTracker::compare`] runs them all from the same start and a sweep of
 //! `k` (Figs 7-8); each [`MethodRun`] records, per sample, the time, joint
 //! positions and rates, position and orientation error, `|det J|`, the
-//! regions crossed, and a [`RunSummary`] (peak joint rate, maximum and final
+//! regions crossed, and a [`MethodSummary`] (peak joint rate, maximum and final
 //! errors, time in the singular region, IK solves). A run allocates by
 //! design (it records these series, sized once per run, and each region's
 //! knots and fit); the per-period step of the plain, DLS and SRI methods
@@ -47,7 +47,7 @@
 //!
 //! # Thresholds and the paper's `eps_dq = 5`, `eps_T = 1e-8`
 //!
-//! * `eps_T` is [`TrackingOptions::ik_tolerance`], 1e-8 (m and rad), as in
+//! * `eps_T` is [`AvoidanceOptions::ik_tolerance`], 1e-8 (m and rad), as in
 //!   the paper.
 //! * The paper's `eps_dq = 5` has no printed unit (5 deg per step would be
 //!   8.7 rad/s at our 0.01 s period, beyond any space arm). Ours,
@@ -111,12 +111,12 @@
 //!
 //! ```
 //! use armkit::singularity::{
-//!     seed004_path, Manipulator, Method, PathTracker, TrackingOptions,
+//!     seed004_path, AvoidanceOptions, Manipulator, Method, PathTracker,
 //! };
 //! let arm = armkit::robots::space6r()?;
 //! let manipulator = Manipulator::FixedBase(&arm);
 //! let line = seed004_path(&manipulator)?;
-//! let tracker = PathTracker::new(manipulator, line.task(20.0, 4.0), TrackingOptions::default())?;
+//! let tracker = PathTracker::new(manipulator, line.task(20.0, 4.0), AvoidanceOptions::default())?;
 //! let plain = tracker.run(&Method::Plain)?;
 //! let avoid = tracker.run(&Method::Avoidance { k: 5 })?;
 //! // Plain tracking spins joints 4 and 6 through the singularity; the
@@ -129,16 +129,18 @@
 //! ```
 
 mod avoidance;
+mod comparison;
 mod configurations;
 mod detection;
 mod ellipsoid;
+mod method_law;
 mod plant;
 mod scenario;
 
 pub use avoidance::{
-    calibrate_determinant_threshold, Baselines, Comparison, LineTask, Method, MethodRun,
-    PathTracker, RunStatus, RunSummary, SingularRegion, TrackingOptions,
+    AvoidanceOptions, LineTask, Method, MethodRun, MethodSummary, PathTracker, SingularRegion,
 };
+pub use comparison::{calibrate_determinant_threshold, Baselines, Comparison};
 pub use configurations::{
     classify, find_singularities, nearest_singularity, Classification, ClassifyOptions,
     SearchOptions, SearchStatus, SearchTarget, SingularConfiguration, SingularityKind,
@@ -154,6 +156,8 @@ use crate::space::FreeFloatingModel;
 
 /// Which base the arm stands on.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "io", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "io", serde(rename_all = "kebab-case"))]
 pub enum BaseKind {
     /// A fixed base: the arm's world frame is the inertial frame.
     Fixed,

@@ -358,3 +358,35 @@ impl<'m> Plant<'m> {
         Ok(best)
     }
 }
+
+/// The tracking loop's view: the state is evaluated by
+/// [`Plant::evaluate_state`], the pose is `F(q)`.
+impl crate::tracking::Plant for Plant<'_> {
+    fn dof(&self) -> usize {
+        Plant::dof(self)
+    }
+
+    fn joint_positions(&self) -> &[f64] {
+        self.q()
+    }
+
+    fn evaluate(&mut self) -> Result<()> {
+        self.evaluate_state()
+    }
+
+    fn end_effector(&self) -> &Pose {
+        self.pose()
+    }
+
+    fn jacobian(&self) -> &Matrix6xX<f64> {
+        Plant::jacobian(self)
+    }
+
+    fn base(&self) -> Pose {
+        self.base_pose()
+    }
+
+    fn advance(&mut self, rates: &[f64], dt: f64) -> Result<()> {
+        Plant::advance(self, rates, dt)
+    }
+}

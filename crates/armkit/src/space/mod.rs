@@ -115,9 +115,7 @@ mod tracking;
 
 pub use dynamics::{center_of_mass, end_effector_pose, generalized_jacobian, momentum, Momentum};
 pub use simulate::{step, SinusoidalJointMotion};
-pub use tracking::{
-    track_pose_path, TrackingOptions, TrackingReport, TrackingSample, TrackingStatus,
-};
+pub use tracking::track_pose_path;
 
 use nalgebra::Matrix3xX;
 
@@ -202,20 +200,10 @@ impl BaseBody {
     }
 }
 
-/// Checks that a pose is finite with an orthonormal, right-handed rotation (to
-/// 1e-6); the error string says what is wrong.
+/// Checks that a pose is finite with a proper rotation ([`Pose::check_rigid`]);
+/// the error string says what is wrong.
 fn check_pose(pose: &Pose) -> std::result::Result<(), String> {
-    if !pose.is_finite() {
-        return Err("has a non-finite entry".into());
-    }
-    let orthonormality = (pose.rotation.transpose() * pose.rotation - Matrix3::identity()).amax();
-    if orthonormality > 1e-6 || pose.rotation.determinant() < 0.0 {
-        return Err(format!(
-            "rotation is not a proper rotation matrix (|R'R - I| = {orthonormality:.3e}, det = {:.3})",
-            pose.rotation.determinant()
-        ));
-    }
-    Ok(())
+    pose.check_rigid()
 }
 
 /// A base body carrying a serial arm whose every link has mass properties.

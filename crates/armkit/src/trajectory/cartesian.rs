@@ -33,7 +33,7 @@ use std::fmt;
 use super::limits::{check_limits, TrajectoryLimits};
 use super::{profile, JointState, Trajectory};
 use crate::error::{check_finite, Error, Result};
-use crate::math::{rotation_log, Matrix3, Pose, Rotation3, Vector3, Vector6};
+use crate::math::{rotation_log, Pose, Rotation3, Vector3, Vector6};
 
 /// A pose and its first two derivatives with respect to the path parameter.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -98,17 +98,8 @@ fn finite_difference_derivatives(pose: impl Fn(f64) -> Pose, s: f64) -> PathDeri
 }
 
 fn check_pose(what: &'static str, pose: &Pose) -> Result<()> {
-    if !pose.is_finite() {
-        return Err(Error::invalid_argument(what, "must be finite"));
-    }
-    let orthonormality = (pose.rotation.transpose() * pose.rotation - Matrix3::identity()).amax();
-    if orthonormality > 1e-9 || pose.rotation.determinant() < 0.0 {
-        return Err(Error::invalid_argument(
-            what,
-            format!("rotation must be a proper rotation matrix (|R'R - I| = {orthonormality:.1e})"),
-        ));
-    }
-    Ok(())
+    pose.check_rigid()
+        .map_err(|reason| Error::invalid_argument(what, reason))
 }
 
 /// A straight line from `start` to `end`, the orientation interpolated by

@@ -26,7 +26,7 @@
 use super::poly;
 use super::Trajectory;
 use crate::error::{check_finite_vector, Error, Result};
-use crate::model::Model;
+use crate::model::{JointLimits, Model};
 
 /// Joint limits a trajectory is checked against.
 ///
@@ -61,19 +61,40 @@ impl TrajectoryLimits {
 
     /// The model's limits; a missing velocity or acceleration limit is `+inf`.
     pub fn from_model(model: &Model) -> Self {
-        let joints = model.joints();
+        let limits: Vec<JointLimits> = model.joints().iter().map(|j| j.limits).collect();
+        Self::from_joint_limits(&limits)
+    }
+
+    /// Per-joint [`JointLimits`] (the model's vocabulary: `lower`, `upper`,
+    /// `velocity`, `acceleration`) as one set; a missing velocity or
+    /// acceleration limit is `+inf`.
+    pub fn from_joint_limits(limits: &[JointLimits]) -> Self {
         TrajectoryLimits {
-            lower: joints.iter().map(|j| j.limits.lower).collect(),
-            upper: joints.iter().map(|j| j.limits.upper).collect(),
-            velocity: joints
+            lower: limits.iter().map(|l| l.lower).collect(),
+            upper: limits.iter().map(|l| l.upper).collect(),
+            velocity: limits
                 .iter()
-                .map(|j| j.limits.velocity.unwrap_or(f64::INFINITY))
+                .map(|l| l.velocity.unwrap_or(f64::INFINITY))
                 .collect(),
-            acceleration: joints
+            acceleration: limits
                 .iter()
-                .map(|j| j.limits.acceleration.unwrap_or(f64::INFINITY))
+                .map(|l| l.acceleration.unwrap_or(f64::INFINITY))
                 .collect(),
         }
+    }
+
+    /// Joint `j`'s limits as a [`JointLimits`] (`+inf` becomes `None`);
+    /// `None` for a joint index out of range.
+    pub fn joint(&self, j: usize) -> Option<JointLimits> {
+        let finite = |v: f64| v.is_finite().then_some(v);
+        Some(JointLimits {
+            lower: *self.lower.get(j)?,
+            upper: *self.upper.get(j)?,
+            velocity: finite(*self.velocity.get(j)?),
+            acceleration: finite(*self.acceleration.get(j)?),
+            // Torque limits are not a trajectory limit (see `dynamics::torque_limits`).
+            effort: None,
+        })
     }
 
     /// Number of joints.

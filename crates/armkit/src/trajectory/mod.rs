@@ -41,6 +41,11 @@ pub mod path_ik;
 mod poly;
 pub mod profile;
 pub mod spline;
+mod timed;
+
+pub use cartesian::{CartesianTrajectory, TimeLaw};
+pub(crate) use timed::rename_argument;
+pub use timed::{TimeFn, TimedPath};
 
 use crate::error::{check_finite, check_finite_vector, check_positive, Error, Result};
 

@@ -12,12 +12,13 @@
 use std::path::PathBuf;
 
 use armkit::beam::{
-    CarriageDeflection, GantryBeam, PointLoad, SimplySupportedBeam, TwoCarriageBeam,
-    SEED000_CARRIAGE_MASS, SEED000_GRAVITY, SEED000_TABLE1,
+    CarriageDeflection, GantryBeam, SimplySupportedBeam, TwoCarriageBeam, SEED000_CARRIAGE_MASS,
+    SEED000_GRAVITY,
 };
 use armkit::kinematics::{forward_kinematics, Data};
 use armkit::math::Vector3;
 use armkit::robots;
+use armkit::study::{BeamTableStudy, Table1Row, TABLE1_TOLERANCE};
 use clap::{Args, Subcommand};
 
 use crate::common::{
@@ -26,8 +27,13 @@ use crate::common::{
 use crate::plot::Figure;
 use crate::report::{write_atomic, Animation, Check, Report, Table};
 
+mod sweep;
+
+pub use sweep::error_along_beam_figure;
+use sweep::{error_along_beam, error_along_beam_csv, worst_sample, ErrorSample};
+
 /// The paper's tolerance between its theory and its simulation (Table 1).
-const PAPER_TOLERANCE: f64 = 0.04;
+const PAPER_TOLERANCE: f64 = TABLE1_TOLERANCE;
 
 /// Seed 000's flexible gantry beam: Table 1 and the error of a rigid model.
 #[derive(Args, Debug)]
@@ -103,44 +109,13 @@ pub fn run(args: &BeamArgs) -> CliResult<Outcome> {
     }
 }
 
-/// One computed row of Table 1.
-struct Table1Row {
-    label: &'static str,
-    positions: [f64; 2],
-    paper: f64,
-    under_each: [f64; 2],
-    midspan: f64,
-}
-
-impl Table1Row {
-    fn relative_error(&self) -> f64 {
-        (self.under_each[0] - self.paper) / self.paper
-    }
-
-    fn within_tolerance(&self) -> bool {
-        self.relative_error().abs() < PAPER_TOLERANCE
-    }
-}
-
+/// Table 1's rows from the library's study for the load flags.
 fn table1_rows(load: LoadArgs) -> CliResult<Vec<Table1Row>> {
-    let force = armkit::beam::weight(load.mass, load.gravity)?;
-    let gantry = TwoCarriageBeam::new(SimplySupportedBeam::seed000(), [force, force])?;
-    SEED000_TABLE1
-        .iter()
-        .map(|case| {
-            let loads = [
-                PointLoad::new(case.positions[0], force),
-                PointLoad::new(case.positions[1], force),
-            ];
-            Ok(Table1Row {
-                label: case.label,
-                positions: case.positions,
-                paper: case.paper,
-                under_each: gantry.deflections(case.positions)?,
-                midspan: gantry.beam.deflection(0.5 * gantry.beam.length(), &loads)?,
-            })
-        })
-        .collect()
+    Ok(BeamTableStudy {
+        mass: load.mass,
+        gravity: load.gravity,
+    }
+    .rows()?)
 }
 
 fn run_table1(args: &Table1Args) -> CliResult<Outcome> {
@@ -201,102 +176,6 @@ fn table1_text(rows: &[Table1Row], load: LoadArgs) -> String {
         "NOT every case is within the paper's 4 %"
     };
     out + &format!("\n{verdict}\n")
-}
-
-/// One sample of the sweep: carriage position and what the rigid model misses.
-pub struct ErrorSample {
-    d2: f64,
-    deflection: f64,
-    error: Vector3<f64>,
-    two_arm_deflection: f64,
-}
-
-fn error_along_beam(
-    load: LoadArgs,
-    count: usize,
-    q_text: Option<&str>,
-) -> CliResult<Vec<ErrorSample>> {
-    if count < 2 {
-        return Err(CliError(format!(
-            "--samples: expected at least 2, got {count}"
-        )));
-    }
-    let beam = SimplySupportedBeam::seed000();
-    let carriage = CarriageDeflection::from_mass(beam, load.mass, load.gravity)?;
-    let rigid = robots::gantry9_with_beam(&GantryBeam::Rigid)?;
-    let flex = robots::gantry9_with_beam(&GantryBeam::Flexible(carriage))?;
-    let two_arm = TwoCarriageBeam::new(beam, [carriage.force, carriage.force])?;
-    let mut q = match q_text {
-        Some(text) => parse_joint_positions(text, &rigid, LimitPolicy::Enforce)?,
-        None => rigid.neutral_configuration(),
-    };
-    let limits = rigid.joints()[1].limits;
-    let (mut rigid_data, mut flex_data) = (Data::new(&rigid), Data::new(&flex));
-    (0..count)
-        .map(|k| {
-            let d2 = limits.lower + (limits.upper - limits.lower) * k as f64 / (count - 1) as f64;
-            q[1] = d2;
-            let truth = forward_kinematics(&flex, &mut flex_data, &q)?.translation;
-            let assumed = forward_kinematics(&rigid, &mut rigid_data, &q)?.translation;
-            // The second arm of the two-arm gantry mirrored about mid-span.
-            let mirror = beam.length() - d2;
-            Ok(ErrorSample {
-                d2,
-                deflection: carriage.deflection_and_slope(d2).0,
-                error: truth - assumed,
-                two_arm_deflection: two_arm.deflections([d2, mirror])?[0],
-            })
-        })
-        .collect()
-}
-
-/// The error-along-beam figure: the end-effector error of a rigid-beam
-/// model (mm) against the carriage position d2 (m).
-pub fn error_along_beam_figure(samples: &[ErrorSample]) -> Figure {
-    let x: Vec<f64> = samples.iter().map(|s| s.d2).collect();
-    let millimetres = |f: fn(&ErrorSample) -> f64| samples.iter().map(|s| 1e3 * f(s)).collect();
-    Figure::new(
-        "End-effector error of a rigid-beam model (gantry9, seed 000 beam)",
-        "carriage position d2 (m)",
-        "error (mm)",
-        x,
-    )
-    .with_series("|error|, one arm (mm)", millimetres(|s| s.error.norm()))
-    .with_series(
-        "deflection w(d2) at the carriage (mm)",
-        millimetres(|s| s.deflection),
-    )
-    .with_series(
-        "deflection with a second arm at L - d2 (mm)",
-        millimetres(|s| s.two_arm_deflection),
-    )
-}
-
-/// The sweep in metres, every component: what `error-along-beam` writes.
-fn error_along_beam_csv(samples: &[ErrorSample]) -> String {
-    let mut csv = String::from(
-        "d2_m,deflection_m,error_x_m,error_y_m,error_z_m,error_norm_m,deflection_two_arm_mirrored_m\n",
-    );
-    for s in samples {
-        csv += &format!(
-            "{},{},{},{},{},{},{}\n",
-            s.d2,
-            s.deflection,
-            s.error.x,
-            s.error.y,
-            s.error.z,
-            s.error.norm(),
-            s.two_arm_deflection
-        );
-    }
-    csv
-}
-
-fn worst_sample(samples: &[ErrorSample]) -> CliResult<&ErrorSample> {
-    samples
-        .iter()
-        .max_by(|a, b| a.error.norm().total_cmp(&b.error.norm()))
-        .ok_or_else(|| CliError("no samples".into()))
 }
 
 fn run_error_along_beam(args: &ErrorAlongBeamArgs) -> CliResult<Outcome> {

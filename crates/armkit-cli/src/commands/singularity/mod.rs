@@ -1,0 +1,387 @@
+//! `armkit singularity`: seed 004's straight-line pose path through a wrist
+//! singularity, tracked four ways: plain resolved rate, seed 004's avoidance
+//! (detection of the singular region, Newton-Raphson IK every k-th planned
+//! pose, C2 cubic fit), damped least squares (Nakamura) and the
+//! singularity-robust inverse (Chiaverini); and the avoidance for several k
+//! (the error against k, seed 004 Figs 7-8).
+//!
+//! The command prints a table per method (peak joint rate, maximum and final
+//! tracking error, time in the singular region, IK solves) and the singular
+//! region(s); with `--out DIR` it writes the figures (SVG + CSV), a
+//! `summary.csv`, `summary.json` and a `report.html`. The same report is a
+//! scenario's `[singularity]` method ([`report`]).
+
+use std::path::{Path, PathBuf};
+
+use armkit::math::{Pose, Vector3};
+use armkit::singularity::{
+    AvoidanceOptions, BaseKind, DetectionOptions, Manipulator, MethodRun, SEED004_DIRECTION,
+    SEED004_THROUGH,
+};
+use armkit::space::FreeFloatingModel;
+use armkit::study::{AvoidanceOutcome, AvoidanceStudy};
+use armkit::tracking::{TrackingOptions, TrackingStatus};
+use armkit::Model;
+use clap::{Args, ValueEnum};
+
+use crate::common::{
+    parse_fixed_numbers, parse_numbers, print_json, CliError, CliResult, Outcome, RobotArgs,
+};
+use crate::plot::Figure;
+use crate::report::{join, write_atomic, Animation, Report, Table};
+
+mod figures;
+mod outputs;
+mod page;
+mod tables;
+
+use figures::{animation, figures};
+use outputs::{summary_json, write_outputs};
+use page::build_report;
+pub use page::report;
+use tables::{k_table, methods_table, regions_table, table_runs};
+
+/// Track a straight-line pose path through a wrist singularity (seed 004):
+/// plain, avoidance, damped least squares and singularity-robust inverse.
+///
+/// Exit code 3 when an avoidance or damped run stops before the end of the
+/// path (plain tracking stopping at an exactly singular Jacobian is a
+/// result, shown in the table).
+#[derive(Args, Debug)]
+pub struct SingularityArgs {
+    /// What the arm stands on: a fixed base, or seed 004's free-floating
+    /// satellite with its attitude held (the generalized Jacobian J*; the
+    /// arm is then space6r).
+    #[arg(long, value_enum, default_value_t = BaseArg::AttitudeHeld)]
+    pub base: BaseArg,
+    /// Built-in arm for a fixed base (default: space6r). Other arms need
+    /// --through and --direction.
+    #[arg(long, value_name = "NAME", conflicts_with = "robot_file")]
+    pub robot: Option<String>,
+    /// DH description file of the arm, for a fixed base.
+    #[arg(long, value_name = "PATH")]
+    pub robot_file: Option<PathBuf>,
+    /// The configuration the line passes through at mid-path (rad or m; one
+    /// per joint): singular, or nearly, e.g. q5 = 0 on a PUMA-type wrist.
+    /// Default for space6r: 0.4,1.2,-0.5,0.6,0,-0.3 (q5 = 0: the wrist
+    /// singularity).
+    #[arg(long, value_name = "Q1,Q2,...", allow_hyphen_values = true)]
+    pub through: Option<String>,
+    /// Joint displacement whose end-effector motion (J(through) times it,
+    /// to first order) is the whole line, centred on --through. Default for
+    /// space6r: 0.5,-0.3,0.4,0,0.8,0 (q5 moves: the line crosses q5 = 0).
+    #[arg(long, value_name = "DQ1,DQ2,...", allow_hyphen_values = true)]
+    pub direction: Option<String>,
+    /// Offset of the line from the singular pose, along the direction the
+    /// Jacobian loses there (m and rad); 0 passes through it.
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub miss: f64,
+    /// Duration of the motion, s (seed 004: 20 s).
+    #[arg(long, default_value_t = 20.0, allow_hyphen_values = true)]
+    pub duration: f64,
+    /// Acceleration and deceleration time of the trapezoidal speed profile,
+    /// s, in (0, duration / 2] (seed 004: 4 s).
+    #[arg(long, default_value_t = 4.0, allow_hyphen_values = true)]
+    pub accel_time: f64,
+    /// Knot strides k of the avoidance method (IK every k-th planned pose
+    /// of the singular region), integers >= 1; the first is the one compared
+    /// with the baselines.
+    #[arg(long, value_name = "K1,K2,...", default_value = "1,5,10")]
+    pub k: String,
+    /// |det J| below which the motion is singular (m^3 for a 6R arm).
+    /// Default: the library's (armkit::singularity::DetectionOptions).
+    #[arg(long, value_name = "X", allow_hyphen_values = true)]
+    pub determinant_threshold: Option<f64>,
+    /// A velocity-level step moving some joint by more than this in one
+    /// control period is a jump (rad or m). Default: the library's.
+    #[arg(long, value_name = "X", allow_hyphen_values = true)]
+    pub joint_step_threshold: Option<f64>,
+    /// Control period, s. Default: the library's (0.01 s).
+    #[arg(long, value_name = "S", allow_hyphen_values = true)]
+    pub dt: Option<f64>,
+    /// Output directory for the CSV and SVG files, summary.json and
+    /// report.html (created if missing). Without it, nothing is written.
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+    /// Print the summary as JSON instead of tables.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// `--base` values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum BaseArg {
+    /// A fixed base: the arm's world frame is the inertial frame.
+    Fixed,
+    /// Seed 004's satellite, attitude held, linear momentum zero.
+    AttitudeHeld,
+}
+
+impl BaseArg {
+    fn text(self) -> &'static str {
+        match self {
+            BaseArg::Fixed => "fixed base",
+            BaseArg::AttitudeHeld => "free-floating base, attitude held",
+        }
+    }
+}
+
+/// Largest `k` accepted (a stride longer than any sensible path).
+const MAX_K: f64 = 1e6;
+
+/// Largest number of control periods per run (each run keeps every sample
+/// of every joint, for several runs).
+const MAX_STEPS: f64 = 1e6;
+
+/// The arm, and the free-floating system when the base is held.
+enum Plant {
+    Fixed(Box<Model>),
+    Held(Box<FreeFloatingModel>),
+}
+
+impl Plant {
+    fn arm(&self) -> &Model {
+        match self {
+            Plant::Fixed(model) => model,
+            Plant::Held(system) => system.arm(),
+        }
+    }
+
+    fn manipulator(&self, base: Pose) -> Manipulator<'_> {
+        match self {
+            Plant::Fixed(model) => Manipulator::FixedBase(model),
+            Plant::Held(system) => Manipulator::AttitudeHeld { system, base },
+        }
+    }
+}
+
+/// The line, the runs ([`AvoidanceOutcome`]), and what the outputs need.
+pub struct Study {
+    plant: Plant,
+    base: BaseArg,
+    through: Vec<f64>,
+    direction: Vec<f64>,
+    heading: String,
+    outcome: AvoidanceOutcome,
+}
+
+/// Runs `armkit singularity`.
+pub fn run(args: &SingularityArgs) -> CliResult<Outcome> {
+    let study = study(args)?;
+    let report = build_report(&study)?;
+    let files = match &args.out {
+        Some(dir) => write_outputs(dir, &study, &report)?,
+        None => Vec::new(),
+    };
+    if args.json {
+        let mut value = summary_json(&study, args);
+        value["checks"] = report.summary_json()["checks"].clone();
+        value["files"] = serde_json::json!(files);
+        print_json(&value)?;
+    } else {
+        print!("{}", report.to_text());
+        if !files.is_empty() {
+            println!("wrote {}", files.join(", "));
+        }
+    }
+    let completed = study
+        .outcome
+        .comparison
+        .methods()
+        .into_iter()
+        .chain(&study.outcome.comparison.k_sweep)
+        .filter(|r| r.method != armkit::singularity::Method::Plain)
+        .all(|r| r.status == TrackingStatus::Completed);
+    Ok(if completed {
+        Outcome::Success
+    } else {
+        Outcome::NotConverged
+    })
+}
+
+/// Checks the arguments, builds the line and runs every method.
+pub fn study(args: &SingularityArgs) -> CliResult<Study> {
+    let ks = parse_ks(&args.k)?;
+    let defaults = AvoidanceOptions::default();
+    let detection = DetectionOptions {
+        determinant_threshold: positive(
+            "--determinant-threshold",
+            args.determinant_threshold
+                .unwrap_or(defaults.detection.determinant_threshold),
+        )?,
+        joint_step_threshold: positive(
+            "--joint-step-threshold",
+            args.joint_step_threshold
+                .unwrap_or(defaults.detection.joint_step_threshold),
+        )?,
+    };
+    let options = AvoidanceOptions {
+        tracking: TrackingOptions {
+            dt: positive("--dt", args.dt.unwrap_or(defaults.tracking.dt))?,
+            ..defaults.tracking
+        },
+        detection,
+        ..defaults
+    };
+    let duration = positive("--duration", args.duration)?;
+    if !(args.accel_time > 0.0 && 2.0 * args.accel_time <= duration) {
+        return Err(CliError(format!(
+            "--accel-time: must be in (0, duration / 2] = (0, {}] s, got {}",
+            duration / 2.0,
+            args.accel_time
+        )));
+    }
+    if options.tracking.dt > duration {
+        return Err(CliError(format!(
+            "--dt: must be at most the duration ({duration} s), got {}",
+            options.tracking.dt
+        )));
+    }
+    let steps = (duration / options.tracking.dt).ceil();
+    if steps > MAX_STEPS {
+        return Err(CliError(format!(
+            "--duration / --dt = {steps:.0} control periods: at most {MAX_STEPS:.0} \
+             (every run records every period)"
+        )));
+    }
+    if !args.miss.is_finite() {
+        return Err(CliError(format!(
+            "--miss: must be a finite number, got {}",
+            args.miss
+        )));
+    }
+    let plant = load_plant(args)?;
+    let arm = plant.arm();
+    let space6r = arm.name() == "space6r";
+    let joint_values = |text: &Option<String>, option: &str, default: &[f64]| match text {
+        Some(text) => parse_fixed_numbers(text, option, arm.dof()),
+        None if space6r => Ok(default.to_vec()),
+        None => Err(CliError(format!(
+            "{option}: no default for {}: give --through (a configuration at the singularity) \
+             and --direction (a joint motion crossing it)",
+            arm.name()
+        ))),
+    };
+    let through = joint_values(&args.through, "--through", &SEED004_THROUGH)?;
+    let direction = joint_values(&args.direction, "--direction", &SEED004_DIRECTION)?;
+    // The library's study (armkit::study::AvoidanceStudy) with the flags'
+    // values; the checks and notes are its own.
+    let library = AvoidanceStudy {
+        base: match args.base {
+            BaseArg::Fixed => BaseKind::Fixed,
+            BaseArg::AttitudeHeld => BaseKind::AttitudeHeld,
+        },
+        through: through.clone(),
+        direction: direction.clone(),
+        miss: args.miss,
+        duration,
+        acceleration_time: args.accel_time,
+        ks,
+        detection: options.detection,
+        dt: options.tracking.dt,
+    };
+    let outcome = library
+        .compare(plant.manipulator(Pose::identity()))
+        .map_err(|e| CliError(format!("the line (--through, --direction, --miss): {e}")))?;
+    let comparison = &outcome.comparison;
+    let (closest, closest_time) = comparison
+        .plain
+        .determinant
+        .iter()
+        .zip(&comparison.plain.time)
+        .fold((f64::INFINITY, 0.0), |best, (d, t)| {
+            if *d < best.0 {
+                (*d, *t)
+            } else {
+                best
+            }
+        });
+    let heading = format!(
+        "{} on a {}: a straight line through q = ({}) at mid-path, {} s with {} s acceleration and \
+         deceleration (trapezoidal speed), dt {} s; smallest |det J| along the plain run {} at \
+         t = {:.2} s; singular where |det J| < {} or a joint would step more than {} per period",
+        arm.name(),
+        args.base.text(),
+        join(&through, 3),
+        duration,
+        args.accel_time,
+        options.tracking.dt,
+        short(closest),
+        closest_time,
+        short(options.detection.determinant_threshold),
+        short(options.detection.joint_step_threshold),
+    );
+    Ok(Study {
+        base: args.base,
+        through,
+        direction,
+        heading,
+        outcome,
+        plant,
+    })
+}
+
+/// The arm, and the satellite when the base is held.
+fn load_plant(args: &SingularityArgs) -> CliResult<Plant> {
+    match args.base {
+        BaseArg::Fixed => {
+            let robot = RobotArgs {
+                robot: args.robot.clone(),
+                robot_file: args.robot_file.clone(),
+                ..RobotArgs::default()
+            };
+            if robot.robot.is_none() && robot.robot_file.is_none() {
+                return Ok(Plant::Fixed(Box::new(armkit::robots::space6r()?)));
+            }
+            Ok(Plant::Fixed(Box::new(robot.load()?)))
+        }
+        BaseArg::AttitudeHeld => {
+            let named_other = args.robot.as_deref().is_some_and(|r| r != "space6r");
+            if named_other || args.robot_file.is_some() {
+                return Err(CliError(
+                    "--base attitude-held: the free-floating system is seed 004's space6r on its \
+                     satellite; other arms work with --base fixed"
+                        .into(),
+                ));
+            }
+            Ok(Plant::Held(Box::new(
+                armkit::space::space6r_free_floating()?
+            )))
+        }
+    }
+}
+
+/// `--k`: integers >= 1.
+fn parse_ks(text: &str) -> CliResult<Vec<usize>> {
+    parse_numbers(text, "--k")?
+        .into_iter()
+        .enumerate()
+        .map(|(i, k)| {
+            if k.fract() == 0.0 && (1.0..=MAX_K).contains(&k) {
+                Ok(k as usize)
+            } else {
+                Err(CliError(format!(
+                    "--k: value {}: k must be an integer in 1..={MAX_K} (IK every k-th planned \
+                     pose of the singular region), got {k}",
+                    i + 1
+                )))
+            }
+        })
+        .collect()
+}
+
+/// `value` when finite and > 0; else an error naming `option`.
+fn positive(option: &str, value: f64) -> CliResult<f64> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(CliError(format!(
+            "{option}: must be a finite number > 0, got {value}"
+        )))
+    }
+}
+
+/// A number in 4 significant digits.
+fn short(v: f64) -> String {
+    crate::report::format_value(v)
+}

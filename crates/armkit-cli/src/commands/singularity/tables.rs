@@ -1,0 +1,114 @@
+//! The tables of `armkit singularity`: one row per method, the regions, the error against k.
+
+use super::*;
+
+/// The runs of the table: plain, avoidance (first k), dls, sri, then the
+/// other k of the sweep.
+pub(super) fn table_runs(study: &Study) -> Vec<&MethodRun> {
+    let c = &study.outcome.comparison;
+    let mut runs: Vec<&MethodRun> = c.methods().to_vec();
+    runs.extend(c.k_sweep.iter().filter(|r| r.method != c.avoidance.method));
+    runs
+}
+
+/// Table 1: one row per method.
+pub(super) fn methods_table(study: &Study) -> Table {
+    let mut table = Table::new(
+        "Tracking the line: one row per method (errors from the planned pose)",
+        &[
+            "method",
+            "peak joint rate (rad/s)",
+            "max position error (m)",
+            "max orientation error (rad)",
+            "final position error (m)",
+            "final orientation error (rad)",
+            "time in singular region (s)",
+            "IK solves",
+            "status",
+        ],
+    );
+    for run in table_runs(study) {
+        let s = &run.summary;
+        table.push(vec![
+            run.method.label(),
+            format!("{:.4}", s.peak_joint_rate),
+            format!("{:.3e}", s.max_position_error),
+            format!("{:.3e}", s.max_orientation_error),
+            format!("{:.3e}", s.final_position_error),
+            format!("{:.3e}", s.final_orientation_error),
+            format!("{:.2}", s.time_in_singular_region),
+            s.ik_solves.to_string(),
+            run.status.to_string(),
+        ]);
+    }
+    table
+}
+
+/// Table 2: the singular regions the avoidance method planned through.
+pub(super) fn regions_table(study: &Study) -> Table {
+    let mut table = Table::new(
+        "Singular regions planned through by the avoidance method",
+        &[
+            "method",
+            "start (s)",
+            "end (s)",
+            "trigger",
+            "knots",
+            "IK solves",
+            "IK failures",
+            "dropped knots",
+            "max knot error (m, rad)",
+        ],
+    );
+    for run in &study.outcome.comparison.k_sweep {
+        for region in &run.regions {
+            table.push(vec![
+                run.method.label(),
+                format!("{:.2}", region.start_time),
+                format!("{:.2}", region.end_time),
+                region.trigger.as_str().to_string(),
+                region.knot_times.len().to_string(),
+                region.ik_solves.to_string(),
+                region.ik_failures.to_string(),
+                region.dropped_knots.to_string(),
+                format!(
+                    "{:.1e}, {:.1e}",
+                    region.max_knot_error.0, region.max_knot_error.1
+                ),
+            ]);
+        }
+    }
+    table
+}
+
+/// Table 3: the error against k (seed 004 Figs 7-8).
+pub(super) fn k_table(study: &Study) -> Table {
+    let mut table = Table::new(
+        "Avoidance: tracking error against the knot stride k (seed 004, Figs 7-8)",
+        &[
+            "k",
+            "IK solves",
+            "max position error (m)",
+            "max orientation error (rad)",
+            "mean position error in region (m)",
+            "mean orientation error in region (rad)",
+        ],
+    );
+    for (k, run) in study
+        .outcome
+        .ks
+        .iter()
+        .zip(&study.outcome.comparison.k_sweep)
+    {
+        let s = &run.summary;
+        table.push(vec![
+            k.to_string(),
+            s.ik_solves.to_string(),
+            format!("{:.3e}", s.max_position_error),
+            format!("{:.3e}", s.max_orientation_error),
+            format!("{:.3e}", s.mean_region_position_error),
+            format!("{:.3e}", s.mean_region_orientation_error),
+        ]);
+    }
+    table
+}

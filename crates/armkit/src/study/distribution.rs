@@ -1,0 +1,338 @@
+//! Seed 001's four-way distribution as a study: one straight-line motion of
+//! a redundant robot distributed by minimum norm, energy-optimal weights,
+//! seed 000's priorities and with joints locked, compared by seed 001's
+//! energy measure.
+
+use super::{Check, StudyReport};
+use crate::error::{check_finite_vector, Error, Result};
+use crate::kinematics::{forward_kinematics, Data};
+use crate::math::{Pose, Rotation3, Vector3};
+use crate::model::Model;
+use crate::redundancy::{
+    compare_distributions, ComparisonCase, ComparisonResult, Damping, DistributionOptions,
+    Formulation, JointWeights, Load, SecondaryObjective, TorqueFloor,
+};
+use crate::seeds::{SEED000_PRIORITY_WEIGHTS, SEED001_GANTRY_MOVE, SEED001_GANTRY_START};
+use crate::tracking::{TrackingOptions, TrackingStatus};
+use crate::trajectory::{CartesianTrajectory, TimeLaw};
+
+/// The null-space objective of a [`DistributionStudy`], by name.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "io", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "io", serde(rename_all = "kebab-case"))]
+pub enum SecondaryKind {
+    /// None.
+    #[default]
+    None,
+    /// Joint-limit avoidance (Liegeois).
+    JointLimits,
+    /// Manipulability ascent.
+    Manipulability,
+}
+
+/// The solver of a [`DistributionStudy`], by name.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "io", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "io", serde(rename_all = "kebab-case"))]
+pub enum FormulationKind {
+    /// The weighted least norm.
+    #[default]
+    LeastNorm,
+    /// Seed 001's partitioned form, best-conditioned partition every step.
+    Partitioned,
+}
+
+/// Seed 001's comparison (with seed 000's priorities) on a redundant robot:
+/// a straight line (quintic timing) from `start`, moved by `displacement`
+/// and turned by `rotation`, distributed four ways
+/// ([`ComparisonCase::four_way`]), each run measured by eq 9 for the
+/// payload. Unset fields take the robot's defaults
+/// ([`DistributionStudy::resolve`]): on gantry9 the seed's start, motion,
+/// priorities and the rail and beam joints locked.
+///
+/// ```
+/// use armkit::study::DistributionStudy;
+/// // Seed 001: the energy-optimal distribution has the lowest F on gantry9.
+/// let report = DistributionStudy::default().run().unwrap();
+/// let ratio = report.check("F of the energy-optimal distribution / lowest F of the others").unwrap();
+/// assert!(ratio.value < 1.0);
+/// assert!(report.all_passed());
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "io", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "io", serde(default, deny_unknown_fields))]
+pub struct DistributionStudy {
+    /// Start joint positions (rad or m). Default: the robot's
+    /// ([`SEED001_GANTRY_START`] on gantry9, mid-range otherwise).
+    pub start: Option<Vec<f64>>,
+    /// End-effector displacement, world frame, m. Default
+    /// [`SEED001_GANTRY_MOVE`] on gantry9, `[0.1, 0.1, -0.1]` otherwise.
+    pub displacement: Option<[f64; 3]>,
+    /// End-effector rotation over the motion (world-frame rotation vector, rad).
+    pub rotation: [f64; 3],
+    /// Duration, s. Default 4.
+    pub duration: f64,
+    /// Payload weight at the end effector, N. Default 50.
+    pub payload: f64,
+    /// Count the links' own weight when the robot has mass properties. Default true.
+    pub link_weights: bool,
+    /// Priority weights (large = low priority). Default: seed 000's for 9
+    /// joints, 10 for prismatic and 1 for rotational joints otherwise.
+    pub priorities: Option<Vec<f64>>,
+    /// Joints to lock, 0-based. Default: 0 and 1 for 9 joints, 0 otherwise.
+    pub locked: Option<Vec<usize>>,
+    /// Zero-torque floor of the energy weights, fraction of the largest torque. Default 0.05.
+    pub torque_floor: f64,
+    /// Control period, s. Default 0.01.
+    pub dt: f64,
+    /// Position feedback gain, 1/s. Default 10.
+    pub gain: f64,
+    /// Constant damping of the weighted least norm. Default none.
+    pub damping: Option<f64>,
+    /// Null-space objective. Default none.
+    pub secondary: SecondaryKind,
+    /// Its gain. Default 1.
+    pub secondary_gain: f64,
+    /// Solver. Default the weighted least norm.
+    pub formulation: FormulationKind,
+}
+
+impl Default for DistributionStudy {
+    fn default() -> Self {
+        DistributionStudy {
+            start: None,
+            displacement: None,
+            rotation: [0.0; 3],
+            duration: 4.0,
+            payload: 50.0,
+            link_weights: true,
+            priorities: None,
+            locked: None,
+            torque_floor: 0.05,
+            dt: 0.01,
+            gain: 10.0,
+            damping: None,
+            secondary: SecondaryKind::None,
+            secondary_gain: 1.0,
+            formulation: FormulationKind::LeastNorm,
+        }
+    }
+}
+
+/// A [`DistributionStudy`] with every default filled in for one robot.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ResolvedDistribution {
+    /// Start joint positions.
+    pub start: Vec<f64>,
+    /// Displacement, m.
+    pub displacement: [f64; 3],
+    /// Priority weights.
+    pub priorities: JointWeights,
+    /// Locked joints, 0-based.
+    pub locked: Vec<usize>,
+    /// Whether the links' weight counts.
+    pub gravity: bool,
+    /// The load of eq 9.
+    pub load: Load,
+    /// The tracker options.
+    pub options: DistributionOptions,
+}
+
+/// What [`DistributionStudy::compare`] ran.
+#[derive(Clone, Debug)]
+pub struct DistributionOutcome {
+    /// The resolved settings.
+    pub settings: ResolvedDistribution,
+    /// The four runs, in the order minimum-norm, energy-optimal, priorities, locked.
+    pub results: Vec<ComparisonResult>,
+}
+
+impl DistributionStudy {
+    /// The settings for `model` (more than 6 joints): given values checked,
+    /// unset ones from the robot (seed 001's gantry9 defaults when `model` is
+    /// gantry9). Errors name the field.
+    pub fn resolve(&self, model: &Model) -> Result<ResolvedDistribution> {
+        let dof = model.dof();
+        if dof <= 6 {
+            return Err(Error::invalid_argument(
+                "model",
+                format!(
+                    "{}: {dof} joints; redundancy needs more than 6",
+                    model.name()
+                ),
+            ));
+        }
+        let gantry = dof == 9 && model.name().starts_with("gantry9");
+        let start = match &self.start {
+            Some(q) => {
+                model.check_limits(q)?;
+                q.clone()
+            }
+            None if gantry => SEED001_GANTRY_START.to_vec(),
+            None => model.neutral_configuration(),
+        };
+        let displacement = match self.displacement {
+            Some(d) => {
+                check_finite_vector("displacement", &d, 3)?;
+                d
+            }
+            None if gantry => SEED001_GANTRY_MOVE,
+            None => [0.1, 0.1, -0.1],
+        };
+        let priorities = match &self.priorities {
+            Some(w) => {
+                check_finite_vector("priorities", w, dof)?;
+                JointWeights::new(w)?
+            }
+            None if dof == 9 => JointWeights::new(&SEED000_PRIORITY_WEIGHTS)?,
+            None => JointWeights::new(
+                &model
+                    .joints()
+                    .iter()
+                    .map(|j| if j.kind.is_rotational() { 1.0 } else { 10.0 })
+                    .collect::<Vec<_>>(),
+            )?,
+        };
+        let locked = match &self.locked {
+            Some(joints) => joints.clone(),
+            None if dof == 9 => vec![0, 1],
+            None => vec![0],
+        };
+        let gravity = self.link_weights && model.has_inertias();
+        let mut load = Load::payload(self.payload);
+        if gravity {
+            load = load.with_seed001_gravity();
+        }
+        let options = DistributionOptions {
+            tracking: TrackingOptions::proportional(self.dt, self.gain),
+            damping: self.damping.map_or(Damping::None, Damping::Constant),
+            secondary: match self.secondary {
+                SecondaryKind::None => SecondaryObjective::None,
+                SecondaryKind::JointLimits => SecondaryObjective::JointLimits {
+                    gain: self.secondary_gain,
+                },
+                SecondaryKind::Manipulability => SecondaryObjective::Manipulability {
+                    gain: self.secondary_gain,
+                    step: 1e-6,
+                },
+            },
+            formulation: match self.formulation {
+                FormulationKind::LeastNorm => Formulation::WeightedLeastNorm,
+                FormulationKind::Partitioned => Formulation::Partitioned(None),
+            },
+        };
+        Ok(ResolvedDistribution {
+            start,
+            displacement,
+            priorities,
+            locked,
+            gravity,
+            load,
+            options,
+        })
+    }
+
+    /// Runs the four distributions on `model`.
+    pub fn compare(&self, model: &Model) -> Result<DistributionOutcome> {
+        let settings = self.resolve(model)?;
+        check_finite_vector("rotation", &self.rotation, 3)?;
+        let mut data = Data::new(model);
+        let start = *forward_kinematics(model, &mut data, &settings.start)?;
+        let turn = Rotation3::from_scaled_axis(Vector3::from(self.rotation));
+        let goal = Pose::new(
+            turn.into_inner() * start.rotation,
+            start.translation + Vector3::from(settings.displacement),
+        );
+        let path = CartesianTrajectory::line(start, goal, TimeLaw::Quintic, self.duration)?;
+        let cases = ComparisonCase::four_way(
+            model.dof(),
+            settings.load,
+            TorqueFloor::Relative(self.torque_floor),
+            settings.priorities.clone(),
+            &settings.locked,
+        )?;
+        let results = compare_distributions(
+            model,
+            &settings.start,
+            &path,
+            &settings.load,
+            &cases,
+            &settings.options,
+        )?;
+        Ok(DistributionOutcome { settings, results })
+    }
+
+    /// The study on gantry9.
+    pub fn run(&self) -> Result<StudyReport> {
+        let model = crate::robots::by_name("gantry9")?;
+        let outcome = self.compare(&model)?;
+        Ok(StudyReport {
+            checks: outcome.checks()?,
+            series: Vec::new(),
+            notes: vec![DISTRIBUTION_NOTE.into()],
+        })
+    }
+}
+
+/// What the study's numbers rest on.
+pub const DISTRIBUTION_NOTE: &str = "A zero torque would make a joint free of cost: the energy \
+     weights are floored at 5 % of the largest torque (a_i = max(|tau_i|, 0.05 max|tau|)^2). \
+     Seed 001's eq 17 minimises F at each instant, not over the whole motion. Locking a joint is \
+     an infinite weight (the paper says zero).";
+
+impl DistributionOutcome {
+    /// The run named `name` (`minimum-norm`, `energy-optimal`, `priorities`, `locked`).
+    pub fn result(&self, name: &str) -> Option<&ComparisonResult> {
+        self.results.iter().find(|r| r.name == name)
+    }
+
+    /// Name of the distribution with the lowest energy measure F.
+    pub fn lowest(&self) -> String {
+        self.results
+            .iter()
+            .min_by(|a, b| a.summary.energy.total_cmp(&b.summary.energy))
+            .map(|r| r.name.clone())
+            .unwrap_or_default()
+    }
+
+    /// True when every run completed the path.
+    pub fn all_completed(&self) -> bool {
+        self.results
+            .iter()
+            .all(|r| r.report.status == TrackingStatus::Completed)
+    }
+
+    /// The checks: the energy-optimal F at most the others' lowest, every
+    /// run completes the path with a tracking error of at most 1 mm.
+    pub fn checks(&self) -> Result<Vec<Check>> {
+        let energy_optimal = self
+            .result("energy-optimal")
+            .ok_or_else(|| Error::invalid_argument("cases", "no energy-optimal run to compare"))?;
+        let others_min = self
+            .results
+            .iter()
+            .filter(|r| r.name != "energy-optimal")
+            .map(|r| r.summary.energy)
+            .fold(f64::INFINITY, f64::min);
+        let mut checks = vec![Check::at_most(
+            "F of the energy-optimal distribution / lowest F of the others",
+            energy_optimal.summary.energy / others_min,
+            1.0,
+            "",
+        )];
+        for r in &self.results {
+            checks.push(Check::holds(
+                format!("{}: the run completes the path", r.name),
+                r.report.status == TrackingStatus::Completed,
+                r.report.status.to_string(),
+            ));
+            checks.push(Check::at_most(
+                format!("{}: largest tracking error", r.name),
+                r.report.max_position_error,
+                1e-3,
+                "m",
+            ));
+        }
+        Ok(checks)
+    }
+}

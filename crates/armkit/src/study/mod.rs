@@ -1,0 +1,232 @@
+//! Seed studies as library values: what a study checks, the series it
+//! plots, and its notes ([`StudyReport`]).
+//!
+//! Each seed study is a type with plain options (serde with the `io`
+//! feature) and `run() -> Result<StudyReport>`: the CLI's scenarios and
+//! commands map their flags onto those options and only format the report.
+//! One file per study:
+//!
+//! | study | seed | what it reproduces |
+//! |---|---|---|
+//! | [`BeamTableStudy`] | 000, sec 3.1 | Table 1: beam deflection under two carriages |
+//! | [`MpcExampleStudy`] | 000, sec 4.4 | the MPC examples on the flexible gantry |
+//! | [`DistributionStudy`] | 001 (+ 000's priorities) | one motion distributed four ways, energy measure eq 9 |
+//! | [`AvoidanceStudy`] | 004, sec 2 | singularity avoidance vs plain, DLS, SRI (Table 1, Figs 5-8) |
+//! | [`SpaceRobotStudy`] | 004, sec 1 | the free-floating space robot: momenta, centre of mass, `J*` |
+//!
+//! Seed 002's continuous path is planned by
+//! [`crate::trajectory::continuous_path::plan_continuous_path`] (the CLI's
+//! `[continuous_path]` scenario).
+//!
+//! ```
+//! use armkit::study::{Check, StudyReport};
+//! let mut report = StudyReport::default();
+//! report.checks.push(Check::at_most("position error", 2e-4, 1e-3, "m"));
+//! report.checks.push(Check::holds("the run completes", true, "completed"));
+//! assert!(report.all_passed());
+//! assert_eq!(report.checks[0].to_string(), "[pass] position error: 2.000e-4 m <= 1.000e-3 m");
+//! ```
+
+use std::fmt;
+
+mod avoidance;
+mod beam_table;
+mod distribution;
+mod mpc_examples;
+mod space_robot;
+
+pub use avoidance::{AvoidanceOutcome, AvoidanceStudy};
+pub use beam_table::{BeamTableStudy, Table1Row, TABLE1_TOLERANCE};
+pub use distribution::{
+    DistributionOutcome, DistributionStudy, FormulationKind, ResolvedDistribution, SecondaryKind,
+    DISTRIBUTION_NOTE,
+};
+pub use mpc_examples::MpcExampleStudy;
+pub use space_robot::{SpaceRobotStudy, SPACE6R_START};
+
+/// How a check's value is compared with its threshold.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Comparison {
+    /// Passes when `value <= threshold`.
+    AtMost,
+    /// Passes when `value >= threshold`.
+    AtLeast,
+}
+
+impl Comparison {
+    /// `<=` or `>=`.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            Comparison::AtMost => "<=",
+            Comparison::AtLeast => ">=",
+        }
+    }
+}
+
+impl fmt::Display for Comparison {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// One verifiable claim of a study: a measured value against a threshold.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Check {
+    /// What is checked, in words.
+    pub name: String,
+    /// The measured value.
+    pub value: f64,
+    /// The threshold it is compared with.
+    pub threshold: f64,
+    /// How.
+    pub comparison: Comparison,
+    /// Unit of value and threshold (may be empty).
+    pub unit: String,
+    /// The measured figures in words, for checks that are a yes/no claim
+    /// (may be empty).
+    pub detail: String,
+}
+
+impl Check {
+    /// A check that passes when `value <= threshold`.
+    pub fn at_most(name: impl Into<String>, value: f64, threshold: f64, unit: &str) -> Self {
+        Check {
+            name: name.into(),
+            value,
+            threshold,
+            comparison: Comparison::AtMost,
+            unit: unit.into(),
+            detail: String::new(),
+        }
+    }
+
+    /// A check that passes when `value >= threshold`.
+    pub fn at_least(name: impl Into<String>, value: f64, threshold: f64, unit: &str) -> Self {
+        Check {
+            comparison: Comparison::AtLeast,
+            ..Check::at_most(name, value, threshold, unit)
+        }
+    }
+
+    /// A yes/no claim: value 1 when it holds, 0 when not, threshold 1, with
+    /// the figures behind it in `detail`.
+    pub fn holds(name: impl Into<String>, holds: bool, detail: impl Into<String>) -> Self {
+        let mut check = Check::at_least(name, if holds { 1.0 } else { 0.0 }, 1.0, "");
+        check.detail = detail.into();
+        check
+    }
+
+    /// True when the value meets the threshold (NaN never does).
+    pub fn passed(&self) -> bool {
+        match self.comparison {
+            Comparison::AtMost => self.value <= self.threshold,
+            Comparison::AtLeast => self.value >= self.threshold,
+        }
+    }
+}
+
+/// `[pass] name: value unit <= threshold unit`, or `[fail] name: detail`
+/// for a yes/no claim.
+impl fmt::Display for Check {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let verdict = if self.passed() { "pass" } else { "fail" };
+        if !self.detail.is_empty() {
+            return write!(f, "[{verdict}] {}: {}", self.name, self.detail);
+        }
+        let unit = if self.unit.is_empty() {
+            String::new()
+        } else {
+            format!(" {}", self.unit)
+        };
+        write!(
+            f,
+            "[{verdict}] {}: {:.3e}{unit} {} {:.3e}{unit}",
+            self.name, self.value, self.comparison, self.threshold
+        )
+    }
+}
+
+/// A plotted series set: columns of values against one abscissa.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct Series {
+    /// File stem (letters, digits, `_`): the CLI writes `<name>.csv` and `.svg`.
+    pub name: String,
+    /// Title of the figure.
+    pub title: String,
+    /// Label of the abscissa, with its unit.
+    pub x_label: String,
+    /// Label of the ordinate, with its unit.
+    pub y_label: String,
+    /// The abscissa.
+    pub x: Vec<f64>,
+    /// `(label, values)`, each as long as `x`.
+    pub columns: Vec<(String, Vec<f64>)>,
+}
+
+impl Series {
+    /// An empty series set over `x`.
+    pub fn new(
+        name: impl Into<String>,
+        title: impl Into<String>,
+        x_label: impl Into<String>,
+        y_label: impl Into<String>,
+        x: Vec<f64>,
+    ) -> Self {
+        Series {
+            name: name.into(),
+            title: title.into(),
+            x_label: x_label.into(),
+            y_label: y_label.into(),
+            x,
+            columns: Vec::new(),
+        }
+    }
+
+    /// The same set with one more column.
+    pub fn with(mut self, label: impl Into<String>, values: Vec<f64>) -> Self {
+        self.columns.push((label.into(), values));
+        self
+    }
+
+    /// The column labelled `label`.
+    pub fn column(&self, label: &str) -> Option<&[f64]> {
+        self.columns
+            .iter()
+            .find(|(l, _)| l == label)
+            .map(|(_, v)| v.as_slice())
+    }
+}
+
+/// What a study produced: its checks, the series behind its figures, and
+/// plain statements (deviations from a paper and why).
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct StudyReport {
+    /// The checks, each pass or fail.
+    pub checks: Vec<Check>,
+    /// The figures' data.
+    pub series: Vec<Series>,
+    /// Notes shown with the report.
+    pub notes: Vec<String>,
+}
+
+impl StudyReport {
+    /// Number of checks that pass.
+    pub fn passed(&self) -> usize {
+        self.checks.iter().filter(|c| c.passed()).count()
+    }
+
+    /// True when every check passes.
+    pub fn all_passed(&self) -> bool {
+        self.passed() == self.checks.len()
+    }
+
+    /// The check named `name`.
+    pub fn check(&self, name: &str) -> Option<&Check> {
+        self.checks.iter().find(|c| c.name == name)
+    }
+
+    /// The series set named `name`.
+    pub fn series(&self, name: &str) -> Option<&Series> {
+        self.series.iter().find(|s| s.name == name)
+    }
+}

@@ -1,0 +1,190 @@
+//! The simulated system a tracking run drives: its state, its end-effector
+//! pose and Jacobian, and how it advances at given joint rates.
+
+use crate::error::{Error, Result};
+use crate::kinematics::{jacobian, Data, JacobianFrame};
+use crate::math::{Matrix6xX, Pose};
+use crate::model::Model;
+use crate::space::{
+    generalized_jacobian, step, BaseMode, FreeFloatingModel, FreeFloatingState, SpaceData,
+};
+
+/// A system driven at the velocity level: joint positions, the end-effector
+/// pose and Jacobian (6 x n, rows `[vx, vy, vz, wx, wy, wz]`, world or
+/// inertial frame) at them, and a step at constant joint rates.
+///
+/// Plants in armkit: [`FixedBase`] (any arm on a fixed base, the flexible
+/// gantry included: its model carries the beam coupling), [`FloatingBase`]
+/// (a free-floating space robot, attitude held or fully free, seed 004), and
+/// the attitude-held system placed by its centre of mass that
+/// [`crate::singularity::PathTracker`] uses.
+pub trait Plant {
+    /// Number of joints.
+    fn dof(&self) -> usize;
+
+    /// Current joint positions, rad or m.
+    fn joint_positions(&self) -> &[f64];
+
+    /// Computes the end-effector pose and the Jacobian at the current state.
+    /// Errors: a numerical failure of the model (an overflow): an error, not
+    /// a singularity.
+    fn evaluate(&mut self) -> Result<()>;
+
+    /// End-effector pose at the last [`Plant::evaluate`], world (inertial) frame.
+    fn end_effector(&self) -> &Pose;
+
+    /// Jacobian at the last [`Plant::evaluate`] (`J`, or the generalized `J*`).
+    fn jacobian(&self) -> &Matrix6xX<f64>;
+
+    /// Base pose (inertial frame); the identity on a fixed base.
+    fn base(&self) -> Pose {
+        Pose::identity()
+    }
+
+    /// Advances the state by `dt` s at constant joint rates `rates` (rad/s or m/s).
+    fn advance(&mut self, rates: &[f64], dt: f64) -> Result<()>;
+}
+
+/// An arm on a fixed base: `q += dt q_dot`, forward kinematics and the
+/// world-frame Jacobian of its model. Borrows a [`Data`] workspace sized for
+/// the model, so that a run allocates only its joint vector.
+#[derive(Debug)]
+pub struct FixedBase<'a> {
+    model: &'a Model,
+    data: &'a mut Data,
+    q: Vec<f64>,
+}
+
+impl<'a> FixedBase<'a> {
+    /// `model` at joint positions `q0` (checked against the size and the
+    /// limits). Errors: wrong size, NaN, outside the limits, a workspace made
+    /// for another model.
+    pub fn new(model: &'a Model, data: &'a mut Data, q0: &[f64]) -> Result<Self> {
+        model.check_limits(q0)?;
+        Ok(FixedBase {
+            model,
+            data,
+            q: q0.to_vec(),
+        })
+    }
+
+    /// The model.
+    pub fn model(&self) -> &'a Model {
+        self.model
+    }
+
+    /// The workspace: after [`Plant::evaluate`], forward kinematics and the
+    /// Jacobian at the current joint positions.
+    pub fn data(&self) -> &Data {
+        self.data
+    }
+}
+
+impl Plant for FixedBase<'_> {
+    fn dof(&self) -> usize {
+        self.q.len()
+    }
+
+    fn joint_positions(&self) -> &[f64] {
+        &self.q
+    }
+
+    fn evaluate(&mut self) -> Result<()> {
+        jacobian(self.model, self.data, &self.q, JacobianFrame::World)?;
+        Ok(())
+    }
+
+    fn end_effector(&self) -> &Pose {
+        self.data.end_effector_pose()
+    }
+
+    fn jacobian(&self) -> &Matrix6xX<f64> {
+        self.data.jacobian()
+    }
+
+    fn advance(&mut self, rates: &[f64], dt: f64) -> Result<()> {
+        for (qi, vi) in self.q.iter_mut().zip(rates) {
+            *qi += dt * vi;
+        }
+        Ok(())
+    }
+}
+
+/// A free-floating space robot (seed 004): the generalized Jacobian `J*` of
+/// its base mode, and [`crate::space::step`] (momentum conserved, the base
+/// moving) to advance.
+#[derive(Debug)]
+pub struct FloatingBase<'a> {
+    model: &'a FreeFloatingModel,
+    data: &'a mut SpaceData,
+    mode: BaseMode,
+    state: FreeFloatingState,
+}
+
+impl<'a> FloatingBase<'a> {
+    /// The system from `initial` (base pose and joint positions), the base
+    /// behaving as `mode` says. Errors: an arm with fewer than 6 joints (a
+    /// 6-D pose cannot be tracked).
+    pub fn new(
+        model: &'a FreeFloatingModel,
+        data: &'a mut SpaceData,
+        mode: BaseMode,
+        initial: &FreeFloatingState,
+    ) -> Result<Self> {
+        let n = model.dof();
+        if n < 6 {
+            return Err(Error::invalid_argument(
+                "model",
+                format!("tracking a 6-D pose needs at least 6 joints, the arm has {n}"),
+            ));
+        }
+        Ok(FloatingBase {
+            model,
+            data,
+            mode,
+            state: initial.clone(),
+        })
+    }
+
+    /// The current state (base pose and joints).
+    pub fn state(&self) -> &FreeFloatingState {
+        &self.state
+    }
+}
+
+impl Plant for FloatingBase<'_> {
+    fn dof(&self) -> usize {
+        self.state.q.len()
+    }
+
+    fn joint_positions(&self) -> &[f64] {
+        &self.state.q
+    }
+
+    fn evaluate(&mut self) -> Result<()> {
+        generalized_jacobian(
+            self.model,
+            self.data,
+            &self.state.base,
+            &self.state.q,
+            self.mode,
+        )?;
+        Ok(())
+    }
+
+    fn end_effector(&self) -> &Pose {
+        self.data.end_effector_pose()
+    }
+
+    fn jacobian(&self) -> &Matrix6xX<f64> {
+        self.data.jacobian()
+    }
+
+    fn base(&self) -> Pose {
+        self.state.base
+    }
+
+    fn advance(&mut self, rates: &[f64], dt: f64) -> Result<()> {
+        step(self.model, self.data, &mut self.state, rates, dt, self.mode)
+    }
+}
