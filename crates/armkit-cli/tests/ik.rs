@@ -75,6 +75,8 @@ fn numeric_ik_text_shows_the_report() {
         &pose,
         "--start",
         "0,0,0,-1.5,0,1.5,0",
+        "--solver",
+        "lm",
     ]);
     assert!(output.status.success(), "{}", stderr(&output));
     let text = stdout(&output);
@@ -148,21 +150,165 @@ fn closed_form_lists_every_solution() {
 
 #[test]
 fn closed_form_on_an_unfit_robot_is_an_error() {
+    for solver in ["closed-form", "analytic"] {
+        let output = armkit(&[
+            "ik",
+            "--robot",
+            "gantry9",
+            "--pose",
+            "0.4,0,0.5,0,0,0",
+            "--solver",
+            solver,
+        ]);
+        assert_eq!(output.status.code(), Some(1));
+        assert!(
+            stderr(&output).contains("`gantry9` has no analytic solver: class other"),
+            "{}",
+            stderr(&output)
+        );
+    }
+}
+
+#[test]
+fn explain_prints_the_class() {
+    for (robot, class) in [
+        ("ur5", "class: three_parallel_2_3_4_intersecting_5_6"),
+        ("puma560", "class: spherical_wrist_parallel_2_3"),
+        ("stanford", "class: spherical_wrist_prismatic_3"),
+        (
+            "panda",
+            "class: spherical_base_intersecting_6_5 (with joint 7 held",
+        ),
+        ("gantry9", "class: other"),
+    ] {
+        let output = armkit(&["ik", "--robot", robot, "--explain"]);
+        assert!(output.status.success(), "{}", stderr(&output));
+        let text = stdout(&output);
+        assert!(text.contains(class), "{robot}: {text}");
+        assert!(text.contains("axes 1 and 2:"), "{text}");
+    }
+}
+
+#[test]
+fn analytic_json_lists_every_solution_with_the_class() {
+    let q0 = [0.4, -1.1, 1.3, -0.6, 1.4, 0.2];
+    let (pose, target) = pose_argument("ur5", &q0);
     let output = armkit(&[
         "ik",
         "--robot",
-        "panda",
+        "ur5",
         "--pose",
-        "0.4,0,0.5,0,0,0",
+        &pose,
         "--solver",
-        "closed-form",
+        "analytic",
+        "--start",
+        "0.4,-1.1,1.3,-0.6,1.4,0.2",
+        "--json",
     ]);
-    assert_eq!(output.status.code(), Some(1));
+    assert!(output.status.success(), "{}", stderr(&output));
+    let json: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    assert_eq!(json["class"], "three_parallel_2_3_4_intersecting_5_6");
+    assert_eq!(json["status"], "converged");
+    let solutions = json["solutions"].as_array().unwrap();
+    let fits = json["solution_fits"].as_array().unwrap();
+    // 8 branches, each with every 2 pi multiple within the +-2 pi limits.
+    assert!(solutions.len() >= 8 * 16, "{}", solutions.len());
+    assert_eq!(solutions.len(), fits.len());
+    for (s, f) in solutions.iter().zip(fits) {
+        assert!(fk_error("ur5", &q_of(s), &target) <= 1e-9);
+        assert_eq!(f["fit"], "exact");
+    }
+    let q = q_of(&json["q"]);
+    assert!(q.iter().zip(q0).all(|(a, b)| (a - b).abs() < 1e-9), "{q:?}");
+}
+
+#[test]
+fn seven_dof_arms_by_a_held_joint_or_a_sweep() {
+    let q0 = [0.3, -0.4, 0.2, -2.0, 0.1, 1.8, 0.5];
+    let (pose, target) = pose_argument("panda", &q0);
+    let args = |extra: &[&str]| {
+        let mut a = vec![
+            "ik", "--robot", "panda", "--pose", &pose, "--solver", "analytic", "--json",
+        ];
+        a.extend_from_slice(extra);
+        a.iter().map(|s| s.to_string()).collect::<Vec<_>>()
+    };
+    let run = |extra: &[&str]| {
+        let a = args(extra);
+        let refs: Vec<&str> = a.iter().map(|s| s.as_str()).collect();
+        let output = armkit(&refs);
+        assert!(output.status.success(), "{}", stderr(&output));
+        serde_json::from_slice::<serde_json::Value>(&output.stdout).unwrap()
+    };
+    let held = run(&["--fixed-joint", "7", "--parameter", "0.5"]);
+    let solutions: Vec<Vec<f64>> = held["solutions"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(q_of)
+        .collect();
+    assert!(solutions
+        .iter()
+        .any(|q| q.iter().zip(q0).all(|(a, b)| (a - b).abs() < 1e-8)));
+    for q in &solutions {
+        assert!(fk_error("panda", q, &target) <= 1e-9);
+        assert_eq!(q[6], 0.5);
+    }
+    let swept = run(&["--fixed-joint", "7", "--sweep", "8"]);
+    let swept = swept["solutions"].as_array().unwrap();
+    let held_values: std::collections::BTreeSet<String> =
+        swept.iter().map(|q| format!("{:.6}", q_of(q)[6])).collect();
+    assert!(held_values.len() >= 3, "{held_values:?}");
+    for q in swept {
+        assert!(fk_error("panda", &q_of(q), &target) <= 1e-9);
+    }
+}
+
+#[test]
+fn auto_takes_the_analytic_route_where_it_can() {
+    let (pose, target) = pose_argument("ur5", &[0.4, -1.1, 1.3, -0.6, 1.4, 0.2]);
+    let output = armkit(&["ik", "--robot", "ur5", "--pose", &pose, "--json"]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let json: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    assert_eq!(json["solver"], "auto");
+    assert_eq!(json["route"], "analytic");
+    assert!(fk_error("ur5", &q_of(&json["q"]), &target) <= 1e-9);
+    let (pose, _) = pose_argument("gantry9", &[0.5, 0.5, 0.2, 0.1, -0.5, 0.9, 0.2, 0.4, 0.1]);
+    let output = armkit(&["ik", "--robot", "gantry9", "--pose", &pose, "--json"]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let json: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    assert_eq!(json["route"], "numeric");
+}
+
+#[test]
+fn not_converging_says_why_on_stderr() {
+    let output = armkit(&["ik", "--robot", "ur5", "--pose", "100,0,0.5,0,0,0"]);
+    assert_eq!(output.status.code(), Some(3));
+    let reason = stderr(&output);
     assert!(
-        stderr(&output).contains("`panda` has no closed-form solver"),
-        "{}",
-        stderr(&output)
+        reason.starts_with("ik: unreachable: the target is 100.0"),
+        "{reason}"
     );
+    assert_eq!(reason.lines().count(), 1, "{reason}");
+    // Within the reach ball but not reachable with this orientation.
+    let output = armkit(&[
+        "ik",
+        "--robot",
+        "ur5",
+        "--pose",
+        "0,0,1.05,0,0,0",
+        "--solver",
+        "lm",
+        "--budget-ms",
+        "1",
+    ]);
+    assert_eq!(output.status.code(), Some(3));
+    let reason = stderr(&output);
+    assert!(
+        reason.starts_with("ik: not converged: best position error"),
+        "{reason}"
+    );
+    assert_eq!(reason.lines().count(), 1, "{reason}");
 }
 
 #[test]
@@ -225,11 +371,27 @@ fn bench_ik_prints_the_table() {
         "--targets",
         "40",
         "--solver",
-        "lm,closed-form",
+        "lm,analytic,auto",
     ]);
-    // ur5 has no closed-form solver: the error names it.
+    assert!(output.status.success(), "{}", stderr(&output));
+    let text = stdout(&output);
+    for solver in ["lm", "analytic", "auto"] {
+        assert!(
+            text.contains(&format!("| ur5 | {solver} | 100.00 % (40/40) |")),
+            "{text}"
+        );
+    }
+    let output = armkit(&[
+        "bench-ik",
+        "--robot",
+        "gantry9",
+        "--targets",
+        "5",
+        "--solver",
+        "analytic",
+    ]);
     assert_eq!(output.status.code(), Some(1));
-    assert!(stderr(&output).contains("no closed-form solver"));
+    assert!(stderr(&output).contains("no analytic solver"));
     let output = armkit(&[
         "bench-ik",
         "--robot",
@@ -250,7 +412,7 @@ fn bench_ik_prints_the_table() {
         "{text}"
     );
     assert!(
-        text.contains("| puma560 | closed-form | 100.00 % (40/40) |"),
+        text.contains("| puma560 | analytic | 100.00 % (40/40) |"),
         "{text}"
     );
     assert!(text.contains("| puma560 | dls |"), "{text}");

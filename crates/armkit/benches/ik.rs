@@ -2,19 +2,26 @@
 //! from mid-range, cycling through 64 of the benchmark's random reachable
 //! targets), one iteration (a solve capped at 1 iteration: the initial
 //! FK + Jacobian, one step, the trial FK + Jacobian), the step's linear
-//! algebra alone, and the closed-form solvers.
+//! algebra alone, the closed-form solvers, the analytic solvers (every
+//! solution, FK-checked, wrapped into the limits and sorted) and the
+//! automatic route.
 //!
-//! Run: `cargo bench -p armkit --bench ik`.
+//! Run: `cargo bench -p armkit --bench ik` (`-- analytic` for the analytic ones).
 
 use std::hint::black_box;
 
+use armkit::ik::analytic::{
+    AnalyticOptions, AnalyticSolver, Parameter, Representatives, Verification,
+};
 use armkit::ik::closed_form::{arm4_solutions, SphericalWristSolver};
+use armkit::ik::AutoSolver;
 use armkit::ik::{
     benchmark_targets, damped_least_squares_step, singularity_robust_step, ChiaveriniFilter,
     IkOptions, IkSolver,
 };
 use armkit::kinematics::{jacobian, Data, JacobianFrame};
 use armkit::math::Vector6;
+use armkit::Model;
 use criterion::{criterion_group, criterion_main, Criterion};
 
 fn bench_numeric(c: &mut Criterion, name: &str) {
@@ -79,11 +86,115 @@ fn bench_closed_form(c: &mut Criterion) {
     });
 }
 
+fn urdf(file: &str, edit: &dyn Fn(String) -> String) -> Model {
+    let path = format!(
+        "{}/../../tests/data/urdf/{file}",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let text = edit(std::fs::read_to_string(path).unwrap());
+    let selection = armkit::urdf::ChainSelection::between("base_link", "tool0");
+    armkit::urdf::parse_str(&text, file, &selection).unwrap()
+}
+
+/// The iiwa14 URDF without its 0.436 mm shoulder and elbow offsets.
+fn ideal_iiwa14() -> Model {
+    urdf("iiwa14.urdf", &|t| {
+        t.replace("xyz=\"-0.00043624 0 0.36\"", "xyz=\"0 0 0.36\"")
+            .replace("xyz=\"0.00043624 0 0.42\"", "xyz=\"0 0 0.42\"")
+    })
+}
+
+fn bench_analytic_solver(
+    c: &mut Criterion,
+    label: &str,
+    model: &Model,
+    mut solver: AnalyticSolver,
+) {
+    let targets = benchmark_targets(model, 64, 42).unwrap();
+    let start = model.neutral_configuration();
+    let mut k = 0;
+    c.bench_function(&format!("ik/analytic/{label}"), |b| {
+        b.iter(|| {
+            k = (k + 1) % targets.len();
+            black_box(solver.solve(&targets[k].1, &start).unwrap().len());
+        })
+    });
+}
+
+fn bench_analytic(c: &mut Criterion) {
+    let nearest = AnalyticOptions {
+        representatives: Representatives::Nearest,
+        ..AnalyticOptions::default()
+    };
+    let every = AnalyticOptions::default();
+    let ur5 = armkit::robots::by_name("ur5").unwrap();
+    let ur5_urdf = urdf("ur5.urdf", &|t| t);
+    for (label, model) in [
+        ("ur5", &ur5),
+        ("ur5_urdf", &ur5_urdf),
+        ("puma560", &armkit::robots::by_name("puma560").unwrap()),
+        ("stanford", &armkit::robots::by_name("stanford").unwrap()),
+    ] {
+        let solver = AnalyticSolver::new(model, nearest).unwrap();
+        bench_analytic_solver(c, &format!("{label}/distinct"), model, solver);
+    }
+    let solver = AnalyticSolver::new(&ur5, every).unwrap();
+    bench_analytic_solver(c, "ur5/every_representative", &ur5, solver);
+    // Fit from the subproblems' own flags, no FK check (IK-Geo's measure).
+    let unchecked = AnalyticOptions {
+        verification: Verification::Subproblems,
+        ..nearest
+    };
+    for name in ["ur5", "puma560"] {
+        let model = armkit::robots::by_name(name).unwrap();
+        let solver = AnalyticSolver::new(&model, unchecked).unwrap();
+        bench_analytic_solver(c, &format!("{name}/distinct_unchecked"), &model, solver);
+    }
+    let iiwa = ideal_iiwa14();
+    let solver =
+        AnalyticSolver::with_parameter(&iiwa, nearest, Parameter::ElbowAngle(0.3)).unwrap();
+    bench_analytic_solver(c, "iiwa14_ideal_elbow_angle/distinct", &iiwa, solver);
+    let panda = armkit::robots::by_name("panda").unwrap();
+    let held = Parameter::FixedJoint {
+        joint: 6,
+        value: 0.3,
+    };
+    let solver = AnalyticSolver::with_parameter(&panda, nearest, held).unwrap();
+    bench_analytic_solver(c, "panda_q7_held/distinct", &panda, solver);
+    // The 1-D search class: the iiwa14 URDF (0.436 mm offsets) with joint 3 held.
+    let iiwa_urdf = urdf("iiwa14.urdf", &|t| t);
+    let held = Parameter::FixedJoint {
+        joint: 2,
+        value: 0.4,
+    };
+    let solver = AnalyticSolver::with_parameter(&iiwa_urdf, nearest, held).unwrap();
+    bench_analytic_solver(
+        c,
+        "iiwa14_urdf_q3_held_1d_search/distinct",
+        &iiwa_urdf,
+        solver,
+    );
+    for name in ["ur5", "panda"] {
+        let model = armkit::robots::by_name(name).unwrap();
+        let targets = benchmark_targets(&model, 64, 42).unwrap();
+        let start = model.neutral_configuration();
+        let mut solver = AutoSolver::new(&model, IkOptions::default()).unwrap();
+        let mut k = 0;
+        c.bench_function(&format!("ik/auto/{name}"), |b| {
+            b.iter(|| {
+                k = (k + 1) % targets.len();
+                black_box(solver.solve(&targets[k].1, &start).unwrap());
+            })
+        });
+    }
+}
+
 fn ik(c: &mut Criterion) {
     for name in ["ur5", "panda", "gantry9"] {
         bench_numeric(c, name);
     }
     bench_closed_form(c);
+    bench_analytic(c);
 }
 
 criterion_group!(benches, ik);

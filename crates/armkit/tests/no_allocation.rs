@@ -634,3 +634,38 @@ fn the_simulated_plant_does_not_allocate() {
         );
     }
 }
+
+#[test]
+fn analytic_ik_solves_do_not_allocate() {
+    use armkit::ik::analytic::{AnalyticOptions, AnalyticSolver, Parameter};
+    let cases = [
+        ("ur5", None),
+        ("puma560", None),
+        ("stanford", None),
+        (
+            "panda",
+            Some(Parameter::FixedJoint {
+                joint: 6,
+                value: 0.3,
+            }),
+        ),
+    ];
+    for (name, parameter) in cases {
+        let model = armkit::robots::by_name(name).unwrap();
+        let targets = benchmark_targets(&model, 20, 3).unwrap();
+        let options = AnalyticOptions::default();
+        let mut solver = match parameter {
+            Some(p) => AnalyticSolver::with_parameter(&model, options, p).unwrap(),
+            None => AnalyticSolver::new(&model, options).unwrap(),
+        };
+        let start = model.neutral_configuration();
+        let mut solutions = 0;
+        for (_, target) in &targets {
+            let before = allocations();
+            solutions += solver.solve(target, &start).unwrap().len();
+            let after = allocations();
+            assert_eq!(after - before, 0, "{name}: {} allocations", after - before);
+        }
+        assert!(solutions > 0, "{name}");
+    }
+}

@@ -13,6 +13,11 @@
 //!   [`IkReport`] whose [`IkStatus`] is `Converged` only when both errors are
 //!   within tolerance. Non-convergence is a status with the best iterate, not
 //!   an error; `Err` is for bad input only.
+//! * [`analytic`]: every solution of 6-joint arms of the classes solvable by
+//!   subproblem decomposition (spherical wrist at either end, the UR family)
+//!   and of 7-DOF arms at a redundancy parameter; [`AutoSolver`] takes it
+//!   where the class allows and the numeric solver otherwise. Targets beyond
+//!   the [`ReachBound`] are not attempted.
 //! * [`closed_form`]: every solution of PUMA-type 6R arms with a spherical
 //!   wrist (`puma560`, `space6r`; Pieper) and of seed 002's 4-DOF arm
 //!   (`arm4`), each verified by forward kinematics.
@@ -38,20 +43,30 @@
 //! assert!((reached.translation - goal.translation).norm() <= 1e-6);
 //! ```
 
+pub mod analytic;
+mod auto;
 pub mod closed_form;
+mod damping;
+mod kernel;
 mod numeric;
 mod pose_error;
 mod protocol;
+mod reach;
+mod steps;
 
 use std::time::Duration;
 
 pub use crate::math::rotation_log;
-pub use numeric::{
-    damped_least_squares_step, damped_pseudo_inverse, singularity_robust_inverse,
-    singularity_robust_step, ChiaveriniFilter, IkSolver, LmDamping, NakamuraDamping,
-};
+pub use auto::{AutoReport, AutoSolver, IkRoute, SWEEP_VALUES};
+pub use damping::{ChiaveriniFilter, LmDamping, NakamuraDamping};
+pub use numeric::IkSolver;
 pub use pose_error::{masked_error_norms, orientation_error, pose_error};
 pub use protocol::{benchmark_targets, random_configuration};
+pub use reach::{ReachBound, REACH_MARGIN};
+pub use steps::{
+    damped_least_squares_step, damped_pseudo_inverse, singularity_robust_inverse,
+    singularity_robust_step,
+};
 
 use crate::error::{check_positive, Error, Result};
 
@@ -299,6 +314,12 @@ impl IkStatus {
             IkStatus::Converged => "converged",
             IkStatus::NotConverged => "not_converged",
         }
+    }
+}
+
+impl std::fmt::Display for IkStatus {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
     }
 }
 

@@ -1,0 +1,292 @@
+//! The classes of arms, and their detection from an [`ArmStructure`].
+
+use super::structure::{ArmStructure, Motion, Relation};
+use crate::math::Vector3;
+
+/// Which end of the chain a structural feature is at.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ChainEnd {
+    /// The last joints (the usual wrist).
+    Tip,
+    /// The first joints (solved on the reversed chain).
+    Base,
+}
+
+/// How the three joints away from a spherical wrist position it (numbered
+/// along the chain as solved, i.e. from the end opposite the wrist).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Positioning {
+    /// Axes 2 and 3 parallel (PUMA, most industrial arms): subproblems 4, 3, 1.
+    ParallelSecondThird,
+    /// Axes 1 and 2 parallel: subproblems 4, 3, 1.
+    ParallelFirstSecond,
+    /// Axes 1 and 2 intersect (a shoulder offset beyond them is fine):
+    /// subproblems 3, 2.
+    IntersectingFirstSecond,
+    /// Axes 2 and 3 intersect: subproblems 3, 2.
+    IntersectingSecondThird,
+    /// Axes 1 and 2 intersect, joint 3 prismatic (Stanford arm): a
+    /// quadratic for the slide, then subproblem 2.
+    PrismaticThird,
+    /// No intersecting or parallel pair: a 1-D search over joint 1 (see
+    /// the `search` tolerances), then subproblems 4 and 1.
+    General,
+}
+
+/// The class of an arm, as far as the analytic solvers are concerned.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ArmClass {
+    /// 6 joints, three consecutive rotation axes meeting in one point at
+    /// one end: up to 8 solutions in closed form.
+    SphericalWrist {
+        /// Where the wrist is.
+        end: ChainEnd,
+        /// How the other three joints position it.
+        positioning: Positioning,
+    },
+    /// 6 rotation joints, axes 2, 3, 4 parallel and axes 5, 6 intersecting
+    /// (the Universal Robots family), counted from `end`'s opposite: up to 8
+    /// solutions in closed form.
+    ThreeParallel {
+        /// The end the intersecting pair is at (`Tip` for UR arms).
+        end: ChainEnd,
+    },
+    /// 7 rotation joints, axes 1-2-3 meeting at the shoulder, 5-6-7 at the
+    /// wrist and 3-4-5 at the elbow (KUKA LWR4, iiwa): up to 8 solutions per
+    /// elbow (arm) angle.
+    SphericalShoulderElbowWrist,
+    /// 6 rotation joints with only a pair of intersecting or parallel
+    /// consecutive axes (a 1-D search class); not solved analytically here.
+    OnePair,
+    /// 6 joints without any intersecting or parallel consecutive axes (a
+    /// 2-D search class); not solved analytically here.
+    General,
+    /// Another number of joints, or prismatic joints where no class allows
+    /// them.
+    Other,
+}
+
+impl ArmClass {
+    /// A short snake-case name (the CLI's JSON `class`).
+    pub fn as_str(&self) -> &'static str {
+        use ChainEnd::*;
+        use Positioning::*;
+        match self {
+            ArmClass::SphericalWrist { end, positioning } => match (end, positioning) {
+                (Tip, ParallelSecondThird) => "spherical_wrist_parallel_2_3",
+                (Tip, ParallelFirstSecond) => "spherical_wrist_parallel_1_2",
+                (Tip, IntersectingFirstSecond) => "spherical_wrist_intersecting_1_2",
+                (Tip, IntersectingSecondThird) => "spherical_wrist_intersecting_2_3",
+                (Tip, PrismaticThird) => "spherical_wrist_prismatic_3",
+                (Tip, General) => "spherical_wrist_general_1d_search",
+                (Base, ParallelSecondThird) => "spherical_base_parallel_5_4",
+                (Base, ParallelFirstSecond) => "spherical_base_parallel_6_5",
+                (Base, IntersectingFirstSecond) => "spherical_base_intersecting_6_5",
+                (Base, IntersectingSecondThird) => "spherical_base_intersecting_5_4",
+                (Base, PrismaticThird) => "spherical_base_prismatic_4",
+                (Base, General) => "spherical_base_general_1d_search",
+            },
+            ArmClass::ThreeParallel { end: Tip } => "three_parallel_2_3_4_intersecting_5_6",
+            ArmClass::ThreeParallel { end: Base } => "three_parallel_3_4_5_intersecting_1_2",
+            ArmClass::SphericalShoulderElbowWrist => "spherical_shoulder_elbow_wrist_7dof",
+            ArmClass::OnePair => "one_pair_1d_search",
+            ArmClass::General => "general_6r_2d_search",
+            ArmClass::Other => "other",
+        }
+    }
+
+    /// A sentence for `--explain`.
+    pub fn description(&self) -> &'static str {
+        match self {
+            ArmClass::SphericalWrist {
+                end,
+                positioning: Positioning::General,
+            } => match end {
+                ChainEnd::Tip => "spherical wrist at the tip, three general positioning axes: 1-D search over joint 1 (256 samples, roots to 1e-13 rad), up to 8 solutions",
+                ChainEnd::Base => "spherical joint group at the base, three general positioning axes: 1-D search on the reversed chain (256 samples, roots to 1e-13 rad)",
+            },
+            ArmClass::SphericalWrist { end: ChainEnd::Tip, .. } => {
+                "spherical wrist at the tip (axes 4-5-6 meet in one point): closed form, up to 8 solutions"
+            }
+            ArmClass::SphericalWrist { end: ChainEnd::Base, .. } => {
+                "spherical joint group at the base (axes 1-2-3 meet in one point): closed form on the reversed chain, up to 8 solutions"
+            }
+            ArmClass::ThreeParallel { .. } => {
+                "three parallel axes and an intersecting pair (UR family): closed form, up to 8 solutions"
+            }
+            ArmClass::SphericalShoulderElbowWrist => {
+                "7-DOF spherical shoulder, elbow, spherical wrist: closed form per elbow angle, up to 8 solutions"
+            }
+            ArmClass::OnePair => {
+                "only one intersecting or parallel pair of consecutive axes: needs a 1-D search (not implemented; use the numeric solver)"
+            }
+            ArmClass::General => {
+                "no intersecting or parallel consecutive axes: general 6R, needs a 2-D search (not implemented; use the numeric solver)"
+            }
+            ArmClass::Other => "not a 6-joint arm of a known class: numeric solver only",
+        }
+    }
+
+    /// True when the analytic solver handles this class.
+    pub fn is_solvable(&self) -> bool {
+        matches!(
+            self,
+            ArmClass::SphericalWrist { .. }
+                | ArmClass::ThreeParallel { .. }
+                | ArmClass::SphericalShoulderElbowWrist
+        )
+    }
+}
+
+impl std::fmt::Display for ArmClass {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// What detection found: the class and the points the solver needs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Detected {
+    /// Spherical wrist; `wrist` the common point, `shoulder` the meeting
+    /// point of the intersecting pair if any (chain as solved).
+    SphericalWrist {
+        end: ChainEnd,
+        positioning: Positioning,
+        wrist: Vector3<f64>,
+        shoulder: Vector3<f64>,
+    },
+    /// Three parallel; `meet` the meeting point of axes 5 and 6.
+    ThreeParallel {
+        end: ChainEnd,
+        meet: Vector3<f64>,
+    },
+    /// 7-DOF SRS: shoulder, elbow, wrist points.
+    ShoulderElbowWrist {
+        shoulder: Vector3<f64>,
+        elbow: Vector3<f64>,
+        wrist: Vector3<f64>,
+    },
+    Unsolvable(ArmClass),
+}
+
+impl Detected {
+    pub(crate) fn class(&self) -> ArmClass {
+        match *self {
+            Detected::SphericalWrist {
+                end, positioning, ..
+            } => ArmClass::SphericalWrist { end, positioning },
+            Detected::ThreeParallel { end, .. } => ArmClass::ThreeParallel { end },
+            Detected::ShoulderElbowWrist { .. } => ArmClass::SphericalShoulderElbowWrist,
+            Detected::Unsolvable(class) => class,
+        }
+    }
+}
+
+/// The class of `structure` (any number of joints).
+pub(crate) fn detect(structure: &ArmStructure) -> Detected {
+    if structure.dof() == 7 {
+        return detect_seven(structure);
+    }
+    if structure.dof() != 6 {
+        return Detected::Unsolvable(ArmClass::Other);
+    }
+    let reversed = structure.reversed();
+    for (end, chain) in [(ChainEnd::Tip, structure), (ChainEnd::Base, &reversed)] {
+        if let Some(found) = spherical_wrist(chain, end) {
+            return found;
+        }
+    }
+    for (end, chain) in [(ChainEnd::Tip, structure), (ChainEnd::Base, &reversed)] {
+        if let Some(found) = three_parallel(chain, end) {
+            return found;
+        }
+    }
+    if structure.motions.contains(&Motion::Translation) {
+        return Detected::Unsolvable(ArmClass::Other);
+    }
+    let special = (0..5)
+        .filter(|&i| !matches!(structure.relation(i, i + 1), Relation::Skew(_)))
+        .count();
+    Detected::Unsolvable(if special == 0 {
+        ArmClass::General
+    } else {
+        ArmClass::OnePair
+    })
+}
+
+fn rotational(chain: &ArmStructure, joints: std::ops::Range<usize>) -> bool {
+    joints
+        .into_iter()
+        .all(|i| chain.motions[i] == Motion::Rotation)
+}
+
+fn spherical_wrist(chain: &ArmStructure, end: ChainEnd) -> Option<Detected> {
+    if !rotational(chain, 3..6) {
+        return None;
+    }
+    let wrist = chain.common_point(3, 4, 5)?;
+    let found = |positioning, shoulder| {
+        Some(Detected::SphericalWrist {
+            end,
+            positioning,
+            wrist,
+            shoulder,
+        })
+    };
+    if chain.motions[2] == Motion::Translation {
+        if !rotational(chain, 0..2) {
+            return None;
+        }
+        return match chain.relation(0, 1) {
+            Relation::Intersecting(o) => found(Positioning::PrismaticThird, o),
+            _ => None,
+        };
+    }
+    if !rotational(chain, 0..3) {
+        return None;
+    }
+    let (r01, r12) = (chain.relation(0, 1), chain.relation(1, 2));
+    match (r01, r12) {
+        (Relation::Parallel, Relation::Parallel) => None,
+        (_, Relation::Parallel) => found(Positioning::ParallelSecondThird, wrist),
+        (Relation::Parallel, _) => found(Positioning::ParallelFirstSecond, wrist),
+        (Relation::Intersecting(o), _) => found(Positioning::IntersectingFirstSecond, o),
+        (_, Relation::Intersecting(o)) => found(Positioning::IntersectingSecondThird, o),
+        _ => found(Positioning::General, wrist),
+    }
+}
+
+fn three_parallel(chain: &ArmStructure, end: ChainEnd) -> Option<Detected> {
+    if !rotational(chain, 0..6) {
+        return None;
+    }
+    let parallel = |i, j| chain.relation(i, j) == Relation::Parallel;
+    if !(parallel(1, 2) && parallel(2, 3)) || parallel(0, 1) || parallel(3, 4) {
+        return None;
+    }
+    match chain.relation(4, 5) {
+        Relation::Intersecting(meet) => Some(Detected::ThreeParallel { end, meet }),
+        _ => None,
+    }
+}
+
+fn detect_seven(structure: &ArmStructure) -> Detected {
+    if !rotational(structure, 0..7) {
+        return Detected::Unsolvable(ArmClass::Other);
+    }
+    let shoulder = structure.common_point(0, 1, 2);
+    let elbow = structure.common_point(2, 3, 4);
+    let wrist = structure.common_point(4, 5, 6);
+    match (shoulder, elbow, wrist) {
+        (Some(shoulder), Some(elbow), Some(wrist))
+            if (elbow - shoulder).norm() > 1e-6 && (wrist - elbow).norm() > 1e-6 =>
+        {
+            Detected::ShoulderElbowWrist {
+                shoulder,
+                elbow,
+                wrist,
+            }
+        }
+        _ => Detected::Unsolvable(ArmClass::Other),
+    }
+}

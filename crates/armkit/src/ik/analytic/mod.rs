@@ -1,0 +1,494 @@
+//! Analytic inverse kinematics by subproblem decomposition: every solution
+//! of a 6-joint arm of a known class in closed form, and of a 7-DOF arm at a
+//! given redundancy parameter.
+//!
+//! The arm's joint axes are read as lines in the zero configuration
+//! ([`structure`]); which consecutive axes intersect or are parallel decides
+//! the class ([`ArmClass`]); each class is solved by a short sequence of the
+//! geometric [`subproblems`] (Paden-Kahan 1-3 and a fourth, as in Elias and
+//! Wen's IK-Geo; derived here, not ported):
+//!
+//! * spherical wrist (three axes meeting, at either end) with the other
+//!   three having a parallel or an intersecting pair, or a prismatic third
+//!   joint (PUMA, Stanford, KUKA/ABB-type arms with a shoulder offset, the
+//!   Panda or iiwa with one joint fixed): up to 8 solutions;
+//! * axes 2-3-4 parallel with 5-6 intersecting (Universal Robots): up to 8;
+//! * 7-DOF spherical shoulder, elbow, spherical wrist (iiwa, LWR4) at an
+//!   elbow angle ([`Parameter::ElbowAngle`]); any other 7-DOF arm with one
+//!   joint held ([`Parameter::FixedJoint`]) if what is left has a class.
+//!
+//! Each solution is checked by the model's forward kinematics and marked
+//! [`Fit::Exact`] (within [`EXACT_TOLERANCE`] = 1e-10 m and rad) or
+//! [`Fit::Approximate`] (the least-squares answer of the subproblems, e.g. a
+//! pose out of reach, with its errors). Joint angles are then wrapped into
+//! the limits: a joint whose range spans more than 2 pi gives every
+//! representative inside it ([`Representatives::Every`]); solutions with a
+//! joint outside its limits are dropped ([`RangeFilter::WithinLimits`]);
+//! the rest are sorted by joint-space distance to the caller's
+//! configuration. After [`AnalyticSolver::new`], a solve allocates nothing
+//! (unless the representatives outgrow the buffer sized at set-up for every
+//! joint's range, which only happens for [`Parameter::FixedJoint`] changes).
+//! One class searches: a spherical wrist behind three general positioning
+//! axes, by a 1-D search over joint 1 whose tolerances are in [`search`]
+//! (256 samples per turn, roots to 1e-13 rad); it may miss a double root.
+//!
+//! ```
+//! use armkit::ik::analytic::{AnalyticOptions, AnalyticSolver};
+//! use armkit::ik::closed_form::Fit;
+//! use armkit::kinematics::{forward_kinematics, Data};
+//! let model = armkit::robots::by_name("ur5").unwrap();
+//! let mut data = Data::new(&model);
+//! let q = [0.3, -1.2, 1.4, -0.5, 1.2, 0.4];
+//! let target = *forward_kinematics(&model, &mut data, &q).unwrap();
+//! let mut solver = AnalyticSolver::new(&model, AnalyticOptions::default()).unwrap();
+//! assert_eq!(solver.class().as_str(), "three_parallel_2_3_4_intersecting_5_6");
+//! let solutions = solver.solve(&target, &q).unwrap();
+//! assert!(solutions.len() >= 8);
+//! assert!(solutions.iter().all(|s| s.fit == Fit::Exact));
+//! // Nearest first: the configuration the target came from.
+//! assert!(solutions[0].q().iter().zip(&q).all(|(a, b)| (a - b).abs() < 1e-9));
+//! ```
+
+mod chain;
+mod class;
+mod finish;
+mod parallel;
+pub mod search;
+mod srs;
+pub mod structure;
+pub mod subproblems;
+mod wrist;
+
+pub use class::{ArmClass, ChainEnd, Positioning};
+pub use finish::{AnalyticSolution, Representatives, Verification};
+
+use self::chain::{Candidates, Chain};
+use self::class::{detect, Detected};
+use self::finish::Finisher;
+use self::srs::SrsChain;
+use self::structure::ArmStructure;
+pub use super::closed_form::{Fit, RangeFilter, EXACT_TOLERANCE};
+use super::numeric::check_target;
+use crate::error::{check_finite_vector, Error, Result};
+use crate::math::Pose;
+use crate::model::Model;
+
+/// Options of an [`AnalyticSolver`]. Defaults: every representative within
+/// the limits, solutions outside the limits dropped, each solution checked
+/// by forward kinematics.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct AnalyticOptions {
+    /// Which 2 pi multiples of a joint angle are returned.
+    pub representatives: Representatives,
+    /// Whether solutions outside the joint limits are kept.
+    pub limits: RangeFilter,
+    /// How each solution's fit is decided.
+    pub verification: Verification,
+}
+
+impl Default for AnalyticOptions {
+    fn default() -> Self {
+        AnalyticOptions {
+            representatives: Representatives::Every,
+            limits: RangeFilter::WithinLimits,
+            verification: Verification::ForwardKinematics,
+        }
+    }
+}
+
+impl AnalyticOptions {
+    /// Nothing to check (every combination is valid); kept for uniformity.
+    pub fn validate(&self) -> Result<()> {
+        Ok(())
+    }
+}
+
+/// The redundancy parameter of a 7-DOF arm.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Parameter {
+    /// Joint `joint` (0-based) held at `value` (rad or m); the other six
+    /// must form a class.
+    FixedJoint {
+        /// Which joint, 0-based.
+        joint: usize,
+        /// Its value, rad or m.
+        value: f64,
+    },
+    /// The elbow angle of a spherical-shoulder-elbow-wrist arm, rad (see
+    /// [`AnalyticSolver::elbow_angle`]).
+    ElbowAngle(f64),
+}
+
+/// What the solver does per solve, fixed at set-up.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Plan {
+    Wrist { chain: Chain, detected: Detected },
+    ThreeParallel { chain: Chain, detected: Detected },
+    ShoulderElbowWrist(SrsChain),
+}
+
+/// An analytic IK solver for one model (see the module docs).
+#[derive(Clone, Debug)]
+pub struct AnalyticSolver {
+    model: Model,
+    structure: ArmStructure,
+    class: ArmClass,
+    plan: Plan,
+    parameter: Option<Parameter>,
+    options: AnalyticOptions,
+    candidates: Candidates,
+    finisher: Finisher,
+}
+
+impl AnalyticSolver {
+    /// A solver for a 6-joint model of a known class. Errors: another number
+    /// of joints (7-DOF arms need [`AnalyticSolver::with_parameter`]), a
+    /// coupling, or a class without analytic solution (the message names the class).
+    pub fn new(model: &Model, options: AnalyticOptions) -> Result<AnalyticSolver> {
+        if model.dof() == 7 {
+            return Err(Error::invalid_argument(
+                "model",
+                format!(
+                    "`{}` has 7 joints: give the redundancy parameter (an elbow angle or a fixed joint)",
+                    model.name()
+                ),
+            ));
+        }
+        Self::build(model, options, None)
+    }
+
+    /// A solver for a 7-DOF model at a redundancy parameter.
+    pub fn with_parameter(
+        model: &Model,
+        options: AnalyticOptions,
+        parameter: Parameter,
+    ) -> Result<AnalyticSolver> {
+        if model.dof() != 7 {
+            return Err(Error::invalid_argument(
+                "parameter",
+                format!(
+                    "a redundancy parameter is for 7-joint arms; `{}` has {}",
+                    model.name(),
+                    model.dof()
+                ),
+            ));
+        }
+        Self::build(model, options, Some(parameter))
+    }
+
+    fn build(
+        model: &Model,
+        options: AnalyticOptions,
+        parameter: Option<Parameter>,
+    ) -> Result<AnalyticSolver> {
+        options.validate()?;
+        let structure = ArmStructure::of_model(model)?;
+        let (class, plan) = plan(model, &structure, parameter)?;
+        Ok(AnalyticSolver {
+            model: model.clone(),
+            finisher: Finisher::new(model, options),
+            structure,
+            class,
+            plan,
+            parameter,
+            options,
+            candidates: Candidates::new(),
+        })
+    }
+
+    /// The options.
+    pub fn options(&self) -> &AnalyticOptions {
+        &self.options
+    }
+
+    /// The model solved for.
+    pub fn model(&self) -> &Model {
+        &self.model
+    }
+
+    /// The detected class.
+    pub fn class(&self) -> ArmClass {
+        self.class
+    }
+
+    /// The model's lines at zero configuration.
+    pub fn structure(&self) -> &ArmStructure {
+        &self.structure
+    }
+
+    /// The redundancy parameter (7-DOF arms).
+    pub fn parameter(&self) -> Option<Parameter> {
+        self.parameter
+    }
+
+    /// Changes the redundancy parameter's value (the elbow angle in rad, or
+    /// the fixed joint's value). An elbow angle changes nothing else; a fixed
+    /// joint rebuilds the plan (allocates) and fails if the rest loses its class.
+    pub fn set_parameter_value(&mut self, value: f64) -> Result<()> {
+        if !value.is_finite() {
+            return Err(Error::invalid_argument(
+                "parameter",
+                format!("must be finite, got {value}"),
+            ));
+        }
+        let parameter = match self.parameter {
+            Some(Parameter::ElbowAngle(_)) => Parameter::ElbowAngle(value),
+            Some(Parameter::FixedJoint { joint, .. }) => {
+                let parameter = Parameter::FixedJoint { joint, value };
+                let (class, plan) = plan(&self.model, &self.structure, Some(parameter))?;
+                self.class = class;
+                self.plan = plan;
+                parameter
+            }
+            None => {
+                return Err(Error::invalid_argument(
+                    "parameter",
+                    "this solver has no redundancy parameter (not a 7-joint arm)",
+                ))
+            }
+        };
+        self.parameter = Some(parameter);
+        Ok(())
+    }
+
+    /// The elbow angle (rad) of configuration `q` of a
+    /// spherical-shoulder-elbow-wrist arm (the value to give
+    /// [`Parameter::ElbowAngle`] to find `q` among the solutions).
+    pub fn elbow_angle(&self, q: &[f64]) -> Result<f64> {
+        check_finite_vector("q", q, self.model.dof())?;
+        match &self.plan {
+            Plan::ShoulderElbowWrist(srs) => {
+                let (elbow, wrist) = srs.elbow_and_wrist(q);
+                Ok(srs.elbow_angle(&elbow, &wrist))
+            }
+            _ => Err(Error::invalid_argument(
+                "model",
+                "the elbow angle is defined for spherical-shoulder-elbow-wrist arms only",
+            )),
+        }
+    }
+
+    /// Every solution for `target` (world frame), per the options, nearest
+    /// `current` (rad or m, one per joint) first. Errors: a non-finite target
+    /// or a rotation that is not proper, `current` of the wrong size or not
+    /// finite. An unreachable pose is not an error: its solutions are
+    /// least-squares ([`Fit::Approximate`]).
+    pub fn solve(&mut self, target: &Pose, current: &[f64]) -> Result<&[AnalyticSolution]> {
+        check_target(target)?;
+        check_finite_vector("current", current, self.model.dof())?;
+        self.candidates.clear();
+        let mut fixed = None;
+        let mut reverse = false;
+        match &self.plan {
+            Plan::Wrist { chain, detected } | Plan::ThreeParallel { chain, detected } => {
+                let (end, goal) = match detected {
+                    Detected::SphericalWrist { end, .. } | Detected::ThreeParallel { end, .. } => {
+                        (*end, *target)
+                    }
+                    _ => (ChainEnd::Tip, *target),
+                };
+                let goal = match end {
+                    ChainEnd::Tip => goal,
+                    ChainEnd::Base => goal.inverse(),
+                };
+                reverse = end == ChainEnd::Base;
+                match *detected {
+                    Detected::SphericalWrist {
+                        positioning,
+                        wrist,
+                        shoulder,
+                        ..
+                    } => wrist::solve(
+                        chain,
+                        positioning,
+                        &wrist,
+                        &shoulder,
+                        &goal,
+                        &mut self.candidates,
+                    ),
+                    Detected::ThreeParallel { meet, .. } => {
+                        parallel::solve(chain, &meet, &goal, &mut self.candidates)
+                    }
+                    _ => {}
+                }
+                if let Some(Parameter::FixedJoint { joint, value }) = self.parameter {
+                    fixed = Some((joint, value));
+                }
+            }
+            Plan::ShoulderElbowWrist(srs) => {
+                let psi = match self.parameter {
+                    Some(Parameter::ElbowAngle(psi)) => psi,
+                    _ => 0.0,
+                };
+                srs.solve(target, psi, &mut self.candidates);
+            }
+        }
+        self.finisher.finish(
+            &self.model,
+            self.candidates.as_slice(),
+            reverse,
+            fixed,
+            target,
+            current,
+        )
+    }
+
+    /// Solutions at each of `values` of the redundancy parameter (rad or m),
+    /// together, nearest `current` first (a sweep of the elbow angle or of
+    /// the fixed joint). Allocates the result.
+    pub fn sweep(
+        &mut self,
+        target: &Pose,
+        current: &[f64],
+        values: &[f64],
+    ) -> Result<Vec<AnalyticSolution>> {
+        let mut all = Vec::new();
+        for &value in values {
+            self.set_parameter_value(value)?;
+            all.extend_from_slice(self.solve(target, current)?);
+        }
+        finish::sort_nearest(&mut all, current);
+        Ok(all)
+    }
+}
+
+/// The joint (0-based) of a 7-joint `model` to hold so that the other six
+/// form a class at any value of it (checked at 0, 0.7 and -1.9), with that
+/// class: the last such joint of a closed-form class, else the last of a
+/// search class; `None` if none (or not 7 joints).
+pub fn joint_to_hold(model: &Model) -> Option<(usize, ArmClass)> {
+    if model.dof() != 7 {
+        return None;
+    }
+    let structure = ArmStructure::of_model(model).ok()?;
+    let class_at = |joint: usize| -> Option<ArmClass> {
+        let mut class = None;
+        for value in [0.0, 0.7, -1.9] {
+            let parameter = Some(Parameter::FixedJoint { joint, value });
+            let (c, _) = plan(model, &structure, parameter).ok()?;
+            if class.is_some_and(|k| k != c) {
+                return None;
+            }
+            class = Some(c);
+        }
+        class
+    };
+    let searches = |c: &ArmClass| {
+        matches!(
+            c,
+            ArmClass::SphericalWrist {
+                positioning: Positioning::General,
+                ..
+            }
+        )
+    };
+    let classes: Vec<(usize, ArmClass)> = (0..7)
+        .rev()
+        .filter_map(|j| class_at(j).map(|c| (j, c)))
+        .collect();
+    classes
+        .iter()
+        .find(|(_, c)| !searches(c))
+        .or_else(|| classes.first())
+        .copied()
+}
+
+/// The class of `model` and the lines it was read from (for `--explain`).
+pub fn explain(model: &Model, parameter: Option<Parameter>) -> Result<(ArmClass, ArmStructure)> {
+    let structure = ArmStructure::of_model(model)?;
+    let class = match plan(model, &structure, parameter) {
+        Ok((class, _)) => class,
+        Err(_) => detect(&reduced(&structure, parameter)).class(),
+    };
+    Ok((class, structure))
+}
+
+fn reduced(structure: &ArmStructure, parameter: Option<Parameter>) -> ArmStructure {
+    match parameter {
+        Some(Parameter::FixedJoint { joint, value }) if joint < structure.dof() => {
+            structure.with_fixed_joint(joint, value)
+        }
+        _ => structure.clone(),
+    }
+}
+
+fn plan(
+    model: &Model,
+    structure: &ArmStructure,
+    parameter: Option<Parameter>,
+) -> Result<(ArmClass, Plan)> {
+    if let Some(Parameter::FixedJoint { joint, value }) = parameter {
+        if joint >= structure.dof() || !value.is_finite() {
+            return Err(Error::invalid_argument(
+                "parameter",
+                format!(
+                    "fixed joint {} = {value}: needs a joint index below {} and a finite value",
+                    joint + 1,
+                    structure.dof()
+                ),
+            ));
+        }
+    }
+    if let Some(Parameter::ElbowAngle(psi)) = parameter {
+        if !psi.is_finite() {
+            return Err(Error::invalid_argument(
+                "parameter",
+                format!("elbow angle must be finite, got {psi}"),
+            ));
+        }
+    }
+    let arm = reduced(structure, parameter);
+    let detected = detect(&arm);
+    let class = detected.class();
+    let unsolvable = |why: &str| {
+        Error::invalid_argument(
+            "model",
+            format!(
+                "`{}` has no analytic solver: class {class} ({}){why}",
+                model.name(),
+                class.description()
+            ),
+        )
+    };
+    match (detected, parameter) {
+        (Detected::ShoulderElbowWrist { .. }, Some(Parameter::FixedJoint { .. })) => {
+            Err(unsolvable(""))
+        }
+        (
+            Detected::ShoulderElbowWrist {
+                shoulder,
+                elbow,
+                wrist,
+            },
+            _,
+        ) => Ok((
+            class,
+            Plan::ShoulderElbowWrist(SrsChain::new(&arm, shoulder, elbow, wrist)),
+        )),
+        (
+            Detected::SphericalWrist { .. } | Detected::ThreeParallel { .. },
+            Some(Parameter::ElbowAngle(_)),
+        ) => Err(unsolvable(
+            "; an elbow angle needs a spherical-shoulder-elbow-wrist 7-DOF arm",
+        )),
+        (Detected::SphericalWrist { end, .. }, _) => {
+            let chain = chain_of(&arm, end).ok_or_else(|| unsolvable(""))?;
+            Ok((class, Plan::Wrist { chain, detected }))
+        }
+        (Detected::ThreeParallel { end, .. }, _) => {
+            let chain = chain_of(&arm, end).ok_or_else(|| unsolvable(""))?;
+            Ok((class, Plan::ThreeParallel { chain, detected }))
+        }
+        (Detected::Unsolvable(_), Some(Parameter::ElbowAngle(_))) => Err(unsolvable(
+            "; an elbow angle needs a spherical-shoulder-elbow-wrist 7-DOF arm",
+        )),
+        (Detected::Unsolvable(_), _) => Err(unsolvable("")),
+    }
+}
+
+fn chain_of(arm: &ArmStructure, end: ChainEnd) -> Option<Chain> {
+    match end {
+        ChainEnd::Tip => Chain::of(arm),
+        ChainEnd::Base => Chain::of(&arm.reversed()),
+    }
+}

@@ -1,0 +1,400 @@
+//! The geometric subproblems the analytic solvers are assembled from
+//! (Paden and Kahan's subproblems 1-3, and subproblem 4 of Elias and Wen's
+//! IK-Geo numbering), derived here from the geometry of a point rotating
+//! about an axis.
+//!
+//! Notation: `R(k, t)` is the rotation by `t` rad about the unit axis `k`
+//! through the origin (Rodrigues: `R p = p_par + cos t p_perp + sin t k x p`
+//! with `p_par = (k.p) k`, `p_perp = p - p_par`). Every subproblem returns
+//! every solution it has, with a flag saying whether they are exact or the
+//! least-squares answer of an unsolvable instance (a point out of reach):
+//!
+//! | # | unknowns | equation | solutions |
+//! |---|---|---|---|
+//! | 1 | t | `R(k, t) p1 = p2` | 1 |
+//! | 2 | t1, t2 | `R(k1, t1) p1 = R(k2, t2) p2` | 1 or 2 |
+//! | 3 | t | `|R(k, t) p1 - p2| = d` | 1 or 2 |
+//! | 4 | t | `h . R(k, t) p = d` | 1 or 2 |
+//!
+//! Nothing allocates; solutions come in a fixed-size [`Angles`].
+//!
+//! ```
+//! use armkit::ik::analytic::subproblems::{rotation, subproblem1};
+//! use armkit::math::Vector3;
+//! let k = Vector3::z();
+//! let p1 = Vector3::new(1.0, 0.0, 0.5);
+//! let p2 = rotation(&k, 0.7) * p1;
+//! let (t, exact) = subproblem1(&k, &p1, &p2);
+//! assert!(exact && (t - 0.7).abs() < 1e-14);
+//! ```
+
+use crate::math::{sin_cos, Matrix3, Vector3};
+
+/// Relative size below which a residual counts as round-off when a
+/// subproblem decides between "exact" and "least squares": `1e-9` of the
+/// lengths involved. (The analytic solvers decide a solution's fit by
+/// forward kinematics in the end; this flag is only the subproblem's own
+/// view.)
+pub const RELATIVE_TOLERANCE: f64 = 1e-9;
+
+/// Up to two angles (rad) with a flag: exact solutions, or the least-squares
+/// answer of an instance without exact solution.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Angles {
+    values: [f64; 2],
+    count: usize,
+    /// True when the angles solve the equation exactly (to round-off).
+    pub exact: bool,
+}
+
+impl Angles {
+    fn one(value: f64, exact: bool) -> Angles {
+        Angles {
+            values: [value, value],
+            count: 1,
+            exact,
+        }
+    }
+
+    fn two(a: f64, b: f64) -> Angles {
+        Angles {
+            values: [a, b],
+            count: 2,
+            exact: true,
+        }
+    }
+
+    /// The angles, rad (one or two).
+    pub fn as_slice(&self) -> &[f64] {
+        &self.values[..self.count]
+    }
+}
+
+/// Up to two angle pairs `(t1, t2)` (rad) with a flag, for subproblem 2.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AnglePairs {
+    values: [(f64, f64); 2],
+    count: usize,
+    /// True when the pairs solve the equation exactly (to round-off).
+    pub exact: bool,
+}
+
+impl AnglePairs {
+    /// The pairs, rad (one or two).
+    pub fn as_slice(&self) -> &[(f64, f64)] {
+        &self.values[..self.count]
+    }
+}
+
+/// The rotation matrix `R(k, t)` about the unit axis `k` by `t` rad (Rodrigues).
+pub fn rotation(k: &Vector3<f64>, t: f64) -> Matrix3<f64> {
+    let (s, c) = sin_cos(t);
+    let v = 1.0 - c;
+    let (x, y, z) = (k.x, k.y, k.z);
+    Matrix3::new(
+        c + x * x * v,
+        x * y * v - z * s,
+        x * z * v + y * s,
+        y * x * v + z * s,
+        c + y * y * v,
+        y * z * v - x * s,
+        z * x * v - y * s,
+        z * y * v + x * s,
+        c + z * z * v,
+    )
+}
+
+/// Subproblem 1: the angle `t` (rad) that turns `p1` about the unit axis `k`
+/// onto `p2`, `R(k, t) p1 = p2`; when no angle does (different heights along
+/// `k` or different distances from it), the one minimizing `|R(k, t) p1 - p2|`
+/// (the projections onto the plane normal to `k` aligned). Returns the angle
+/// and whether it is exact (to [`RELATIVE_TOLERANCE`]). If either projection
+/// is zero every angle is as good and 0 is returned.
+pub fn subproblem1(k: &Vector3<f64>, p1: &Vector3<f64>, p2: &Vector3<f64>) -> (f64, bool) {
+    let kp1 = k.dot(p1);
+    let kp2 = k.dot(p2);
+    let x = p1.dot(p2) - kp1 * kp2;
+    let y = k.dot(&p1.cross(p2));
+    let t = y.atan2(x);
+    let n1 = (p1.norm_squared() - kp1 * kp1).max(0.0).sqrt();
+    let n2 = (p2.norm_squared() - kp2 * kp2).max(0.0).sqrt();
+    let scale = p1.norm().max(p2.norm()).max(f64::MIN_POSITIVE);
+    let exact = (kp1 - kp2).abs() <= RELATIVE_TOLERANCE * scale
+        && (n1 - n2).abs() <= RELATIVE_TOLERANCE * scale;
+    (t, exact)
+}
+
+/// Subproblem 4: the angles `t` (rad) with `h . R(k, t) p = d` (`k` a unit
+/// axis; `h` any vector). Expanding Rodrigues, `A cos t + B sin t = c` with
+/// `A = h . p_perp`, `B = h . (k x p)`, `c = d - (h . k)(k . p)`: two
+/// solutions `atan2(B, A) +- acos(c / r)`, `r = hypot(A, B)`, when
+/// `|c| <= r`; otherwise the one angle that brings `h . R p` nearest `d`
+/// (least squares). Degenerate `r = 0` (the left side does not depend on
+/// `t`): angle 0, exact only if `c = 0`.
+pub fn subproblem4(h: &Vector3<f64>, k: &Vector3<f64>, p: &Vector3<f64>, d: f64) -> Angles {
+    let kp = k.dot(p);
+    let hk = h.dot(k);
+    let a = h.dot(p) - hk * kp;
+    let b = h.dot(&k.cross(p));
+    let c = d - hk * kp;
+    let r = a.hypot(b);
+    let scale = (h.norm() * p.norm()).max(d.abs()).max(f64::MIN_POSITIVE);
+    if r <= RELATIVE_TOLERANCE * scale * 1e-3 {
+        return Angles::one(0.0, c.abs() <= RELATIVE_TOLERANCE * scale);
+    }
+    let phi = b.atan2(a);
+    let ratio = c / r;
+    if ratio.abs() > 1.0 {
+        // No exact solution: cos(t - phi) = +-1 comes nearest.
+        let exact = (c.abs() - r) <= RELATIVE_TOLERANCE * scale;
+        let t = if ratio > 0.0 {
+            phi
+        } else {
+            phi + std::f64::consts::PI
+        };
+        return Angles::one(t, exact);
+    }
+    let spread = ratio.acos();
+    Angles::two(phi + spread, phi - spread)
+}
+
+/// Subproblem 3: the angles `t` (rad) with `|R(k, t) p1 - p2| = d` (`k` a
+/// unit axis, `d >= 0`): squared, `p2 . R(k, t) p1 = (|p1|^2 + |p2|^2 - d^2)
+/// / 2`, a subproblem 4. When no angle reaches `d` the least-squares answer
+/// is the angle whose distance comes nearest.
+pub fn subproblem3(k: &Vector3<f64>, p1: &Vector3<f64>, p2: &Vector3<f64>, d: f64) -> Angles {
+    let target = 0.5 * (p1.norm_squared() + p2.norm_squared() - d * d);
+    subproblem4(p2, k, p1, target)
+}
+
+/// Subproblem 2: the angle pairs `(t1, t2)` (rad) with
+/// `R(k1, t1) p1 = R(k2, t2) p2` (`k1`, `k2` unit axes, not parallel).
+///
+/// The common point `x` lies on both circles: `k1 . x = k1 . p1`,
+/// `k2 . x = k2 . p2`, `|x| = |p1|`. Writing `x = a k1 + b k2 + c k1 x k2`,
+/// the first two fix `a` and `b` (a 2 x 2 system with determinant
+/// `1 - (k1 . k2)^2`), the sphere fixes `c` up to its sign; each `x` then
+/// gives `t1` and `t2` by subproblem 1. When the circles do not meet
+/// (negative `c^2`, or `|p1| != |p2|`), `c = 0` and the radius is the mean of
+/// `|p1|` and `|p2|`: one least-squares pair. Parallel axes return an empty,
+/// inexact answer (the solvers never ask for it).
+pub fn subproblem2(
+    k1: &Vector3<f64>,
+    p1: &Vector3<f64>,
+    k2: &Vector3<f64>,
+    p2: &Vector3<f64>,
+) -> AnglePairs {
+    let cosine = k1.dot(k2);
+    let normal = k1.cross(k2);
+    let sine2 = normal.norm_squared();
+    if sine2 <= 1e-24 {
+        return AnglePairs {
+            values: [(0.0, 0.0); 2],
+            count: 0,
+            exact: false,
+        };
+    }
+    let h1 = k1.dot(p1);
+    let h2 = k2.dot(p2);
+    let a = (h1 - cosine * h2) / sine2;
+    let b = (h2 - cosine * h1) / sine2;
+    let base = k1 * a + k2 * b;
+    let n1 = p1.norm();
+    let n2 = p2.norm();
+    let scale = n1.max(n2).max(f64::MIN_POSITIVE);
+    let same_radius = (n1 - n2).abs() <= RELATIVE_TOLERANCE * scale;
+    let radius2 = n1 * n2;
+    let c2 = (radius2 - base.norm_squared()) / sine2;
+    let pair = |x: &Vector3<f64>| {
+        let (t1, e1) = subproblem1(k1, p1, x);
+        let (t2, e2) = subproblem1(k2, p2, x);
+        ((t1, t2), e1 && e2)
+    };
+    if c2 < -RELATIVE_TOLERANCE * scale * scale {
+        // The circles do not meet: the point of the plane pair nearest both.
+        let x = if base.norm() > 0.0 {
+            base * (0.5 * (n1 + n2) / base.norm())
+        } else {
+            base
+        };
+        let (values, _) = pair(&x);
+        return AnglePairs {
+            values: [values, values],
+            count: 1,
+            exact: false,
+        };
+    }
+    let c = c2.max(0.0).sqrt();
+    let (first, e1) = pair(&(base + normal * c));
+    let (second, e2) = pair(&(base - normal * c));
+    AnglePairs {
+        values: [first, second],
+        count: if c == 0.0 { 1 } else { 2 },
+        exact: same_radius && e1 && e2,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    fn random_unit(rng: &mut ChaCha8Rng) -> Vector3<f64> {
+        loop {
+            let v = Vector3::new(
+                rng.gen_range(-1.0..1.0),
+                rng.gen_range(-1.0..1.0),
+                rng.gen_range(-1.0..1.0),
+            );
+            if v.norm() > 0.1 && v.norm() < 1.0 {
+                return v.normalize();
+            }
+        }
+    }
+
+    fn random_vector(rng: &mut ChaCha8Rng) -> Vector3<f64> {
+        random_unit(rng) * rng.gen_range(0.1..2.0)
+    }
+
+    fn random_angle(rng: &mut ChaCha8Rng) -> f64 {
+        rng.gen_range(-std::f64::consts::PI..std::f64::consts::PI)
+    }
+
+    /// True when some angle of `found` equals `t` modulo 2 pi to 1e-8.
+    fn contains_angle(found: &[f64], t: f64) -> bool {
+        found
+            .iter()
+            .any(|f| crate::math::wrap_angle(f - t).abs() < 1e-8)
+    }
+
+    #[test]
+    fn rotation_matches_nalgebra() {
+        let mut rng = ChaCha8Rng::seed_from_u64(1);
+        for _ in 0..100 {
+            let k = random_unit(&mut rng);
+            let t = random_angle(&mut rng);
+            let expected =
+                nalgebra::Rotation3::from_axis_angle(&nalgebra::Unit::new_unchecked(k), t);
+            assert!((rotation(&k, t) - expected.matrix()).amax() < 1e-15);
+        }
+    }
+
+    #[test]
+    fn subproblem1_recovers_the_rotation() {
+        let mut rng = ChaCha8Rng::seed_from_u64(2);
+        for _ in 0..1000 {
+            let k = random_unit(&mut rng);
+            let p1 = random_vector(&mut rng);
+            let t = random_angle(&mut rng);
+            let (found, exact) = subproblem1(&k, &p1, &(rotation(&k, t) * p1));
+            assert!(exact);
+            assert!(crate::math::wrap_angle(found - t).abs() < 1e-9);
+        }
+    }
+
+    #[test]
+    fn subproblem1_least_squares_aligns_the_projections() {
+        let k = Vector3::z();
+        let p1 = Vector3::new(1.0, 0.0, 0.0);
+        let p2 = Vector3::new(0.0, 3.0, 1.0);
+        let (t, exact) = subproblem1(&k, &p1, &p2);
+        assert!(!exact);
+        assert!((t - std::f64::consts::FRAC_PI_2).abs() < 1e-15);
+    }
+
+    #[test]
+    fn subproblem2_finds_the_generating_pair() {
+        let mut rng = ChaCha8Rng::seed_from_u64(3);
+        for _ in 0..1000 {
+            let k1 = random_unit(&mut rng);
+            let k2 = random_unit(&mut rng);
+            let p1 = random_vector(&mut rng);
+            let (t1, t2) = (random_angle(&mut rng), random_angle(&mut rng));
+            // p2 such that R(k1, t1) p1 = R(k2, t2) p2.
+            let p2 = rotation(&k2, -t2) * rotation(&k1, t1) * p1;
+            let pairs = subproblem2(&k1, &p1, &k2, &p2);
+            assert!(pairs.exact);
+            for (a, b) in pairs.as_slice() {
+                let residual = rotation(&k1, *a) * p1 - rotation(&k2, *b) * p2;
+                assert!(residual.norm() < 1e-9, "{residual}");
+            }
+            assert!(pairs.as_slice().iter().any(|(a, b)| {
+                crate::math::wrap_angle(a - t1).abs() < 1e-7
+                    && crate::math::wrap_angle(b - t2).abs() < 1e-7
+            }));
+        }
+    }
+
+    #[test]
+    fn subproblem2_without_intersection_is_least_squares() {
+        let k1 = Vector3::z();
+        let k2 = Vector3::x();
+        // Circle 1 at height 1 of radius 1 about z; circle 2 at x = 1.
+        let p1 = Vector3::new(0.0, 0.1, 1.0);
+        let p2 = Vector3::new(1.0, 0.0, 0.05);
+        let pairs = subproblem2(&k1, &p1, &k2, &p2);
+        assert!(!pairs.exact);
+        assert_eq!(pairs.as_slice().len(), 1);
+        assert!(subproblem2(&k1, &p1, &k1, &p2).as_slice().is_empty());
+    }
+
+    #[test]
+    fn subproblem3_finds_the_generating_angle() {
+        let mut rng = ChaCha8Rng::seed_from_u64(4);
+        for _ in 0..1000 {
+            let k = random_unit(&mut rng);
+            let p1 = random_vector(&mut rng);
+            let p2 = random_vector(&mut rng);
+            let t = random_angle(&mut rng);
+            let d = (rotation(&k, t) * p1 - p2).norm();
+            let angles = subproblem3(&k, &p1, &p2, d);
+            assert!(angles.exact);
+            for a in angles.as_slice() {
+                let err = (rotation(&k, *a) * p1 - p2).norm() - d;
+                assert!(err.abs() < 1e-8, "{err}");
+            }
+            assert!(contains_angle(angles.as_slice(), t));
+        }
+    }
+
+    #[test]
+    fn subproblem3_out_of_reach_returns_the_nearest_distance() {
+        let k = Vector3::z();
+        let p1 = Vector3::new(1.0, 0.0, 0.0);
+        let p2 = Vector3::new(3.0, 0.0, 0.0);
+        // Distances range over [2, 4]: 5 is out of reach, 4 is the nearest.
+        let angles = subproblem3(&k, &p1, &p2, 5.0);
+        assert!(!angles.exact);
+        let t = angles.as_slice()[0];
+        assert!(((rotation(&k, t) * p1 - p2).norm() - 4.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn subproblem4_finds_the_generating_angle() {
+        let mut rng = ChaCha8Rng::seed_from_u64(5);
+        for _ in 0..1000 {
+            let h = random_unit(&mut rng);
+            let k = random_unit(&mut rng);
+            let p = random_vector(&mut rng);
+            let t = random_angle(&mut rng);
+            let d = h.dot(&(rotation(&k, t) * p));
+            let angles = subproblem4(&h, &k, &p, d);
+            assert!(angles.exact);
+            for a in angles.as_slice() {
+                assert!((h.dot(&(rotation(&k, *a) * p)) - d).abs() < 1e-9);
+            }
+            assert!(contains_angle(angles.as_slice(), t));
+        }
+    }
+
+    #[test]
+    fn subproblem4_out_of_reach_is_least_squares() {
+        let h = Vector3::x();
+        let k = Vector3::z();
+        let p = Vector3::new(1.0, 0.0, 0.0);
+        let angles = subproblem4(&h, &k, &p, -2.0);
+        assert!(!angles.exact);
+        assert!((angles.as_slice()[0].abs() - std::f64::consts::PI).abs() < 1e-15);
+    }
+}

@@ -1,0 +1,266 @@
+//! The automatic route: the analytic solver where the arm's class allows,
+//! otherwise (or when it finds nothing within the limits) the numeric one.
+//!
+//! * 6-joint arms of an analytic class: every solution, the nearest exact
+//!   one within the limits is returned.
+//! * 7-joint arms: a spherical-shoulder-elbow-wrist arm by its elbow angle,
+//!   any other by holding the joint [`super::analytic::joint_to_hold`]
+//!   picks, at the start's own parameter (the start's elbow angle or joint
+//!   value).
+//! * Otherwise, or when nothing exact lies within the limits: the numeric
+//!   solver from the start; if it does not converge on a 7-joint arm, a sweep
+//!   of [`SWEEP_VALUES`] values of the parameter, the nearest exact
+//!   solution winning.
+//! * A target beyond the reach bound ([`super::ReachBound`]) is not attempted.
+//!
+//! ```
+//! use armkit::ik::{AutoSolver, IkOptions, IkRoute, IkStatus};
+//! use armkit::kinematics::{forward_kinematics, Data};
+//! let model = armkit::robots::by_name("ur5").unwrap();
+//! let mut data = Data::new(&model);
+//! let goal = *forward_kinematics(&model, &mut data, &[0.3, -1.2, 1.4, -0.5, 1.2, 0.4]).unwrap();
+//! let mut solver = AutoSolver::new(&model, IkOptions::default()).unwrap();
+//! let solved = solver.solve(&goal, &model.neutral_configuration()).unwrap();
+//! assert_eq!(solved.report.status, IkStatus::Converged);
+//! assert_eq!(solved.route, IkRoute::Analytic);
+//! ```
+
+use std::time::Instant;
+
+use super::analytic::{
+    AnalyticOptions, AnalyticSolution, AnalyticSolver, ArmClass, Fit, Parameter,
+};
+use super::{IkOptions, IkReport, IkSolver, IkStatus};
+use crate::error::Result;
+use crate::math::Pose;
+use crate::model::Model;
+
+/// Values of the redundancy parameter tried by a 7-DOF sweep (evenly over
+/// the elbow angle's circle or the held joint's range).
+pub const SWEEP_VALUES: usize = 16;
+
+/// Which route answered.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum IkRoute {
+    /// The analytic solver, at the start's parameter for a 7-DOF arm.
+    Analytic,
+    /// The analytic solver over a sweep of the 7-DOF parameter.
+    AnalyticSweep,
+    /// The numeric solver.
+    Numeric,
+    /// Nothing attempted: the target is beyond the reach bound.
+    Unreachable,
+}
+
+impl IkRoute {
+    /// `analytic`, `analytic_sweep`, `numeric` or `unreachable`.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            IkRoute::Analytic => "analytic",
+            IkRoute::AnalyticSweep => "analytic_sweep",
+            IkRoute::Numeric => "numeric",
+            IkRoute::Unreachable => "unreachable",
+        }
+    }
+}
+
+impl std::fmt::Display for IkRoute {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// What [`AutoSolver::solve`] found.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AutoReport {
+    /// The answer, as the numeric solver reports it (iterations and
+    /// restarts 0 on the analytic routes).
+    pub report: IkReport,
+    /// Which route answered.
+    pub route: IkRoute,
+}
+
+/// Which analytic attempt.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Stage {
+    /// At the start's own parameter (or the 6-DOF arm's only solve).
+    OwnParameter,
+    /// Over a sweep of the 7-DOF parameter.
+    Sweep,
+}
+
+/// How a 7-joint arm's spare freedom is parameterized.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Spare {
+    None,
+    ElbowAngle,
+    Joint(usize),
+}
+
+/// The automatic solver for one model (see the module docs).
+#[derive(Clone, Debug)]
+pub struct AutoSolver {
+    numeric: IkSolver,
+    analytic: Option<AnalyticSolver>,
+    spare: Spare,
+}
+
+impl AutoSolver {
+    /// A solver for `model` with the numeric options `options` (also the
+    /// tolerances an analytic answer must meet).
+    pub fn new(model: &Model, options: IkOptions) -> Result<AutoSolver> {
+        let numeric = IkSolver::new(model, options)?;
+        let (analytic, spare) = analytic_for(model);
+        Ok(AutoSolver {
+            numeric,
+            analytic,
+            spare,
+        })
+    }
+
+    /// The class the analytic route uses, if any.
+    pub fn class(&self) -> Option<ArmClass> {
+        self.analytic.as_ref().map(|a| a.class())
+    }
+
+    /// Solves for `target` (world frame) from `start` (rad or m). Errors
+    /// only for bad input, as [`IkSolver::solve`].
+    pub fn solve(&mut self, target: &Pose, start: &[f64]) -> Result<AutoReport> {
+        let began = Instant::now();
+        if self.numeric.beyond_reach(target) {
+            let report = self.numeric.solve(target, start)?;
+            return Ok(AutoReport {
+                report,
+                route: IkRoute::Unreachable,
+            });
+        }
+        let analytic = |found: Option<(AnalyticSolution, IkRoute)>| {
+            found.map(|(solution, route)| AutoReport {
+                report: IkReport {
+                    status: IkStatus::Converged,
+                    q: solution.q().to_vec(),
+                    position_error: solution.position_error,
+                    orientation_error: solution.orientation_error,
+                    iterations: 0,
+                    restarts: 0,
+                    elapsed: began.elapsed(),
+                },
+                route,
+            })
+        };
+        if let Some(answer) = analytic(self.analytic_answer(target, start, Stage::OwnParameter)?) {
+            return Ok(answer);
+        }
+        let mut report = self.numeric.solve(target, start)?;
+        if !report.converged() {
+            // The numeric solver gave up: sweep the 7-DOF parameter.
+            if let Some(mut answer) = analytic(self.analytic_answer(target, start, Stage::Sweep)?) {
+                answer.report.elapsed = began.elapsed();
+                return Ok(answer);
+            }
+        }
+        report.elapsed = began.elapsed();
+        Ok(AutoReport {
+            report,
+            route: IkRoute::Numeric,
+        })
+    }
+
+    /// The nearest analytic solution within the tolerances, if any.
+    fn analytic_answer(
+        &mut self,
+        target: &Pose,
+        start: &[f64],
+        stage: Stage,
+    ) -> Result<Option<(AnalyticSolution, IkRoute)>> {
+        let options = *self.numeric.options();
+        let Some(analytic) = self.analytic.as_mut() else {
+            return Ok(None);
+        };
+        let acceptable = |s: &AnalyticSolution| {
+            s.fit == Fit::Exact
+                || (s.position_error <= options.position_tolerance
+                    && s.orientation_error <= options.orientation_tolerance)
+        };
+        let own = match self.spare {
+            Spare::None => None,
+            Spare::ElbowAngle => Some(analytic.elbow_angle(start)?),
+            Spare::Joint(j) => Some(start[j]),
+        };
+        if stage == Stage::OwnParameter {
+            if let Some(value) = own {
+                if analytic.set_parameter_value(value).is_err() {
+                    return Ok(None);
+                }
+            }
+            let found = analytic
+                .solve(target, start)?
+                .iter()
+                .find(|s| acceptable(s))
+                .copied();
+            return Ok(found.map(|s| (s, IkRoute::Analytic)));
+        }
+        let Some(own) = own else {
+            return Ok(None);
+        };
+        // Sweep the parameter; keep the nearest exact solution.
+        let (lower, upper) = match self.spare {
+            Spare::Joint(j) => {
+                let limits = analytic.model().joints()[j].limits;
+                if limits.is_bounded() {
+                    (limits.lower, limits.upper)
+                } else {
+                    (own - std::f64::consts::PI, own + std::f64::consts::PI)
+                }
+            }
+            _ => (own - std::f64::consts::PI, own + std::f64::consts::PI),
+        };
+        let mut best: Option<(AnalyticSolution, f64)> = None;
+        for k in 0..SWEEP_VALUES {
+            let value = lower + (upper - lower) * (k as f64 + 0.5) / SWEEP_VALUES as f64;
+            if analytic.set_parameter_value(value).is_err() {
+                continue;
+            }
+            if let Some(s) = analytic
+                .solve(target, start)?
+                .iter()
+                .find(|s| acceptable(s))
+            {
+                let distance: f64 = s
+                    .q()
+                    .iter()
+                    .zip(start)
+                    .map(|(a, b)| (a - b) * (a - b))
+                    .sum();
+                if best.as_ref().is_none_or(|(_, d)| distance < *d) {
+                    best = Some((*s, distance));
+                }
+            }
+        }
+        Ok(best.map(|(s, _)| (s, IkRoute::AnalyticSweep)))
+    }
+}
+
+/// The analytic solver for `model` and how its spare freedom is set, if any.
+fn analytic_for(model: &Model) -> (Option<AnalyticSolver>, Spare) {
+    let options = AnalyticOptions {
+        representatives: super::analytic::Representatives::Nearest,
+        ..AnalyticOptions::default()
+    };
+    if model.dof() != 7 {
+        return (AnalyticSolver::new(model, options).ok(), Spare::None);
+    }
+    if let Ok(s) = AnalyticSolver::with_parameter(model, options, Parameter::ElbowAngle(0.0)) {
+        return (Some(s), Spare::ElbowAngle);
+    }
+    if let Some((joint, _)) = super::analytic::joint_to_hold(model) {
+        let parameter = Parameter::FixedJoint {
+            joint,
+            value: model.neutral_configuration()[joint],
+        };
+        if let Ok(s) = AnalyticSolver::with_parameter(model, options, parameter) {
+            return (Some(s), Spare::Joint(joint));
+        }
+    }
+    (None, Spare::None)
+}
