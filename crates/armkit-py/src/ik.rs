@@ -4,7 +4,7 @@
 use std::time::Duration;
 
 use armkit::ik::closed_form::{ClosedFormSolver, Fit};
-use armkit::ik::{IkMethod, IkOptions, IkSolver, IkStatus};
+use armkit::ik::{AutoSolver, IkMethod, IkOptions, IkRoute, IkSolver, IkStatus};
 use armkit::math::Pose;
 use armkit::{Error, Model};
 use numpy::{PyArray1, PyArray2};
@@ -15,9 +15,10 @@ use crate::arrays::{matrix_from_rows, vector};
 /// The solver named by `solver=`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum SolverChoice {
-    /// The closed form where the robot has one (puma560-type arms, arm4),
-    /// Levenberg-Marquardt otherwise or when the closed form finds no exact
-    /// solution within the limits.
+    /// The library's automatic solver: analytic where the arm's class
+    /// allows (spherical wrist, the UR family, 7-DOF arms by their
+    /// redundancy parameter), Levenberg-Marquardt otherwise; targets beyond
+    /// the reach bound are not attempted.
     Auto,
     /// The closed form only (an error for robots without one).
     ClosedForm,
@@ -120,6 +121,7 @@ pub struct Outcome {
 pub struct IkEngine {
     numeric: IkSolver,
     closed: Option<ClosedFormSolver>,
+    auto: Option<AutoSolver>,
     choice: SolverChoice,
 }
 
@@ -128,18 +130,48 @@ impl IkEngine {
     pub fn new(model: &Model, arguments: &IkArguments) -> armkit::Result<Self> {
         let closed = match arguments.solver {
             SolverChoice::ClosedForm => Some(ClosedFormSolver::new(model)?),
-            SolverChoice::Auto => ClosedFormSolver::new(model).ok(),
-            SolverChoice::Numeric(_) => None,
+            _ => None,
+        };
+        let auto = match arguments.solver {
+            SolverChoice::Auto => Some(AutoSolver::new(model, arguments.options)?),
+            _ => None,
         };
         Ok(IkEngine {
             numeric: IkSolver::new(model, arguments.options)?,
             closed,
+            auto,
             choice: arguments.solver,
         })
     }
 
     /// Solves for `target` (world frame) from `start`.
     pub fn solve(&mut self, target: &Pose, start: &[f64]) -> armkit::Result<Outcome> {
+        if let Some(auto) = &mut self.auto {
+            // The start is checked as every other solver checks it (the
+            // same message, `joint_positions: ...`).
+            self.numeric.model().check_joint_positions(start)?;
+            let found = auto.solve(target, start)?;
+            let report = found.report;
+            let solutions = if report.converged() {
+                vec![report.q.clone()]
+            } else {
+                Vec::new()
+            };
+            return Ok(Outcome {
+                status: report.status,
+                solver: match found.route {
+                    IkRoute::Numeric => self.numeric.options().method.short_name(),
+                    route => route.as_str(),
+                },
+                q: report.q,
+                position_error: report.position_error,
+                orientation_error: report.orientation_error,
+                iterations: report.iterations,
+                restarts: report.restarts,
+                elapsed: report.elapsed,
+                solutions,
+            });
+        }
         if let Some(closed) = &self.closed {
             let began = std::time::Instant::now();
             self.numeric.model().check_joint_positions(start)?;
@@ -166,14 +198,12 @@ impl IkEngine {
                         solutions: solutions.into_iter().map(|s| s.q).collect(),
                     });
                 }
-                // No solution within the limits: the numeric best effort
-                // (closed-form: never converged; auto: its own status).
+                // No solution within the limits: the numeric best effort,
+                // never reported as converged.
                 _ => {
                     let mut outcome = self.numeric_solve(target, start)?;
-                    if self.choice == SolverChoice::ClosedForm {
-                        outcome.status = IkStatus::NotConverged;
-                        outcome.solutions.clear();
-                    }
+                    outcome.status = IkStatus::NotConverged;
+                    outcome.solutions.clear();
                     return Ok(outcome);
                 }
             }
@@ -214,7 +244,9 @@ pub struct IkResult {
     /// `status == "converged"`.
     #[pyo3(get)]
     converged: bool,
-    /// The solver that produced `q`: `"closed-form"`, `"lm"`, `"nr"`, `"dls"` or `"sri"`.
+    /// The solver that produced `q`: `"analytic"`, `"analytic_sweep"`,
+    /// `"unreachable"` (auto: beyond the reach bound, not attempted),
+    /// `"closed-form"`, `"lm"`, `"nr"`, `"dls"` or `"sri"`.
     #[pyo3(get)]
     solver: &'static str,
     /// Joint positions (rad or m), shape (dof,), within the joint limits.

@@ -323,7 +323,8 @@ impl Robot {
 
     /// Inverse kinematics of one end-effector pose `T` ((4, 4) homogeneous,
     /// world frame, m) from `q0` (default: mid-range). `solver`: `"auto"`
-    /// (closed form where the robot has one, else Levenberg-Marquardt),
+    /// (the library's: analytic where the arm's class allows, else
+    /// Levenberg-Marquardt),
     /// `"closed-form"`, `"lm"`, `"nr"`, `"dls"` or `"sri"`. Tolerances in m
     /// and rad; `time_budget` in s (None: no budget); `task_weights` of
     /// `[x, y, z, rx, ry, rz]` (a zero masks the component). Not converging

@@ -40,7 +40,7 @@ def test_closed_form_gives_every_solution_each_checked_by_fk():
     robot = armkit.Robot.builtin("puma560")
     q = np.array([0.3, 0.6, -1.9, 0.4, 0.8, -0.5])
     T = robot.fk(q)
-    result = robot.ik(T, q0=q)  # auto: the closed form for a PUMA
+    result = robot.ik(T, q0=q, solver="closed-form")
     assert result.solver == "closed-form" and result.converged
     np.testing.assert_allclose(result.q, q, atol=1e-9)  # nearest the start first
     assert result.solutions.shape[0] >= 2
@@ -48,7 +48,9 @@ def test_closed_form_gives_every_solution_each_checked_by_fk():
         position, angle = pose_errors(robot, solution, T)
         assert position < 1e-10 and angle < 1e-7
         assert within_limits(robot, solution)
-    assert robot.ik(T, solver="closed-form").solutions.shape == result.solutions.shape
+    automatic = robot.ik(T, q0=q)  # auto: analytic for a PUMA
+    assert automatic.solver == "analytic" and automatic.converged
+    np.testing.assert_allclose(robot.fk(automatic.q), T, atol=1e-9)
 
 
 @pytest.mark.parametrize("solver", ["nr", "dls", "sri"])
@@ -69,7 +71,8 @@ def test_position_only_task_weights():
     robot = armkit.Robot.builtin("panda")
     _, Ts = robot.benchmark_targets(5, seed=9)
     for T in Ts:
-        result = robot.ik(T, task_weights=[1, 1, 1, 0, 0, 0], time_budget=None)
+        # LM: the analytic route of auto solves the whole pose.
+        result = robot.ik(T, solver="lm", task_weights=[1, 1, 1, 0, 0, 0], time_budget=None)
         assert result.converged and result.orientation_error == 0.0
         assert np.linalg.norm(robot.fk(result.q)[:3, 3] - T[:3, 3]) <= 1e-6
 
@@ -115,3 +118,13 @@ def test_changing_options_between_calls_gives_what_a_fresh_robot_gives():
             fresh = armkit.Robot.builtin("panda").ik(T, time_budget=None, **kwargs)
             assert reused.status == fresh.status and reused.solver == fresh.solver
             assert np.array_equal(reused.q, fresh.q)
+
+
+@pytest.mark.parametrize("name", ["ur5", "panda", "puma560", "stanford"])
+def test_auto_solver_reaches_targets_checked_by_fk(name):
+    robot = armkit.Robot.builtin(name)
+    _, Ts = robot.benchmark_targets(30, seed=8)
+    Q, converged = robot.ik_batch(Ts, time_budget=None)
+    assert converged.all()
+    assert np.abs(robot.fk(Q) - Ts).max() <= 2e-6
+    assert np.all(Q >= robot.lower) and np.all(Q <= robot.upper)

@@ -39,8 +39,9 @@ class IkResult:
     """``"converged"`` when both errors are within tolerance at ``q``."""
     converged: bool
     """``status == "converged"``."""
-    solver: Literal["closed-form", "lm", "nr", "dls", "sri"]
-    """The solver that produced ``q``."""
+    solver: Literal["analytic", "analytic_sweep", "unreachable", "closed-form", "lm", "nr", "dls", "sri"]
+    """The solver that produced ``q`` (``"unreachable"``: auto found the
+    target beyond the reach bound and did not attempt it)."""
     q: _FloatArray
     """Joint positions (rad or m), shape (dof,), always within the joint limits
     (the best effort when not converged)."""
@@ -127,8 +128,8 @@ class Robot:
     ) -> IkResult:
         """Inverse kinematics of the end-effector pose ``T`` ((4, 4), world
         frame, m) from ``q0`` (dof,) (default: mid-range). ``solver``:
-        ``"auto"`` (the closed form where the robot has one, else
-        Levenberg-Marquardt), ``"closed-form"``, ``"lm"``, ``"nr"``,
+        ``"auto"`` (analytic where the arm's class allows: spherical wrist,
+        the UR family, 7-DOF arms; else Levenberg-Marquardt), ``"closed-form"``, ``"lm"``, ``"nr"``,
         ``"dls"``, ``"sri"``. Tolerances in m and rad; ``time_budget`` in s
         per solve (None: none); ``task_weights`` on ``[x, y, z, rx, ry, rz]``
         (a zero masks that component). Deterministic for a given ``seed``
