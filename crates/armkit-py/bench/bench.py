@@ -102,17 +102,18 @@ def verified(robot, Q, Ts, tolerance):
 
 
 IK_BUDGET = 0.005  # s per solve, as TRAC-IK's timeout; --ik-budget changes it
+IK_SOLVER = "lm"  # --ik-solver: lm (the figures in the README), auto (analytic where the class allows), ...
 
 
 def armkit_ik(robot, Ts, q0, label, add):
     """IK rows of armkit: a loop of single solves, then ik_batch on 1 and every core."""
-    wall, cpu, results = timed(lambda: [robot.ik(T, q0=q0, time_budget=IK_BUDGET) for T in Ts])
+    wall, cpu, results = timed(lambda: [robot.ik(T, q0=q0, solver=IK_SOLVER, time_budget=IK_BUDGET) for T in Ts])
     elapsed = (wall / len(Ts), cpu / len(Ts))
     Q_ik = np.array([r.q for r in results])
     ok = verified(robot, Q_ik, Ts, ARMKIT_TOLERANCE) & np.array([r.converged for r in results])
     add("IK, per target" + label, "armkit", elapsed, f"{100 * ok.mean():.2f} % success")
     for threads, library in ((1, "armkit, 1 thread"), (None, f"armkit, {os.cpu_count()} threads")):
-        wall, cpu, (Q_ik, converged) = timed(lambda: robot.ik_batch(Ts, q0=q0, threads=threads, time_budget=IK_BUDGET))
+        wall, cpu, (Q_ik, converged) = timed(lambda: robot.ik_batch(Ts, q0=q0, solver=IK_SOLVER, threads=threads, time_budget=IK_BUDGET))
         # On one thread the work runs on this one: its CPU time is the cost.
         elapsed = (wall / len(Ts), cpu / len(Ts) if threads == 1 else None)
         ok = verified(robot, Q_ik, Ts, ARMKIT_TOLERANCE) & converged
@@ -288,15 +289,17 @@ def main():
     parser.add_argument("--batch", type=int, default=100000, help="configurations of the batched FK")
     parser.add_argument("--ik", type=int, default=1000, help="IK targets")
     parser.add_argument("--reps", type=int, default=5)
+    parser.add_argument("--ik-solver", default="lm", help="armkit's IK solver: lm (default), auto, closed-form, nr, dls, sri")
     parser.add_argument("--ik-budget", default="0.005", help="armkit's IK time budget per solve, s, or 'none'")
     args = parser.parse_args()
-    global IK_BUDGET
+    global IK_BUDGET, IK_SOLVER
     IK_BUDGET = None if args.ik_budget == "none" else float(args.ik_budget)
+    IK_SOLVER = args.ik_solver
     warnings.simplefilter("ignore")
     rows = []
     for name in args.robots.split(","):
         bench_robot(name, args, rows)
-    print(f"\narmkit IK time budget per solve: {IK_BUDGET} s")
+    print(f"\narmkit IK solver {IK_SOLVER}, time budget per solve: {IK_BUDGET} s")
     print(f"armkit {armkit.__version__}, numpy {np.__version__}, Python {platform.python_version()}, "
           f"{os.cpu_count()} cores, {platform.processor() or platform.machine()}")
     print("\n| robot | what | library | wall clock | CPU time | note |\n| --- | --- | --- | --- | --- | --- |")
