@@ -1,0 +1,34 @@
+"""Singularity detection and avoidance (seed 004)."""
+
+from typing import Any, Dict, Literal, Tuple
+
+import numpy as np
+import numpy.typing as npt
+
+from ._armkit import Robot
+
+__all__ = ["classify", "line_through", "track_line"]
+
+def classify(robot: Robot, q: npt.ArrayLike, tolerance: float = 1e-6) -> Dict[str, Any]:
+    """``kinds`` (wrist, elbow, shoulder, unclassified; empty when regular),
+    ``singular``, ``rank``, ``singular_values`` (largest first),
+    ``determinant`` (6-DOF robots, else None) at ``q``."""
+
+def line_through(
+    robot: Robot, through: npt.ArrayLike, joint_direction: npt.ArrayLike
+) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+    """(q_start, T_goal): a pose line whose midpoint is FK(through) and whose
+    direction is the motion of ``joint_direction`` there (seed 004's path)."""
+
+def track_line(
+    robot: Robot, q_start: npt.ArrayLike, T_goal: npt.ArrayLike,
+    method: Literal["plain", "avoidance", "dls", "sri"] = "avoidance", k: int = 5,
+    duration: float = 20.0, acceleration_time: float = 4.0, dt: float = 0.01,
+    determinant_threshold: float = 0.004, joint_step_threshold: float = 0.005,
+) -> Dict[str, Any]:
+    """Tracks the pose line from FK(q_start) to T_goal (trapezoidal speed)
+    every ``dt`` s with ``method``; arrays ``time``, ``q``, ``joint_rates``
+    (samples, dof), ``position_error`` (m), ``orientation_error`` (rad),
+    ``determinant``, ``in_region``; summary ``status``, ``peak_joint_rate``
+    (rad/s), ``max_position_error``, ``max_orientation_error``,
+    ``final_position_error``, ``time_in_singular_region`` (s), ``ik_solves``."""

@@ -1,0 +1,191 @@
+//! Singularity detection and avoidance from Python (`armkit.singularity`):
+//! classification of a configuration, and seed 004's tracking of a pose
+//! line through a singularity (plain, avoidance, DLS, SRI) on a fixed base.
+
+use armkit::ik::{ChiaveriniFilter, NakamuraDamping};
+use armkit::kinematics::{jacobian, Data, JacobianFrame};
+use armkit::singularity::{
+    classify as library_classify, jacobian_determinant, line_through as library_line_through,
+    AvoidanceOptions, ClassifyOptions, DetectionOptions, LineTask, Manipulator, Method,
+    PathTracker,
+};
+use armkit::tracking::TrackingOptions;
+use numpy::ndarray::Dim;
+use numpy::{PyArray1, PyArray2};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::arrays::{new_array, pose_argument, vector, vector_argument, write_pose};
+use crate::errors::OrRaise;
+use crate::robot::Robot;
+
+/// The kinds of singularity at `q` (seed 004; wrist, elbow, shoulder for a
+/// 6R arm with a spherical wrist). Returns a dict: `kinds` (list of
+/// `"wrist"`, `"elbow"`, `"shoulder"`, `"unclassified"`; empty when
+/// regular), `singular` (bool), `rank`, `singular_values` (largest first,
+/// of the world-frame Jacobian), `determinant` (of a square Jacobian, else
+/// None). `tolerance`: relative singular-value threshold.
+#[pyfunction]
+#[pyo3(signature = (robot, q, tolerance=1e-6))]
+pub fn classify<'py>(
+    py: Python<'py>,
+    robot: &Robot,
+    q: &Bound<'py, PyAny>,
+    tolerance: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let model = &robot.model;
+    let q = vector_argument(q, "q", model.dof())?;
+    let mut data = Data::new(model);
+    let found =
+        library_classify(model, &mut data, &q, &ClassifyOptions { tolerance }).or_raise()?;
+    let out = PyDict::new(py);
+    let kinds: Vec<&str> = found.kinds.iter().map(|k| k.as_str()).collect();
+    out.set_item("kinds", kinds)?;
+    out.set_item("singular", found.is_singular())?;
+    out.set_item("rank", found.rank)?;
+    out.set_item("singular_values", vector(py, &found.singular_values))?;
+    let determinant = if model.dof() == 6 {
+        let j = jacobian(model, &mut data, &q, JacobianFrame::World).or_raise()?;
+        Some(jacobian_determinant(j))
+    } else {
+        None
+    };
+    out.set_item("determinant", determinant)?;
+    Ok(out)
+}
+
+/// The tracking method named in Python.
+fn tracking_method(name: &str, k: usize) -> armkit::Result<Method> {
+    match name {
+        "plain" => Ok(Method::Plain),
+        "avoidance" => Ok(Method::Avoidance { k }),
+        "dls" => Ok(Method::DampedLeastSquares(NakamuraDamping::default())),
+        "sri" => Ok(Method::SingularityRobust(ChiaveriniFilter::default())),
+        other => Err(armkit::Error::invalid_argument(
+            "method",
+            format!("expected \"plain\", \"avoidance\", \"dls\" or \"sri\", got \"{other}\""),
+        )),
+    }
+}
+
+/// A straight pose line whose midpoint is the pose at `through` (rad or m)
+/// and whose direction is the end-effector motion of the joint displacement
+/// `joint_direction` there (seed 004's path construction: a `through` with
+/// `q5 = 0` crosses a wrist singularity at mid-path). Returns `(q_start,
+/// T_goal)`: the start configuration (on the branch of `through`) and the
+/// end pose ((4, 4), world frame, m).
+#[pyfunction]
+#[allow(clippy::type_complexity)]
+pub fn line_through<'py>(
+    py: Python<'py>,
+    robot: &Robot,
+    through: &Bound<'py, PyAny>,
+    joint_direction: &Bound<'py, PyAny>,
+) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray2<f64>>)> {
+    let dof = robot.model.dof();
+    let through = vector_argument(through, "through", dof)?;
+    let direction = vector_argument(joint_direction, "joint_direction", dof)?;
+    let manipulator = Manipulator::FixedBase(&robot.model);
+    let line = library_line_through(&manipulator, &through, &direction, 0.0).or_raise()?;
+    let goal = new_array(py, Dim([4, 4]), |out| {
+        write_pose(&line.goal, out);
+        Ok(())
+    })?;
+    Ok((vector(py, &line.start), goal))
+}
+
+/// Tracks the straight pose line from FK(`q_start`) to `T_goal` ((4, 4),
+/// world frame, m) in `duration` s (trapezoidal speed, `acceleration_time`
+/// s of ramp; seed 004: 20 s and 4 s), every `dt` s, at the velocity level
+/// with `method`: `"plain"` (J^-1), `"avoidance"` (seed 004: NR knots every
+/// `k`-th pose of the singular region, joined by a C2 cubic), `"dls"` or
+/// `"sri"`. The region is entered when |det J| < `determinant_threshold`
+/// (m^3 for a 6R arm) or a plain joint step exceeds `joint_step_threshold`
+/// (rad). Returns a dict of arrays (`time`, `q`, `joint_rates`,
+/// `position_error`, `orientation_error`, `determinant`, `in_region`) and
+/// the summary (`status`, `peak_joint_rate`, `max_position_error`,
+/// `max_orientation_error`, `final_position_error`,
+/// `time_in_singular_region`, `ik_solves`).
+#[pyfunction]
+#[pyo3(signature = (robot, q_start, T_goal, method="avoidance", k=5, duration=20.0, acceleration_time=4.0, dt=0.01, determinant_threshold=0.004, joint_step_threshold=0.005))]
+#[allow(non_snake_case, clippy::too_many_arguments)]
+pub fn track_line<'py>(
+    py: Python<'py>,
+    robot: &Robot,
+    q_start: &Bound<'py, PyAny>,
+    T_goal: &Bound<'py, PyAny>,
+    method: &str,
+    k: usize,
+    duration: f64,
+    acceleration_time: f64,
+    dt: f64,
+    determinant_threshold: f64,
+    joint_step_threshold: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let model = &robot.model;
+    let dof = model.dof();
+    let start = vector_argument(q_start, "q_start", dof)?;
+    let goal = pose_argument(T_goal, "T_goal")?;
+    let method = tracking_method(method, k).or_raise()?;
+    let task = LineTask {
+        start,
+        goal,
+        duration,
+        acceleration_time,
+    };
+    let options = AvoidanceOptions {
+        tracking: TrackingOptions {
+            dt,
+            ..TrackingOptions::default()
+        },
+        detection: DetectionOptions {
+            determinant_threshold,
+            joint_step_threshold,
+        },
+        ..AvoidanceOptions::default()
+    };
+    let run = py
+        .detach(|| PathTracker::new(Manipulator::FixedBase(model), task, options)?.run(&method))
+        .or_raise()?;
+    let out = PyDict::new(py);
+    out.set_item("time", vector(py, &run.time))?;
+    // The library keeps one series per joint: samples become rows here.
+    out.set_item(
+        "q",
+        samples_by_joint(py, &run.joint_positions, run.time.len())?,
+    )?;
+    out.set_item(
+        "joint_rates",
+        samples_by_joint(py, &run.joint_rates, run.time.len())?,
+    )?;
+    out.set_item("position_error", vector(py, &run.position_error))?;
+    out.set_item("orientation_error", vector(py, &run.orientation_error))?;
+    out.set_item("determinant", vector(py, &run.determinant))?;
+    out.set_item("in_region", PyArray1::from_slice(py, &run.in_region))?;
+    out.set_item("status", run.status.as_str())?;
+    let summary = &run.summary;
+    out.set_item("peak_joint_rate", summary.peak_joint_rate)?;
+    out.set_item("max_position_error", summary.max_position_error)?;
+    out.set_item("max_orientation_error", summary.max_orientation_error)?;
+    out.set_item("final_position_error", summary.final_position_error)?;
+    out.set_item("time_in_singular_region", summary.time_in_singular_region)?;
+    out.set_item("ik_solves", summary.ik_solves)?;
+    Ok(out)
+}
+
+/// `series[j][i]` (joint j, sample i) as a (samples, joints) array.
+fn samples_by_joint<'py>(
+    py: Python<'py>,
+    series: &[Vec<f64>],
+    samples: usize,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let joints = series.len();
+    new_array(py, Dim([samples, joints]), |out| {
+        for (j, joint) in series.iter().enumerate() {
+            for (i, value) in joint.iter().take(samples).enumerate() {
+                out[i * joints + j] = *value;
+            }
+        }
+        Ok(())
+    })
+}

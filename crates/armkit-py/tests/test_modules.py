@@ -1,0 +1,212 @@
+"""Trajectories, redundancy, the continuous path, the MPC planner, the
+beam, the space robot and singularity detection from Python, each checked
+against an independent computation or the library's invariants."""
+
+import re
+
+import numpy as np
+import pytest
+
+import armkit
+from armkit import redundancy, singularity
+
+GANTRY_Q = np.array([3.0, 2.5, 1.0, 0.3, 0.4, -0.5, 0.2, 0.8, 0.1])
+TWIST = np.array([0.1, 0.0, -0.05, 0.0, 0.0, 0.0])
+
+
+def test_trapezoid_of_seed_004():
+    traj = armkit.Trajectory.trapezoidal([0.0, 1.0], [1.6, -0.6], 20.0, 4.0)
+    q, qd, qdd = traj.sample(10.0)
+    np.testing.assert_allclose(q, [0.8, 0.2], atol=1e-12)
+    np.testing.assert_allclose(qd, [1.6 / 16, -1.6 / 16], atol=1e-12)  # cruise: d / (T - ta)
+    np.testing.assert_allclose(qdd, [0.0, 0.0], atol=1e-12)
+    q, qd, _ = traj.sample(2.0)  # ramp: a t^2 / 2, a = d / (ta (T - ta))
+    np.testing.assert_allclose(q[0], 0.5 * 1.6 / (4 * 16) * 4.0, atol=1e-12)
+    assert traj.duration == 20.0 and traj.dof == 2
+
+
+def test_sampling_an_array_of_times_equals_a_loop():
+    traj = armkit.Trajectory.quintic([0.0, 0.5, -1.0], [1.0, 0.0, 1.0], 3.0)
+    t = np.linspace(-0.5, 3.5, 41)
+    Q, Qd, Qdd = traj.sample(t)
+    assert Q.shape == (41, 3)
+    for i, ti in enumerate(t):
+        q, qd, qdd = traj.sample(ti)
+        assert np.array_equal(Q[i], q) and np.array_equal(Qd[i], qd) and np.array_equal(Qdd[i], qdd)
+    # Velocity is the derivative of position (central differences).
+    h = 1e-6
+    np.testing.assert_allclose(traj.sample(1.3)[1], (traj.sample(1.3 + h)[0] - traj.sample(1.3 - h)[0]) / (2 * h), atol=1e-7)
+
+
+def test_spline_passes_through_its_points():
+    times = [0.0, 1.0, 2.5, 4.0]
+    points = np.array([[0.0, 1.0], [0.5, 0.5], [1.5, -0.2], [1.0, 0.0]])
+    traj = armkit.Trajectory.spline(times, points)
+    for t, p in zip(times, points):
+        np.testing.assert_allclose(traj.sample(t)[0], p, atol=1e-12)
+    np.testing.assert_allclose(traj.knots, times)
+
+
+def test_minimum_time_respects_the_limits():
+    traj = armkit.Trajectory.minimum_time([0.0, 0.0], [2.0, -1.0], [1.0, 1.0], [2.0, 2.0])
+    _, Qd, Qdd = traj.sample(np.linspace(0, traj.duration, 2001))
+    assert np.abs(Qd).max() <= 1.0 + 1e-9 and np.abs(Qdd).max() <= 2.0 + 1e-9
+    assert traj.duration == pytest.approx(2.0 / 1.0 + 1.0 / 2.0)  # cruise-limited: d / v + v / a
+
+
+def test_trajectory_bad_input():
+    with pytest.raises(ValueError, match=re.escape("invalid argument `shape`")):
+        armkit.Trajectory.minimum_time([0.0], [1.0], [1.0], [1.0], shape="sine")
+    with pytest.raises(ValueError, match="duration"):
+        armkit.Trajectory.cubic([0.0], [1.0], -1.0)
+    with pytest.raises(ValueError, match=re.escape("v_start: expected 2 values, got 1")):
+        armkit.Trajectory.cubic([0.0, 0.0], [1.0, 1.0], 1.0, v_start=[0.0])
+    with pytest.raises(ValueError, match=re.escape("t[0] is not finite")):
+        armkit.Trajectory.cubic([0.0], [1.0], 1.0).sample(np.nan)
+
+
+def test_weighted_least_norm_realizes_the_twist_and_locks_joints():
+    gantry = armkit.Robot.builtin("gantry9")
+    J = gantry.jacobian(GANTRY_Q)
+    weights = [100, 10, 10, 1, 1, 1, 1, 1, 1]
+    q_dot = redundancy.weighted_least_norm(gantry, GANTRY_Q, TWIST, weights=weights)
+    np.testing.assert_allclose(J @ q_dot, TWIST, atol=1e-10)
+    # The closed form A^-1 J' (J A^-1 J')^-1 V.
+    Ainv = np.diag(1.0 / np.array(weights, float))
+    np.testing.assert_allclose(q_dot, Ainv @ J.T @ np.linalg.solve(J @ Ainv @ J.T, TWIST), atol=1e-10)
+    locked = redundancy.weighted_least_norm(gantry, GANTRY_Q, TWIST, weights=[np.inf, 1, 1, 1, 1, 1, 1, 1, 1])
+    assert locked[0] == 0.0
+    np.testing.assert_allclose(J @ locked, TWIST, atol=1e-10)
+    with pytest.raises(ValueError, match=re.escape("weight of joint 1 must be finite and > 0, got -1")):
+        redundancy.weighted_least_norm(gantry, GANTRY_Q, TWIST, weights=[1, -1, 1, 1, 1, 1, 1, 1, 1])
+
+
+def test_energy_optimal_distribution_spends_the_least_energy():
+    """Seed 001: the energy-optimal distribution minimizes sum (tau_i q_dot_i)^2
+    (each |tau_i| floored at 5 % of the largest, so that joints holding no
+    load still count) among all distributions realizing the twist."""
+    gantry = armkit.Robot.builtin("gantry9")
+    q_dot, torques, energy = redundancy.energy_optimal(gantry, GANTRY_Q, TWIST, payload=50.0)
+    np.testing.assert_allclose(gantry.jacobian(GANTRY_Q) @ q_dot, TWIST, atol=1e-10)
+    np.testing.assert_allclose(torques, redundancy.joint_torques(gantry, GANTRY_Q, payload=50.0))
+    assert energy == pytest.approx(redundancy.energy_measure(q_dot, torques))
+    minimum_norm = redundancy.weighted_least_norm(gantry, GANTRY_Q, TWIST)
+    assert energy < redundancy.energy_measure(minimum_norm, torques)
+    # Any other solution of J q_dot = V (plus a null-space motion) costs more.
+    floored = np.maximum(np.abs(torques), 0.05 * np.abs(torques).max())
+    cost = lambda v: np.sum((floored * v) ** 2)
+    J = gantry.jacobian(GANTRY_Q)
+    null = np.linalg.svd(J)[2][6:].T
+    rng = np.random.default_rng(0)
+    for _ in range(20):
+        other = q_dot + null @ rng.normal(scale=0.01, size=null.shape[1])
+        np.testing.assert_allclose(J @ other, TWIST, atol=1e-10)
+        assert cost(other) > cost(q_dot)
+
+
+def test_continuous_path_of_seed_002_meets_its_tolerance():
+    arm4 = armkit.Robot.builtin("arm4")
+    q0 = arm4.neutral_configuration()
+    goal = arm4.fk(q0 + 0.3)
+    result = armkit.continuous_path(arm4, q0, goal, 2.0, tolerance=1e-4)
+    assert result.status == "tolerance_met" and result.ik_method.startswith("seed 002")
+    traj = result.trajectory
+    assert result.configurations.shape == (len(traj.knots), 4)
+    # FK of the joint trajectory follows the Cartesian path (position task
+    # for a 4-DOF arm) at the knots exactly and between them within the
+    # measured interior error.
+    for t, q in zip(traj.knots, result.configurations):
+        np.testing.assert_allclose(arm4.fk(q)[:3, 3], result.path_poses(t)[:3, 3], atol=1e-9)
+    t = np.linspace(0.0, 2.0, 401)
+    reached = arm4.fk(traj.sample(t)[0])[:, :3, 3]
+    wanted = result.path_poses(t)[:, :3, 3]
+    error = np.linalg.norm(reached - wanted, axis=1).max()
+    assert error <= result.interior_position_error + 1e-12
+    assert result.checked_position_error <= 1e-4
+
+
+def test_mpc_reaches_the_target_within_the_limits():
+    panda = armkit.Robot.builtin("panda")
+    q = np.array([0.0, -0.3, 0.0, -2.2, 0.0, 2.0, 0.8])
+    target = panda.fk(q)
+    target[:3, 3] += [0.05, -0.05, 0.05]
+    planner = armkit.MpcPlanner(panda, orientation=False)
+    run = planner.run(target, q)
+    assert run["converged"] and run["final_position_error"] < 1e-4
+    assert run["max_velocity_violation"] == 0.0 and run["max_position_violation"] == 0.0
+    np.testing.assert_allclose(panda.fk(run["q"][-1])[:3, 3], target[:3, 3], atol=1e-4)
+    assert run["q"].shape == (len(run["time"]), 7)
+    # Stepping by hand: integrate the commanded velocities (the plant).
+    planner.set_target(target)
+    for _ in range(100):
+        step = planner.step(q)
+        assert step["status"] == "solved"
+        q = q + 0.05 * step["velocity"]
+    assert planner.step(q)["position_error"] < 1e-4
+    # Clarabel, seed 000's planner as printed (no reach aid), the same target.
+    clarabel = armkit.MpcPlanner(panda, orientation=False, solver="clarabel", reach=False)
+    assert clarabel.solver == "clarabel"
+    run = clarabel.run(target, [0.0, -0.3, 0.0, -2.2, 0.0, 2.0, 0.8])
+    assert run["converged"] and run["max_position_violation"] == 0.0
+    with pytest.raises(ValueError, match=re.escape("invalid argument `solver`: unknown QP solver `cvx`")):
+        armkit.MpcPlanner(panda, solver="cvx")
+
+
+def test_beam_deflection_is_the_textbook_one():
+    E, I, L, P = 200e9, 0.2**4 / 12, 10.0, 4000.0
+    beam = armkit.Beam(L, E, I)
+    assert beam.deflection(L / 2, [[L / 2, P]]) == pytest.approx(P * L**3 / (48 * E * I), rel=1e-12)
+    a, x = 3.0, 7.0  # load at a, deflection at x > a: P a (L - x) (2 L x - x^2 - a^2) / (6 E I L)
+    assert beam.deflection(x, [[a, P]]) == pytest.approx(P * a * (L - x) * (2 * L * x - x**2 - a**2) / (6 * E * I * L), rel=1e-12)
+    assert beam.slope(L / 2, [[L / 2, P]]) == pytest.approx(0.0, abs=1e-15)
+    with pytest.raises(ValueError, match=re.escape("invalid argument `length`: must be finite and > 0, got -1")):
+        armkit.Beam(-1.0, E, I)
+
+
+def test_space_robot_base_reacts_as_its_mode_says():
+    space = armkit.SpaceRobot.space6r()
+    q = np.array([0.1, 0.5, -0.3, 0.2, 0.4, 0.1])
+    rates = np.array([0.2, -0.1, 0.3, 0.1, -0.2, 0.1])
+    base, q1 = space.step(q, rates, 0.01)
+    np.testing.assert_allclose(q1, q + 0.01 * rates, atol=1e-12)
+    np.testing.assert_allclose(base[:3, :3], np.eye(3), atol=1e-15)  # attitude held
+    assert np.linalg.norm(base[:3, 3]) > 0  # the base moved
+    base, _ = space.step(q, rates, 0.01, mode="free-floating")
+    assert np.abs(base[:3, :3] - np.eye(3)).max() > 1e-9  # the base turned
+    J = space.generalized_jacobian(q)
+    assert J.shape == (6, 6)
+    with pytest.raises(ValueError, match=re.escape('invalid argument `mode`: expected "attitude-held" or "free-floating", got "fixed"')):
+        space.generalized_jacobian(q, mode="fixed")
+
+
+def test_singularity_classification():
+    puma = armkit.Robot.builtin("puma560")
+    wrist = singularity.classify(puma, [0.3, 0.5, -0.4, 0.2, 0.0, 0.1])
+    assert wrist["kinds"] == ["wrist"] and wrist["rank"] == 5 and wrist["singular"]
+    assert abs(wrist["determinant"]) < 1e-12
+    regular = singularity.classify(puma, [0.3, 0.5, -0.4, 0.2, 0.7, 0.1])
+    assert regular["kinds"] == [] and regular["rank"] == 6 and not regular["singular"]
+    np.testing.assert_allclose(regular["singular_values"], np.linalg.svd(puma.jacobian([0.3, 0.5, -0.4, 0.2, 0.7, 0.1]), compute_uv=False))
+    np.testing.assert_allclose(regular["determinant"], np.linalg.det(puma.jacobian([0.3, 0.5, -0.4, 0.2, 0.7, 0.1])), rtol=1e-9)
+
+
+def test_seed_004_avoidance_crosses_the_wrist_singularity_slowly():
+    arm = armkit.Robot.builtin("space6r")
+    q_start, goal = singularity.line_through(arm, [0.4, 1.2, -0.5, 0.6, 0.0, -0.3], [0.5, -0.3, 0.4, 0.0, 0.8, 0.0])
+    through = arm.fk([0.4, 1.2, -0.5, 0.6, 0.0, -0.3])
+    start = arm.fk(q_start)
+    np.testing.assert_allclose((start[:3, 3] + goal[:3, 3]) / 2, through[:3, 3], atol=1e-9)  # midpoint
+    plain = singularity.track_line(arm, q_start, goal, method="plain")
+    avoid = singularity.track_line(arm, q_start, goal, method="avoidance", k=5)
+    assert plain["status"] == avoid["status"] == "completed"
+    assert plain["peak_joint_rate"] > 10.0  # seed 004 Fig 5: the rates blow up
+    assert avoid["peak_joint_rate"] < 0.1 and avoid["ik_solves"] > 0
+    assert avoid["max_position_error"] < 1e-6
+    assert np.abs(avoid["joint_rates"]).max() == pytest.approx(avoid["peak_joint_rate"])
+    assert avoid["q"].shape == (len(avoid["time"]), 6) and avoid["in_region"].any()
+    np.testing.assert_allclose(np.abs(plain["position_error"]).max(), plain["max_position_error"])
+    # Plain tracking: each rate is held over one period (dt = 0.01 s).
+    np.testing.assert_allclose(np.diff(plain["q"], axis=0), plain["joint_rates"][:-1] * 0.01, atol=1e-12)
+    np.testing.assert_allclose(arm.fk(avoid["q"][-1]), goal, atol=1e-9)
+    with pytest.raises(ValueError, match=re.escape("invalid argument `k`: the knot stride must be >= 1")):
+        singularity.track_line(arm, q_start, goal, method="avoidance", k=0)

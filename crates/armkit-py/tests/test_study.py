@@ -1,0 +1,36 @@
+"""Every seed study runs from Python with all its checks passing, and its
+series come back as arrays."""
+
+import re
+
+import numpy as np
+import pytest
+
+import armkit
+from armkit import study
+
+
+@pytest.mark.parametrize("name", study.names())
+def test_seed_study_checks_all_pass(name):
+    report = study.run(name)
+    assert report.checks, "a study without checks proves nothing"
+    failed = [c["text"] for c in report.checks if not c["passed"]]
+    assert report.all_passed and not failed, failed
+    assert report.passed == len(report.checks)
+    for check in report.checks:
+        passed = check["value"] <= check["threshold"] if check["comparison"] == "<=" else check["value"] >= check["threshold"]
+        assert passed == check["passed"]
+    for series in report.series.values():
+        assert isinstance(series["x"], np.ndarray)
+        for values in series["columns"].values():
+            assert values.shape == series["x"].shape
+
+
+def test_study_options_and_bad_names():
+    heavy = study.run("beam-table", mass=800.0)
+    light = study.run("beam-table")
+    assert heavy.checks != light.checks
+    with pytest.raises(ValueError, match=re.escape("unknown study `nope`; the studies are: beam-table")):
+        study.run("nope")
+    with pytest.raises(ValueError, match=re.escape("invalid argument `options`: study `beam-table`: unknown field `weight`")):
+        study.run("beam-table", weight=3.0)
