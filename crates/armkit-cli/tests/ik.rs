@@ -372,6 +372,10 @@ fn bench_ik_prints_the_table() {
         "40",
         "--solver",
         "lm,analytic,auto",
+        // A wall-clock budget large enough that a loaded machine cannot cut
+        // a solve short: the assertion is about success, not speed.
+        "--budget-ms",
+        "1000",
     ]);
     assert!(output.status.success(), "{}", stderr(&output));
     let text = stdout(&output);
