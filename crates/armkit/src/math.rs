@@ -230,6 +230,7 @@ pub fn rotation_orthonormality(rotation: &Matrix3<f64>) -> f64 {
 
 impl Mul for Pose {
     type Output = Pose;
+    #[inline]
     fn mul(self, rhs: Pose) -> Pose {
         Pose::new(
             self.rotation * rhs.rotation,
@@ -240,6 +241,7 @@ impl Mul for Pose {
 
 impl Mul<&Pose> for &Pose {
     type Output = Pose;
+    #[inline]
     fn mul(self, rhs: &Pose) -> Pose {
         *self * *rhs
     }

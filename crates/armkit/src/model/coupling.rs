@@ -216,6 +216,7 @@ impl JointMap {
 
     /// Chain joint positions from the configuration `q` (sizes checked by
     /// the caller): drives first, then the additive curves. Allocates nothing.
+    #[inline]
     pub(crate) fn expand(&self, q: &[f64], chain: &mut [f64]) {
         if self.identity {
             chain.copy_from_slice(q);
@@ -240,6 +241,7 @@ impl JointMap {
     /// `out` (6 x dof). For an identity map `chain` is unused and `out`
     /// already holds `J0` (only the additive columns change, in place: seed
     /// 000 eq 10, `column(source) += slope * column(target)`).
+    #[inline]
     pub(crate) fn fold_jacobian(
         &self,
         q: &[f64],
