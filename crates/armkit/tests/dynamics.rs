@@ -12,11 +12,11 @@ use armkit::dynamics::{
     aba, coriolis_torques, gravity_torques, kinetic_energy, mass_matrix, mass_matrix_inverse,
     nonlinear_effects, potential_energy, rnea, DynamicsData,
 };
-use armkit::math::{DMatrix, Matrix3, Pose, Rotation3, Vector3};
+use armkit::math::{DMatrix, Pose, Vector3};
 use armkit::model::{JointSpec, LinkInertia, ModelBuilder};
 use armkit::urdf::{load, ChainSelection};
 use armkit::Model;
-use common::{data_path, random_configuration, rng};
+use common::{data_path, random_configuration, random_link, rng};
 use rand::Rng;
 
 struct DynamicsSample {
@@ -151,41 +151,13 @@ fn random_arm(seed: u64, dof: usize) -> Model {
     let mut r = rng(seed);
     let mut builder = ModelBuilder::new(format!("random{seed}"));
     for j in 0..dof {
-        let mut unit = || {
-            Vector3::new(
-                r.gen_range(-1.0..1.0),
-                r.gen_range(-1.0..1.0),
-                r.gen_range(-1.0..1.0),
-            )
-        };
-        let axis = unit();
-        let offset = unit() * 0.4;
-        let com = unit() * 0.2;
-        let rotation = Rotation3::from_euler_angles(
-            r.gen_range(-3.0..3.0),
-            r.gen_range(-1.5..1.5),
-            r.gen_range(-3.0..3.0),
-        );
-        let principal = Vector3::new(
-            r.gen_range(0.01..0.1),
-            r.gen_range(0.01..0.1),
-            r.gen_range(0.01..0.1),
-        );
-        let inertia = rotation * Matrix3::from_diagonal(&principal) * rotation.transpose();
-        let spec = if r.gen_range(0..4) == 0 {
-            JointSpec::prismatic(format!("p{j}"), -0.5, 0.5)
-        } else {
-            JointSpec::revolute(format!("r{j}"), -3.0, 3.0)
-        };
-        builder = builder.joint(
-            spec.with_axis(axis)
-                .with_origin(Pose::new(rotation.into_inner(), offset))
-                .with_inertia(LinkInertia {
-                    mass: r.gen_range(0.5..5.0),
-                    com,
-                    inertia,
-                }),
-        );
+        builder = builder.joint(random_link(&mut r, |r| {
+            if r.gen_range(0..4) == 0 {
+                JointSpec::prismatic(format!("p{j}"), -0.5, 0.5)
+            } else {
+                JointSpec::revolute(format!("r{j}"), -3.0, 3.0)
+            }
+        }));
     }
     builder.build().unwrap()
 }

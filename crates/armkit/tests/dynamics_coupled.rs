@@ -19,11 +19,11 @@ use armkit::dynamics::{
     aba, gravity_torques, kinetic_energy, mass_matrix, mass_matrix_inverse, potential_energy, rnea,
     DynamicsData,
 };
-use armkit::math::{DMatrix, Matrix3, Pose, Rotation3, Vector3};
-use armkit::model::{CouplingCurve, JointSpec, LinkInertia, MimicJoint, ModelBuilder};
+use armkit::math::{DMatrix, Vector3};
+use armkit::model::{CouplingCurve, JointSpec, MimicJoint, ModelBuilder};
 use armkit::urdf::{load, ChainSelection};
 use armkit::Model;
-use common::{data_path, random_configuration, rng};
+use common::{data_path, random_configuration, random_link, rng};
 use rand::Rng;
 
 /// A random chain of `dof` joints; `mimic` adds mimic joints (joint 2
@@ -32,41 +32,13 @@ fn random_chain(seed: u64, dof: usize, mimic: bool) -> Model {
     let mut r = rng(seed);
     let mut builder = ModelBuilder::new(format!("chain{seed}"));
     for j in 0..dof {
-        let mut unit = || {
-            Vector3::new(
-                r.gen_range(-1.0..1.0),
-                r.gen_range(-1.0..1.0),
-                r.gen_range(-1.0..1.0),
-            )
-        };
-        let axis = unit();
-        let offset = unit() * 0.4;
-        let com = unit() * 0.2;
-        let rotation = Rotation3::from_euler_angles(
-            r.gen_range(-3.0..3.0),
-            r.gen_range(-1.5..1.5),
-            r.gen_range(-3.0..3.0),
-        );
-        let principal = Vector3::new(
-            r.gen_range(0.01..0.1),
-            r.gen_range(0.01..0.1),
-            r.gen_range(0.01..0.1),
-        );
-        let inertia = rotation * Matrix3::from_diagonal(&principal) * rotation.transpose();
-        let spec = if j == 1 {
-            JointSpec::prismatic(format!("j{j}"), -5.0, 5.0)
-        } else {
-            JointSpec::revolute(format!("j{j}"), -30.0, 30.0)
-        };
-        builder = builder.joint(
-            spec.with_axis(axis)
-                .with_origin(Pose::new(rotation.into_inner(), offset))
-                .with_inertia(LinkInertia {
-                    mass: r.gen_range(0.5..5.0),
-                    com,
-                    inertia,
-                }),
-        );
+        builder = builder.joint(random_link(&mut r, |_| {
+            if j == 1 {
+                JointSpec::prismatic(format!("j{j}"), -5.0, 5.0)
+            } else {
+                JointSpec::revolute(format!("j{j}"), -30.0, 30.0)
+            }
+        }));
     }
     if mimic {
         builder = builder

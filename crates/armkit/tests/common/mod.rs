@@ -101,3 +101,43 @@ pub fn finite_difference_jacobian(model: &Model, q: &[f64], step: f64) -> Matrix
     }
     jac
 }
+
+/// A random link for the dynamics tests: `kind(rng)` picks the joint (and
+/// may draw from `rng`); its axis, origin (within 0.4 m, any rotation) and
+/// mass properties (0.5-5 kg, centre of mass within 0.2 m, a positive
+/// definite inertia with principal moments 0.01-0.1 kg m^2) are random.
+pub fn random_link(
+    r: &mut ChaCha8Rng,
+    kind: impl FnOnce(&mut ChaCha8Rng) -> armkit::model::JointSpec,
+) -> armkit::model::JointSpec {
+    use armkit::math::{Matrix3, Rotation3};
+    let mut unit = || {
+        Vector3::new(
+            r.gen_range(-1.0..1.0),
+            r.gen_range(-1.0..1.0),
+            r.gen_range(-1.0..1.0),
+        )
+    };
+    let axis = unit();
+    let offset = unit() * 0.4;
+    let com = unit() * 0.2;
+    let rotation = Rotation3::from_euler_angles(
+        r.gen_range(-3.0..3.0),
+        r.gen_range(-1.5..1.5),
+        r.gen_range(-3.0..3.0),
+    );
+    let principal = Vector3::new(
+        r.gen_range(0.01..0.1),
+        r.gen_range(0.01..0.1),
+        r.gen_range(0.01..0.1),
+    );
+    let inertia = rotation * Matrix3::from_diagonal(&principal) * rotation.transpose();
+    let spec = kind(r);
+    spec.with_axis(axis)
+        .with_origin(Pose::new(rotation.into_inner(), offset))
+        .with_inertia(armkit::model::LinkInertia {
+            mass: r.gen_range(0.5..5.0),
+            com,
+            inertia,
+        })
+}
