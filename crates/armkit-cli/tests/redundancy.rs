@@ -27,7 +27,7 @@ fn default_gantry_comparison_matches_the_library_and_writes_files() {
     let start = *armkit::forward_kinematics(&model, &mut data, &q0).unwrap();
     let goal = Pose::from_translation(Vector3::new(0.4, 0.3, -0.3)) * start;
     let path = CartesianTrajectory::line(start, goal, TimeLaw::Quintic, 4.0).unwrap();
-    let load = Load::payload(50.0).with_standard_gravity();
+    let load = Load::payload(50.0).with_seed001_gravity();
     let cases = ComparisonCase::four_way(
         9,
         load,

@@ -105,7 +105,7 @@ fn solves(c: &mut Criterion) {
 fn energy(c: &mut Criterion) {
     let model = armkit::robots::by_name("gantry9").unwrap();
     let mut data = Data::new(&model);
-    let load = Load::payload(50.0).with_standard_gravity();
+    let load = Load::payload(50.0).with_seed001_gravity();
     let mut torques = [0.0; 9];
     let mut weights = JointWeights::uniform(9);
     c.bench_function(
@@ -129,7 +129,7 @@ fn tracking(c: &mut Criterion) {
     let start = *forward_kinematics(&model, &mut data, &GANTRY_Q).unwrap();
     let goal = Pose::from_translation(Vector3::new(0.4, 0.3, -0.3)) * start;
     let path = CartesianTrajectory::line(start, goal, TimeLaw::Quintic, 4.0).unwrap();
-    let load = Load::payload(50.0).with_standard_gravity();
+    let load = Load::payload(50.0).with_seed001_gravity();
     let mut tracker = ResolvedRateTracker::new(
         &model,
         Distribution::Energy {

@@ -28,7 +28,7 @@ fn main() -> Result<(), armkit::Error> {
     model.check_limits(&q)?;
 
     // Torques (N, N m) holding a 50 N payload and the links against gravity.
-    let load = Load::payload(50.0).with_standard_gravity();
+    let load = Load::payload(50.0).with_seed001_gravity();
     let mut torques = [0.0; 9];
     joint_torques(&model, &mut data, &q, &load, &mut torques)?;
     let j = jacobian(&model, &mut data, &q, JacobianFrame::World)?.clone();

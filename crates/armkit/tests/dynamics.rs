@@ -685,7 +685,7 @@ fn seed001_energy_under_static_and_dynamic_torques() {
     let start = *armkit::forward_kinematics(&model, &mut data, &q0).unwrap();
     let goal = Pose::from_translation(Vector3::new(0.4, 0.3, -0.3)) * start;
     let path = CartesianTrajectory::line(start, goal, TimeLaw::Quintic, 4.0).unwrap();
-    let load = Load::payload(50.0).with_standard_gravity();
+    let load = Load::payload(50.0).with_seed001_gravity();
     let priorities = JointWeights::new(&SEED000_PRIORITY_WEIGHTS).unwrap();
     let cases =
         ComparisonCase::four_way(9, load, TorqueFloor::default(), priorities, &[0, 1]).unwrap();

@@ -364,7 +364,7 @@ fn redundancy_rejects_non_finite_numbers() {
     });
     let mut data = Data::new(&gantry);
     let mut torques = [0.0; 9];
-    let load = Load::payload(10.0).with_standard_gravity();
+    let load = Load::payload(10.0).with_seed001_gravity();
     cases.rejects_each("joint_torques q", "joint_positions", |b| {
         joint_torques(&gantry, &mut data, &with(&q, 6, b), &load, &mut torques)
     });

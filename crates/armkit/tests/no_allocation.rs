@@ -285,7 +285,7 @@ fn redundancy_solves_do_not_allocate() {
         .unwrap()
         .clone();
     let twist = Vector6::new(0.1, 0.05, -0.05, 0.0, 0.1, 0.0);
-    let load = Load::payload(50.0).with_standard_gravity();
+    let load = Load::payload(50.0).with_seed001_gravity();
     let mut weights = JointWeights::uniform(9);
     let mut torques = [0.0; 9];
     let preferred = [0.01; 9];
@@ -532,7 +532,7 @@ fn dynamics_does_not_allocate() {
                 .collect();
         let (mut qs, mut vs) = (q.clone(), v.clone());
         let mut energy = EnergyTorques::new(&model).unwrap();
-        let load = Load::payload(50.0).with_standard_gravity();
+        let load = Load::payload(50.0).with_seed001_gravity();
         let before = allocations();
         for _ in 0..50 {
             tau.copy_from_slice(rnea(&model, &mut data, &q, &v, &a).unwrap());

@@ -648,7 +648,7 @@ fn gantry9_holding_torques_match_a_hand_count() {
     // so their torques are zero.
     let model = armkit::robots::by_name("gantry9").unwrap();
     let mut data = Data::new(&model);
-    let load = Load::payload(50.0).with_standard_gravity();
+    let load = Load::payload(50.0).with_seed001_gravity();
     let mut tau = [0.0; 9];
     let mut rng = common::rng(5010);
     for _ in 0..10 {
@@ -704,7 +704,7 @@ fn zero_torques_are_floored_never_divided_by() {
 fn eq17_from_torques_matches_the_weighted_form_and_its_floor_limit() {
     let model = armkit::robots::by_name("gantry9").unwrap();
     let mut data = Data::new(&model);
-    let load = Load::payload(50.0).with_standard_gravity();
+    let load = Load::payload(50.0).with_seed001_gravity();
     let q = [3.0, 2.5, 1.0, 0.3, 0.4, -0.5, 0.2, 0.8, 0.1];
     let mut tau = [0.0; 9];
     joint_torques(&model, &mut data, &q, &load, &mut tau).unwrap();
@@ -867,7 +867,7 @@ fn tracking_follows_lines_on_gantry9_and_panda_with_every_method() {
     let gantry = armkit::robots::by_name("gantry9").unwrap();
     let q0 = gantry_start();
     let path = line_from(&gantry, &q0, Vector3::new(0.4, 0.3, -0.3), 0.3, 4.0);
-    let load = Load::payload(50.0).with_standard_gravity();
+    let load = Load::payload(50.0).with_seed001_gravity();
     let distributions = [
         Distribution::Weights(JointWeights::uniform(9)),
         Distribution::Weights(JointWeights::new(&SEED000_PRIORITY_WEIGHTS).unwrap()),
@@ -1139,7 +1139,7 @@ fn four_way_comparison_on_gantry9() {
     let model = armkit::robots::by_name("gantry9").unwrap();
     let q0 = gantry_start();
     let path = line_from(&model, &q0, Vector3::new(0.4, 0.3, -0.3), 0.0, 4.0);
-    let load = Load::payload(50.0).with_standard_gravity();
+    let load = Load::payload(50.0).with_seed001_gravity();
     let cases = ComparisonCase::four_way(
         9,
         load,

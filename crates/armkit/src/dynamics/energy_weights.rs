@@ -16,7 +16,7 @@
 //! let times: Vec<f64> = (0..=100).map(|k| k as f64 * 0.01).collect();
 //! let q: Vec<Vec<f64>> = times.iter().map(|t| vec![0.5 * t * t, 0.2 * t, 0.0, 0.0, 0.0, 0.0]).collect();
 //! let q_dot: Vec<Vec<f64>> = times.iter().map(|&t| vec![t, 0.2, 0.0, 0.0, 0.0, 0.0]).collect();
-//! let load = Load::payload(20.0).with_standard_gravity();
+//! let load = Load::payload(20.0).with_seed001_gravity();
 //! let fixed = energy_along_motion(&model, &times, &q, &q_dot, &load, TorqueModel::Static).unwrap();
 //! let moving = energy_along_motion(&model, &times, &q, &q_dot, &load, TorqueModel::Dynamic).unwrap();
 //! assert!(fixed.energy > 0.0 && moving.energy != fixed.energy);

@@ -40,7 +40,7 @@
 //! let mut data = Data::new(&model);
 //! let q = [3.0, 2.5, 1.0, 0.3, 0.4, -0.5, 0.2, 0.8, 0.1];
 //! // Hold a 50 N payload, with the links' own weight (seed 001's g = 9.81 m/s^2 along -z).
-//! let load = Load::payload(50.0).with_standard_gravity();
+//! let load = Load::payload(50.0).with_seed001_gravity();
 //! let mut tau = [0.0; 9];
 //! joint_torques(&model, &mut data, &q, &load, &mut tau).unwrap();
 //! // The vertical ram (joint 3, pointing down) carries the carriage's load.
@@ -104,14 +104,8 @@ impl Load {
     }
 
     /// This load with seed 001's gravity ([`crate::seeds::SEED001_GRAVITY`],
-    /// 9.81 m/s^2) along world -z. For the exact conventional value use
+    /// 9.81 m/s^2) along world -z. For the conventional value use
     /// [`Load::with_gravity`] with [`STANDARD_GRAVITY`] (9.80665 m/s^2).
-    pub fn with_standard_gravity(self) -> Self {
-        self.with_seed001_gravity()
-    }
-
-    /// This load with seed 001's gravity ([`crate::seeds::SEED001_GRAVITY`])
-    /// along world -z.
     pub fn with_seed001_gravity(self) -> Self {
         self.with_gravity(Vector3::new(0.0, 0.0, -crate::seeds::SEED001_GRAVITY))
     }
