@@ -139,7 +139,9 @@ fn wrist_factors(model: &Model, data: &Data) -> Option<WristFactors> {
         .joints()
         .iter()
         .all(|j| matches!(j.kind, JointKind::Revolute | JointKind::Continuous));
-    if model.dof() != 6 || !revolute {
+    // The factors read the joint frames as the six joints of `q`: a chain
+    // with mimic joints has more frames than joints in `q`, so it is not one.
+    if model.dof() != 6 || model.chain_joints().len() != 6 || !revolute {
         return None;
     }
     let frames = data.joint_frames();
