@@ -44,6 +44,10 @@ pub struct StudyReport {
     /// Notes (deviations from the paper and why).
     #[pyo3(get)]
     notes: Vec<String>,
+    /// The paper's claims: each a dict with claim, measured, status
+    /// ("reproduced", "reproduced with deviation", "not reproduced").
+    #[pyo3(get)]
+    findings: Py<PyList>,
     /// Number of checks that pass.
     #[pyo3(get)]
     passed: usize,
@@ -79,6 +83,14 @@ impl StudyReport {
             item.set_item("text", check.to_string())?;
             checks.append(item)?;
         }
+        let findings = PyList::empty(py);
+        for finding in &report.findings {
+            let item = PyDict::new(py);
+            item.set_item("claim", &finding.claim)?;
+            item.set_item("measured", &finding.measured)?;
+            item.set_item("status", finding.status.as_str())?;
+            findings.append(item)?;
+        }
         let series = PyDict::new(py);
         for set in &report.series {
             let item = PyDict::new(py);
@@ -100,6 +112,7 @@ impl StudyReport {
             passed: report.passed(),
             all_passed: report.all_passed(),
             notes: report.notes,
+            findings: findings.unbind(),
         })
     }
 }

@@ -134,8 +134,17 @@ pub fn demo(args: &DemoArgs) -> CliResult<Outcome> {
         started.elapsed().as_secs_f64()
     );
     for s in &summaries {
+        let (reproduced, deviation, not_reproduced) = s.findings;
+        let findings = if reproduced + deviation + not_reproduced == 0 {
+            String::new()
+        } else {
+            format!(
+                "; paper's claims: {reproduced} reproduced, {deviation} with a deviation, \
+                 {not_reproduced} not reproduced"
+            )
+        };
         println!(
-            "  [{}] {}: {} of {} checks pass",
+            "  [{}] {}: {} of {} checks pass{findings}",
             if s.all_passed() { "pass" } else { "FAIL" },
             s.name,
             s.passed,

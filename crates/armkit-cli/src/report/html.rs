@@ -67,6 +67,7 @@ pub fn report_page(report: &Report, svgs: &[(String, String)]) -> String {
         );
     }
     body += "</table>\n";
+    body += &findings_table(&report.findings);
     for note in &report.notes {
         body += &format!("<p class=\"note\">{}</p>\n", escape(note));
     }
@@ -103,6 +104,23 @@ pub fn report_page(report: &Report, svgs: &[(String, String)]) -> String {
     page(&report.title, &body)
 }
 
+/// The papers' claims and how they fared, apart from the checks.
+fn findings_table(findings: &[super::Finding]) -> String {
+    if findings.is_empty() {
+        return String::new();
+    }
+    let mut html = "<h2>The paper's claims</h2>\n<table><tr><th>claim</th><th>measured here</th><th>verdict</th></tr>\n".to_string();
+    for finding in findings {
+        html += &format!(
+            "<tr><td>{}</td><td>{}</td><td>{}</td></tr>\n",
+            escape(&finding.claim),
+            escape(&finding.measured),
+            escape(finding.status.as_str())
+        );
+    }
+    html + "</table>\n"
+}
+
 fn strip_xml_declaration(svg: &str) -> &str {
     match svg.find("<svg") {
         Some(start) => &svg[start..],
@@ -114,7 +132,7 @@ fn strip_xml_declaration(svg: &str) -> &str {
 pub fn index_page(summaries: &[ReportSummary], out_dir: &Path) -> String {
     let all = summaries.iter().all(ReportSummary::all_passed);
     let mut body = format!(
-        "<h1>armkit demo</h1>\n<p>{} scenarios; {}.</p>\n<table><tr><th>scenario</th><th>checks</th><th>result</th></tr>\n",
+        "<h1>armkit demo</h1>\n<p>{} scenarios; {}.</p>\n<table><tr><th>scenario</th><th>checks</th><th>result</th><th>paper's claims: reproduced / with deviation / not reproduced</th></tr>\n",
         summaries.len(),
         if all { "every check passes" } else { "some checks fail: see the reports" }
     );
@@ -126,12 +144,15 @@ pub fn index_page(summaries: &[ReportSummary], out_dir: &Path) -> String {
             .to_string_lossy()
             .replace('\\', "/");
         body += &format!(
-            "<tr><td><a href=\"{}\">{}</a></td><td>{} of {} pass</td><td>{}</td></tr>\n",
+            "<tr><td><a href=\"{}\">{}</a></td><td>{} of {} pass</td><td>{}</td><td>{} / {} / {}</td></tr>\n",
             escape(&link),
             escape(&s.title),
             s.passed,
             s.total,
-            verdict(s.all_passed())
+            verdict(s.all_passed()),
+            s.findings.0,
+            s.findings.1,
+            s.findings.2
         );
     }
     body += "</table>\n";

@@ -17,7 +17,7 @@ use crate::plot::Figure;
 
 /// One verifiable claim and how it is compared: the library's
 /// ([`armkit::study`]), so that a study's checks are the report's.
-pub use armkit::study::{Check, Comparison};
+pub use armkit::study::{Check, Comparison, Finding};
 
 /// A check as `summary.json` writes it.
 fn check_json(check: &Check) -> serde_json::Value {
@@ -29,6 +29,15 @@ fn check_json(check: &Check) -> serde_json::Value {
         "unit": check.unit,
         "detail": check.detail,
         "pass": check.passed(),
+    })
+}
+
+/// A finding as `summary.json` writes it.
+fn finding_json(finding: &Finding) -> serde_json::Value {
+    serde_json::json!({
+        "claim": finding.claim,
+        "measured": finding.measured,
+        "status": finding.status.as_str(),
     })
 }
 
@@ -107,6 +116,8 @@ pub struct Report {
     pub description: String,
     /// The checks, each pass or fail.
     pub checks: Vec<Check>,
+    /// The papers' claims and how they fared (kept apart from the checks).
+    pub findings: Vec<Finding>,
     /// Tables shown in the report and printed on the terminal.
     pub tables: Vec<Table>,
     /// Figures: (file stem, figure); each becomes `<stem>.svg` and `<stem>.csv`.
@@ -128,6 +139,8 @@ pub struct ReportSummary {
     pub passed: usize,
     /// Number of checks.
     pub total: usize,
+    /// The findings' counts: (reproduced, with deviation, not reproduced).
+    pub findings: (usize, usize, usize),
     /// Path of `report.html`.
     pub html: PathBuf,
 }
@@ -165,6 +178,7 @@ impl Report {
             title: title.into(),
             description: description.into(),
             checks: study.checks,
+            findings: study.findings,
             tables: Vec::new(),
             figures,
             notes: study.notes,
@@ -185,6 +199,7 @@ impl Report {
             "passed": self.passed(),
             "total": self.checks.len(),
             "checks": self.checks.iter().map(check_json).collect::<Vec<_>>(),
+            "findings": self.findings.iter().map(finding_json).collect::<Vec<_>>(),
             "notes": self.notes,
         })
     }
@@ -212,6 +227,7 @@ impl Report {
             title: self.title.clone(),
             passed: self.passed(),
             total: self.checks.len(),
+            findings: armkit::study::count_findings(&self.findings),
             html: html_path,
         })
     }
@@ -245,6 +261,9 @@ impl Report {
                 format_value(check.threshold),
                 check.unit
             );
+        }
+        for finding in &self.findings {
+            out += &format!("  {finding}\n");
         }
         for note in &self.notes {
             out += &format!("  note: {note}\n");
@@ -322,6 +341,11 @@ mod tests {
                 "curve".into(),
                 Figure::new("Curve", "t (s)", "y", x.clone()).with_series("y", x),
             )],
+            findings: vec![Finding::new(
+                "seed 999: the sky is green",
+                "blue",
+                armkit::study::FindingStatus::NotReproduced,
+            )],
             notes: vec!["a note".into()],
             animation: Some(Animation::new(
                 vec![0.0, 1.0],
@@ -347,6 +371,7 @@ mod tests {
         .unwrap();
         assert_eq!(json["checks"][0]["pass"], true);
         assert_eq!(json["checks"][1]["pass"], false);
+        assert_eq!(json["findings"][0]["status"], "not reproduced");
         let html = std::fs::read_to_string(dir.join("sample/report.html")).unwrap();
         assert!(html.contains("Shows &lt;everything&gt; &amp; more"));
         assert!(html.contains("<svg") && html.contains("id=\"animation\""));
@@ -357,6 +382,11 @@ mod tests {
         let index = write_index(&dir, &[summary]).unwrap();
         let index_html = std::fs::read_to_string(index).unwrap();
         assert!(index_html.contains("sample/report.html") && index_html.contains("1 of 2"));
+        assert!(
+            index_html.contains("0 / 0 / 1"),
+            "findings counts in the index"
+        );
+        assert!(html.contains("not reproduced") && html.contains("the sky is green"));
         std::fs::remove_dir_all(&dir).unwrap();
     }
 

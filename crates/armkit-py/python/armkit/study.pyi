@@ -14,6 +14,9 @@ class StudyReport:
     series: Dict[str, Dict[str, Any]]
     """By name: title, x_label, y_label, x (array), columns (label -> array)."""
     notes: List[str]
+    findings: List[Dict[str, str]]
+    """The paper's claims, each: claim, measured, status ("reproduced",
+    "reproduced with deviation", "not reproduced")."""
     passed: int
     all_passed: bool
 

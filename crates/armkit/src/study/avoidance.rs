@@ -156,6 +156,7 @@ impl AvoidanceStudy {
         let outcome = self.compare(manipulator)?;
         Ok(StudyReport {
             checks: outcome.checks(),
+            findings: Vec::new(),
             series: Vec::new(),
             notes: outcome.notes(),
         })

@@ -115,6 +115,7 @@ impl BeamTableStudy {
         .with("ours", rows.iter().map(|r| r.under_each[0]).collect());
         Ok(StudyReport {
             checks,
+            findings: Vec::new(),
             series: vec![series],
             notes: vec![format!(
                 "Table 1 is reproduced with g = {SEED000_GRAVITY} m/s^2 (only g in [9.948, 10.089) \

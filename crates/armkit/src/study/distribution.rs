@@ -268,6 +268,7 @@ impl DistributionStudy {
         let outcome = self.compare(&model)?;
         Ok(StudyReport {
             checks: outcome.checks()?,
+            findings: Vec::new(),
             series: Vec::new(),
             notes: vec![DISTRIBUTION_NOTE.into()],
         })

@@ -32,6 +32,7 @@ use std::fmt;
 mod avoidance;
 mod beam_table;
 mod distribution;
+mod finding;
 mod mpc_examples;
 mod space_robot;
 
@@ -41,6 +42,7 @@ pub use distribution::{
     DistributionOutcome, DistributionStudy, FormulationKind, ResolvedDistribution, SecondaryKind,
     DISTRIBUTION_NOTE,
 };
+pub use finding::{count_findings, Finding, FindingStatus};
 pub use mpc_examples::MpcExampleStudy;
 pub use space_robot::{SpaceRobotStudy, SPACE6R_START};
 
@@ -197,12 +199,17 @@ impl Series {
     }
 }
 
-/// What a study produced: its checks, the series behind its figures, and
-/// plain statements (deviations from a paper and why).
+/// What a study produced: its checks (what armkit promises; each must
+/// pass), its findings (the paper's claims and whether they hold here, kept
+/// apart from the checks), the series behind its figures, and plain
+/// statements.
 #[derive(Clone, Debug, PartialEq, Default)]
 pub struct StudyReport {
     /// The checks, each pass or fail.
     pub checks: Vec<Check>,
+    /// The paper's claims, each reproduced, reproduced with a deviation, or
+    /// not reproduced.
+    pub findings: Vec<Finding>,
     /// The figures' data.
     pub series: Vec<Series>,
     /// Notes shown with the report.

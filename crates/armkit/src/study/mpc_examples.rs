@@ -77,6 +77,7 @@ impl MpcExampleStudy {
         );
         Ok(StudyReport {
             checks,
+            findings: Vec::new(),
             series: vec![joints, error],
             notes: Vec::new(),
         })

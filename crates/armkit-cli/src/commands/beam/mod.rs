@@ -277,6 +277,7 @@ pub fn report(load: LoadArgs, samples: usize) -> CliResult<Report> {
         title: "Seed 000, sec 3.1: the gantry's flexible beam (Table 1)".into(),
         description: "A simply supported 10 m steel beam (E = 200 GPa, square 0.2 m section) carries the arm's carriage. Its deflection w(d2) lowers the vertical joint (d3' = d3 + w(d2), eq 4 corrected) and couples the Jacobian (J = J0 M, eqs 8-10 corrected). Table 1's two-load cases are recomputed from eq 1 by superposition (eqs 2-3 derived; the printed ones are garbled).".into(),
         checks,
+        findings: Vec::new(),
         tables: vec![table],
         figures: vec![("error_along_beam".into(), error_along_beam_figure(&along))],
         notes: vec![

@@ -188,6 +188,7 @@ pub fn example_report(args: &MpcArgs) -> CliResult<Report> {
             run.summary.final_position_error
         ),
         checks,
+        findings: Vec::new(),
         tables: vec![table],
         figures: figures(&run, example.id())
             .into_iter()

@@ -234,6 +234,7 @@ pub fn report(args: &RedundancyArgs) -> CliResult<Report> {
             study.heading
         ),
         checks,
+        findings: Vec::new(),
         tables: vec![table],
         figures: figures(&study.model, results),
         notes: vec![DISTRIBUTION_NOTE.into()],

@@ -26,6 +26,7 @@ pub(super) fn build_report(study: &Study) -> CliResult<Report> {
             study.heading
         ),
         checks: study.outcome.checks(),
+        findings: Vec::new(),
         tables: vec![methods_table(study), regions_table(study), k_table(study)],
         figures: figures(study),
         notes: [

@@ -120,6 +120,7 @@ pub fn line_report(args: &LineArgs) -> CliResult<Report> {
             (study.goal.translation - study.start.translation).norm()
         ),
         checks,
+        findings: Vec::new(),
         tables: vec![table],
         figures: joint_figures(study.model.name(), &times, &states)
             .into_iter()
