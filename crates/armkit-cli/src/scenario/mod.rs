@@ -232,8 +232,12 @@ impl Scenario {
 mod tests {
     use super::*;
 
+    /// The error of parsing `text`, or else of running it.
     fn error(text: &str) -> String {
-        parse(text, "s.toml", Path::new(".")).unwrap_err().0
+        match parse(text, "s.toml", Path::new(".")) {
+            Err(e) => e.0,
+            Ok(scenario) => scenario.run().unwrap_err().0,
+        }
     }
 
     #[test]
@@ -271,15 +275,19 @@ mod tests {
         );
         assert_eq!(
             error("name = \"b\"\ntitle = \"t\"\n[beam]\nmas = 3.0\n"),
-            "s.toml: line 4, column 1: [beam]: unexpected argument '--mas' found"
+            "s.toml: line 4, column 1: [beam]: unknown key `mas`; the keys of [beam] are: gravity, mass, samples"
         );
         assert_eq!(
             error("name = \"b\"\ntitle = \"t\"\n[beam]\nmass = \"heavy\"\n"),
-            "s.toml: line 4, column 1: [beam]: invalid value 'heavy' for '--mass <KG>': invalid float literal"
+            "s.toml: line 4, column 1: [beam]: invalid value 'heavy' for `mass`: invalid float literal"
         );
         assert_eq!(
             error("name = \"b\"\ntitle = \"t\"\n[robot]\nbuiltin = \"ur5\"\n[beam]\n"),
-            "s.toml: line 4, column 11: [beam]: unexpected argument '--robot' found"
+            "s.toml: line 4, column 11: [beam] takes no [robot]: it runs seed 000's own gantry beam (remove the [robot] table)"
+        );
+        assert_eq!(
+            error("name = \"b\"\ntitle = \"t\"\n[beam]\nmass = -400.0\n"),
+            "s.toml: line 4, column 1: [beam]: invalid argument `mass`: must be finite and >= 0 kg, got -400"
         );
     }
 }
