@@ -357,3 +357,20 @@ fn bad_scenario_input_names_the_key_at_its_line() {
         "{massless}"
     );
 }
+
+#[test]
+fn a_dh_file_robot_works_for_mpc_and_singularity() {
+    let robot =
+        "name = \"u\"\ntitle = \"t\"\n[robot]\nfile = \"tests/data/reference_puma560_dh.json\"\n";
+    let mpc = run(&format!(
+        "{robot}[mpc]\ntarget = \"0.4,0.2,0.3,3.14,0,0\"\n"
+    ));
+    assert_all_pass(&mpc);
+    assert!(distance(final_hand(&mpc), [0.4, 0.2, 0.3]) <= 1e-4);
+    let singularity = run(&format!(
+        "{robot}[singularity]\nbase = \"fixed\"\nthrough = \"0.3,0.5,-0.4,0.2,0,0.1\"\n\
+         direction = \"0.2,-0.1,0.1,0,0.4,0\"\nk = \"1\"\n"
+    ));
+    assert_all_pass(&singularity);
+    assert!(check(&singularity, "avoidance k=1: final position error").value <= 1e-6);
+}
