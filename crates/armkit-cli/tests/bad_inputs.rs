@@ -222,6 +222,43 @@ const FILES: &[(&str, &str)] = &[
         "scenario-robot-for-beam.toml",
         "name = \"s\"\ntitle = \"t\"\n[robot]\nbuiltin = \"ur5\"\n[beam]\n",
     ),
+    // Scenarios as users write them (issue 21, item 12).
+    (
+        "scenario-mpc-no-target.toml",
+        "name = \"s\"\ntitle = \"t\"\n[robot]\nbuiltin = \"panda\"\n[mpc]\nhorizon = 10\n",
+    ),
+    (
+        "scenario-mpc-target-number.toml",
+        "name = \"s\"\ntitle = \"t\"\n[robot]\nbuiltin = \"panda\"\n[mpc]\ntarget = 3\n",
+    ),
+    (
+        "scenario-mpc-no-robot.toml",
+        "name = \"s\"\ntitle = \"t\"\n[mpc]\ntarget = \"0.4,0.2,0.5,3.14,0,0\"\n",
+    ),
+    (
+        "scenario-mpc-example-and-robot.toml",
+        "name = \"s\"\ntitle = \"t\"\n[robot]\nbuiltin = \"panda\"\n[mpc]\nexample = \"ex1\"\n",
+    ),
+    (
+        "scenario-line-no-robot.toml",
+        "name = \"s\"\ntitle = \"t\"\n[continuous_path]\nfrom = \"0,0,0,0\"\n",
+    ),
+    (
+        "scenario-line-short-from.toml",
+        "name = \"s\"\ntitle = \"t\"\n[robot]\nbuiltin = \"panda\"\n[continuous_path]\nfrom = \"0,0,0\"\nto_pose = \"0.5,0.2,0.4,3.14159,0,0\"\n",
+    ),
+    (
+        "scenario-singularity-urdf.toml",
+        "name = \"s\"\ntitle = \"t\"\n[robot]\nurdf = \"mimic-ok.urdf\"\n[singularity]\nbase = \"fixed\"\n",
+    ),
+    (
+        "scenario-tip-without-urdf.toml",
+        "name = \"s\"\ntitle = \"t\"\n[robot]\nbuiltin = \"ur5\"\ntip = \"tool0\"\n[space]\n",
+    ),
+    (
+        "scenario-space-massless-arm.toml",
+        "name = \"s\"\ntitle = \"t\"\n[robot]\nbuiltin = \"ur5\"\n[space]\nduration = 1.0\n",
+    ),
     // Dynamics (issue 18): an inertia that is not positive semi-definite, a link without mass.
     (
         "indefinite-inertia.toml",
@@ -1469,6 +1506,70 @@ const CASES: &[Case] = &[
         "scenario",
         "a robot for a method with its own",
         &["run", "scenario-robot-for-beam.toml", "--out", "run-out"],
+        1,
+    ),
+    case(
+        "scenario",
+        "[mpc] on a robot without a target",
+        &["run", "scenario-mpc-no-target.toml", "--out", "run-out"],
+        1,
+    ),
+    case(
+        "scenario",
+        "[mpc] target of the wrong type",
+        &["run", "scenario-mpc-target-number.toml", "--out", "run-out"],
+        1,
+    ),
+    case(
+        "scenario",
+        "[mpc] target without a robot",
+        &["run", "scenario-mpc-no-robot.toml", "--out", "run-out"],
+        1,
+    ),
+    case(
+        "scenario",
+        "[mpc] example with a robot",
+        &[
+            "run",
+            "scenario-mpc-example-and-robot.toml",
+            "--out",
+            "run-out",
+        ],
+        1,
+    ),
+    case(
+        "scenario",
+        "[continuous_path] without a robot",
+        &["run", "scenario-line-no-robot.toml", "--out", "run-out"],
+        1,
+    ),
+    case(
+        "scenario",
+        "[continuous_path] start of the wrong length",
+        &["run", "scenario-line-short-from.toml", "--out", "run-out"],
+        1,
+    ),
+    case(
+        "scenario",
+        "[singularity] on a URDF",
+        &["run", "scenario-singularity-urdf.toml", "--out", "run-out"],
+        1,
+    ),
+    case(
+        "scenario",
+        "[robot] tip without a URDF",
+        &["run", "scenario-tip-without-urdf.toml", "--out", "run-out"],
+        1,
+    ),
+    case(
+        "scenario",
+        "[space] arm without mass properties",
+        &[
+            "run",
+            "scenario-space-massless-arm.toml",
+            "--out",
+            "run-out",
+        ],
         1,
     ),
     // dynamics.

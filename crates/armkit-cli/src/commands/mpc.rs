@@ -18,6 +18,7 @@
 //! (median, p99, max, us) and the solver used.
 
 mod report;
+mod target_report;
 
 use std::path::PathBuf;
 
@@ -33,6 +34,7 @@ use crate::common::{
 };
 pub use report::example_report;
 use report::{files_json, print_files, print_summary, summary_json, write_outputs};
+pub use target_report::target_report;
 
 /// `armkit mpc` arguments.
 #[derive(Args, Debug)]
@@ -170,7 +172,19 @@ fn task_weights(text: &str, terminal_factor: f64) -> CliResult<TaskWeights> {
     })
 }
 
-fn run_target(args: &MpcArgs) -> CliResult<Outcome> {
+/// The MPC of a `--target` run, set up from the flags: the robot, the
+/// target, the start, the planner and the simulation options (shared by the
+/// command and a scenario's `[mpc]` table without `example`).
+pub(crate) struct TargetSetup {
+    pub model: armkit::Model,
+    pub target: armkit::math::Pose,
+    pub start: Vec<f64>,
+    pub planner: MpcPlanner,
+    pub simulation: SimulationOptions,
+}
+
+/// Parses the flags of a `--target` run and builds its planner.
+pub(crate) fn target_setup(args: &MpcArgs) -> CliResult<TargetSetup> {
     let model = args.robot.load()?;
     let target_text = args
         .target
@@ -198,7 +212,24 @@ fn run_target(args: &MpcArgs) -> CliResult<Outcome> {
         max_steps: args.max_steps,
         ..SimulationOptions::default()
     };
-    let mut planner = MpcPlanner::new(&model, options)?;
+    let planner = MpcPlanner::new(&model, options)?;
+    Ok(TargetSetup {
+        model,
+        target,
+        start,
+        planner,
+        simulation,
+    })
+}
+
+fn run_target(args: &MpcArgs) -> CliResult<Outcome> {
+    let TargetSetup {
+        model,
+        target,
+        start,
+        mut planner,
+        simulation,
+    } = target_setup(args)?;
     let run = run_with_progress(&mut planner, &start, &target, &simulation, model.name())?;
     let final_q = run.samples.last().map(|s| s.q.clone()).unwrap_or_default();
     let status = diagnose_run(&planner, &final_q, run.summary.converged)?;

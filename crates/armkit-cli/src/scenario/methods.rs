@@ -8,6 +8,7 @@ use std::collections::BTreeMap;
 use clap::{Args, FromArgMatches};
 use toml::Spanned;
 
+use super::keys::KeyMap;
 use super::Locator;
 use crate::commands::{beam, mpc, redundancy, singularity, space, traj};
 use crate::common::{accept_hyphen_values, CliError, CliResult};
@@ -22,7 +23,8 @@ pub enum Method {
     /// `[beam]`: seed 000's beam (Table 1, rigid-model error); options of
     /// [`beam::BeamStudyArgs`].
     Beam(beam::BeamStudyArgs),
-    /// `[mpc]`: one of seed 000's MPC examples (`example = "ex1"`); options of `armkit mpc`.
+    /// `[mpc]`: the MPC on the `[robot]` to `target` (options of `armkit
+    /// mpc --target`), or one of seed 000's examples (`example = "ex1"`).
     Mpc(Box<mpc::MpcArgs>),
     /// `[redundancy]`: one motion distributed four ways; options of `armkit redundancy`.
     Redundancy(Box<redundancy::RedundancyArgs>),
@@ -31,6 +33,7 @@ pub enum Method {
     /// `[singularity]`: seed 004's line through a wrist singularity tracked
     /// four ways; options of `armkit singularity`.
     Singularity(Box<singularity::SingularityArgs>),
+    /// `[space]`: seed 004's free-floating space robot; options of `armkit space study`.
     Space(Box<space::SpaceStudyArgs>),
 }
 
@@ -38,14 +41,18 @@ pub enum Method {
 pub const METHOD_TABLES: &str =
     "[beam], [mpc], [redundancy], [continuous_path], [singularity], [space]";
 
+/// The robot's command-line words: (`--robot`, value, span of the key).
+pub type RobotWords = [(String, String, std::ops::Range<usize>)];
+
 impl Method {
     /// Parses the one method table given, with the robot's arguments
-    /// (`--robot NAME` ...) appended, as the command would.
+    /// (`--robot NAME` ...) appended, as the command would; returns the
+    /// method and where each of its keys is (for messages while it runs).
     pub fn parse(
         tables: Vec<(&'static str, Option<Spanned<OptionTable>>)>,
-        robot_argv: &[(String, String, std::ops::Range<usize>)],
+        robot: Option<(&RobotWords, std::ops::Range<usize>)>,
         locator: &Locator,
-    ) -> CliResult<Method> {
+    ) -> CliResult<(Method, KeyMap)> {
         let mut given = tables
             .into_iter()
             .filter_map(|(name, table)| table.map(|t| (name, t)));
@@ -61,14 +68,32 @@ impl Method {
                 format!("a second method table: expected exactly one of {METHOD_TABLES}"),
             ));
         }
-        let parsed = ParsedTable::new(&table, robot_argv, locator)?;
+        needs_robot(name, &table, robot.is_some(), locator)?;
         Ok(match name {
-            "beam" => Method::Beam(parsed.args(name, locator)?),
-            "mpc" => Method::Mpc(Box::new(parsed.args(name, locator)?)),
-            "redundancy" => Method::Redundancy(Box::new(parsed.args(name, locator)?)),
-            "singularity" => Method::Singularity(Box::new(parsed.args(name, locator)?)),
-            "space" => Method::Space(Box::new(parsed.args(name, locator)?)),
-            _ => Method::ContinuousPath(Box::new(parsed.args(name, locator)?)),
+            "beam" => {
+                let (args, keys) = parse_table(name, &table, robot.clone(), locator)?;
+                (Method::Beam(args), keys)
+            }
+            "mpc" => {
+                let (args, keys) = parse_table(name, &table, robot.clone(), locator)?;
+                (Method::Mpc(Box::new(args)), keys)
+            }
+            "redundancy" => {
+                let (args, keys) = parse_table(name, &table, robot.clone(), locator)?;
+                (Method::Redundancy(Box::new(args)), keys)
+            }
+            "singularity" => {
+                let (args, keys) = parse_table(name, &table, robot.clone(), locator)?;
+                (Method::Singularity(Box::new(args)), keys)
+            }
+            "space" => {
+                let (args, keys) = parse_table(name, &table, robot.clone(), locator)?;
+                (Method::Space(Box::new(args)), keys)
+            }
+            _ => {
+                let (args, keys) = parse_table(name, &table, robot.clone(), locator)?;
+                (Method::ContinuousPath(Box::new(args)), keys)
+            }
         })
     }
 
@@ -76,7 +101,8 @@ impl Method {
     pub fn run(&self) -> CliResult<Report> {
         match self {
             Method::Beam(args) => beam::study_report(args),
-            Method::Mpc(args) => mpc::example_report(args),
+            Method::Mpc(args) if args.example.is_some() => mpc::example_report(args),
+            Method::Mpc(args) => mpc::target_report(args),
             Method::Redundancy(args) => redundancy::report(args),
             Method::ContinuousPath(args) => traj::line_report(args),
             Method::Singularity(args) => singularity::report(args),
@@ -85,79 +111,74 @@ impl Method {
     }
 }
 
-/// A method table turned into command-line words, with the location of
-/// each option for error messages.
-struct ParsedTable {
-    argv: Vec<String>,
-    /// (`--option`, span of its key) for every option, robot options included.
-    spans: Vec<(String, std::ops::Range<usize>)>,
-    table_span: std::ops::Range<usize>,
+/// The tables that run on the user's robot and have no default one: `[mpc]`
+/// without `example`, `[continuous_path]`. Their commands would say "no
+/// robot given: use --robot"; a scenario says which table is missing.
+fn needs_robot(
+    name: &str,
+    table: &Spanned<OptionTable>,
+    has_robot: bool,
+    locator: &Locator,
+) -> CliResult {
+    if has_robot {
+        return Ok(());
+    }
+    let has_key = |key: &str| table.get_ref().keys().any(|k| k.get_ref() == key);
+    let why = match name {
+        "mpc" if !has_key("example") => {
+            "[mpc] runs the MPC on your robot to `target`: add a [robot] table (`builtin`, \
+             `file` or `urdf`), or give `example` to run one of seed 000's examples (ex1, ex2, \
+             ex3, ex2-paper-weights, ex3-undamped)"
+        }
+        "continuous_path" => {
+            "[continuous_path] plans a line for your robot: add a [robot] table (`builtin`, \
+             `file` or `urdf`)"
+        }
+        _ => return Ok(()),
+    };
+    Err(locator.error(table.span(), why))
 }
 
-impl ParsedTable {
-    fn new(
-        table: &Spanned<OptionTable>,
-        robot_argv: &[(String, String, std::ops::Range<usize>)],
-        locator: &Locator,
-    ) -> CliResult<Self> {
-        let mut argv = Vec::new();
-        let mut spans = Vec::new();
-        for (key, value) in table.get_ref() {
-            let flag = format!("--{}", key.get_ref().replace('_', "-"));
-            match value.get_ref() {
-                toml::Value::Boolean(true) => argv.push(flag.clone()),
-                toml::Value::Boolean(false) => {}
-                other => {
-                    argv.push(flag.clone());
-                    argv.push(option_value(other).map_err(|why| locator.error(value.span(), why))?);
-                }
+/// Parses a method table (with the robot's words appended) as the command
+/// `name` parses its options.
+fn parse_table<A: Args + FromArgMatches>(
+    name: &'static str,
+    table: &Spanned<OptionTable>,
+    robot: Option<(&RobotWords, std::ops::Range<usize>)>,
+    locator: &Locator,
+) -> CliResult<(A, KeyMap)> {
+    let command = accept_hyphen_values(A::augment_args(
+        clap::Command::new(name).no_binary_name(true),
+    ));
+    let mut keys = KeyMap::new(name, table.span(), &command);
+    let mut argv = Vec::new();
+    for (key, value) in table.get_ref() {
+        let flag = format!("--{}", key.get_ref().replace('_', "-"));
+        match value.get_ref() {
+            toml::Value::Boolean(true) => argv.push(flag.clone()),
+            toml::Value::Boolean(false) => {}
+            other => {
+                argv.push(flag.clone());
+                argv.push(option_value(other).map_err(|why| {
+                    locator.error(value.span(), format!("[{name}] `{}`: {why}", key.get_ref()))
+                })?);
             }
-            spans.push((flag, key.span()));
         }
-        for (flag, value, span) in robot_argv {
+        keys.add_table_key(&flag, key.span());
+    }
+    if let Some((words, robot_span)) = robot {
+        keys.set_robot_span(robot_span);
+        for (flag, value, span) in words {
             argv.push(flag.clone());
             argv.push(value.clone());
-            spans.push((flag.clone(), span.clone()));
+            keys.add_robot_key(flag, span.clone());
         }
-        Ok(ParsedTable {
-            argv,
-            spans,
-            table_span: table.span(),
-        })
     }
-
-    /// Parses the words as the command `name` parses its options.
-    fn args<A: Args + FromArgMatches>(
-        &self,
-        name: &'static str,
-        locator: &Locator,
-    ) -> CliResult<A> {
-        let command = accept_hyphen_values(A::augment_args(
-            clap::Command::new(name).no_binary_name(true),
-        ));
-        let error = |e: clap::Error| {
-            let text = e.to_string();
-            let first = text
-                .lines()
-                .next()
-                .unwrap_or("")
-                .trim_start_matches("error: ")
-                .to_string();
-            // Point at the option the message names, else at the table.
-            let span = self
-                .spans
-                .iter()
-                .filter(|(flag, _)| {
-                    first.contains(&format!("'{flag}")) || first.contains(&format!("{flag} "))
-                })
-                .map(|(_, span)| span.clone())
-                .next()
-                .unwrap_or_else(|| self.table_span.clone());
-            locator.error(span, format!("[{name}]: {first}"))
-        };
-        let matches = command.try_get_matches_from(&self.argv).map_err(error)?;
-        A::from_arg_matches(&matches).map_err(error)
-    }
+    let matches = command
+        .try_get_matches_from(&argv)
+        .map_err(|e| keys.clap_error(locator, &e))?;
+    let args = A::from_arg_matches(&matches).map_err(|e| keys.clap_error(locator, &e))?;
+    Ok((args, keys))
 }
 
 /// A TOML value as the command-line word for it: numbers and strings as

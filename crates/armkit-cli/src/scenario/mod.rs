@@ -16,6 +16,7 @@
 //!
 //! Errors name the file, the line and the column, and say what was expected.
 
+mod keys;
 mod methods;
 
 use std::path::{Path, PathBuf};
@@ -27,6 +28,7 @@ use toml::Spanned;
 use crate::common::{CliError, CliResult};
 use crate::report::Report;
 
+use keys::KeyMap;
 pub use methods::Method;
 use methods::OptionTable;
 
@@ -37,8 +39,8 @@ struct RobotSpec {
     builtin: Option<Spanned<String>>,
     file: Option<Spanned<String>>,
     urdf: Option<Spanned<String>>,
-    base: Option<String>,
-    tip: Option<String>,
+    base: Option<Spanned<String>>,
+    tip: Option<Spanned<String>>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -69,6 +71,11 @@ pub struct Scenario {
     pub description: String,
     /// The method and its options (the robot among them).
     pub method: Method,
+    /// Where each option is, for the messages of a run.
+    keys: KeyMap,
+    /// The file's name and text, for the messages of a run.
+    source_name: String,
+    text: String,
 }
 
 /// Locates byte offsets of one file in error messages.
@@ -112,9 +119,9 @@ pub fn parse(text: &str, source_name: &str, base_dir: &Path) -> CliResult<Scenar
             format!("`name` must be letters, digits, `-` or `_` (it names the output folder), got {name:?}"),
         ));
     }
-    let robot_argv = match &file.robot {
-        Some(spec) => robot_arguments(spec, &locator, base_dir)?,
-        None => Vec::new(),
+    let robot_words = match &file.robot {
+        Some(spec) => Some((robot_arguments(spec, &locator, base_dir)?, spec.span())),
+        None => None,
     };
     let tables = vec![
         ("beam", file.beam),
@@ -124,12 +131,18 @@ pub fn parse(text: &str, source_name: &str, base_dir: &Path) -> CliResult<Scenar
         ("singularity", file.singularity),
         ("space", file.space),
     ];
-    let method = Method::parse(tables, &robot_argv, &locator)?;
+    let robot = robot_words
+        .as_ref()
+        .map(|(words, span)| (words.as_slice(), span.clone()));
+    let (method, keys) = Method::parse(tables, robot, &locator)?;
     Ok(Scenario {
         name: name.clone(),
         title: file.title,
         description: file.description,
         method,
+        keys,
+        source_name: source_name.to_string(),
+        text: text.to_string(),
     })
 }
 
@@ -146,6 +159,14 @@ fn robot_arguments(
     let resolve = |p: &Spanned<String>| -> PathBuf { base_dir.join(p.get_ref()) };
     let word =
         |flag: &str, value: String, span: std::ops::Range<usize>| (flag.to_string(), value, span);
+    if robot.urdf.is_none() {
+        if let Some(link) = robot.base.as_ref().or(robot.tip.as_ref()) {
+            return Err(locator.error(
+                link.span(),
+                "[robot] `base` and `tip` choose the chain of a URDF: they need `urdf`",
+            ));
+        }
+    }
     match (&robot.builtin, &robot.file, &robot.urdf) {
         (Some(name), None, None) => {
             armkit::robots::by_name(name.get_ref()).map_err(|e| locator.error(name.span(), e))?;
@@ -161,8 +182,8 @@ fn robot_arguments(
         }
         (None, None, Some(urdf)) => {
             let selection = armkit::urdf::ChainSelection {
-                base: robot.base.clone(),
-                tip: robot.tip.clone(),
+                base: robot.base.as_ref().map(|b| b.get_ref().clone()),
+                tip: robot.tip.as_ref().map(|t| t.get_ref().clone()),
             };
             armkit::urdf::load(resolve(urdf), &selection)
                 .map_err(|e| locator.error(urdf.span(), e))?;
@@ -173,7 +194,7 @@ fn robot_arguments(
             )];
             for (flag, value) in [("--base", &robot.base), ("--tip", &robot.tip)] {
                 if let Some(v) = value {
-                    words.push(word(flag, v.clone(), urdf.span()));
+                    words.push(word(flag, v.get_ref().clone(), v.span()));
                 }
             }
             Ok(words)
@@ -186,9 +207,18 @@ fn robot_arguments(
 }
 
 impl Scenario {
-    /// Runs the method and returns its report, named and titled by the scenario.
+    /// Runs the method and returns its report, named and titled by the
+    /// scenario. An error names the file, the line of the key it is about
+    /// (or of the method table) and the key as the file spells it.
     pub fn run(&self) -> CliResult<Report> {
-        let mut report = self.method.run()?;
+        let locator = Locator {
+            source_name: &self.source_name,
+            text: &self.text,
+        };
+        let mut report = self
+            .method
+            .run()
+            .map_err(|e| self.keys.locate(&locator, &e.0))?;
         report.name = self.name.clone();
         report.title = self.title.clone();
         if !self.description.is_empty() {
@@ -202,8 +232,12 @@ impl Scenario {
 mod tests {
     use super::*;
 
+    /// The error of parsing `text`, or else of running it.
     fn error(text: &str) -> String {
-        parse(text, "s.toml", Path::new(".")).unwrap_err().0
+        match parse(text, "s.toml", Path::new(".")) {
+            Err(e) => e.0,
+            Ok(scenario) => scenario.run().unwrap_err().0,
+        }
     }
 
     #[test]
@@ -241,15 +275,19 @@ mod tests {
         );
         assert_eq!(
             error("name = \"b\"\ntitle = \"t\"\n[beam]\nmas = 3.0\n"),
-            "s.toml: line 4, column 1: [beam]: unexpected argument '--mas' found"
+            "s.toml: line 4, column 1: [beam]: unknown key `mas`; the keys of [beam] are: gravity, mass, samples"
         );
         assert_eq!(
             error("name = \"b\"\ntitle = \"t\"\n[beam]\nmass = \"heavy\"\n"),
-            "s.toml: line 4, column 1: [beam]: invalid value 'heavy' for '--mass <KG>': invalid float literal"
+            "s.toml: line 4, column 1: [beam]: invalid value 'heavy' for `mass`: invalid float literal"
         );
         assert_eq!(
             error("name = \"b\"\ntitle = \"t\"\n[robot]\nbuiltin = \"ur5\"\n[beam]\n"),
-            "s.toml: line 4, column 11: [beam]: unexpected argument '--robot' found"
+            "s.toml: line 4, column 11: [beam] takes no [robot]: it runs seed 000's own gantry beam (remove the [robot] table)"
+        );
+        assert_eq!(
+            error("name = \"b\"\ntitle = \"t\"\n[beam]\nmass = -400.0\n"),
+            "s.toml: line 4, column 1: [beam]: invalid argument `mass`: must be finite and >= 0 kg, got -400"
         );
     }
 }

@@ -70,15 +70,9 @@ impl From<BaseModeArg> for BaseMode {
     }
 }
 
-/// The free-floating system: arm, base body, base mode and base pose.
-#[derive(Args, Debug)]
-pub struct SystemArgs {
-    /// The arm (default: --robot space6r). Every link needs mass properties.
-    #[command(flatten)]
-    pub robot: RobotArgs,
-    /// What the base does while the arm moves.
-    #[arg(long, value_enum, default_value_t = BaseModeArg::AttitudeHeld)]
-    pub base_mode: BaseModeArg,
+/// The base body carrying the arm (space6r's satellite unless changed).
+#[derive(Args, Debug, Clone, Default)]
+pub struct BaseBodyArgs {
     /// Base body mass, kg (default: space6r's 400 kg satellite).
     #[arg(long, value_name = "KG", allow_hyphen_values = true)]
     pub base_mass: Option<String>,
@@ -90,20 +84,13 @@ pub struct SystemArgs {
     /// default: space6r's, 0,0,0.5,0,0,0).
     #[arg(long, value_name = "X,Y,Z,ROLL,PITCH,YAW", allow_hyphen_values = true)]
     pub base_mount: Option<String>,
-    /// Initial base pose in the inertial frame, m and rad.
-    #[arg(
-        long,
-        value_name = "X,Y,Z,ROLL,PITCH,YAW",
-        default_value = "0,0,0,0,0,0",
-        allow_hyphen_values = true
-    )]
-    pub base_pose: String,
 }
 
-impl SystemArgs {
-    /// Builds the model (space6r by default) and its base body.
-    fn load(&self) -> CliResult<(FreeFloatingModel, Pose)> {
-        let mut robot = self.robot.clone();
+impl BaseBodyArgs {
+    /// The free-floating system: the arm (`--robot space6r` when none is
+    /// given; every link needs mass properties) on this base body.
+    pub fn system(&self, robot: &RobotArgs) -> CliResult<FreeFloatingModel> {
+        let mut robot = robot.clone();
         if robot.robot.is_none() && robot.robot_file.is_none() && robot.urdf.is_none() {
             robot.robot = Some("space6r".into());
         }
@@ -120,7 +107,35 @@ impl SystemArgs {
         if let Some(text) = &self.base_mount {
             base.mount = parse_pose(text, "--base-mount")?;
         }
-        let model = FreeFloatingModel::new(base, arm)?;
+        Ok(FreeFloatingModel::new(base, arm)?)
+    }
+}
+
+/// The free-floating system: arm, base body, base mode and base pose.
+#[derive(Args, Debug)]
+pub struct SystemArgs {
+    /// The arm (default: --robot space6r). Every link needs mass properties.
+    #[command(flatten)]
+    pub robot: RobotArgs,
+    /// What the base does while the arm moves.
+    #[arg(long, value_enum, default_value_t = BaseModeArg::AttitudeHeld)]
+    pub base_mode: BaseModeArg,
+    #[command(flatten)]
+    pub body: BaseBodyArgs,
+    /// Initial base pose in the inertial frame, m and rad.
+    #[arg(
+        long,
+        value_name = "X,Y,Z,ROLL,PITCH,YAW",
+        default_value = "0,0,0,0,0,0",
+        allow_hyphen_values = true
+    )]
+    pub base_pose: String,
+}
+
+impl SystemArgs {
+    /// Builds the model (space6r by default) and its base body.
+    fn load(&self) -> CliResult<(FreeFloatingModel, Pose)> {
+        let model = self.body.system(&self.robot)?;
         let pose = parse_pose(&self.base_pose, "--base-pose")?;
         Ok((model, pose))
     }

@@ -4,18 +4,26 @@
 use std::path::PathBuf;
 
 use armkit::math::{Pose, Vector3};
-use armkit::space::space6r_free_floating;
+use armkit::space::FreeFloatingModel;
 use armkit::study::{SpaceRobotStudy, StudyReport};
 use clap::Args;
 
-use crate::common::{parse_fixed_numbers, CliError, CliResult, Outcome};
+use super::BaseBodyArgs;
+use crate::common::{parse_fixed_numbers, CliError, CliResult, Outcome, RobotArgs};
 use crate::report::{Animation, Report};
 
-/// Seed 004's space robot: space6r on its satellite, free-floating and
-/// with the attitude held; centre of mass, momenta, J* and the base motion.
+/// Seed 004's space robot: space6r on its satellite (or the arm and base
+/// body given), free-floating and with the attitude held; centre of mass,
+/// momenta, J* and the base motion.
 #[derive(Args, Debug)]
 pub struct SpaceStudyArgs {
-    /// Start joint positions, rad (default: 0.3,0.8,-0.6,0.4,0.9,-0.3).
+    /// The arm (default: --robot space6r). Every link needs mass properties.
+    #[command(flatten)]
+    pub robot: RobotArgs,
+    #[command(flatten)]
+    pub body: BaseBodyArgs,
+    /// Start joint positions, rad (default: space6r's
+    /// 0.3,0.8,-0.6,0.4,0.9,-0.3; other arms' mid-range configuration).
     #[arg(long, value_name = "Q1,...,Q6", allow_hyphen_values = true)]
     pub start: Option<String>,
     /// Simulated time, s.
@@ -39,8 +47,9 @@ pub struct SpaceStudyArgs {
 }
 
 impl SpaceStudyArgs {
-    /// The library study these flags describe.
-    pub fn study(&self) -> CliResult<SpaceRobotStudy> {
+    /// The library study these flags describe, and the system it runs on.
+    pub fn study(&self) -> CliResult<(SpaceRobotStudy, FreeFloatingModel)> {
+        let system = self.body.system(&self.robot)?;
         let mut study = SpaceRobotStudy {
             duration: self.duration,
             dt: self.dt,
@@ -49,10 +58,24 @@ impl SpaceStudyArgs {
             max_frequency: self.max_frequency,
             ..SpaceRobotStudy::default()
         };
-        if let Some(text) = &self.start {
-            study.start = parse_fixed_numbers(text, "--start", 6)?;
+        match &self.start {
+            Some(text) => {
+                study.start = parse_fixed_numbers(text, "--start", system.dof())?;
+            }
+            None if system.arm().name() != "space6r" => {
+                study.start = system.arm().neutral_configuration();
+            }
+            None => {}
         }
-        Ok(study)
+        Ok((study, system))
+    }
+
+    /// True when the arm and the base body are seed 004's.
+    fn is_seed004(&self, system: &FreeFloatingModel) -> bool {
+        system.arm().name() == "space6r"
+            && self.body.base_mass.is_none()
+            && self.body.base_inertia.is_none()
+            && self.body.base_mount.is_none()
     }
 }
 
@@ -71,31 +94,46 @@ pub fn run(args: &SpaceStudyArgs) -> CliResult<Outcome> {
     })
 }
 
-/// The study as a report (a scenario's `[space]` table).
+/// The study as a report (a scenario's `[space]` table, with the
+/// scenario's `[robot]` as the arm).
 pub fn report(args: &SpaceStudyArgs) -> CliResult<Report> {
-    let study = args.study()?;
-    let result = study.run()?;
-    let animation = animation(&result)?;
-    let mut report = Report::from_study(
-        "seed004-space",
-        "Seed 004, sec 1: the free-floating space robot",
-        format!(
-            "space6r on its 400 kg satellite moves a smooth random joint motion (seed {}, amplitude {} rad, \
-             up to {} rad/s) for {} s, once with the base free-floating (linear and angular momentum zero, \
-             Umetani-Yoshida) and once with its attitude held (seed 004, eqs 15-17). The base moves so that \
-             the centre of mass stays put; the generalized Jacobian J* (eq 17) predicts the end effector's \
-             motion. The animation shows the free-floating run, the base drawn from its centre of mass.",
-            study.seed, study.amplitude, study.max_frequency, study.duration
-        ),
-        result,
+    let (study, system) = args.study()?;
+    let result = study.run_on(&system)?;
+    let animation = animation(&system, &result)?;
+    let motion = format!(
+        "a smooth random joint motion (seed {}, amplitude {} rad, up to {} rad/s) for {} s, once with the \
+         base free-floating (linear and angular momentum zero, Umetani-Yoshida) and once with its attitude \
+         held (seed 004, eqs 15-17). The base moves so that the centre of mass stays put; the generalized \
+         Jacobian J* (eq 17) predicts the end effector's motion. The animation shows the free-floating run, \
+         the base drawn from its centre of mass.",
+        study.seed, study.amplitude, study.max_frequency, study.duration
     );
+    let mut report = if args.is_seed004(&system) {
+        Report::from_study(
+            "seed004-space",
+            "Seed 004, sec 1: the free-floating space robot",
+            format!("space6r on its 400 kg satellite moves {motion}"),
+            result,
+        )
+    } else {
+        let arm = system.arm().name();
+        Report::from_study(
+            "space",
+            format!("{arm} on a free-floating base"),
+            format!(
+                "{arm} on a {} kg base body moves {motion}",
+                system.base().mass
+            ),
+            result,
+        )
+    };
     report.animation = Some(animation);
     Ok(report)
 }
 
 /// The free-floating run: the satellite's centre of mass, then the arm from
 /// its mount, every frame placed by the simulated base pose.
-fn animation(result: &StudyReport) -> CliResult<Animation> {
+fn animation(system: &FreeFloatingModel, result: &StudyReport) -> CliResult<Animation> {
     let missing = |name: &str| CliError(format!("space study: no `{name}` series"));
     let joints = result
         .series("joints_free_floating")
@@ -106,7 +144,6 @@ fn animation(result: &StudyReport) -> CliResult<Animation> {
     let rotation = result
         .series("base_rotation_free_floating")
         .ok_or_else(|| missing("base_rotation_free_floating"))?;
-    let system = space6r_free_floating()?;
     let configurations: Vec<Vec<f64>> = (0..joints.x.len())
         .map(|k| joints.columns.iter().map(|(_, q)| q[k]).collect())
         .collect();
