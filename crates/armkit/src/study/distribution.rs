@@ -422,7 +422,7 @@ fn zero_weight_lock(
         let j = jacobian(model, &mut data, &sample.q, JacobianFrame::World)?;
         let realised = j * DVector::from_column_slice(&sample.joint_rates);
         let twist = Vector6::from_column_slice(realised.as_slice());
-        let q_dot = solver.solve_with_paper_weights(&j, &weights, &twist, &partition)?;
+        let q_dot = solver.solve_with_paper_weights(j, &weights, &twist, &partition)?;
         for (joint, (&a, &b)) in q_dot.iter().zip(&sample.joint_rates).enumerate() {
             if locked.contains(&joint) {
                 max_extra_rate = max_extra_rate.max(a.abs());
