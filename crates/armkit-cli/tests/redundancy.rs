@@ -4,10 +4,11 @@
 mod common;
 use common::*;
 
+use armkit::dynamics::energy_weights::{energy_along_motion, TorqueModel};
 use armkit::math::{Pose, Vector3};
 use armkit::redundancy::{
-    compare_distributions, ComparisonCase, DistributionOptions, JointWeights, Load, TorqueFloor,
-    SEED000_PRIORITY_WEIGHTS,
+    compare_distributions, ComparisonCase, Distribution, DistributionOptions, JointWeights, Load,
+    TorqueFloor, SEED000_PRIORITY_WEIGHTS,
 };
 use armkit::trajectory::{CartesianTrajectory, TimeLaw};
 
@@ -28,14 +29,20 @@ fn default_gantry_comparison_matches_the_library_and_writes_files() {
     let goal = Pose::from_translation(Vector3::new(0.4, 0.3, -0.3)) * start;
     let path = CartesianTrajectory::line(start, goal, TimeLaw::Quintic, 4.0).unwrap();
     let load = Load::payload(50.0).with_seed001_gravity();
-    let cases = ComparisonCase::four_way(
+    // Seed 001's baseline (joints locked so that six remain), then the
+    // labelled extra with the rail and beam alone locked.
+    let mut cases = ComparisonCase::four_way(
         9,
         load,
         TorqueFloor::default(),
         JointWeights::new(&SEED000_PRIORITY_WEIGHTS).unwrap(),
-        &[0, 1],
+        &[0, 1, 2],
     )
     .unwrap();
+    cases.push(ComparisonCase {
+        name: "locked-variant".into(),
+        distribution: Distribution::Weights(JointWeights::uniform(9).with_locked(&[0, 1]).unwrap()),
+    });
     let expected = compare_distributions(
         &model,
         &q0,
@@ -46,12 +53,25 @@ fn default_gantry_comparison_matches_the_library_and_writes_files() {
     )
     .unwrap();
     let rows = value["distributions"].as_array().unwrap();
-    assert_eq!(rows.len(), 4);
+    assert_eq!(rows.len(), 5);
     for (row, want) in rows.iter().zip(&expected) {
         assert_eq!(row["name"], want.name.as_str());
         assert_eq!(row["status"], "completed");
         let energy = row["energy"].as_f64().unwrap();
         assert!((energy - want.summary.energy).abs() <= 1e-12 * want.summary.energy);
+        // F under the full dynamics of the same run.
+        let samples = &want.report.samples;
+        let times: Vec<f64> = samples.iter().map(|s| s.time).collect();
+        let q: Vec<Vec<f64>> = samples.iter().map(|s| s.q.clone()).collect();
+        let q_dot: Vec<Vec<f64>> = samples.iter().map(|s| s.joint_rates.clone()).collect();
+        let dynamic = energy_along_motion(&model, &times, &q, &q_dot, &load, TorqueModel::Dynamic)
+            .unwrap()
+            .energy;
+        let got = row["energy_dynamic"].as_f64().unwrap();
+        assert!(
+            (got - dynamic).abs() <= 1e-12 * dynamic,
+            "{got} vs {dynamic}"
+        );
         let travel: Vec<f64> = serde_json::from_value(row["travel"].clone()).unwrap();
         for (a, b) in travel.iter().zip(&want.summary.travel) {
             assert!((a - b).abs() < 1e-12);
@@ -59,14 +79,18 @@ fn default_gantry_comparison_matches_the_library_and_writes_files() {
     }
     assert_eq!(value["lowest_energy"], "energy-optimal");
     assert_eq!(value["gravity"], true);
-    assert_eq!(value["locked"], serde_json::json!([1, 2]));
-    // Files: summary (header + 4 rows), samples (header + 4 x 401 rows), plots.
+    assert_eq!(value["locked"], serde_json::json!([1, 2, 3]));
+    assert_eq!(value["locked_variant"], serde_json::json!([1, 2]));
+    // Under the full dynamics the baseline wins (the energy-optimal weights
+    // come from the static torques).
+    assert_eq!(value["lowest_energy_dynamic"], "locked");
+    // Files: summary (header + 5 rows), samples (header + 5 x 401 rows), plots.
     let summary = std::fs::read_to_string(out.join("summary.csv")).unwrap();
-    assert!(summary.starts_with("distribution,status,energy_W2s,"));
-    assert_eq!(summary.lines().count(), 5);
+    assert!(summary.starts_with("distribution,status,energy_W2s,energy_dynamic_W2s,"));
+    assert_eq!(summary.lines().count(), 6);
     let samples = std::fs::read_to_string(out.join("samples.csv")).unwrap();
     assert!(samples.starts_with("distribution,time_s,q1,"));
-    assert_eq!(samples.lines().count(), 1 + 4 * 401);
+    assert_eq!(samples.lines().count(), 1 + 5 * 401);
     for name in [
         "energy_rate",
         "energy_cumulative",
@@ -75,6 +99,7 @@ fn default_gantry_comparison_matches_the_library_and_writes_files() {
         "joints_energy-optimal",
         "joints_priorities",
         "joints_locked",
+        "joints_locked-variant",
     ] {
         let svg = std::fs::read_to_string(out.join(format!("{name}.svg"))).unwrap();
         assert!(
@@ -91,11 +116,23 @@ fn table_names_every_distribution_and_the_lowest_energy() {
     let output = armkit(&["redundancy", "--out", out.to_str().unwrap()]);
     assert!(output.status.success(), "{}", stderr(&output));
     let text = String::from_utf8_lossy(&output.stdout);
-    for name in ["minimum-norm", "energy-optimal", "priorities", "locked"] {
+    for name in [
+        "minimum-norm",
+        "energy-optimal",
+        "priorities",
+        "locked",
+        "locked-variant",
+    ] {
         assert!(text.contains(name), "{text}");
     }
     assert!(
         text.contains("lowest F (seed 001, eq 9): energy-optimal"),
+        "{text}"
+    );
+    assert!(
+        text.contains("static torques: energy-optimal ")
+            && text.contains("% below locked")
+            && text.contains("dynamic torques: locked "),
         "{text}"
     );
     let _ = std::fs::remove_dir_all(out);

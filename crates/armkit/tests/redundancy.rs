@@ -1145,7 +1145,8 @@ fn four_way_comparison_on_gantry9() {
         load,
         TorqueFloor::default(),
         JointWeights::new(&SEED000_PRIORITY_WEIGHTS).unwrap(),
-        &[0, 1],
+        // Seed 001's baseline: joints locked so that six remain.
+        &[0, 1, 2],
     )
     .unwrap();
     let results = compare_distributions(
@@ -1198,8 +1199,7 @@ fn four_way_comparison_on_gantry9() {
             .clone()
     };
     // Locked joints do not move; priorities move the rail least.
-    assert_eq!(travel("locked")[0], 0.0);
-    assert_eq!(travel("locked")[1], 0.0);
+    assert_eq!(&travel("locked")[..3], &[0.0, 0.0, 0.0]);
     assert!(travel("priorities")[0] < 0.2 * travel("minimum-norm")[0]);
     // Energy-optimal avoids lifting the 300 kg below the carriage.
     assert!(travel("energy-optimal")[2] < 0.3 * travel("minimum-norm")[2]);
@@ -1252,4 +1252,170 @@ fn the_torque_floor_regularises_free_self_motion() {
     assert!(default[1].report.max_position_error < TRACKING_TOLERANCE);
     assert!(fastest(&default[1]) < 0.5, "{}", fastest(&default[1]));
     assert!(default[1].summary.energy < default[0].summary.energy);
+}
+
+#[test]
+fn zero_generalized_weights_lock_the_extra_joints_along_the_motion() {
+    // Seed 001, sec 3, last sentence: locking joints is a zero weight. In
+    // eq 19, A_Q = 0 leaves A_p phi_dot = 0: the extra joints stay still and
+    // the six generalized joints realise the twist alone (eq 8), which is the
+    // infinite-weight lock of the weighted least norm.
+    let model = armkit::robots::by_name("gantry9").unwrap();
+    let q0 = gantry_start();
+    let path = line_from(&model, &q0, Vector3::new(0.4, 0.3, -0.3), 0.0, 4.0);
+    let locked = JointWeights::uniform(9).with_locked(&[0, 1, 2]).unwrap();
+    let mut tracker = ResolvedRateTracker::new(
+        &model,
+        Distribution::Weights(locked),
+        DistributionOptions::default(),
+    )
+    .unwrap();
+    let run = tracker.run(&model, &q0, &path).unwrap();
+    assert_eq!(run.status, TrackingStatus::Completed);
+    let partition = Partition::new(9, [3, 4, 5, 6, 7, 8]).unwrap();
+    let mut solver = PartitionedSolver::new(9, 1e10).unwrap();
+    let paper_lock = [1.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+    let slight = [1.0, 1.0, 1.0, 1e-3, 1e-3, 1e-3, 1e-3, 1e-3, 1e-3];
+    let mut data = Data::new(&model);
+    let (mut largest_rate, mut largest_difference, mut moving) = (0.0_f64, 0.0_f64, 0.0_f64);
+    for sample in &run.samples {
+        let j = jacobian(&model, &mut data, &sample.q, JacobianFrame::World)
+            .unwrap()
+            .clone();
+        let twist = Vector6::from_column_slice((&j * as_dvector(&sample.joint_rates)).as_slice());
+        let q_dot = solver
+            .solve_with_paper_weights(&j, &paper_lock, &twist, &partition)
+            .unwrap()
+            .to_vec();
+        // The extra joints: exactly zero.
+        assert_eq!(&q_dot[..3], &[0.0, 0.0, 0.0], "t = {}", sample.time);
+        // The twist is met, and the rates are the locked run's.
+        assert!((&j * as_dvector(&q_dot) - twist).norm() < 1e-12);
+        largest_difference =
+            largest_difference.max(max_abs_difference(&q_dot, &sample.joint_rates));
+        largest_rate = largest_rate.max(sample.joint_rates.iter().fold(0.0, |m, v| m.max(v.abs())));
+        // A_Q small but not zero: the extra joints move.
+        let q_dot = solver
+            .solve_with_paper_weights(&j, &slight, &twist, &partition)
+            .unwrap();
+        moving = moving.max(q_dot[..3].iter().fold(0.0, |m, v| m.max(v.abs())));
+    }
+    assert!(largest_rate > 0.1, "{largest_rate}");
+    assert!(largest_difference < 1e-12, "{largest_difference}");
+    assert!(moving > 1e-4, "{moving}");
+    // Weights the paper's form cannot use.
+    let j = jacobian(&model, &mut data, &q0, JacobianFrame::World)
+        .unwrap()
+        .clone();
+    let twist = Vector6::new(0.1, 0.0, 0.0, 0.0, 0.0, 0.0);
+    let mut bad = paper_lock;
+    bad[1] = 0.0; // A_Q = 0 and a zero A_p entry: the cost cannot choose
+    let err = solver
+        .solve_with_paper_weights(&j, &bad, &twist, &partition)
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("singular"), "{err}");
+    bad[1] = -1.0;
+    let err = solver
+        .solve_with_paper_weights(&j, &bad, &twist, &partition)
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("weight of joint 1 must be >= 0"), "{err}");
+    bad[1] = f64::INFINITY;
+    let err = solver
+        .solve_with_paper_weights(&j, &bad, &twist, &partition)
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("weights"), "{err}");
+    let err = solver
+        .solve_with_paper_weights(&j, &[1.0; 8], &twist, &partition)
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("weights"), "{err}");
+}
+
+#[test]
+fn distribution_study_uses_the_papers_baseline_and_compares_torque_models() {
+    use armkit::dynamics::energy_weights::TorqueModel;
+    use armkit::study::{DistributionStudy, FindingStatus, VARIANT_NAME};
+    let model = armkit::robots::by_name("gantry9").unwrap();
+    let outcome = DistributionStudy::default().compare(&model).unwrap();
+    // The paper's baseline: three joints locked, six remain; the two-joint
+    // lock only as the labelled extra.
+    assert_eq!(outcome.settings.locked, vec![0, 1, 2]);
+    assert_eq!(outcome.settings.variant_locked, vec![0, 1]);
+    let names: Vec<&str> = outcome.results.iter().map(|r| r.name.as_str()).collect();
+    assert_eq!(
+        names,
+        [
+            "minimum-norm",
+            "energy-optimal",
+            "priorities",
+            "locked",
+            VARIANT_NAME
+        ]
+    );
+    let energy = |name: &str| outcome.result(name).unwrap().summary.energy;
+    assert_eq!(
+        &outcome.result("locked").unwrap().summary.travel[..3],
+        &[0.0; 3]
+    );
+    assert_eq!(
+        &outcome.result(VARIANT_NAME).unwrap().summary.travel[..2],
+        &[0.0; 2]
+    );
+    assert!(outcome.result(VARIANT_NAME).unwrap().summary.travel[2] > 0.1);
+    // Against the paper's baseline the gain is modest; against the two-joint
+    // lock it is large.
+    let baseline_gain = 1.0 - energy("energy-optimal") / energy("locked");
+    let variant_gain = 1.0 - energy("energy-optimal") / energy(VARIANT_NAME);
+    assert!(
+        baseline_gain > 0.0 && baseline_gain < 0.5,
+        "{baseline_gain}"
+    );
+    assert!(variant_gain > 0.5, "{variant_gain}");
+    // Static F by the dynamics module equals the study's F; the dynamic one
+    // differs.
+    assert_eq!(outcome.torque_energies.len(), 5);
+    for (r, e) in outcome.results.iter().zip(&outcome.torque_energies) {
+        assert_eq!(r.name, e.name);
+        assert!((e.static_energy - r.summary.energy).abs() < 1e-9 * r.summary.energy);
+        assert!(e.dynamic_energy > 0.0 && e.dynamic_energy != e.static_energy);
+    }
+    let ranked = outcome.ranking(TorqueModel::Dynamic);
+    assert!(ranked.windows(2).all(|w| w[0].1 <= w[1].1));
+    let winner = outcome.winner(TorqueModel::Static).unwrap();
+    assert!(winner.starts_with("energy-optimal"), "{winner}");
+    // The zero-weight lock along the baseline run.
+    let lock = outcome.zero_weight_lock.as_ref().unwrap();
+    assert_eq!(lock.extra, vec![0, 1, 2]);
+    assert_eq!(lock.max_extra_rate, 0.0);
+    assert!(lock.max_rate_difference < 1e-12 * lock.max_rate.max(1.0));
+    // Findings: the static claim and the lock reproduced; the dynamic one
+    // stated either way with its figures.
+    let findings = outcome.findings();
+    assert_eq!(findings.len(), 3);
+    assert_eq!(findings[0].status, FindingStatus::Reproduced);
+    assert!(findings[0]
+        .measured
+        .contains("joints 1,2,3 locked, 6 remain"));
+    assert!(findings[1]
+        .measured
+        .starts_with("dynamic torques: energy-optimal F = "));
+    let dynamic_wins = ranked[0].0 == "energy-optimal";
+    assert_eq!(
+        findings[1].status == FindingStatus::Reproduced,
+        dynamic_wins,
+        "{}",
+        findings[1]
+    );
+    assert_eq!(findings[2].status, FindingStatus::Reproduced);
+    let checks = outcome.checks().unwrap();
+    assert!(checks.iter().all(|c| c.passed()), "{checks:#?}");
+    for finding in &findings {
+        println!("{finding}");
+    }
+    for check in &checks {
+        println!("{check}");
+    }
 }

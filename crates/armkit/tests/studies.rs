@@ -64,7 +64,7 @@ fn seed000_studies_pass() {
 fn seed001_and_seed004_space_studies_check_their_options() {
     let report = DistributionStudy::default().run().unwrap();
     assert!(report.all_passed(), "{:#?}", report.checks);
-    assert_eq!(report.checks.len(), 9);
+    assert_eq!(report.checks.len(), 15);
     let error = DistributionStudy {
         duration: 0.0,
         ..DistributionStudy::default()

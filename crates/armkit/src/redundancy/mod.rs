@@ -22,7 +22,8 @@
 //!   zero torques ([`TorqueFloor`]).
 //! * Minimum norm (all weights 1: the pseudo-inverse), joint priorities (seed
 //!   000: a large weight is a low priority) and locked joints (an infinite
-//!   weight: the joint does not move), all through [`JointWeights`].
+//!   weight: the joint does not move; seed 001's zero `A_Q` in eq 19), all
+//!   through [`JointWeights`].
 //! * Secondary objectives in the null space, in the same weighted metric
 //!   ([`nullspace`]): Liegeois' gradient projection for joint-limit avoidance
 //!   and for manipulability.
@@ -77,9 +78,11 @@ pub use crate::seeds::SEED000_PRIORITY_WEIGHTS;
 /// A weight is in units of (cost) / (joint velocity)^2; only ratios matter.
 /// A large weight makes a joint expensive to move, i.e. a low priority (seed
 /// 000, sec 4.4). A locked joint has an infinite weight: every solver here
-/// gives it exactly zero velocity (seed 001's "locking joints", its limiting
-/// case; the paper's last sentence says a locked joint has weight *zero*,
-/// which is backwards: zero weight makes a joint free).
+/// gives it exactly zero velocity. This is seed 001's "locking joints" in the
+/// weighted least norm over all joints; the paper's last sentence says the
+/// weights are *zero*, which is the same lock in its own parametrisation:
+/// zero weights `A_Q` on the six generalized joints make eq 19 give the
+/// extra joints `phi_dot = 0` ([`PartitionedSolver::solve_with_paper_weights`]).
 ///
 /// ```
 /// use armkit::redundancy::JointWeights;

@@ -10,10 +10,17 @@
 //!
 //! `phi_dot = (A_p + G0p' A_Q G0p)^-1 G0p' A_Q G0 V` (eq 19).
 //!
-//! Errata: eq 19 as printed drops the `G0` in front of `V`; eq 17 (the energy
-//! weights `A = T^2`) prints it. Seed 001's last sentence says a locked joint
-//! has weight zero; it is the opposite (an infinite weight): here a locked
-//! joint must be an extra joint, and gets `phi_dot = 0`.
+//! Erratum: eq 19 as printed drops the `G0` in front of `V`; eq 17 (the energy
+//! weights `A = T^2`) prints it.
+//!
+//! Locking: seed 001's last sentence says the usual "locking of joints" is
+//! the weights set to zero. In the paper's own parametrisation that holds:
+//! with `A_Q = 0` (and `A_p > 0`) eq 19's right-hand side vanishes, so
+//! `phi_dot = 0` and the `k` extra joints stay still while the six
+//! generalized joints do the motion, `q_dot = G0 V` (eq 8)
+//! ([`PartitionedSolver::solve_with_paper_weights`]). In the weighted least
+//! norm over all joints ([`super::JointWeights`]) the same lock is an
+//! infinite weight on the locked joints; both give the same velocities.
 
 use super::{check_jacobian, JointWeights};
 use crate::error::{check_finite, check_finite_vector, Error, Result};
@@ -329,6 +336,52 @@ impl PartitionedSolver {
         self.squared_torques = squared;
         result?;
         Ok(self.velocities.as_slice())
+    }
+
+    /// Seed 001's eqs 8 and 19 with the paper's weights (eq 18, eq 20):
+    /// `weights[i] = a_i >= 0` for every joint, finite, where the paper's
+    /// `A_Q` are the generalized joints' entries and `A_p` the extra
+    /// joints'. Unlike [`JointWeights`], zero is allowed: the paper's last
+    /// sentence locks joints with zero weights, and `A_Q = 0`, `A_p > 0`
+    /// gives exactly `phi_dot = 0` (the extra joints locked, the six
+    /// generalized joints alone realise `V`). Allocates nothing.
+    ///
+    /// Errors: sizes, NaN, infinite or negative weights, a singular block
+    /// `G'0`, and a singular `A_p + G0p' A_Q G0p` (e.g. `A_Q = 0` with a zero
+    /// `A_p` entry: the cost cannot choose that joint's rate).
+    ///
+    /// ```
+    /// use armkit::kinematics::{jacobian, Data, JacobianFrame};
+    /// use armkit::math::Vector6;
+    /// use armkit::redundancy::{Partition, PartitionedSolver};
+    /// let model = armkit::robots::by_name("gantry9").unwrap();
+    /// let mut data = Data::new(&model);
+    /// let q = [3.0, 2.5, 1.0, 0.3, 0.4, -0.5, 0.2, 0.8, 0.1];
+    /// let j = jacobian(&model, &mut data, &q, JacobianFrame::World).unwrap().clone();
+    /// // The arm's six joints generalized, the gantry's three axes extra.
+    /// let partition = Partition::new(9, [3, 4, 5, 6, 7, 8]).unwrap();
+    /// let mut solver = PartitionedSolver::new(9, 1e10).unwrap();
+    /// let twist = Vector6::new(0.1, 0.05, -0.05, 0.0, 0.0, 0.1);
+    /// // A_Q = 0, A_p = 1: the extra joints are locked.
+    /// let weights = [1.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+    /// let q_dot = solver.solve_with_paper_weights(&j, &weights, &twist, &partition).unwrap();
+    /// assert_eq!(&q_dot[..3], &[0.0, 0.0, 0.0]);
+    /// ```
+    pub fn solve_with_paper_weights(
+        &mut self,
+        jacobian: &Matrix6xX<f64>,
+        weights: &[f64],
+        twist: &Vector6<f64>,
+        partition: &Partition,
+    ) -> Result<&[f64]> {
+        check_finite_vector("weights", weights, self.dof)?;
+        if let Some((joint, value)) = weights.iter().enumerate().find(|(_, &w)| w < 0.0) {
+            return Err(Error::invalid_argument(
+                "weights",
+                format!("weight of joint {joint} must be >= 0 (seed 001, eq 18), got {value}"),
+            ));
+        }
+        self.solve_with_weights(jacobian, weights, twist, partition)
     }
 
     /// Eqs 5-8 and 19 with per-joint weights `values` (`>= 0`, infinite =

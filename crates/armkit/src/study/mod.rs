@@ -40,7 +40,7 @@ pub use avoidance::{AvoidanceOutcome, AvoidanceStudy};
 pub use beam_table::{BeamTableStudy, Table1Row, TABLE1_TOLERANCE};
 pub use distribution::{
     DistributionOutcome, DistributionStudy, FormulationKind, ResolvedDistribution, SecondaryKind,
-    DISTRIBUTION_NOTE,
+    TorqueEnergies, ZeroWeightLock, DISTRIBUTION_NOTE, VARIANT_NAME,
 };
 pub use finding::{count_findings, Finding, FindingStatus};
 pub use mpc_examples::MpcExampleStudy;

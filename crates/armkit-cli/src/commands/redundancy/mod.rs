@@ -1,11 +1,15 @@
 //! `armkit redundancy`: one Cartesian motion distributed four ways among a
 //! redundant robot's joints (seeds 000 and 001): minimum norm, energy-optimal
-//! for a payload, joint priorities, and with joints locked. Prints seed 001's
-//! energy measure F (eq 9, integrated over the motion) and each joint's
-//! travel; writes the samples and the summary as CSV and SVG plots.
+//! for a payload, joint priorities, and with joints locked so that six remain
+//! (the paper's baseline; on gantry9 also the rail and beam alone, a labelled
+//! extra). Prints seed 001's energy measure F (eq 9, integrated over the
+//! motion) under the load's static torques and, for robots with masses, under
+//! the full dynamics, and each joint's travel; writes the samples and the
+//! summary as CSV and SVG plots.
 
 use std::path::{Path, PathBuf};
 
+use armkit::dynamics::energy_weights::TorqueModel;
 use armkit::redundancy::ComparisonResult;
 use armkit::study::{DistributionOutcome, DistributionStudy, FormulationKind, SecondaryKind};
 use armkit::Model;
@@ -61,8 +65,10 @@ pub struct RedundancyArgs {
     /// for rotational joints otherwise.
     #[arg(long, value_name = "W1,W2,...")]
     pub priorities: Option<String>,
-    /// Joints to lock, 1-based, comma-separated. Default: 1,2 (the gantry's
-    /// rail and beam axes) for 9 joints, 1 otherwise.
+    /// Joints to lock, 1-based, comma-separated. Default: seed 001's
+    /// baseline, the first n - 6 joints so that six remain (1,2,3, the
+    /// gantry's axes, on gantry9). gantry9 also runs `locked-variant`, the
+    /// rail and beam (1,2) alone locked, as a labelled extra.
     #[arg(long, value_name = "J1,J2,...")]
     pub lock: Option<String>,
     /// Zero-torque floor of the energy weights, as a fraction of the largest
@@ -129,12 +135,21 @@ pub struct Study {
 pub fn run(args: &RedundancyArgs) -> CliResult<Outcome> {
     let study = study(args)?;
     let results = &study.outcome.results;
-    let files = write_outputs(&args.out, &study.model, results)?;
+    let energies = &study.outcome.torque_energies;
+    let files = write_outputs(&args.out, &study.model, results, energies)?;
     let (model, rotation, heading) = (&study.model, &study.rotation, &study.heading);
     let settings = &study.outcome.settings;
     let (q0, displacement, gravity) = (&settings.start, &settings.displacement, settings.gravity);
     let (priorities, locked) = (&settings.priorities, &settings.locked);
     let lowest = study.outcome.lowest();
+    let dynamic = |name: &str| {
+        study
+            .outcome
+            .torque_energies
+            .iter()
+            .find(|e| e.name == name)
+            .map(|e| e.dynamic_energy)
+    };
     if args.json {
         print_json(&serde_json::json!({
             "robot": model.name(),
@@ -146,11 +161,14 @@ pub fn run(args: &RedundancyArgs) -> CliResult<Outcome> {
             "gravity": gravity,
             "priorities": priorities.values(),
             "locked": locked.iter().map(|j| j + 1).collect::<Vec<_>>(),
+            "locked_variant": settings.variant_locked.iter().map(|j| j + 1).collect::<Vec<_>>(),
             "lowest_energy": lowest,
+            "lowest_energy_dynamic": study.outcome.ranking(TorqueModel::Dynamic).first().map(|(n, _)| n.clone()),
             "distributions": results.iter().map(|r| serde_json::json!({
                 "name": r.name,
                 "status": r.report.status.to_string(),
                 "energy": r.summary.energy,
+                "energy_dynamic": dynamic(&r.name),
                 "travel": r.summary.travel,
                 "max_position_error": r.report.max_position_error,
                 "final_position_error": r.report.final_position_error,
@@ -171,8 +189,13 @@ pub fn run(args: &RedundancyArgs) -> CliResult<Outcome> {
                 .collect::<Vec<_>>()
                 .join(",")
         );
-        print!("{}", summary_table(model, results));
+        print!("{}", summary_table(model, results, energies));
         println!("lowest F (seed 001, eq 9): {lowest}");
+        for torque_model in [TorqueModel::Static, TorqueModel::Dynamic] {
+            if let Some(winner) = study.outcome.winner(torque_model) {
+                println!("{torque_model} torques: {winner}");
+            }
+        }
         if lowest != "energy-optimal" {
             println!(
                 "note: the energy-optimal distribution minimises F at each instant for the \
@@ -225,6 +248,8 @@ pub fn study(args: &RedundancyArgs) -> CliResult<Study> {
             Some(text) => Some(parse_joint_list(text, dof)?),
             None => None,
         },
+        // The labelled extra: the robot's default (gantry9: rail and beam).
+        variant_locked: None,
         torque_floor: args.torque_floor,
         dt: args.dt,
         gain: args.gain,

@@ -1,13 +1,26 @@
 //! The table, files, figures and report of `armkit redundancy`.
 
 use super::*;
-use armkit::study::DISTRIBUTION_NOTE;
+use armkit::study::{TorqueEnergies, DISTRIBUTION_NOTE, VARIANT_NAME};
 
-/// The text table: one row per distribution.
-pub(super) fn summary_table(model: &Model, results: &[ComparisonResult]) -> String {
+/// F under dynamic torques of the run named `name`, if computed.
+fn dynamic_energy(energies: &[TorqueEnergies], name: &str) -> Option<f64> {
+    energies
+        .iter()
+        .find(|e| e.name == name)
+        .map(|e| e.dynamic_energy)
+}
+
+/// The text table: one row per distribution (F under dynamic torques when
+/// `energies` has them).
+pub(super) fn summary_table(
+    model: &Model,
+    results: &[ComparisonResult],
+    energies: &[TorqueEnergies],
+) -> String {
     let mut out = format!(
-        "{:<15} {:>12} {:>10}",
-        "distribution", "F (W^2 s)", "max err"
+        "{:<15} {:>12} {:>12} {:>10}",
+        "distribution", "F (W^2 s)", "F dyn", "max err"
     );
     for joint in model.joints() {
         let unit = if joint.kind.is_rotational() {
@@ -19,9 +32,10 @@ pub(super) fn summary_table(model: &Model, results: &[ComparisonResult]) -> Stri
     }
     out += "  status\n";
     for r in results {
+        let dynamic = dynamic_energy(energies, &r.name).map_or("-".into(), |f| format!("{f:.4e}"));
         out += &format!(
-            "{:<15} {:>12.4e} {:>10.2e}",
-            r.name, r.summary.energy, r.report.max_position_error
+            "{:<15} {:>12.4e} {:>12} {:>10.2e}",
+            r.name, r.summary.energy, dynamic, r.report.max_position_error
         );
         for t in &r.summary.travel {
             out += &format!(" {t:>9.4}");
@@ -37,6 +51,7 @@ pub(super) fn write_outputs(
     dir: &Path,
     model: &Model,
     results: &[ComparisonResult],
+    energies: &[TorqueEnergies],
 ) -> CliResult<Vec<String>> {
     std::fs::create_dir_all(dir)
         .map_err(|e| CliError(format!("{}: cannot create: {e}", dir.display())))?;
@@ -51,7 +66,7 @@ pub(super) fn write_outputs(
     };
 
     let mut summary = format!(
-        "distribution,status,energy_W2s,max_position_error_m,final_position_error_m,\
+        "distribution,status,energy_W2s,energy_dynamic_W2s,max_position_error_m,final_position_error_m,\
          final_orientation_error_rad,velocity_scaled_steps,limit_locked_steps,{}\n",
         names
             .iter()
@@ -61,10 +76,11 @@ pub(super) fn write_outputs(
     );
     for r in results {
         summary += &format!(
-            "{},{},{},{},{},{},{},{},{}\n",
+            "{},{},{},{},{},{},{},{},{},{}\n",
             r.name,
             r.report.status.to_string().replace(',', ";"),
             r.summary.energy,
+            dynamic_energy(energies, &r.name).map_or(String::new(), |f| f.to_string()),
             r.report.max_position_error,
             r.report.final_position_error,
             r.report.final_orientation_error,
@@ -217,9 +233,13 @@ pub fn report(args: &RedundancyArgs) -> CliResult<Report> {
         &header,
     );
     for r in results {
-        let mut row = vec![r.name.clone(), format!("{:.4e}", r.summary.energy)];
+        let mut row = vec![label(&r.name), format!("{:.4e}", r.summary.energy)];
         row.extend(r.summary.travel.iter().map(|t| format!("{t:.3}")));
         table.push(row);
+    }
+    let mut tables = vec![table];
+    if let Some(torques) = torque_table(&study.outcome) {
+        tables.push(torques);
     }
     let samples = &energy_optimal.report.samples;
     let times: Vec<f64> = samples.iter().map(|s| s.time).collect();
@@ -230,14 +250,83 @@ pub fn report(args: &RedundancyArgs) -> CliResult<Report> {
         description: format!(
             "{} Distributions: minimum norm (all weights 1, the pseudo-inverse); energy-optimal (seed 001, eq 17 \
              in its weighted least-norm form, weights = squared joint torques for the load, recomputed every step); \
-             seed 000's joint priorities; two joints locked. The animation shows the energy-optimal run.",
-            study.heading
+             seed 000's joint priorities; locked: the paper's baseline, joints {} locked so that six remain{}. \
+             F is measured under the load's static torques (the paper's) and, for robots with masses, under the \
+             full inverse dynamics of each run. The animation shows the energy-optimal run.",
+            study.heading,
+            one_based(&study.outcome.settings.locked),
+            if study.outcome.settings.variant_locked.is_empty() {
+                String::new()
+            } else {
+                format!(
+                    "; {VARIANT_NAME}: a labelled extra, not the paper's baseline, joints {} locked",
+                    one_based(&study.outcome.settings.variant_locked)
+                )
+            }
         ),
         checks,
-        findings: Vec::new(),
-        tables: vec![table],
+        findings: study.outcome.findings(),
+        tables,
         figures: figures(&study.model, results),
         notes: vec![DISTRIBUTION_NOTE.into()],
         animation: Some(Animation::from_configurations(&study.model, &times, &configurations)?),
     })
+}
+
+/// 1-based joint numbers, comma-separated.
+fn one_based(joints: &[usize]) -> String {
+    joints
+        .iter()
+        .map(|j| (j + 1).to_string())
+        .collect::<Vec<_>>()
+        .join(",")
+}
+
+/// A run's name as a table shows it: the baseline and the extra labelled.
+fn label(name: &str) -> String {
+    match name {
+        "locked" => "locked (paper's baseline)".into(),
+        VARIANT_NAME => format!("{VARIANT_NAME} (extra)"),
+        other => other.into(),
+    }
+}
+
+/// Seed 001's F under static and dynamic torques, one row per run, with
+/// each run's margin over the winner; `None` without dynamics.
+fn torque_table(outcome: &DistributionOutcome) -> Option<Table> {
+    if outcome.torque_energies.is_empty() {
+        return None;
+    }
+    let best = |model: TorqueModel| outcome.ranking(model).first().map(|(_, f)| *f);
+    let (best_static, best_dynamic) = (best(TorqueModel::Static)?, best(TorqueModel::Dynamic)?);
+    let title = format!(
+        "F under static and dynamic torques (W^2 s): static, {}; dynamic, {}",
+        outcome.winner(TorqueModel::Static)?,
+        outcome.winner(TorqueModel::Dynamic)?
+    );
+    let mut table = Table::new(
+        title,
+        &[
+            "distribution",
+            "F static",
+            "vs lowest static",
+            "F dynamic",
+            "vs lowest dynamic",
+            "dynamic / static",
+        ],
+    );
+    for e in &outcome.torque_energies {
+        table.push(vec![
+            label(&e.name),
+            format!("{:.4e}", e.static_energy),
+            format!("{:+.1} %", 100.0 * (e.static_energy / best_static - 1.0)),
+            format!("{:.4e}", e.dynamic_energy),
+            format!("{:+.1} %", 100.0 * (e.dynamic_energy / best_dynamic - 1.0)),
+            format!(
+                "{:+.2} %",
+                100.0 * (e.dynamic_energy / e.static_energy - 1.0)
+            ),
+        ]);
+    }
+    Some(table)
 }
