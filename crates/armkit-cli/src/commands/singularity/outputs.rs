@@ -95,7 +95,7 @@ pub(super) fn summary_json(study: &Study, args: &SingularityArgs) -> serde_json:
                 "knots": g.knot_times.len(),
                 "ik_solves": g.ik_solves,
                 "ik_failures": g.ik_failures,
-                "dropped_knots": g.dropped_knots,
+                "bounded_knots": g.bounded_knots,
             })).collect::<Vec<_>>(),
         })).collect::<Vec<_>>(),
     })
