@@ -267,15 +267,18 @@ impl AvoidanceOutcome {
                 })
                 .map(|l| {
                     format!(
-                        "{:+} mm ({label} {:.2e} m / {:.2e} rad, dls {:.2e} m / {:.2e} rad, sri \
-                         {:.2e} m / {:.2e} rad)",
+                        "{:+} mm ({label} {:.2e} m / {:.2e} rad at {:.3} rad/s, dls {:.2e} m / \
+                         {:.2e} rad at {:.3} rad/s, sri {:.2e} m / {:.2e} rad at {:.3} rad/s)",
                         l.miss * 1e3,
                         l.avoidance.max_position_error,
                         l.avoidance.max_orientation_error,
+                        l.avoidance.peak_joint_rate,
                         l.damped_least_squares.max_position_error,
                         l.damped_least_squares.max_orientation_error,
+                        l.damped_least_squares.peak_joint_rate,
                         l.singularity_robust.max_position_error,
                         l.singularity_robust.max_orientation_error,
+                        l.singularity_robust.peak_joint_rate,
                     )
                 })
                 .collect();
