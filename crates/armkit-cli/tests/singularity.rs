@@ -124,6 +124,22 @@ fn default_json_matches_the_library_on_the_held_space6r() {
         start > 0.0 && start < 10.0 && end > 10.0 && end < 20.0,
         "the region straddles mid-path: {start}..{end}"
     );
+    // The miss sweep: nine lines, the avoidance within eps_dq / h on each.
+    let sweep = value["miss_sweep"].as_array().unwrap();
+    assert_eq!(sweep.len(), 9);
+    for line in sweep {
+        let avoidance = &line["methods"][1];
+        assert_eq!(avoidance["method"], "avoidance");
+        assert!(avoidance["peak_joint_rate"].as_f64().unwrap() <= 0.5 * (1.0 + 1e-9));
+    }
+    assert_eq!(value["threshold_rule"], "calibrated (seed 004's rule)");
+    let findings = value["findings"].as_array().unwrap();
+    assert!(
+        findings
+            .iter()
+            .any(|f| f["claim"].as_str().unwrap().contains("Fig 5")),
+        "{findings:?}"
+    );
     let checks = value["checks"].as_array().unwrap();
     assert!(checks.len() >= 5);
     assert!(checks.iter().all(|c| c["pass"] == true), "{checks:?}");

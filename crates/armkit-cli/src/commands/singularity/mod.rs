@@ -186,7 +186,9 @@ pub fn run(args: &SingularityArgs) -> CliResult<Outcome> {
     };
     if args.json {
         let mut value = summary_json(&study, args);
-        value["checks"] = report.summary_json()["checks"].clone();
+        let summary = report.summary_json();
+        value["checks"] = summary["checks"].clone();
+        value["findings"] = summary["findings"].clone();
         value["files"] = serde_json::json!(files);
         print_json(&value)?;
     } else {
