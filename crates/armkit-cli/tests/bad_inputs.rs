@@ -1783,6 +1783,18 @@ const CASES: &[Case] = &[
         1,
     ),
     case("info", "unknown robot", &["info", "--robot", "nobody"], 1),
+    case(
+        "singularity",
+        "miss sweep not a number",
+        &["singularity", "--miss-sweep", "0,x"],
+        1,
+    ),
+    case(
+        "singularity",
+        "miss sweep NaN",
+        &["singularity", "--miss-sweep", "0,nan"],
+        1,
+    ),
 ];
 
 fn repository_root() -> PathBuf {

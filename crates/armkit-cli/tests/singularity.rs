@@ -7,7 +7,8 @@ use common::*;
 
 use armkit::math::Pose;
 use armkit::singularity::{
-    seed004_path, AvoidanceOptions, Baselines, Manipulator, Method, PathTracker,
+    calibrate_determinant_threshold, seed004_path, AvoidanceOptions, Baselines, Manipulator,
+    Method, PathTracker,
 };
 
 fn relative_difference(a: f64, b: f64) -> f64 {
@@ -37,20 +38,22 @@ fn default_json_matches_the_library_on_the_held_space6r() {
         base: Pose::identity(),
     })
     .unwrap();
-    let options = AvoidanceOptions::default();
-    assert_eq!(
-        value["determinant_threshold"].as_f64().unwrap(),
-        options.detection.determinant_threshold
-    );
-    let tracker = PathTracker::new(
-        Manipulator::AttitudeHeld {
-            system: &system,
-            base: line.base,
-        },
-        line.task(20.0, 4.0),
-        options,
-    )
-    .unwrap();
+    // The threshold by seed 004's rule: calibrated on the plain run.
+    let fitted = AvoidanceOptions::default();
+    let placed = Manipulator::AttitudeHeld {
+        system: &system,
+        base: line.base,
+    };
+    let plain = PathTracker::new(placed, line.task(20.0, 4.0), fitted)
+        .unwrap()
+        .run(&Method::Plain)
+        .unwrap();
+    let calibrated =
+        calibrate_determinant_threshold(&plain, fitted.detection.joint_step_threshold).unwrap();
+    assert_eq!(value["determinant_threshold"].as_f64().unwrap(), calibrated);
+    let mut options = fitted;
+    options.detection.determinant_threshold = calibrated;
+    let tracker = PathTracker::new(placed, line.task(20.0, 4.0), options).unwrap();
     let labels: Vec<&str> = value["methods"]
         .as_array()
         .unwrap()
@@ -69,8 +72,9 @@ fn default_json_matches_the_library_on_the_held_space6r() {
         ]
     );
     // Three of the runs, redone through the library (all six would double
-    // this test's time in debug builds); the baselines damp the detection's region.
-    let baselines = Baselines::for_detection(&options.detection);
+    // this test's time in debug builds); the baselines keep the fitted
+    // threshold's damping region.
+    let baselines = Baselines::for_detection(&fitted.detection);
     for which in [
         Method::Plain,
         Method::Avoidance { k: 1 },
@@ -119,6 +123,22 @@ fn default_json_matches_the_library_on_the_held_space6r() {
     assert!(
         start > 0.0 && start < 10.0 && end > 10.0 && end < 20.0,
         "the region straddles mid-path: {start}..{end}"
+    );
+    // The miss sweep: nine lines, the avoidance within eps_dq / h on each.
+    let sweep = value["miss_sweep"].as_array().unwrap();
+    assert_eq!(sweep.len(), 9);
+    for line in sweep {
+        let avoidance = &line["methods"][1];
+        assert_eq!(avoidance["method"], "avoidance");
+        assert!(avoidance["peak_joint_rate"].as_f64().unwrap() <= 0.5 * (1.0 + 1e-9));
+    }
+    assert_eq!(value["threshold_rule"], "calibrated (seed 004's rule)");
+    let findings = value["findings"].as_array().unwrap();
+    assert!(
+        findings
+            .iter()
+            .any(|f| f["claim"].as_str().unwrap().contains("Fig 5")),
+        "{findings:?}"
     );
     let checks = value["checks"].as_array().unwrap();
     assert!(checks.len() >= 5);
@@ -417,6 +437,8 @@ fn bad_input_is_an_error_naming_the_option() {
         (&["--duration", "0"], "--duration"),
         (&["--accel-time", "15"], "--accel-time"),
         (&["--miss", "nan"], "--miss"),
+        (&["--miss-sweep", "0,nan"], "--miss-sweep"),
+        (&["--miss-sweep", ""], "--miss-sweep"),
         (&["--through", "1,2,3"], "--through"),
         (&["--direction", "1,2,3,4,5,x"], "--direction"),
         (&["--robot", "ur5"], "--base attitude-held"),

@@ -138,6 +138,34 @@ fn singularity(c: &mut Criterion) {
         });
     }
     group.finish();
+
+    // A line 10 mm off the singular pose: the avoidance's least-squares
+    // knots (the wrist cannot flip within eps_dq per period).
+    let fixed = manipulator;
+    let near = armkit::singularity::line_through(
+        &fixed,
+        &armkit::singularity::SEED004_THROUGH,
+        &armkit::singularity::SEED004_DIRECTION,
+        0.01,
+    )
+    .unwrap();
+    let near_miss = PathTracker::new(fixed, near.task(20.0, 4.0), options).unwrap();
+    let mut group = c.benchmark_group("run_20s/space6r/fixed_miss_10mm");
+    group.sample_size(10);
+    let avoidance = Method::Avoidance { k: 1 };
+    group.bench_function(avoidance.label(), |b| {
+        b.iter(|| near_miss.run(black_box(&avoidance)).unwrap())
+    });
+    group.finish();
+
+    // The whole seed 004 study of the demo (threshold calibration, the
+    // comparison, the fitted variant and the nine-line miss sweep).
+    let mut group = c.benchmark_group("study");
+    group.sample_size(10);
+    group.bench_function("avoidance_default", |b| {
+        b.iter(|| armkit::study::AvoidanceStudy::default().run().unwrap())
+    });
+    group.finish();
 }
 
 criterion_group!(benches, singularity);

@@ -11,7 +11,7 @@ use armkit::study::{
 fn seed004_avoidance_study_passes_and_states_the_held_drift() {
     let report = AvoidanceStudy::default().run().unwrap();
     assert!(report.all_passed(), "{:#?}", report.checks);
-    assert_eq!(report.checks.len(), 10);
+    assert_eq!(report.checks.len(), 12);
     let ratio = report
         .check("peak joint rate: plain / avoidance k=1")
         .unwrap();

@@ -1,7 +1,7 @@
 //! Velocity-level tracking of a straight-line pose path, with seed 004's
 //! singularity avoidance and the damped baselines.
 
-use super::detection::{below_threshold, jacobian_determinant, DetectionOptions, Trigger};
+use super::detection::{below_threshold, detect, DetectionOptions, Trigger};
 use super::method_law::MethodLaw;
 use super::plant::{KnotSolve, Plant};
 use super::Manipulator;
@@ -144,10 +144,12 @@ pub struct SingularRegion {
     pub ik_iterations: usize,
     /// Solves that did not reach the IK tolerance (their best iterate was used).
     pub ik_failures: usize,
-    /// Knots dropped because their solution jumped (some joint would move
-    /// more than `eps_dq` per control period since the last kept knot) or
-    /// their solve did not converge.
-    pub dropped_knots: usize,
+    /// Knots whose planned pose the arm cannot reach within `eps_dq` per
+    /// control period of the last knot (the Newton solution jumped, or the
+    /// solve did not converge): each is the least-squares knot, the nearest
+    /// pose within that reach, and may miss the planned pose (see
+    /// `max_knot_error`).
+    pub bounded_knots: usize,
     /// Largest position (m) and orientation (rad) error of a knot's solution.
     pub max_knot_error: (f64, f64),
 }
@@ -197,7 +199,7 @@ pub struct MethodRun {
     pub position_error: Vec<f64>,
     /// Angle of the rotation from the end effector to the planned orientation, rad.
     pub orientation_error: Vec<f64>,
-    /// `|det J|` at each sample ([`jacobian_determinant`]).
+    /// `|det J|` at each sample ([`super::jacobian_determinant`]).
     pub determinant: Vec<f64>,
     /// True for the samples whose next period is inside a planned region (avoidance).
     pub in_region: Vec<bool>,
@@ -439,7 +441,7 @@ impl<'m> PathTracker<'m> {
             ik_solves: 0,
             ik_iterations: 0,
             ik_failures: 0,
-            dropped_knots: 0,
+            bounded_knots: 0,
             max_knot_error: (0.0, 0.0),
         };
         let mut index = entry;
@@ -474,29 +476,34 @@ impl<'m> PathTracker<'m> {
             if !solve.converged {
                 region.ik_failures += 1;
             }
-            // A knot whose solution would move some joint faster than
-            // eps_dq per control period since the last kept knot has jumped
-            // (the wrist flip of a path passing near the singularity), and
-            // one whose solve did not converge is no solution: either is
-            // dropped and the fit bridges it, unless it is the path's end.
+            // A solution that would move some joint faster than eps_dq per
+            // control period since the last knot is beyond what the arm can
+            // do (the wrist flip a path passing near the singular pose asks
+            // for), and a solve that did not converge is no solution: the
+            // knot is then the least-squares one, the nearest pose within
+            // eps_dq per period of the last knot.
+            let radius = self.options.detection.joint_step_threshold * (t - t_last) / h;
             let jump = solve
                 .q
                 .iter()
                 .zip(&q_last)
                 .map(|(a, b)| (a - b).abs())
                 .fold(0.0, f64::max);
-            let steps_since = (t - t_last) / h;
-            let end = index == self.steps;
-            let jumped = jump > self.options.detection.joint_step_threshold * steps_since;
-            if (jumped || !solve.converged) && !end {
-                region.dropped_knots += 1;
-                continue;
+            let exact = solve.converged && jump <= radius;
+            if !exact {
+                let bounded = plant.bounded_solve(&target, &q_last, radius, &start)?;
+                region.bounded_knots += 1;
+                region.ik_iterations += bounded.iterations;
+                solve = bounded;
             }
             region.max_knot_error.0 = region.max_knot_error.0.max(solve.position_error);
             region.max_knot_error.1 = region.max_knot_error.1.max(solve.orientation_error);
-            plant.evaluate(&solve.q)?;
-            let regular = jacobian_determinant(plant.jacobian())
-                >= self.options.detection.determinant_threshold;
+            let end = index == self.steps;
+            // The region ends at an exact knot where the motion is regular
+            // again: |det J| at or above the threshold and the plain rates
+            // of the planned twist within eps_dq per period (the detection's
+            // two tests, passed), or at the path's end.
+            let regular = exact && !end && self.regular_at(plant, &solve.q, t)?;
             times.push(t);
             knots.push(solve.q);
             if regular || end {
@@ -508,13 +515,33 @@ impl<'m> PathTracker<'m> {
         let n = plant.dof();
         let mut end_rates = vec![0.0; n];
         if index < self.steps {
-            let planned = self.trajectory.sample(index as f64 * h)?.twist;
-            damped_least_squares_step(plant.jacobian(), &planned, 0.0, &mut end_rates)?;
+            self.planned_rates(plant, index as f64 * h, &mut end_rates)?;
         }
         let fit = clamped_cubic_spline(&times, &knots, entry_rates, &end_rates)?;
         region.end_time = index as f64 * h;
         region.knot_times = times;
         Ok((fit, index, region))
+    }
+
+    /// The plain rates of the planned twist at time `t` (s) at the plant's
+    /// last evaluation.
+    fn planned_rates(&self, plant: &Plant<'_>, t: f64, rates: &mut [f64]) -> Result<()> {
+        let planned = self.trajectory.sample(t)?.twist;
+        damped_least_squares_step(plant.jacobian(), &planned, 0.0, rates)
+    }
+
+    /// True when the detection's tests pass at joint positions `q` on the
+    /// path at time `t` (s): `|det J|` at or above the threshold and the
+    /// plain rates of the planned twist within `eps_dq` per period.
+    fn regular_at(&self, plant: &mut Plant<'_>, q: &[f64], t: f64) -> Result<bool> {
+        plant.evaluate(q)?;
+        let mut steps = vec![0.0; q.len()];
+        if self.planned_rates(plant, t, &mut steps).is_err() {
+            return Ok(false);
+        }
+        steps.iter_mut().for_each(|s| *s *= self.h);
+        let detection = detect(plant.jacobian(), &steps, &self.options.detection)?;
+        Ok(!detection.is_singular())
     }
 
     /// At (or next to) a singular pose the IK solutions form a continuum

@@ -141,14 +141,14 @@ impl std::fmt::Display for Comparison {
             for r in &run.regions {
                 writeln!(
                     f,
-                    "{}: region {:.2} s .. {:.2} s ({}), {} knots, {} IK iterations, {} dropped",
+                    "{}: region {:.2} s .. {:.2} s ({}), {} knots, {} IK iterations, {} least-squares knots",
                     run.method.label(),
                     r.start_time,
                     r.end_time,
                     r.trigger.as_str(),
                     r.knot_times.len(),
                     r.ik_iterations,
-                    r.dropped_knots
+                    r.bounded_knots
                 )?;
             }
         }

@@ -59,7 +59,9 @@ pub(crate) fn below_threshold(determinant: f64, threshold: f64) -> bool {
 ///   paper's own rule ([`super::calibrate_determinant_threshold`] on the
 ///   plain run) gives only 1.6e-4 m^3 (9.96 s to 10.04 s) on this path,
 ///   because plain tracking through the exact singularity jumps only in
-///   the last 0.05 s before it.
+///   the last 0.05 s before it. [`crate::study::AvoidanceStudy`] (the demo,
+///   `armkit singularity`) uses the paper's rule by default and runs this
+///   fitted value beside it as a labelled comparison.
 /// * `joint_step_threshold` 0.005 rad per control period: space6r's joint
 ///   speed limit, 0.5 rad/s, over 0.01 s.
 #[derive(Clone, Copy, Debug, PartialEq)]

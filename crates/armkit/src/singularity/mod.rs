@@ -54,14 +54,15 @@
 //!   [`DetectionOptions::joint_step_threshold`], is 0.005 rad per period:
 //!   space6r's 0.5 rad/s joint speed limit.
 //! * The paper derives the determinant threshold from the configuration
-//!   where the joints start jumping ([`calibrate_determinant_threshold`]
-//!   does that on a plain run). On our path, which passes exactly through the
-//!   singular pose, plain tracking stays accurate until 0.05 s before it and
-//!   that rule gives 1.6e-4 m^3, a region of 9.96 s to 10.04 s. The default
-//!   [`DetectionOptions::determinant_threshold`], 0.004 m^3, is instead the
-//!   `|det J|` of the plain run at the paper's region start: the region is
-//!   8.86 s to 11.43 s (the paper: 8.8 s to 11.2 s). Both are reported by
-//!   the tests.
+//!   where the joints start jumping: [`calibrate_determinant_threshold`]
+//!   does that on a plain run, and [`crate::study::AvoidanceStudy`] uses it
+//!   by default (`ThresholdRule::Calibrated`). On our path, which passes
+//!   exactly through the singular pose, plain tracking stays accurate until
+//!   0.05 s before it and that rule gives 1.6e-4 m^3, a region of about
+//!   9.96 s to 10.04 s. [`DetectionOptions::default`]'s 0.004 m^3 is instead
+//!   the `|det J|` of the plain run at the paper's region start (fitted:
+//!   region 8.86 s to 11.43 s, the paper's 8.8 s to 11.2 s); the study
+//!   reports it beside the paper's rule as a labelled comparison.
 //!
 //! # The path
 //!
@@ -82,21 +83,30 @@
 //! * Eqs 30-32 (the "differential terms" at the region's ends) are garbled:
 //!   the fit is clamped with the current rates at entry and the plain rates
 //!   at the exit knot instead, which keeps the rates continuous there.
-//! * Step 5's stopping test is garbled: the region ends at the first knot
-//!   whose `|det J|` is back above the threshold (or at the path's end).
+//! * Step 5's stopping test is garbled: the region ends at the first exact
+//!   knot where both detection tests pass again (`|det J|` at or above the
+//!   threshold, the plain rates of the planned twist within `eps_dq` per
+//!   period), or at the path's end.
 //! * After the region the paper re-plans from the current pose to the goal;
 //!   here tracking resumes on the same planned path, whose pose error term
 //!   pulls the end effector back (the same path when the fit is on it).
 //! * Near the singular pose the IK solutions form a continuum (`q4 + d`,
 //!   `q6 - d`); a knot's drift along it is removed (projected back toward
-//!   the warm start) when that keeps the pose within `eps_T`, and a knot
-//!   that jumps (more than `eps_dq` per period since the last knot) is
-//!   dropped and bridged by the fit.
+//!   the warm start) when that keeps the pose within `eps_T`.
+//! * A path that misses the singular pose by a little asks the wrist to flip
+//!   (joints 4 and 6 turn by about pi in a time proportional to the miss),
+//!   faster than the arm can: the paper does not say what its knots do then.
+//!   Here a knot whose Newton solution would move some joint more than
+//!   `eps_dq` per period since the last knot (or whose solve does not
+//!   converge) is the least-squares knot: the nearest pose reachable within
+//!   `eps_dq` per period ([`SingularRegion::bounded_knots`]). The region's
+//!   rates then stay within `eps_dq / h` for `k = 1` and the end effector
+//!   leaves the path by what the arm cannot do (`AvoidanceStudy` sweeps the
+//!   miss and compares with DLS).
 //! * The paper sees larger errors at the region's entry for smaller `k`
 //!   (error accumulated before it). Here tracking before the entry is the
-//!   same for every `k` (position feedback keeps it within 1e-7 m), so the
-//!   runs differ only inside the region, where the error grows with `k`
-//!   (the trade-off the paper describes: fewer IK solves, larger error).
+//!   same for every `k`, so the entry errors are equal; `AvoidanceStudy`
+//!   reports both of the paper's orderings as findings with their figures.
 //!
 //! # Singular configurations and ellipsoids
 //!

@@ -279,6 +279,118 @@ impl<'m> Plant<'m> {
         }
     }
 
+    /// The least-squares knot within reach: the joint positions within
+    /// `radius` (rad or m, every joint) of `centre` whose pose is nearest
+    /// `target` (inertial frame), by Levenberg-Marquardt with Sugihara's
+    /// damping on the box (`min |e(target, F(q))|^2` over
+    /// `|q_j - centre_j| <= radius`), from `start` clamped into the box.
+    ///
+    /// Each iteration solves the damped step on the free joints, clamps the
+    /// joints that would leave the box at its face and solves again without
+    /// them (at most n rounds), and keeps the step only when it lowers the
+    /// error. Converged when the pose is within the IK tolerance; otherwise
+    /// the best iterate, with its errors (a near miss of a singular pose asks
+    /// the wrist to turn faster than the box allows: the knot is then the
+    /// nearest pose the arm reaches).
+    pub fn bounded_solve(
+        &mut self,
+        target: &Pose,
+        centre: &[f64],
+        radius: f64,
+        start: &[f64],
+    ) -> Result<KnotSolve> {
+        let n = self.dof();
+        let lower: Vec<f64> = centre.iter().map(|c| c - radius).collect();
+        let upper: Vec<f64> = centre.iter().map(|c| c + radius).collect();
+        let mut q: Vec<f64> = start
+            .iter()
+            .zip(lower.iter().zip(&upper))
+            .map(|(s, (lo, hi))| s.clamp(*lo, *hi))
+            .collect();
+        let mut trial = q.clone();
+        let mut delta = vec![0.0; n];
+        let mut step = vec![0.0; n];
+        let mut fixed = vec![false; n];
+        let mut free_jacobian = Matrix6xX::zeros(n);
+        let tolerance = self.ik_tolerance;
+        let mut best = KnotSolve {
+            q: q.clone(),
+            converged: false,
+            iterations: 0,
+            position_error: f64::INFINITY,
+            orientation_error: f64::INFINITY,
+        };
+        self.evaluate(&q)?;
+        let mut error = pose_error(target, &self.pose);
+        let mut best_norm = f64::INFINITY;
+        let mut damping_scale = 1.0;
+        for used in 0..=self.ik_max_iterations {
+            let position = error.fixed_rows::<3>(0).norm();
+            let orientation = error.fixed_rows::<3>(3).norm();
+            best.iterations = used;
+            if error.norm() < best_norm {
+                best_norm = error.norm();
+                best.q.copy_from_slice(&q);
+                best.position_error = position;
+                best.orientation_error = orientation;
+            }
+            if position <= tolerance && orientation <= tolerance {
+                best.converged = true;
+                break;
+            }
+            // A box-constrained minimum: no step lowers the error any more.
+            if used == self.ik_max_iterations || damping_scale > 1e12 {
+                break;
+            }
+            let objective = 0.5 * error.norm_squared();
+            let damping = (damping_scale * (objective + 1e-12)).sqrt();
+            fixed.iter_mut().for_each(|f| *f = false);
+            delta.iter_mut().for_each(|d| *d = 0.0);
+            for _ in 0..n {
+                // The damped step of the free joints, with the clamped ones'
+                // motion taken out of the error (their columns zeroed, so
+                // that their step is zero).
+                free_jacobian.copy_from(&self.jacobian);
+                let mut rest = error;
+                for j in (0..n).filter(|&j| fixed[j]) {
+                    rest -= self.jacobian.column(j) * delta[j];
+                    free_jacobian.column_mut(j).fill(0.0);
+                }
+                damped_least_squares_step(&free_jacobian, &rest, damping, &mut step)?;
+                let mut clamped = false;
+                for j in 0..n {
+                    if fixed[j] {
+                        continue;
+                    }
+                    let (lo, hi) = (lower[j] - q[j], upper[j] - q[j]);
+                    delta[j] = step[j];
+                    if !(lo..=hi).contains(&delta[j]) {
+                        delta[j] = delta[j].clamp(lo.min(0.0), hi.max(0.0));
+                        fixed[j] = true;
+                        clamped = true;
+                    }
+                }
+                if !clamped {
+                    break;
+                }
+            }
+            for j in 0..n {
+                trial[j] = (q[j] + delta[j]).clamp(lower[j], upper[j]);
+            }
+            self.evaluate(&trial)?;
+            let trial_error = pose_error(target, &self.pose);
+            if 0.5 * trial_error.norm_squared() < objective {
+                std::mem::swap(&mut q, &mut trial);
+                error = trial_error;
+                damping_scale = (damping_scale * 0.5).max(1.0);
+            } else {
+                damping_scale *= 10.0;
+                self.evaluate(&q)?;
+            }
+        }
+        Ok(best)
+    }
+
     /// Iterates on the held system's constrained map `F(q)` with `J*`.
     fn held_solve(
         &mut self,

@@ -36,7 +36,10 @@ mod finding;
 mod mpc_examples;
 mod space_robot;
 
-pub use avoidance::{AvoidanceOutcome, AvoidanceStudy};
+pub use avoidance::{
+    AvoidanceOutcome, AvoidanceStudy, MissLine, MissSweep, ThresholdRule,
+    FITTED_DETERMINANT_THRESHOLD, SEED004_MISS_SWEEP,
+};
 pub use beam_table::{BeamTableStudy, Table1Row, TABLE1_TOLERANCE};
 pub use distribution::{
     DistributionOutcome, DistributionStudy, FormulationKind, ResolvedDistribution, SecondaryKind,

@@ -90,6 +90,13 @@ pub(super) fn figures(study: &Study) -> Vec<(String, Figure)> {
     }
     determinant = determinant.with_series("threshold", vec![threshold; c.plain.time.len()]);
     figures.push(("determinant".into(), determinant));
+    for series in study.outcome.sweep.series() {
+        let mut figure = Figure::new(series.title, series.x_label, series.y_label, series.x);
+        for (label, values) in series.columns {
+            figure = figure.with_series(label, values);
+        }
+        figures.push((series.name, figure));
+    }
     figures
 }
 

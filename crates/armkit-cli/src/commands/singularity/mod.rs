@@ -15,12 +15,11 @@ use std::path::{Path, PathBuf};
 
 use armkit::math::{Pose, Vector3};
 use armkit::singularity::{
-    AvoidanceOptions, BaseKind, DetectionOptions, Manipulator, MethodRun, SEED004_DIRECTION,
-    SEED004_THROUGH,
+    AvoidanceOptions, BaseKind, Manipulator, MethodRun, SEED004_DIRECTION, SEED004_THROUGH,
 };
 use armkit::space::FreeFloatingModel;
-use armkit::study::{AvoidanceOutcome, AvoidanceStudy};
-use armkit::tracking::{TrackingOptions, TrackingStatus};
+use armkit::study::{AvoidanceOutcome, AvoidanceStudy, ThresholdRule};
+use armkit::tracking::TrackingStatus;
 use armkit::Model;
 use clap::{Args, ValueEnum};
 
@@ -39,7 +38,7 @@ use figures::{animation, figures};
 use outputs::{summary_json, write_outputs};
 use page::build_report;
 pub use page::report;
-use tables::{k_table, methods_table, regions_table, table_runs};
+use tables::{k_table, methods_table, regions_table, sweep_table, table_runs};
 
 /// Track a straight-line pose path through a wrist singularity (seed 004):
 /// plain, avoidance, damped least squares and singularity-robust inverse.
@@ -76,6 +75,15 @@ pub struct SingularityArgs {
     /// Jacobian loses there (m and rad); 0 passes through it.
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub miss: f64,
+    /// Misses of the sweep's parallel lines (m and rad, like --miss), each
+    /// tracked by plain, the avoidance (first k), DLS and SRI.
+    #[arg(
+        long,
+        value_name = "M1,M2,...",
+        allow_hyphen_values = true,
+        default_value = "-0.03,-0.01,-0.003,-0.001,0,0.001,0.003,0.01,0.03"
+    )]
+    pub miss_sweep: String,
     /// Duration of the motion, s (seed 004: 20 s).
     #[arg(long, default_value_t = 20.0, allow_hyphen_values = true)]
     pub duration: f64,
@@ -89,7 +97,10 @@ pub struct SingularityArgs {
     #[arg(long, value_name = "K1,K2,...", default_value = "1,5,10")]
     pub k: String,
     /// |det J| below which the motion is singular (m^3 for a 6R arm).
-    /// Default: the library's (armkit::singularity::DetectionOptions).
+    /// Default: seed 004's rule, the largest |det J| where plain tracking of
+    /// the line through --through (no miss) steps a joint by more than the
+    /// joint-step threshold (armkit::singularity::calibrate_determinant_threshold);
+    /// the fitted 0.004 is then run beside it as a labelled comparison.
     #[arg(long, value_name = "X", allow_hyphen_values = true)]
     pub determinant_threshold: Option<f64>,
     /// A velocity-level step moving some joint by more than this in one
@@ -175,7 +186,9 @@ pub fn run(args: &SingularityArgs) -> CliResult<Outcome> {
     };
     if args.json {
         let mut value = summary_json(&study, args);
-        value["checks"] = report.summary_json()["checks"].clone();
+        let summary = report.summary_json();
+        value["checks"] = summary["checks"].clone();
+        value["findings"] = summary["findings"].clone();
         value["files"] = serde_json::json!(files);
         print_json(&value)?;
     } else {
@@ -203,26 +216,22 @@ pub fn run(args: &SingularityArgs) -> CliResult<Outcome> {
 pub fn study(args: &SingularityArgs) -> CliResult<Study> {
     let ks = parse_ks(&args.k)?;
     let defaults = AvoidanceOptions::default();
-    let detection = DetectionOptions {
-        determinant_threshold: positive(
-            "--determinant-threshold",
-            args.determinant_threshold
-                .unwrap_or(defaults.detection.determinant_threshold),
-        )?,
-        joint_step_threshold: positive(
-            "--joint-step-threshold",
-            args.joint_step_threshold
-                .unwrap_or(defaults.detection.joint_step_threshold),
-        )?,
+    let threshold = match args.determinant_threshold {
+        Some(value) => ThresholdRule::Given(positive("--determinant-threshold", value)?),
+        None => ThresholdRule::Calibrated,
     };
-    let options = AvoidanceOptions {
-        tracking: TrackingOptions {
-            dt: positive("--dt", args.dt.unwrap_or(defaults.tracking.dt))?,
-            ..defaults.tracking
-        },
-        detection,
-        ..defaults
-    };
+    let joint_step_threshold = positive(
+        "--joint-step-threshold",
+        args.joint_step_threshold
+            .unwrap_or(defaults.detection.joint_step_threshold),
+    )?;
+    let dt = positive("--dt", args.dt.unwrap_or(defaults.tracking.dt))?;
+    let miss_sweep = parse_numbers(&args.miss_sweep, "--miss-sweep")?;
+    if let Some(bad) = miss_sweep.iter().find(|m| !m.is_finite()) {
+        return Err(CliError(format!(
+            "--miss-sweep: every miss must be a finite number (m and rad), got {bad}"
+        )));
+    }
     let duration = positive("--duration", args.duration)?;
     if !(args.accel_time > 0.0 && 2.0 * args.accel_time <= duration) {
         return Err(CliError(format!(
@@ -231,13 +240,12 @@ pub fn study(args: &SingularityArgs) -> CliResult<Study> {
             args.accel_time
         )));
     }
-    if options.tracking.dt > duration {
+    if dt > duration {
         return Err(CliError(format!(
-            "--dt: must be at most the duration ({duration} s), got {}",
-            options.tracking.dt
+            "--dt: must be at most the duration ({duration} s), got {dt}"
         )));
     }
-    let steps = (duration / options.tracking.dt).ceil();
+    let steps = (duration / dt).ceil();
     if steps > MAX_STEPS {
         return Err(CliError(format!(
             "--duration / --dt = {steps:.0} control periods: at most {MAX_STEPS:.0} \
@@ -274,15 +282,18 @@ pub fn study(args: &SingularityArgs) -> CliResult<Study> {
         through: through.clone(),
         direction: direction.clone(),
         miss: args.miss,
+        miss_sweep,
         duration,
         acceleration_time: args.accel_time,
         ks,
-        detection: options.detection,
-        dt: options.tracking.dt,
+        threshold,
+        joint_step_threshold,
+        dt,
     };
     let outcome = library
         .compare(plant.manipulator(Pose::identity()))
         .map_err(|e| CliError(format!("the line (--through, --direction, --miss): {e}")))?;
+    let options = outcome.options;
     let comparison = &outcome.comparison;
     let (closest, closest_time) = comparison
         .plain
@@ -299,7 +310,8 @@ pub fn study(args: &SingularityArgs) -> CliResult<Study> {
     let heading = format!(
         "{} on a {}: a straight line through q = ({}) at mid-path, {} s with {} s acceleration and \
          deceleration (trapezoidal speed), dt {} s; smallest |det J| along the plain run {} at \
-         t = {:.2} s; singular where |det J| < {} or a joint would step more than {} per period",
+         t = {:.2} s; singular where |det J| < {} ({}) or a joint would step more than {} per \
+         period",
         arm.name(),
         args.base.text(),
         join(&through, 3),
@@ -309,6 +321,7 @@ pub fn study(args: &SingularityArgs) -> CliResult<Study> {
         short(closest),
         closest_time,
         short(options.detection.determinant_threshold),
+        outcome.threshold,
         short(options.detection.joint_step_threshold),
     );
     Ok(Study {

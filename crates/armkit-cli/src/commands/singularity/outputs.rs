@@ -75,6 +75,17 @@ pub(super) fn summary_json(study: &Study, args: &SingularityArgs) -> serde_json:
         "determinant_threshold": study.outcome.options.detection.determinant_threshold,
         "joint_step_threshold": study.outcome.options.detection.joint_step_threshold,
         "k": study.outcome.ks,
+        "threshold_rule": study.outcome.threshold.as_str(),
+        "miss_sweep": study.outcome.sweep.lines.iter().map(|l| serde_json::json!({
+            "miss": l.miss,
+            "least_squares_knots": l.bounded_knots,
+            "methods": l.methods().iter().map(|(name, s)| serde_json::json!({
+                "method": name,
+                "peak_joint_rate": s.peak_joint_rate,
+                "max_position_error": s.max_position_error,
+                "max_orientation_error": s.max_orientation_error,
+            })).collect::<Vec<_>>(),
+        })).collect::<Vec<_>>(),
         "methods": table_runs(study).iter().map(|r| serde_json::json!({
             "method": r.method.label(),
             "status": r.status.to_string(),
@@ -95,7 +106,7 @@ pub(super) fn summary_json(study: &Study, args: &SingularityArgs) -> serde_json:
                 "knots": g.knot_times.len(),
                 "ik_solves": g.ik_solves,
                 "ik_failures": g.ik_failures,
-                "dropped_knots": g.dropped_knots,
+                "bounded_knots": g.bounded_knots,
             })).collect::<Vec<_>>(),
         })).collect::<Vec<_>>(),
     })

@@ -26,8 +26,13 @@ pub(super) fn build_report(study: &Study) -> CliResult<Report> {
             study.heading
         ),
         checks: study.outcome.checks(),
-        findings: Vec::new(),
-        tables: vec![methods_table(study), regions_table(study), k_table(study)],
+        findings: study.outcome.findings(),
+        tables: vec![
+            methods_table(study),
+            regions_table(study),
+            k_table(study),
+            sweep_table(study),
+        ],
         figures: figures(study),
         notes: [
             study.outcome.notes(),

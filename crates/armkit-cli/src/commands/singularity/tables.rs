@@ -56,7 +56,7 @@ pub(super) fn regions_table(study: &Study) -> Table {
             "knots",
             "IK solves",
             "IK failures",
-            "dropped knots",
+            "least-squares knots",
             "max knot error (m, rad)",
         ],
     );
@@ -70,7 +70,7 @@ pub(super) fn regions_table(study: &Study) -> Table {
                 region.knot_times.len().to_string(),
                 region.ik_solves.to_string(),
                 region.ik_failures.to_string(),
-                region.dropped_knots.to_string(),
+                region.bounded_knots.to_string(),
                 format!(
                     "{:.1e}, {:.1e}",
                     region.max_knot_error.0, region.max_knot_error.1
@@ -109,6 +109,39 @@ pub(super) fn k_table(study: &Study) -> Table {
             format!("{:.3e}", s.mean_region_position_error),
             format!("{:.3e}", s.mean_region_orientation_error),
         ]);
+    }
+    table
+}
+
+/// Table 4: the lines missing the singular pose, every method's peak joint
+/// rate and largest errors.
+pub(super) fn sweep_table(study: &Study) -> Table {
+    let sweep = &study.outcome.sweep;
+    let mut table = Table::new(
+        format!(
+            "Lines missing the singular pose: peak joint rate (rad/s) and largest position (m) / \
+             orientation (rad) error; {} for the avoidance",
+            sweep.avoidance_label()
+        ),
+        &[
+            "miss (mm)",
+            "plain",
+            "avoidance",
+            "dls",
+            "sri",
+            "least-squares knots",
+        ],
+    );
+    for line in &sweep.lines {
+        let mut row = vec![format!("{:+}", line.miss * 1e3)];
+        for (_, s) in line.methods() {
+            row.push(format!(
+                "{:.3}, {:.2e} / {:.2e}",
+                s.peak_joint_rate, s.max_position_error, s.max_orientation_error
+            ));
+        }
+        row.push(line.bounded_knots.to_string());
+        table.push(row);
     }
     table
 }

@@ -1,0 +1,323 @@
+//! Seed 004's claims, as the paper states them, against the study's runs.
+
+use super::{AvoidanceOutcome, FITTED_DETERMINANT_THRESHOLD};
+use crate::singularity::MethodRun;
+use crate::study::{Finding, FindingStatus};
+
+/// The paper's singular region (seed 004, sec 3), s.
+const PAPER_REGION: (f64, f64) = (8.8, 11.2);
+/// How far from the paper's times a time still counts as "about" it, s.
+const ABOUT: f64 = 0.3;
+/// Fig 6's band of the avoiding joints' rates, deg/s.
+const FIG6_BAND: (f64, f64) = (-5.0, 3.0);
+/// "Clearly smaller" (seed 004, Figs 7-8): the smallest k's in-region error
+/// at most this fraction of the largest k's.
+const CLEARLY: f64 = 0.5;
+
+fn status(holds: bool) -> FindingStatus {
+    if holds {
+        FindingStatus::Reproduced
+    } else {
+        FindingStatus::NotReproduced
+    }
+}
+
+/// `start to end s` of a run's regions, or `None`.
+fn region_span(run: &MethodRun) -> Option<(f64, f64)> {
+    Some((
+        run.regions.first()?.start_time,
+        run.regions.last()?.end_time,
+    ))
+}
+
+/// Largest `|q_dot_j|` over the joints at sample `i`.
+fn peak_at(run: &MethodRun, i: usize) -> f64 {
+    run.joint_rates
+        .iter()
+        .filter_map(|rates| rates.get(i))
+        .fold(0.0, |m: f64, r| m.max(r.abs()))
+}
+
+/// True when `values` strictly increase.
+fn rising(values: &[f64]) -> bool {
+    values.windows(2).all(|w| w[1] > w[0])
+}
+
+impl AvoidanceOutcome {
+    /// Seed 004's claims the study touches, each with armkit's figures and
+    /// its verdict: the singular region and its threshold (sec 3), Fig 5's
+    /// jump time, Fig 6's bounded rates, Figs 7-8's two orderings against
+    /// `k`, step 4's computation against `k`, and conclusions 1 and 3.
+    pub fn findings(&self) -> Vec<Finding> {
+        let mut findings = vec![
+            self.region_finding(),
+            self.fig5_finding(),
+            self.fig6_finding(),
+        ];
+        if self.comparison.k_sweep.len() > 1 {
+            findings.push(self.entry_finding());
+            findings.push(self.in_region_finding());
+            findings.push(self.computation_finding());
+        }
+        findings.extend(self.conclusion_findings());
+        findings
+    }
+
+    fn region_finding(&self) -> Finding {
+        let avoidance = &self.comparison.avoidance;
+        let threshold = self.options.detection.determinant_threshold;
+        let span = region_span(avoidance);
+        let measured = match span {
+            Some((start, end)) => format!("{start:.2} s to {end:.2} s"),
+            None => "no region".into(),
+        };
+        let fitted = match self.fitted.as_ref().and_then(region_span) {
+            Some((start, end)) => format!(
+                "; comparison, not the paper's rule: the fitted {FITTED_DETERMINANT_THRESHOLD} \
+                 m^3 gives {start:.2} s to {end:.2} s"
+            ),
+            None => String::new(),
+        };
+        let holds = span.is_some_and(|(start, end)| {
+            (start - PAPER_REGION.0).abs() <= ABOUT && (end - PAPER_REGION.1).abs() <= ABOUT
+        });
+        Finding::new(
+            "seed 004, sec 3: the |det J| threshold set where the joint angles start to jump \
+             gives a singular region of 8.8 s to 11.2 s",
+            format!(
+                "threshold {threshold:.3e} m^3 ({}), region {measured} ({}); paper 8.8 s to \
+                 11.2 s{fitted}",
+                self.threshold,
+                avoidance.method.label()
+            ),
+            status(holds),
+        )
+    }
+
+    /// The first sample where plain's largest joint rate exceeds twice the
+    /// avoidance's.
+    pub fn plain_doubles_avoidance_at(&self) -> Option<f64> {
+        let (plain, avoidance) = (&self.comparison.plain, &self.comparison.avoidance);
+        (0..plain.time.len().min(avoidance.time.len()))
+            .find(|&i| peak_at(plain, i) > 2.0 * peak_at(avoidance, i))
+            .map(|i| plain.time[i])
+    }
+
+    fn fig5_finding(&self) -> Finding {
+        let plain = &self.comparison.plain;
+        let peak_time = (0..plain.time.len())
+            .max_by(|&a, &b| peak_at(plain, a).total_cmp(&peak_at(plain, b)))
+            .map(|i| plain.time[i])
+            .unwrap_or(0.0);
+        let first = self.plain_doubles_avoidance_at();
+        let measured = match first {
+            Some(t) => format!(
+                "plain's largest joint rate first exceeds twice the avoidance's at {t:.2} s \
+                 (paper: about 8.8 s); plain peaks at {:.3} rad/s at {peak_time:.2} s",
+                plain.summary.peak_joint_rate
+            ),
+            None => "plain's joint rates never exceed twice the avoidance's".into(),
+        };
+        Finding::new(
+            "seed 004, Fig 5: plain tracking's joint rates start to jump at about 8.8 s",
+            measured,
+            status(first.is_some_and(|t| (t - PAPER_REGION.0).abs() <= ABOUT)),
+        )
+    }
+
+    fn fig6_finding(&self) -> Finding {
+        let c = &self.comparison;
+        let avoidance = &c.avoidance;
+        let degrees = 180.0 / std::f64::consts::PI;
+        let wrist = avoidance.joint_rates.get(3..6).unwrap_or(&[]);
+        let (low, high) = wrist
+            .iter()
+            .flatten()
+            .fold((0.0, 0.0), |(lo, hi): (f64, f64), r| {
+                (lo.min(r * degrees), hi.max(r * degrees))
+            });
+        let ratio = c.plain.summary.peak_joint_rate / avoidance.summary.peak_joint_rate;
+        let status = if low >= FIG6_BAND.0 && high <= FIG6_BAND.1 {
+            FindingStatus::Reproduced
+        } else if low.abs().max(high.abs()) <= FIG6_BAND.0.abs() {
+            FindingStatus::ReproducedWithDeviation
+        } else {
+            FindingStatus::NotReproduced
+        };
+        Finding::new(
+            "seed 004, Fig 6: with the avoidance, joints 4 to 6 stay within -5 to 3 deg/s through \
+             the region where plain tracking jumps",
+            format!(
+                "{}: joints 4 to 6 within {low:.2} to {high:.2} deg/s; peak joint rate plain \
+                 {:.3} rad/s, {} {:.4} rad/s (ratio {ratio:.0})",
+                avoidance.method.label(),
+                c.plain.summary.peak_joint_rate,
+                avoidance.method.label(),
+                avoidance.summary.peak_joint_rate
+            ),
+            status,
+        )
+    }
+
+    /// Position (m) and orientation (rad) error at each k's region entry.
+    fn entry_errors(&self) -> Vec<(f64, f64)> {
+        self.comparison
+            .k_sweep
+            .iter()
+            .map(|run| {
+                let i = run.regions.first().map_or(0, |r| {
+                    (r.start_time / self.options.tracking.dt).round() as usize
+                });
+                (
+                    run.position_error.get(i).copied().unwrap_or(f64::NAN),
+                    run.orientation_error.get(i).copied().unwrap_or(f64::NAN),
+                )
+            })
+            .collect()
+    }
+
+    /// `k=1: a m / b rad, ...`.
+    fn per_k(&self, values: &[(f64, f64)]) -> String {
+        self.ks
+            .iter()
+            .zip(values)
+            .map(|(k, (p, o))| format!("k={k}: {p:.2e} m / {o:.2e} rad"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+
+    fn entry_finding(&self) -> Finding {
+        let errors = self.entry_errors();
+        let position: Vec<f64> = errors.iter().map(|e| -e.0).collect();
+        let orientation: Vec<f64> = errors.iter().map(|e| -e.1).collect();
+        let holds = self.sorted_ks() && rising(&position) && rising(&orientation);
+        Finding::new(
+            "seed 004, Figs 7-8: the smaller k, the larger the error on entering the region",
+            format!(
+                "error at the entry sample {} (tracking before the entry is the same for every k \
+                 here)",
+                self.per_k(&errors)
+            ),
+            status(holds),
+        )
+    }
+
+    fn in_region_finding(&self) -> Finding {
+        let errors: Vec<(f64, f64)> = self
+            .comparison
+            .k_sweep
+            .iter()
+            .map(|r| {
+                (
+                    r.summary.mean_region_position_error,
+                    r.summary.mean_region_orientation_error,
+                )
+            })
+            .collect();
+        let position: Vec<f64> = errors.iter().map(|e| e.0).collect();
+        let orientation: Vec<f64> = errors.iter().map(|e| e.1).collect();
+        let clearly = |v: &[f64]| match (v.first(), v.last()) {
+            (Some(a), Some(b)) => *a <= CLEARLY * b,
+            _ => false,
+        };
+        let holds = self.sorted_ks()
+            && rising(&position)
+            && rising(&orientation)
+            && clearly(&position)
+            && clearly(&orientation);
+        Finding::new(
+            "seed 004, Figs 7-8: the smaller k, the clearly smaller the error inside the region",
+            format!(
+                "mean error over the region's samples {} (IK tolerance {:.0e}; clearly: the \
+                 smallest k's at most {CLEARLY} of the largest k's)",
+                self.per_k(&errors),
+                self.options.ik_tolerance
+            ),
+            status(holds),
+        )
+    }
+
+    fn computation_finding(&self) -> Finding {
+        let solves: Vec<f64> = self
+            .comparison
+            .k_sweep
+            .iter()
+            .map(|r| -(r.summary.ik_solves as f64))
+            .collect();
+        Finding::new(
+            "seed 004, sec 2.3 step 4: the smaller k, the more computation",
+            format!(
+                "IK solves {}",
+                self.sweep_detail(|r| r.summary.ik_solves.to_string())
+            ),
+            status(self.sorted_ks() && rising(&solves)),
+        )
+    }
+
+    fn conclusion_findings(&self) -> Vec<Finding> {
+        let mut findings = Vec::new();
+        let lines = &self.sweep.lines;
+        if !lines.is_empty() {
+            let label = self.sweep.avoidance_label();
+            let worse: Vec<String> = lines
+                .iter()
+                .filter(|l| {
+                    !(l.avoidance_errs_no_more_than(&l.damped_least_squares)
+                        && l.avoidance_errs_no_more_than(&l.singularity_robust))
+                })
+                .map(|l| {
+                    format!(
+                        "{:+} mm ({label} {:.2e} m / {:.2e} rad at {:.3} rad/s, dls {:.2e} m / \
+                         {:.2e} rad at {:.3} rad/s, sri {:.2e} m / {:.2e} rad at {:.3} rad/s)",
+                        l.miss * 1e3,
+                        l.avoidance.max_position_error,
+                        l.avoidance.max_orientation_error,
+                        l.avoidance.peak_joint_rate,
+                        l.damped_least_squares.max_position_error,
+                        l.damped_least_squares.max_orientation_error,
+                        l.damped_least_squares.peak_joint_rate,
+                        l.singularity_robust.max_position_error,
+                        l.singularity_robust.max_orientation_error,
+                        l.singularity_robust.peak_joint_rate,
+                    )
+                })
+                .collect();
+            let measured = if worse.is_empty() {
+                format!(
+                    "on all {} lines of the miss sweep {label}'s largest position and orientation \
+                     errors are at most DLS's and SRI's",
+                    lines.len()
+                )
+            } else {
+                format!(
+                    "on {} of {} lines of the miss sweep {label} (its knots within eps_dq per \
+                     period) errs more than DLS or SRI: {}",
+                    worse.len(),
+                    lines.len(),
+                    worse.join("; ")
+                )
+            };
+            findings.push(Finding::new(
+                "seed 004, conclusion 1: the avoidance tracks with a smaller error than the \
+                 damped-inverse methods",
+                measured,
+                status(worse.is_empty()),
+            ));
+        }
+        let through = lines.iter().find(|l| l.miss == 0.0).map(|l| l.avoidance);
+        if let Some(summary) = through {
+            let holds = summary.max_position_error <= 1e-6 && summary.max_orientation_error <= 1e-6;
+            findings.push(Finding::new(
+                "seed 004, conclusion 3: a planned pose inside the singular region (here the \
+                 singular pose itself) is still tracked",
+                format!(
+                    "on the line through the singular pose the avoidance's largest error is \
+                     {:.2e} m / {:.2e} rad (at most 1e-6)",
+                    summary.max_position_error, summary.max_orientation_error
+                ),
+                status(holds),
+            ));
+        }
+        findings
+    }
+}
