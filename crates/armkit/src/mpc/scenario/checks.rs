@@ -87,10 +87,16 @@ impl PrismaticSettling {
 
     /// The figures, e.g. `after the hand first comes within 1 mm (at 3.00 s)
     /// d1, d2, d3 change direction [0, 762, 1574] times; largest error over
-    /// the last 10.0 s 9.6e-4 m`.
+    /// the last 10.0 s 9.6e-4 m` (the tail's error only for a run that did
+    /// not converge).
     pub fn describe(&self, sample_time: f64) -> String {
         match self.reached_at {
             None => "the hand never comes within 1 mm of the target".into(),
+            Some(k) if self.converged => format!(
+                "after the hand first comes within 1 mm (at {:.2} s) d1, d2, d3 change direction {:?} times",
+                k as f64 * sample_time,
+                self.direction_changes,
+            ),
             Some(k) => format!(
                 "after the hand first comes within 1 mm (at {:.2} s) d1, d2, d3 change direction {:?} times; \
                  largest error over the last {:.1} s {:.1e} m",
