@@ -929,6 +929,26 @@ const CASES: &[Case] = &[
         3,
     ),
     case("mpc", "no target", &["mpc", "--robot", "ur5"], 2),
+    case(
+        "mpc",
+        "negative prismatic resolution",
+        &["mpc", "--example", "3", "--prismatic-resolution", "-0.001"],
+        1,
+    ),
+    case(
+        "mpc",
+        "NaN prismatic deadband",
+        &[
+            "mpc",
+            "--robot",
+            "gantry9",
+            "--target",
+            "4,2,4.5,0,0,0",
+            "--prismatic-deadband",
+            "nan",
+        ],
+        1,
+    ),
     // redundancy.
     case(
         "redundancy",

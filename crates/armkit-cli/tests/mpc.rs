@@ -120,6 +120,60 @@ fn seed000_examples_print_their_checks() {
     assert!(stdout.contains("orientation not tracked"), "{stdout}");
 }
 
+/// With 1 mm prismatic resolution Example 3 keeps oscillating (its checks
+/// say so and pass) and its finding is reproduced with a deviation; on the
+/// exact plant the same finding is not reproduced. Bad plant flags name
+/// the flag.
+#[test]
+fn prismatic_resolution_makes_example_3_oscillate() {
+    let finding = |v: &serde_json::Value| -> String {
+        v["examples"][0]["findings"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|f| f["claim"].as_str().unwrap().contains("keeps oscillating"))
+            .map(|f| f["status"].as_str().unwrap().to_string())
+            .unwrap()
+    };
+    let output = armkit(&[
+        "mpc",
+        "--example",
+        "3",
+        "--prismatic-resolution",
+        "0.001",
+        "--json",
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let v = json(&output);
+    let e = &v["examples"][0];
+    assert_eq!(
+        e["plant"],
+        "prismatic joints: position resolution 1 mm; rotary joints: exact"
+    );
+    assert_eq!(e["converged"], false);
+    let checks = e["checks"].as_array().unwrap();
+    assert!(checks.iter().all(|c| c["passed"] == true), "{checks:?}");
+    assert!(checks
+        .iter()
+        .any(|c| c["name"].as_str().unwrap().starts_with("keeps oscillating")));
+    assert_eq!(finding(&v), "reproduced with deviation");
+    let exact = json(&armkit(&["mpc", "--example", "3", "--json"]));
+    assert_eq!(exact["examples"][0]["plant"], "exact plant (q += T u)");
+    assert_eq!(finding(&exact), "not reproduced");
+    for (flag, value) in [
+        ("--prismatic-resolution", "-1"),
+        ("--prismatic-deadband", "inf"),
+    ] {
+        let output = armkit(&["mpc", "--example", "2", flag, value]);
+        assert_eq!(output.status.code(), Some(1));
+        assert!(
+            stderr(&output).contains(&format!("{flag}: must be finite and >= 0")),
+            "{}",
+            stderr(&output)
+        );
+    }
+}
+
 #[test]
 fn bad_arguments_are_named() {
     let output = armkit(&["mpc", "--robot", "ur5", "--target", "1,2,3"]);

@@ -5,7 +5,13 @@
 //!   [--horizon N] [--control-horizon M] [--dt T] [--weights position|pose|w1,..,w6]
 //!   [--priorities R1,..,Rn] [--out DIR] [--json]`
 //! * `armkit mpc --example 1|2|3|ex2-paper-weights|ex3-undamped|all [--out DIR] [--json]`:
-//!   seed 000's examples on the flexible gantry, with their checks.
+//!   seed 000's examples on the flexible gantry, with their checks and the
+//!   paper's claims as findings.
+//!
+//! Either runs on an exact plant (each joint follows its commanded velocity
+//! exactly) unless `--prismatic-resolution M` / `--prismatic-deadband M/S`
+//! give the prismatic actuators a finite precision (seed 000, Example 3:
+//! with 0.001 Example 3 keeps oscillating while Example 2 settles).
 //!
 //! `--out DIR` writes `mpc.csv` (time, joint positions and velocities,
 //! end-effector pose, errors, step status) and the plots of seed 000's
@@ -24,7 +30,10 @@ use std::path::PathBuf;
 
 use armkit::mpc::qp::QpSolverKind;
 use armkit::mpc::scenario::{simulate_with, Seed000Example, SimulationOptions, Trajectory};
-use armkit::mpc::{diagnose_run, MpcOptions, MpcPlanner, ReachAid, TaskWeights, VelocityWeights};
+use armkit::mpc::{
+    diagnose_run, ActuatorPrecision, MpcOptions, MpcPlanner, PlantModel, ReachAid, TaskWeights,
+    VelocityWeights,
+};
 use clap::{Args, ValueEnum};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
@@ -86,6 +95,14 @@ pub struct MpcArgs {
     /// Most planner steps.
     #[arg(long, default_value_t = 2000)]
     pub max_steps: usize,
+    /// Position resolution of the prismatic actuators, m: each rests only on
+    /// multiples of it from its start (0 = exact).
+    #[arg(long, default_value_t = 0.0, value_name = "M")]
+    pub prismatic_resolution: f64,
+    /// Velocity deadband of the prismatic actuators, m/s: slower commands do
+    /// not move them (0 = none).
+    #[arg(long, default_value_t = 0.0, value_name = "M/S")]
+    pub prismatic_deadband: f64,
     /// Run seed 000's example(s) instead: 1, 2, 3, ex2-paper-weights, ex3-undamped or all.
     #[arg(long, value_name = "ID", conflicts_with_all = ["robot", "robot_file", "urdf", "target", "start"])]
     pub example: Option<String>,
@@ -141,6 +158,42 @@ impl MpcArgs {
             _ => {}
         }
         options.control_horizon = self.control_horizon;
+    }
+
+    /// The plant of `--prismatic-resolution` and `--prismatic-deadband`
+    /// (exact when both are 0). Errors name the flag.
+    fn plant(&self) -> CliResult<PlantModel> {
+        for (flag, value) in [
+            ("--prismatic-resolution", self.prismatic_resolution),
+            ("--prismatic-deadband", self.prismatic_deadband),
+        ] {
+            if !(value.is_finite() && value >= 0.0) {
+                return Err(CliError(format!(
+                    "{flag}: must be finite and >= 0, got {value}"
+                )));
+            }
+        }
+        let prismatic = ActuatorPrecision {
+            position_resolution: self.prismatic_resolution,
+            deadband: self.prismatic_deadband,
+            ..ActuatorPrecision::EXACT
+        };
+        Ok(if prismatic.is_exact() {
+            PlantModel::Exact
+        } else {
+            PlantModel::LimitedPrecision {
+                prismatic,
+                rotary: ActuatorPrecision::EXACT,
+            }
+        })
+    }
+
+    /// The example's simulation settings on the flags' plant.
+    fn example_simulation(&self, example: Seed000Example) -> CliResult<SimulationOptions> {
+        Ok(SimulationOptions {
+            plant: self.plant()?,
+            ..example.simulation()
+        })
     }
 }
 
@@ -210,6 +263,7 @@ pub(crate) fn target_setup(args: &MpcArgs) -> CliResult<TargetSetup> {
     args.apply(&mut options);
     let simulation = SimulationOptions {
         max_steps: args.max_steps,
+        plant: args.plant()?,
         ..SimulationOptions::default()
     };
     let planner = MpcPlanner::new(&model, options)?;
@@ -288,10 +342,11 @@ fn run_examples(args: &MpcArgs, id: &str) -> CliResult<Outcome> {
             &mut planner,
             &example.start(),
             &example.target(),
-            &example.simulation(),
+            &args.example_simulation(example)?,
             example.id(),
         )?;
         let checks = example.checks(&run);
+        let findings = example.findings(&run)?;
         all_passed &= checks.iter().all(|c| c.passed);
         let files = match &args.out {
             Some(dir) => write_outputs(&dir.join(example.id()), &run, example.title())?,
@@ -306,6 +361,11 @@ fn run_examples(args: &MpcArgs, id: &str) -> CliResult<Outcome> {
                 .map(
                     |c| serde_json::json!({"name": c.name, "passed": c.passed, "detail": c.detail}),
                 )
+                .collect::<Vec<_>>()
+                .into();
+            value["findings"] = findings
+                .iter()
+                .map(|f| serde_json::json!({"claim": f.claim, "measured": f.measured, "status": f.status.as_str()}))
                 .collect::<Vec<_>>()
                 .into();
             value["files"] = files_json(&files);
@@ -325,6 +385,9 @@ fn run_examples(args: &MpcArgs, id: &str) -> CliResult<Outcome> {
                     check.name,
                     check.detail
                 );
+            }
+            for finding in &findings {
+                println!("  paper: {finding}");
             }
             print_files(&files);
             println!();

@@ -29,12 +29,20 @@ const SHIPPED: &[(&str, &str)] = &[
         include_str!("../../../../scenarios/seed000-mpc-ex2.toml"),
     ),
     (
+        "seed000-mpc-ex2-precision.toml",
+        include_str!("../../../../scenarios/seed000-mpc-ex2-precision.toml"),
+    ),
+    (
         "seed000-mpc-ex3-undamped.toml",
         include_str!("../../../../scenarios/seed000-mpc-ex3-undamped.toml"),
     ),
     (
         "seed000-mpc-ex3.toml",
         include_str!("../../../../scenarios/seed000-mpc-ex3.toml"),
+    ),
+    (
+        "seed000-mpc-ex3-precision.toml",
+        include_str!("../../../../scenarios/seed000-mpc-ex3-precision.toml"),
     ),
     (
         "seed001-energy.toml",

@@ -143,6 +143,15 @@ impl PlantModel {
         }
     }
 
+    /// The prismatic joints' position resolution, m (0: continuous, and
+    /// for [`PlantModel::Exact`]).
+    pub fn prismatic_position_resolution(&self) -> f64 {
+        match self {
+            PlantModel::Exact => 0.0,
+            PlantModel::LimitedPrecision { prismatic, .. } => prismatic.position_resolution,
+        }
+    }
+
     /// The precision of a joint of kind `kind` (`None`: exact).
     fn precision(&self, kind: JointKind) -> Option<ActuatorPrecision> {
         match self {
@@ -156,6 +165,41 @@ impl PlantModel {
                 (!p.is_exact()).then_some(*p)
             }
         }
+    }
+}
+
+/// `exact plant (q += T u)`, or each kind's non-zero effects, e.g.
+/// `prismatic joints: position resolution 1 mm; rotary joints: exact`.
+impl std::fmt::Display for PlantModel {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            PlantModel::Exact => f.write_str("exact plant (q += T u)"),
+            PlantModel::LimitedPrecision { prismatic, rotary } => write!(
+                f,
+                "prismatic joints: {}; rotary joints: {}",
+                describe(prismatic, 1e3, "mm"),
+                describe(rotary, 1.0, "rad")
+            ),
+        }
+    }
+}
+
+/// The non-zero effects of `p`, in `unit` (values scaled by `scale` from SI).
+fn describe(p: &ActuatorPrecision, scale: f64, unit: &str) -> String {
+    let parts: Vec<String> = [
+        ("position resolution", p.position_resolution, ""),
+        ("deadband", p.deadband, "/s"),
+        ("velocity resolution", p.velocity_resolution, "/s"),
+    ]
+    .iter()
+    .filter(|(_, value, _)| *value > 0.0)
+    // Rounded to 1e-9 of the unit so that 1e-4 m prints as 0.1 mm.
+    .map(|(name, value, per)| format!("{name} {} {unit}{per}", (value * scale * 1e9).round() / 1e9))
+    .collect();
+    if parts.is_empty() {
+        "exact".into()
+    } else {
+        parts.join(", ")
     }
 }
 

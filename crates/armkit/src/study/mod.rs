@@ -8,7 +8,7 @@
 //!
 //! | study | seed | what it reproduces |
 //! |---|---|---|
-//! | [`BeamTableStudy`] | 000, sec 3.1 | Table 1: beam deflection under two carriages |
+//! | [`BeamTableStudy`] | 000, sec 3.1 | Table 1: beam deflection under two carriages, to the printed digits; where the beam bends most |
 //! | [`MpcExampleStudy`] | 000, sec 4.4 | the MPC examples on the flexible gantry |
 //! | [`DistributionStudy`] | 001 (+ 000's priorities) | one motion distributed four ways, energy measure eq 9 |
 //! | [`AvoidanceStudy`] | 004, sec 2 | singularity avoidance vs plain, DLS, SRI (Table 1, Figs 5-8) |
@@ -40,7 +40,10 @@ pub use avoidance::{
     AvoidanceOutcome, AvoidanceStudy, MissLine, MissSweep, ThresholdRule,
     FITTED_DETERMINANT_THRESHOLD, SEED004_MISS_SWEEP,
 };
-pub use beam_table::{BeamTableStudy, Table1Row, TABLE1_TOLERANCE};
+pub use beam_table::{
+    BeamTableStudy, Table1Row, TABLE1_ROUNDING, TABLE1_SIMULATION, TABLE1_SPAN_GRID,
+    TABLE1_TOLERANCE,
+};
 pub use distribution::{
     DistributionOutcome, DistributionStudy, FormulationKind, ResolvedDistribution, SecondaryKind,
     TorqueEnergies, ZeroWeightLock, DISTRIBUTION_NOTE, VARIANT_NAME,
