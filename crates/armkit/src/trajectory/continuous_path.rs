@@ -409,6 +409,22 @@ pub enum PathStatus {
     ToleranceNotMet,
 }
 
+impl PathStatus {
+    /// `"tolerance_met"` or `"tolerance_not_met"` (the CLI's JSON).
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            PathStatus::ToleranceMet => "tolerance_met",
+            PathStatus::ToleranceNotMet => "tolerance_not_met",
+        }
+    }
+}
+
+impl std::fmt::Display for PathStatus {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
 /// What [`plan_continuous_path`] returns.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ContinuousPathReport {
