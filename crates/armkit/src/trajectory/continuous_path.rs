@@ -30,8 +30,8 @@
 //!
 //! ```
 //! use armkit::math::{Pose, Vector3};
-//! use armkit::trajectory::cartesian::{CartesianTrajectory, LinePath, TimeLaw};
-//! use armkit::trajectory::continuous_path::{plan_continuous_path, ContinuousPathOptions, PathStatus, PathTolerance};
+//! use armkit::trajectory::{CartesianTrajectory, LinePath, TimeLaw};
+//! use armkit::trajectory::{plan_continuous_path, ContinuousPathOptions, PathStatus, PathTolerance};
 //! use armkit::{forward_kinematics, Data, Error, Model};
 //! use armkit::model::{DhConvention, DhLink};
 //! // A planar 2R arm (0.5 m, 0.4 m) and a 0.3 m line; its IK in closed form,

@@ -229,9 +229,9 @@ pub struct LineStudy {
     pub(super) task: IkTask,
     pub(super) tolerance: PathTolerance,
     pub(super) method: &'static str,
-    pub(super) report: armkit::trajectory::continuous_path::ContinuousPathReport,
+    pub(super) report: armkit::trajectory::ContinuousPathReport,
     pub(super) planning: std::time::Duration,
-    pub(super) interior: armkit::trajectory::continuous_path::PathError,
+    pub(super) interior: armkit::trajectory::PathError,
 }
 
 pub(super) fn run_line(args: &LineArgs) -> CliResult<Outcome> {
