@@ -1,7 +1,7 @@
 //! Seed 000's MPC planner from Python: `armkit.MpcPlanner`.
 
 use armkit::mpc::qp::QpSolverKind;
-use armkit::mpc::scenario::{simulate, status_name, SimulationOptions};
+use armkit::mpc::scenario::{simulate, SimulationOptions};
 use armkit::mpc::{MpcOptions, MpcPlanner as LibraryPlanner, ReachAid, TaskWeights};
 use armkit::Error;
 use numpy::ndarray::Dim;
@@ -112,7 +112,7 @@ impl MpcPlanner {
         let q = vector_argument(q, "joint_positions", self.planner.model().dof())?;
         let report = self.planner.step(&q).or_raise()?;
         let out = PyDict::new(py);
-        out.set_item("status", status_name(report.status))?;
+        out.set_item("status", report.status.as_str())?;
         out.set_item("velocity", vector(py, &report.velocity))?;
         out.set_item("position_error", report.position_error)?;
         out.set_item("orientation_error", report.orientation_error)?;
@@ -180,7 +180,7 @@ impl MpcPlanner {
             "orientation_error",
             vector(py, &column(&|s| s.orientation_error)),
         )?;
-        let statuses: Vec<&str> = samples.iter().map(|s| status_name(s.status)).collect();
+        let statuses: Vec<&str> = samples.iter().map(|s| s.status.as_str()).collect();
         out.set_item("status", statuses)?;
         let summary = &run.summary;
         out.set_item("converged", summary.converged)?;

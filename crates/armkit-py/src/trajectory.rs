@@ -3,15 +3,14 @@
 //! line (`armkit.continuous_path`), sampled as arrays.
 
 use armkit::kinematics::{forward_kinematics, Data};
-use armkit::trajectory::cartesian::{CartesianTrajectory, LinePath, OrientationLaw, TimeLaw};
-use armkit::trajectory::continuous_path::{
-    measure_path_error, plan_continuous_path, ContinuousPathOptions, PathStatus, PathTolerance,
-    Segmentation,
+use armkit::trajectory::clamped_cubic_spline;
+use armkit::trajectory::TrajectoryLimits;
+use armkit::trajectory::{self, ProfileShape};
+use armkit::trajectory::{
+    measure_path_error, plan_continuous_path, ContinuousPathOptions, PathTolerance, Segmentation,
 };
-use armkit::trajectory::limits::TrajectoryLimits;
-use armkit::trajectory::path_ik::{path_ik_for, IkTask};
-use armkit::trajectory::profile::{self, ProfileShape};
-use armkit::trajectory::spline::clamped_cubic_spline;
+use armkit::trajectory::{path_ik_for, IkTask};
+use armkit::trajectory::{CartesianTrajectory, LinePath, OrientationLaw, TimeLaw};
 use armkit::trajectory::{JointState, Trajectory};
 use armkit::Error;
 use numpy::ndarray::Dim;
@@ -90,7 +89,7 @@ impl PyTrajectory {
     ) -> PyResult<Self> {
         let start = state(q_start, v_start, None, START)?;
         let end = state(q_end, v_end, None, END)?;
-        Self::wrap(profile::cubic(&start, &end, duration))
+        Self::wrap(trajectory::cubic(&start, &end, duration))
     }
 
     /// Quintic from `q_start` to `q_end` in `duration` s, meeting boundary
@@ -108,7 +107,7 @@ impl PyTrajectory {
     ) -> PyResult<Self> {
         let start = state(q_start, v_start, a_start, START)?;
         let end = state(q_end, v_end, a_end, END)?;
-        Self::wrap(profile::quintic(&start, &end, duration))
+        Self::wrap(trajectory::quintic(&start, &end, duration))
     }
 
     /// Trapezoidal velocity from rest to rest, synchronized over the joints:
@@ -123,7 +122,12 @@ impl PyTrajectory {
     ) -> PyResult<Self> {
         let q0 = vector_argument_any(q_start, "q_start")?;
         let qf = vector_argument_any(q_end, "q_end")?;
-        Self::wrap(profile::trapezoidal(&q0, &qf, duration, acceleration_time))
+        Self::wrap(trajectory::trapezoidal(
+            &q0,
+            &qf,
+            duration,
+            acceleration_time,
+        ))
     }
 
     /// The fastest rest-to-rest profile of `shape` (`"trapezoidal"`,
@@ -156,7 +160,7 @@ impl PyTrajectory {
             vector_argument_any(acceleration_limits, "acceleration_limits")?,
         )
         .or_raise()?;
-        Self::wrap(profile::minimum_time(shape, &q0, &qf, &limits))
+        Self::wrap(trajectory::minimum_time(shape, &q0, &qf, &limits))
     }
 
     /// The clamped C2 cubic spline through `positions` (K, dof) at `times`
@@ -428,10 +432,7 @@ pub fn continuous_path(
     };
     let (path, report, interior, method) = py.detach(run).or_raise()?;
     Ok(ContinuousPath {
-        status: match report.status {
-            PathStatus::ToleranceMet => "tolerance_met",
-            PathStatus::ToleranceNotMet => "tolerance_not_met",
-        },
+        status: report.status.as_str(),
         configurations: matrix_from_rows(py, &report.configurations, model.dof())?.unbind(),
         trajectory: Py::new(
             py,

@@ -1,4 +1,6 @@
-//! Forward kinematics and Jacobian timings on ur5, panda and gantry9.
+//! Forward kinematics and Jacobian timings on ur5, panda and gantry9 (no
+//! coupling: the coupling map's identity shape) and gantry9-flex (the beam's
+//! additive coupling). The mimic shape is timed in `benches/urdf.rs`.
 //!
 //! Run: `cargo bench -p armkit --bench kinematics`.
 //!
@@ -51,7 +53,7 @@ fn bench_robot(c: &mut Criterion, name: &str) {
 }
 
 fn kinematics(c: &mut Criterion) {
-    for name in ["ur5", "panda", "gantry9"] {
+    for name in ["ur5", "panda", "gantry9", "gantry9-flex"] {
         bench_robot(c, name);
     }
 }

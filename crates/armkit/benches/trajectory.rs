@@ -8,14 +8,12 @@ use std::hint::black_box;
 
 use armkit::kinematics::{forward_kinematics, jacobian, Data, JacobianFrame};
 use armkit::math::{Pose, Vector3};
-use armkit::trajectory::cartesian::{CartesianTrajectory, LinePath, TimeLaw};
-use armkit::trajectory::continuous_path::{
-    plan_continuous_path, ContinuousPathOptions, PathIk, PathTolerance,
-};
-use armkit::trajectory::limits::TrajectoryLimits;
-use armkit::trajectory::path_ik::{ClosedFormPathIk, IkTask, NumericPathIk};
-use armkit::trajectory::profile::{self, ProfileShape};
-use armkit::trajectory::spline::clamped_cubic_spline;
+use armkit::trajectory::clamped_cubic_spline;
+use armkit::trajectory::TrajectoryLimits;
+use armkit::trajectory::{self, ProfileShape};
+use armkit::trajectory::{plan_continuous_path, ContinuousPathOptions, PathIk, PathTolerance};
+use armkit::trajectory::{CartesianTrajectory, LinePath, TimeLaw};
+use armkit::trajectory::{ClosedFormPathIk, IkTask, NumericPathIk};
 use armkit::trajectory::{JointState, Trajectory};
 use criterion::{criterion_group, criterion_main, Criterion};
 
@@ -31,8 +29,8 @@ fn bench_sampling(c: &mut Criterion) {
     let limits = TrajectoryLimits::from_model(&panda);
     let q0 = [0.0, -0.3, 0.0, -2.2, 0.0, 2.0, 0.8];
     let qf = [1.0, 0.4, -0.5, -1.2, 0.7, 1.2, -0.3];
-    let quintic = profile::minimum_time(ProfileShape::Quintic, &q0, &qf, &limits).unwrap();
-    let trapezoid = profile::minimum_time(ProfileShape::Trapezoidal, &q0, &qf, &limits).unwrap();
+    let quintic = trajectory::minimum_time(ProfileShape::Quintic, &q0, &qf, &limits).unwrap();
+    let trapezoid = trajectory::minimum_time(ProfileShape::Trapezoidal, &q0, &qf, &limits).unwrap();
     // A 7-joint spline with 200 segments: the binary search over knots counts.
     let knot_times: Vec<f64> = (0..=200).map(|i| i as f64 * 0.05).collect();
     let points: Vec<Vec<f64>> = knot_times
@@ -67,12 +65,12 @@ fn bench_planning(c: &mut Criterion) {
     let qf = [1.0, 0.4, -0.5, -1.2, 0.7, 1.2, -0.3];
     let mut group = c.benchmark_group("trajectory_plan_panda_7_joints");
     group.bench_function("trapezoid_20s_4s", |b| {
-        b.iter(|| profile::trapezoidal(black_box(&q0), black_box(&qf), 20.0, 4.0).unwrap())
+        b.iter(|| trajectory::trapezoidal(black_box(&q0), black_box(&qf), 20.0, 4.0).unwrap())
     });
     for shape in [ProfileShape::Trapezoidal, ProfileShape::Quintic] {
         group.bench_function(format!("minimum_time_{shape:?}"), |b| {
             b.iter(|| {
-                profile::minimum_time(shape, black_box(&q0), black_box(&qf), &limits).unwrap()
+                trajectory::minimum_time(shape, black_box(&q0), black_box(&qf), &limits).unwrap()
             })
         });
     }

@@ -15,20 +15,20 @@
 
 use armkit::kinematics::{forward_kinematics, Data};
 use armkit::math::Vector3;
-use armkit::trajectory::cartesian::{CartesianTrajectory, LinePath, TimeLaw};
-use armkit::trajectory::continuous_path::{
+use armkit::trajectory::JointState;
+use armkit::trajectory::{self, ProfileShape};
+use armkit::trajectory::{check_limits, peak_rates, TrajectoryLimits};
+use armkit::trajectory::{
     measure_path_error, plan_continuous_path, ContinuousPathOptions, PathTolerance,
 };
-use armkit::trajectory::limits::{check_limits, peak_rates, TrajectoryLimits};
-use armkit::trajectory::path_ik::{path_ik_for, IkTask};
-use armkit::trajectory::profile::{self, ProfileShape};
-use armkit::trajectory::JointState;
+use armkit::trajectory::{path_ik_for, IkTask};
+use armkit::trajectory::{CartesianTrajectory, LinePath, TimeLaw};
 
 fn main() -> Result<(), armkit::Error> {
     // Seed 004's trapezoid on space6r.
     let q0 = [0.0, -0.5, 0.3, 0.0, 0.8, 0.0];
     let qf = [1.2, -0.1, 0.9, 0.6, 0.2, -0.4];
-    let trapezoid = profile::trapezoidal(&q0, &qf, 20.0, 4.0)?;
+    let trapezoid = trajectory::trapezoidal(&q0, &qf, 20.0, 4.0)?;
     let peaks = peak_rates(&trapezoid);
     println!(
         "trapezoid, 20 s with 4 s ramps: cruise speeds {:.4?} rad/s, accelerations {:.4?} rad/s^2",
@@ -48,7 +48,7 @@ fn main() -> Result<(), armkit::Error> {
     let limits = TrajectoryLimits::from_model(&panda);
     let from = [0.0, -0.3, 0.0, -2.2, 0.0, 2.0, 0.8];
     let to = [1.2, 0.4, -0.5, -1.5, 0.6, 1.4, -0.3];
-    let quintic = profile::minimum_time(ProfileShape::Quintic, &from, &to, &limits)?;
+    let quintic = trajectory::minimum_time(ProfileShape::Quintic, &from, &to, &limits)?;
     let peaks = peak_rates(&quintic);
     let (joint, ratio) = (0..panda.dof())
         .map(|j| {

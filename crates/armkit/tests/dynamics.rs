@@ -540,7 +540,7 @@ fn time_scaling_brings_torques_within_limits_tightly() {
     use armkit::dynamics::torque_limits::{
         scale_to_torque_limits, torque_profile, TorqueCheckOptions, TorqueStatus,
     };
-    use armkit::trajectory::profile::{rest_to_rest, ProfileShape};
+    use armkit::trajectory::{rest_to_rest, ProfileShape};
     let panda = load(
         data_path("urdf/panda.urdf"),
         &ChainSelection::between("panda_link0", "panda_link8"),

@@ -4,7 +4,7 @@
 //! * IK (the four numeric methods and the closed forms) never returns a
 //!   configuration outside the joint limits, and never claims convergence
 //!   when the recomputed error exceeds the tolerance;
-//! * a trajectory scaled by `trajectory::limits::scale_to_limits` never
+//! * a trajectory scaled by `trajectory::scale_to_limits` never
 //!   exceeds its velocity or acceleration limits, sampled densely;
 //! * the MPC planner, stepped in a loop with the plant `q += T u`, never
 //!   commands a velocity over its limit nor moves a joint out of its limits;
@@ -27,12 +27,10 @@ use armkit::kinematics::{forward_kinematics, jacobian, Data, JacobianFrame};
 use armkit::math::{Matrix3, Matrix4, Pose, Vector3};
 use armkit::model::{DhConvention, DhLink, JointKind, JointLimits};
 use armkit::mpc::{MpcOptions, MpcPlanner, TaskWeights};
-use armkit::trajectory::continuous_path::{
-    interpolate_via_points, BoundaryRates, SegmentScheme, ViaVelocity,
-};
-use armkit::trajectory::limits::{check_limits, scale_to_limits, TimeScaling, TrajectoryLimits};
-use armkit::trajectory::profile::{rest_to_rest, ProfileShape};
-use armkit::trajectory::spline::clamped_cubic_spline;
+use armkit::trajectory::clamped_cubic_spline;
+use armkit::trajectory::{check_limits, scale_to_limits, TimeScaling, TrajectoryLimits};
+use armkit::trajectory::{interpolate_via_points, BoundaryRates, SegmentScheme, ViaVelocity};
+use armkit::trajectory::{rest_to_rest, ProfileShape};
 use armkit::trajectory::{JointState, Trajectory};
 use armkit::Model;
 use rand::Rng;

@@ -26,14 +26,12 @@ use armkit::kinematics::{forward_kinematics, jacobian, Data, JacobianFrame};
 use armkit::math::{Matrix3, Matrix6xX, Pose, Vector3, Vector6};
 use armkit::mpc::scenario::{simulate, SimulationOptions};
 use armkit::mpc::{MpcOptions, MpcPlanner, TaskWeights, VelocityWeights};
-use armkit::redundancy::energy::{
-    energy_measure, gravity_torques, joint_torques, Load, TorqueFloor,
-};
-use armkit::redundancy::nullspace::{joint_limit_cost, joint_limit_gradient};
 use armkit::redundancy::{
     best_partition, Damping, JointWeights, Partition, PartitionedSolver, SolverOptions,
     WeightedLeastNorm,
 };
+use armkit::redundancy::{energy_measure, gravity_torques, joint_torques, Load, TorqueFloor};
+use armkit::redundancy::{joint_limit_cost, joint_limit_gradient};
 use armkit::redundancy::{Distribution, DistributionOptions, ResolvedRateTracker};
 use armkit::space::{
     center_of_mass, end_effector_pose, generalized_jacobian, momentum, space6r_free_floating, step,
@@ -41,20 +39,16 @@ use armkit::space::{
     SpaceData,
 };
 use armkit::tracking::{Feedback, LeastSquares, TrackingOptions};
-use armkit::trajectory::cartesian::{
-    ArcOrientation, ArcPath, CartesianTrajectory, LinePath, TimeLaw,
-};
-use armkit::trajectory::continuous_path::{
+use armkit::trajectory::clamped_cubic_spline;
+use armkit::trajectory::TimeFn;
+use armkit::trajectory::{check_limits, scale_to_limits, TimeScaling, TrajectoryLimits};
+use armkit::trajectory::{cubic, minimum_time, quintic, rest_to_rest, trapezoidal, ProfileShape};
+use armkit::trajectory::{
     interpolate_via_points, plan_continuous_path, BoundaryRates, ContinuousPathOptions,
     SegmentScheme,
 };
-use armkit::trajectory::limits::{check_limits, scale_to_limits, TimeScaling, TrajectoryLimits};
-use armkit::trajectory::path_ik::{IkTask, NumericPathIk};
-use armkit::trajectory::profile::{
-    cubic, minimum_time, quintic, rest_to_rest, trapezoidal, ProfileShape,
-};
-use armkit::trajectory::spline::clamped_cubic_spline;
-use armkit::trajectory::TimeFn;
+use armkit::trajectory::{ArcOrientation, ArcPath, CartesianTrajectory, LinePath, TimeLaw};
+use armkit::trajectory::{IkTask, NumericPathIk};
 use armkit::trajectory::{JointState, Trajectory};
 use armkit::Model;
 

@@ -143,3 +143,76 @@ fn a_pose_that_overflows_is_an_error_not_a_result() {
     // Even at zero the two offsets `d` add up past f64::MAX.
     assert!(forward_kinematics(&model, &mut data, &[0.0, 0.0]).is_err());
 }
+
+/// Forward kinematics and the Jacobian written out the plain way (index
+/// loops over the public model: placements, joint kinds, couplings), the
+/// arithmetic of every earlier version. The library's loops (issue 15: a
+/// coupling map matched once, slices zipped, the chain product out of line)
+/// must give the same bits, on every built-in robot (gantry9-flex with its
+/// beam coupling included).
+#[test]
+fn kinematics_equal_the_plain_product_bit_for_bit() {
+    fn rotate(frame: &mut Pose, angle: f64) {
+        let (s, c) = armkit::math::sin_cos(angle);
+        let x = frame.rotation.column(0).into_owned();
+        let y = frame.rotation.column(1).into_owned();
+        frame.rotation.set_column(0, &(x * c + y * s));
+        frame.rotation.set_column(1, &(y * c - x * s));
+    }
+    let mut rng = rng(15);
+    for entry in armkit::robots::BUILTIN {
+        let model = (entry.build)().unwrap();
+        assert!(!model.has_mimic_joints(), "{}", entry.name);
+        let mut data = Data::new(&model);
+        for _ in 0..100 {
+            let q = random_configuration(&model, &mut rng);
+            let mut chain = q.clone();
+            for coupling in model.couplings() {
+                let (offset, _) = coupling.law.offset_and_slope(q[coupling.source]);
+                chain[coupling.target] += offset;
+            }
+            let mut frame = Pose::identity();
+            let mut frames = Vec::new();
+            for (j, placement) in model.joint_placements().iter().enumerate() {
+                frame = &frame * placement;
+                if model.joints()[j].kind.is_rotational() {
+                    rotate(&mut frame, chain[j]);
+                } else {
+                    frame.translation += frame.rotation.column(2) * chain[j];
+                }
+                frames.push(frame);
+            }
+            let end = &frame * model.end_effector_placement();
+            let mut expected = Matrix6xX::zeros(model.dof());
+            for (j, f) in frames.iter().enumerate() {
+                let axis = f.rotation.column(2).into_owned();
+                let mut column = expected.column_mut(j);
+                if model.joints()[j].kind.is_rotational() {
+                    let linear = axis.cross(&(end.translation - f.translation));
+                    column.fixed_rows_mut::<3>(0).copy_from(&linear);
+                    column.fixed_rows_mut::<3>(3).copy_from(&axis);
+                } else {
+                    column.fixed_rows_mut::<3>(0).copy_from(&axis);
+                }
+            }
+            for coupling in model.couplings() {
+                let (_, slope) = coupling.law.offset_and_slope(q[coupling.source]);
+                let target = expected.column(coupling.target).into_owned();
+                expected
+                    .column_mut(coupling.source)
+                    .axpy(slope, &target, 1.0);
+            }
+            let pose = *forward_kinematics(&model, &mut data, &q).unwrap();
+            assert_eq!(pose, end, "{} at {q:?}", entry.name);
+            assert_eq!(data.joint_frames(), frames.as_slice(), "{}", entry.name);
+            assert_eq!(
+                data.effective_positions(),
+                chain.as_slice(),
+                "{}",
+                entry.name
+            );
+            let j = jacobian(&model, &mut data, &q, JacobianFrame::World).unwrap();
+            assert_eq!(j, &expected, "{} at {q:?}", entry.name);
+        }
+    }
+}

@@ -21,7 +21,7 @@ use armkit::math::{Pose, Vector3, Vector6};
 use armkit::mpc::qp::{QpOutcome, QpProblem, QpSolver, QpSolverKind, QpStatus};
 use armkit::mpc::scenario::Seed000Example;
 use armkit::mpc::{MpcOptions, MpcPlanner};
-use armkit::redundancy::nullspace::SecondaryTask;
+use armkit::redundancy::SecondaryTask;
 use armkit::redundancy::{
     best_partition, joint_torques, Damping, JointWeights, Load, PartitionedSolver,
     SecondaryObjective, SolverOptions, TorqueFloor, WeightedLeastNorm,
@@ -30,12 +30,10 @@ use armkit::space::{
     center_of_mass, end_effector_pose, generalized_jacobian, momentum, space6r_free_floating, step,
     BaseMode, FreeFloatingState, SpaceData,
 };
-use armkit::trajectory::cartesian::{
-    ArcOrientation, ArcPath, CartesianTrajectory, LinePath, TimeLaw,
-};
-use armkit::trajectory::profile::{self, ProfileShape};
-use armkit::trajectory::spline::clamped_cubic_spline;
+use armkit::trajectory::clamped_cubic_spline;
 use armkit::trajectory::JointState;
+use armkit::trajectory::{self, ProfileShape};
+use armkit::trajectory::{ArcOrientation, ArcPath, CartesianTrajectory, LinePath, TimeLaw};
 
 struct CountingAllocator;
 
@@ -384,8 +382,8 @@ fn sampling_does_not_allocate() {
         .map(|t| q0.iter().map(|q| q + t.sin()).collect())
         .collect();
     let joint = [
-        profile::rest_to_rest(ProfileShape::Quintic, &q0, &qf, 2.0, None).unwrap(),
-        profile::trapezoidal(&q0, &qf, 20.0, 4.0).unwrap(),
+        trajectory::rest_to_rest(ProfileShape::Quintic, &q0, &qf, 2.0, None).unwrap(),
+        trajectory::trapezoidal(&q0, &qf, 20.0, 4.0).unwrap(),
         clamped_cubic_spline(&times, &points, &[0.0; 7], &[0.0; 7]).unwrap(),
     ];
     let start = Pose::from_xyz_rpy([0.4, 0.0, 0.3], [0.1, 0.2, 0.3]);

@@ -8,17 +8,16 @@ use std::f64::consts::PI;
 
 use armkit::ik::pose_error;
 use armkit::kinematics::{forward_kinematics, jacobian, Data, JacobianFrame};
+use armkit::linalg::manipulability;
 use armkit::math::{DMatrix, DVector, Matrix6xX, Pose, Vector3, Vector6};
 use armkit::model::{DhConvention, DhLink, Model};
-use armkit::redundancy::nullspace::{
-    joint_limit_cost, joint_limit_gradient, manipulability, SecondaryTask,
-};
 use armkit::redundancy::{
     best_partition, compare_distributions, energy_measure, gravity_torques, joint_torques,
     ComparisonCase, Damping, Distribution, DistributionOptions, Formulation, JointWeights, Load,
     Partition, PartitionedSolver, ResolvedRateTracker, SecondaryObjective, SolverOptions,
     TorqueFloor, WeightedLeastNorm, SEED000_PRIORITY_WEIGHTS,
 };
+use armkit::redundancy::{joint_limit_cost, joint_limit_gradient, SecondaryTask};
 use armkit::tracking::{TrackingOptions, TrackingStatus};
 use armkit::trajectory::{CartesianTrajectory, TimeLaw};
 use rand::seq::SliceRandom;

@@ -13,7 +13,7 @@ use armkit::singularity::{
 };
 use armkit::space::{center_of_mass, space6r_free_floating, SpaceData};
 use armkit::tracking::{TrackingOptions, TrackingStatus};
-use armkit::trajectory::spline::clamped_cubic_spline;
+use armkit::trajectory::clamped_cubic_spline;
 use armkit::{jacobian, Data, JacobianFrame};
 
 const KS: [usize; 3] = [1, 5, 10];

@@ -9,21 +9,21 @@ use std::f64::consts::PI;
 
 use armkit::kinematics::{forward_kinematics, jacobian, Data, JacobianFrame};
 use armkit::math::{DMatrix, DVector, Pose, Vector3};
-use armkit::trajectory::cartesian::{
-    ArcOrientation, ArcPath, CartesianPath, CartesianTrajectory, FnPath, LinePath, OrientationLaw,
-    TimeLaw,
+use armkit::trajectory::clamped_cubic_spline;
+use armkit::trajectory::{self, JointState, Trajectory};
+use armkit::trajectory::{
+    check_limits, peak_rates, scale_to_limits, LimitKind, TimeScaling, TrajectoryLimits,
 };
-use armkit::trajectory::continuous_path::{
+use armkit::trajectory::{
     interpolate_via_points, measure_path_error, plan_continuous_path, BoundaryRates,
     ContinuousPathOptions, ContinuousPathReport, PathStatus, PathTolerance, SegmentScheme,
     Segmentation, ViaVelocity,
 };
-use armkit::trajectory::limits::{
-    check_limits, peak_rates, scale_to_limits, LimitKind, TimeScaling, TrajectoryLimits,
+use armkit::trajectory::{path_ik_for, IkTask, NumericPathIk};
+use armkit::trajectory::{
+    ArcOrientation, ArcPath, CartesianPath, CartesianTrajectory, FnPath, LinePath, OrientationLaw,
+    TimeLaw,
 };
-use armkit::trajectory::path_ik::{path_ik_for, IkTask, NumericPathIk};
-use armkit::trajectory::spline::clamped_cubic_spline;
-use armkit::trajectory::{profile, JointState, Trajectory};
 use armkit::{Error, Model};
 use rand::Rng;
 
@@ -75,7 +75,7 @@ fn cubic_and_quintic_meet_their_boundary_conditions() {
         let duration = rng.gen_range(0.1..10.0);
         let mut start = random_state(&mut rng, 7);
         let mut end = random_state(&mut rng, 7);
-        let quintic = profile::quintic(&start, &end, duration).unwrap();
+        let quintic = trajectory::quintic(&start, &end, duration).unwrap();
         let (a, b) = (
             segment_state(&quintic, 0, 0.0),
             segment_state(&quintic, 0, 1.0),
@@ -96,7 +96,7 @@ fn cubic_and_quintic_meet_their_boundary_conditions() {
         }
         start.acceleration.fill(0.0);
         end.acceleration.fill(0.0);
-        let cubic = profile::cubic(&start, &end, duration).unwrap();
+        let cubic = trajectory::cubic(&start, &end, duration).unwrap();
         let (a, b) = (segment_state(&cubic, 0, 0.0), segment_state(&cubic, 0, 1.0));
         for (got, want) in [
             (&a.position, &start.position),
@@ -120,9 +120,9 @@ fn profiles_match_finite_differences_of_their_positions() {
     let q0 = [0.2, -1.0, 0.5];
     let qf = [1.4, 0.3, 0.5];
     let trajectories = [
-        profile::rest_to_rest(profile::ProfileShape::Cubic, &q0, &qf, 3.0, None).unwrap(),
-        profile::rest_to_rest(profile::ProfileShape::Quintic, &q0, &qf, 3.0, None).unwrap(),
-        profile::trapezoidal(&q0, &qf, 3.0, 1.0).unwrap(),
+        trajectory::rest_to_rest(trajectory::ProfileShape::Cubic, &q0, &qf, 3.0, None).unwrap(),
+        trajectory::rest_to_rest(trajectory::ProfileShape::Quintic, &q0, &qf, 3.0, None).unwrap(),
+        trajectory::trapezoidal(&q0, &qf, 3.0, 1.0).unwrap(),
     ];
     let h = 1e-5;
     for traj in &trajectories {
@@ -156,7 +156,7 @@ fn trapezoid_seed004_meets_boundaries_and_is_c1_at_every_knot() {
     // Seed 004's timing: 20 s with 4 s of acceleration and deceleration.
     let q0 = [0.1, -0.4, 1.0, 0.0, 2.0, -1.5];
     let qf = [1.7, 0.4, -1.0, 0.0, 2.5, 1.5];
-    let traj = profile::trapezoidal(&q0, &qf, 20.0, 4.0).unwrap();
+    let traj = trajectory::trapezoidal(&q0, &qf, 20.0, 4.0).unwrap();
     assert_eq!(traj.knots(), &[0.0, 4.0, 16.0, 20.0]);
     let start = segment_state(&traj, 0, 0.0);
     let end = segment_state(&traj, 2, 1.0);
@@ -187,7 +187,7 @@ fn trapezoid_seed004_meets_boundaries_and_is_c1_at_every_knot() {
     let [dq, dv, _] = traj.knot_discontinuities();
     assert!(dq < BC && dv < BC, "{dq} {dv}");
     // A triangular profile (ta = T/2) has two segments.
-    let triangle = profile::trapezoidal(&q0, &qf, 2.0, 1.0).unwrap();
+    let triangle = trajectory::trapezoidal(&q0, &qf, 2.0, 1.0).unwrap();
     assert_eq!(triangle.segment_count(), 2);
     assert!(max_diff(&triangle.end_state().position, &qf) < BC);
 }
@@ -195,7 +195,7 @@ fn trapezoid_seed004_meets_boundaries_and_is_c1_at_every_knot() {
 #[test]
 fn trapezoid_with_equal_endpoints_stays_put() {
     let q = [0.3, -0.2, 1.1];
-    let traj = profile::trapezoidal(&q, &q, 5.0, 1.0).unwrap();
+    let traj = trajectory::trapezoidal(&q, &q, 5.0, 1.0).unwrap();
     for k in 0..=50 {
         let s = traj.sample(5.0 * k as f64 / 50.0).unwrap();
         assert_eq!(s.position, q.to_vec());
@@ -204,10 +204,10 @@ fn trapezoid_with_equal_endpoints_stays_put() {
     // Minimum time of a zero-length move: zero, and still a valid trajectory.
     let limits = TrajectoryLimits::new(vec![1.0; 3], vec![1.0; 3]).unwrap();
     for shape in [
-        profile::ProfileShape::Trapezoidal,
-        profile::ProfileShape::Quintic,
+        trajectory::ProfileShape::Trapezoidal,
+        trajectory::ProfileShape::Quintic,
     ] {
-        let traj = profile::minimum_time(shape, &q, &q, &limits).unwrap();
+        let traj = trajectory::minimum_time(shape, &q, &q, &limits).unwrap();
         assert_eq!(traj.duration(), 0.0);
         let s = traj.sample(0.7).unwrap();
         assert_eq!(s.position, q.to_vec());
@@ -219,35 +219,38 @@ fn trapezoid_with_equal_endpoints_stays_put() {
 fn bad_durations_are_clear_errors() {
     let (q0, qf) = ([0.0, 1.0], [1.0, 0.0]);
     assert_eq!(
-        message(profile::trapezoidal(&q0, &qf, 0.0, 0.0)),
+        message(trajectory::trapezoidal(&q0, &qf, 0.0, 0.0)),
         "invalid argument `duration`: must be finite and > 0 s, got 0 s"
     );
     assert_eq!(
-        message(profile::trapezoidal(&q0, &qf, -2.0, 0.5)),
+        message(trajectory::trapezoidal(&q0, &qf, -2.0, 0.5)),
         "invalid argument `duration`: must be finite and > 0 s, got -2 s"
     );
     assert_eq!(
-        message(profile::trapezoidal(&q0, &qf, 10.0, 6.0)),
+        message(trajectory::trapezoidal(&q0, &qf, 10.0, 6.0)),
         "invalid argument `acceleration_time`: must be at most half the duration (5 s) so that \
          acceleration and deceleration do not overlap, got 6 s"
     );
     assert_eq!(
-        message(profile::trapezoidal(&q0, &qf, 10.0, 0.0)),
+        message(trajectory::trapezoidal(&q0, &qf, 10.0, 0.0)),
         "invalid argument `acceleration_time`: must be finite and > 0 s, got 0 s"
     );
     let rest = JointState::at_rest(&q0);
     assert!(
-        message(profile::quintic(&rest, &JointState::at_rest(&qf), -1.0)).contains("`duration`")
+        message(trajectory::quintic(&rest, &JointState::at_rest(&qf), -1.0)).contains("`duration`")
     );
-    assert!(
-        message(profile::cubic(&rest, &JointState::at_rest(&qf), f64::NAN)).contains("`duration`")
-    );
+    assert!(message(trajectory::cubic(
+        &rest,
+        &JointState::at_rest(&qf),
+        f64::NAN
+    ))
+    .contains("`duration`"));
     assert_eq!(
-        message(profile::trapezoidal(&q0, &[1.0], 1.0, 0.2)),
+        message(trajectory::trapezoidal(&q0, &[1.0], 1.0, 0.2)),
         "qf: expected 2 values, got 1"
     );
     let accelerating = JointState::new(vec![0.0, 1.0], vec![0.0; 2], vec![1.0, 0.0]);
-    assert!(message(profile::cubic(&accelerating, &rest, 1.0))
+    assert!(message(trajectory::cubic(&accelerating, &rest, 1.0))
         .contains("cannot meet a boundary acceleration"));
     assert!(message(Trajectory::stationary(&q0, 0.0, -1.0)).contains("`duration`"));
 }
@@ -261,7 +264,7 @@ fn minimum_time_profiles_touch_the_binding_limit() {
     for (d, v, a) in cases {
         let limits = TrajectoryLimits::new(vec![v], vec![a]).unwrap();
         let trapezoid =
-            profile::minimum_time(profile::ProfileShape::Trapezoidal, &[0.0], &[d], &limits)
+            trajectory::minimum_time(trajectory::ProfileShape::Trapezoidal, &[0.0], &[d], &limits)
                 .unwrap();
         let expected = if d >= v * v / a {
             d / v + v / a
@@ -273,11 +276,13 @@ fn minimum_time_profiles_touch_the_binding_limit() {
             "{d} {v} {a}"
         );
         let cubic =
-            profile::minimum_time(profile::ProfileShape::Cubic, &[0.0], &[d], &limits).unwrap();
+            trajectory::minimum_time(trajectory::ProfileShape::Cubic, &[0.0], &[d], &limits)
+                .unwrap();
         let expected = (1.5 * d / v).max((6.0 * d / a).sqrt());
         assert!((cubic.duration() - expected).abs() < 1e-12);
         let quintic =
-            profile::minimum_time(profile::ProfileShape::Quintic, &[0.0], &[d], &limits).unwrap();
+            trajectory::minimum_time(trajectory::ProfileShape::Quintic, &[0.0], &[d], &limits)
+                .unwrap();
         let expected = (1.875 * d / v).max((10.0 / 3f64.sqrt() * d / a).sqrt());
         assert!((quintic.duration() - expected).abs() < 1e-12);
     }
@@ -289,11 +294,11 @@ fn minimum_time_profiles_touch_the_binding_limit() {
         let q0 = common::random_configuration(&model, &mut rng);
         let qf = common::random_configuration(&model, &mut rng);
         for shape in [
-            profile::ProfileShape::Trapezoidal,
-            profile::ProfileShape::Cubic,
-            profile::ProfileShape::Quintic,
+            trajectory::ProfileShape::Trapezoidal,
+            trajectory::ProfileShape::Cubic,
+            trajectory::ProfileShape::Quintic,
         ] {
-            let traj = profile::minimum_time(shape, &q0, &qf, &limits).unwrap();
+            let traj = trajectory::minimum_time(shape, &q0, &qf, &limits).unwrap();
             assert!(
                 check_limits(&traj, &limits).unwrap().is_empty(),
                 "{shape:?}"
@@ -313,8 +318,8 @@ fn minimum_time_profiles_touch_the_binding_limit() {
         }
     }
     let unlimited = TrajectoryLimits::new(vec![1.0], vec![f64::INFINITY]).unwrap();
-    assert!(message(profile::minimum_time(
-        profile::ProfileShape::Trapezoidal,
+    assert!(message(trajectory::minimum_time(
+        trajectory::ProfileShape::Trapezoidal,
         &[0.0],
         &[1.0],
         &unlimited
@@ -529,7 +534,7 @@ fn cubic_quintic_last_scheme_amplifies_errors_by_2_plus_sqrt3_per_segment() {
 fn limit_violations_are_located_exactly() {
     // Quintic rest to rest over d = 1 in T = 1: v = 30 s^2 (1 - s)^2, peak
     // 1.875 at 0.5; a = 60 s (1 - s)(1 - 2 s), peak 10/sqrt(3) at 0.5 -+ sqrt(3)/6.
-    let traj = profile::quintic(
+    let traj = trajectory::quintic(
         &JointState::at_rest(&[0.0]),
         &JointState::at_rest(&[1.0]),
         1.0,
@@ -567,7 +572,7 @@ fn limit_violations_are_located_exactly() {
     assert_eq!(position.len(), 1);
     assert!((position[0].end_time - 1.0).abs() < 1e-12 && position[0].bound == 0.9);
     // A violation that spans a knot is one interval: a trapezoid's cruise.
-    let trapezoid = profile::trapezoidal(&[0.0], &[1.0], 2.0, 0.5).unwrap();
+    let trapezoid = trajectory::trapezoidal(&[0.0], &[1.0], 2.0, 0.5).unwrap();
     let limits = TrajectoryLimits::new(vec![0.6], vec![10.0]).unwrap();
     let violations = check_limits(&trapezoid, &limits).unwrap();
     assert_eq!(violations.len(), 1, "{violations:?}");
@@ -779,7 +784,7 @@ fn arc_through_three_points() {
         ArcOrientation::Constant
     ))
     .contains("collinear"));
-    let bad_timing = profile::trapezoidal(&[0.0], &[2.0], 1.0, 0.2).unwrap();
+    let bad_timing = trajectory::trapezoidal(&[0.0], &[2.0], 1.0, 0.2).unwrap();
     assert!(message(CartesianTrajectory::new(arc, bad_timing)).contains("from s = 0 to s = 1"));
 }
 
@@ -926,10 +931,7 @@ fn plan(case: &LineCase, options: &ContinuousPathOptions) -> (ContinuousPathRepo
     (report, clock.elapsed().as_secs_f64())
 }
 
-fn within(
-    error: &armkit::trajectory::continuous_path::PathError,
-    tolerance: &PathTolerance,
-) -> bool {
+fn within(error: &armkit::trajectory::PathError, tolerance: &PathTolerance) -> bool {
     match *tolerance {
         PathTolerance::Position(p) => error.position <= p,
         PathTolerance::Pose {
@@ -1021,15 +1023,14 @@ fn seed002_lines_with_the_library_ik() {
         ("panda", panda_line(), IkTask::Pose, true),
     ];
     for (name, case, task, numeric) in cases {
-        let (mut ik, method): (Box<dyn armkit::trajectory::continuous_path::PathIk>, &str) =
-            if numeric {
-                (
-                    Box::new(NumericPathIk::for_path(&case.model, task).unwrap()),
-                    "numeric",
-                )
-            } else {
-                path_ik_for(&case.model, task).unwrap()
-            };
+        let (mut ik, method): (Box<dyn armkit::trajectory::PathIk>, &str) = if numeric {
+            (
+                Box::new(NumericPathIk::for_path(&case.model, task).unwrap()),
+                "numeric",
+            )
+        } else {
+            path_ik_for(&case.model, task).unwrap()
+        };
         for checks_per_segment in [1, 3] {
             let options = ContinuousPathOptions {
                 tolerance: case.tolerance,
@@ -1219,7 +1220,7 @@ fn a_path_point_out_of_reach_is_a_clear_error() {
 
 #[test]
 fn sampling_is_clamped_and_checked() {
-    let traj = profile::trapezoidal(&[0.0, 1.0], &[1.0, 0.0], 2.0, 0.5).unwrap();
+    let traj = trajectory::trapezoidal(&[0.0, 1.0], &[1.0, 0.0], 2.0, 0.5).unwrap();
     assert_eq!(traj.sample(-1.0).unwrap(), traj.start_state());
     assert_eq!(traj.sample(5.0).unwrap(), traj.end_state());
     assert!(message(traj.sample(f64::NAN)).contains("t[0] is not finite"));
@@ -1234,7 +1235,7 @@ fn sampling_is_clamped_and_checked() {
 
 #[test]
 fn trajectory_limits_speak_the_models_joint_limits() {
-    use armkit::trajectory::limits::TrajectoryLimits;
+    use armkit::trajectory::TrajectoryLimits;
     for name in ["panda", "gantry9", "ur5"] {
         let model = armkit::robots::by_name(name).unwrap();
         let limits = TrajectoryLimits::from_model(&model);

@@ -29,7 +29,7 @@ mod target_report;
 use std::path::PathBuf;
 
 use armkit::mpc::qp::QpSolverKind;
-use armkit::mpc::scenario::{simulate_with, Seed000Example, SimulationOptions, Trajectory};
+use armkit::mpc::scenario::{simulate_with, MpcRun, Seed000Example, SimulationOptions};
 use armkit::mpc::{
     diagnose_run, ActuatorPrecision, MpcOptions, MpcPlanner, PlantModel, ReachAid, TaskWeights,
     VelocityWeights,
@@ -409,7 +409,7 @@ fn run_with_progress(
     target: &armkit::math::Pose,
     simulation: &SimulationOptions,
     label: &str,
-) -> CliResult<Trajectory> {
+) -> CliResult<MpcRun> {
     let progress = ProgressBar::with_draw_target(
         Some(simulation.max_steps as u64),
         ProgressDrawTarget::stderr(),

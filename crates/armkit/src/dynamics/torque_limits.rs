@@ -13,7 +13,7 @@
 //!
 //! ```
 //! use armkit::dynamics::torque_limits::{scale_to_torque_limits, TorqueCheckOptions, TorqueStatus};
-//! use armkit::trajectory::profile::{rest_to_rest, ProfileShape};
+//! use armkit::trajectory::{rest_to_rest, ProfileShape};
 //! let model = armkit::robots::by_name("space6r").unwrap();
 //! let goal = [1.0, -0.5, 0.8, 0.3, 0.2, 0.1];
 //! let traj = rest_to_rest(ProfileShape::Quintic, &[0.0; 6], &goal, 0.5, None).unwrap();

@@ -6,6 +6,22 @@
 //! mu I)^-1`); the smaller system is factored on the stack (Cholesky, or a
 //! symmetric eigendecomposition for the singularity-robust inverse), so one
 //! iteration allocates nothing.
+//!
+//! Why not [`crate::linalg`]'s solve: that kernel (the velocity-level
+//! solvers') factors `J A^-1 J'` and calls it singular below one relative
+//! threshold, so a tracking run stops with a status before its rates blow
+//! up. This one must instead (1) weight the task components and pad the
+//! masked ones (a position-only target is not singular), (2) take the
+//! joint-space form when there are fewer joints than active components
+//! (the 4-DOF arm, where `J J'` is always singular), and (3) solve as long
+//! as the Cholesky factor exists (every pivot > 0), with no threshold: LM
+//! and DLS bring their own damping, and seed 004's plain baseline
+//! (`singularity::Method::Plain`, an undamped step through
+//! [`super::damped_least_squares_step`]) must run into the singularity as
+//! the paper shows. With `linalg`'s thresholded solve that baseline stops
+//! at the singular pose: the demo's check "peak joint rate: plain /
+//! avoidance k=1" fell from 393 to 1.0 when it was tried. The two kernels
+//! differ on purpose (docs/DEVELOPING.md, "Two 6 x 6 solves").
 
 use super::damping::ChiaveriniFilter;
 use crate::math::{Matrix6, Matrix6xX, Vector6};

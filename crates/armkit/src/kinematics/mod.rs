@@ -23,7 +23,7 @@ pub use measures::{condition_number, manipulability, singular_values, smallest_s
 
 use crate::error::{Error, Result};
 use crate::math::{sin_cos_slice, Matrix6xX, Pose, Vector3};
-use crate::model::Model;
+use crate::model::{JointKind, Model};
 
 /// The frame in whose axes a Jacobian is expressed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -102,6 +102,7 @@ impl Data {
         &self.effective_positions
     }
 
+    #[inline]
     fn check_model(&self, model: &Model) -> Result<()> {
         if self.dof != model.dof() || self.joint_frames.len() != model.chain_joints().len() {
             return Err(Error::DimensionMismatch {
@@ -131,19 +132,53 @@ pub fn forward_kinematics<'d>(model: &Model, data: &'d mut Data, q: &[f64]) -> R
     // independent, so the processor overlaps them, where inside the chain
     // below each would wait for the previous frame product.
     sin_cos_slice(&data.effective_positions, &mut data.joint_sin_cos);
-    let mut frame = Pose::identity();
-    for (j, placement) in model.joint_placements().iter().enumerate() {
-        frame = &frame * placement;
-        if model.chain_joints()[j].kind.is_rotational() {
-            rotate_about_local_z(&mut frame, data.joint_sin_cos[j]);
-        } else {
-            frame.translation += frame.rotation.column(2) * data.effective_positions[j];
-        }
-        data.joint_frames[j] = frame;
-    }
+    let frame = chain_frames(
+        model.joint_placements(),
+        model.chain_kinds(),
+        &data.joint_sin_cos,
+        &data.effective_positions,
+        &mut data.joint_frames,
+    );
     data.end_effector = &frame * model.end_effector_placement();
     check_pose_is_finite(&data.end_effector)?;
     Ok(&data.end_effector)
+}
+
+/// The chain's product, base to tip: joint j's frame is the previous one
+/// times its placement, turned by its angle (rotational) or moved along its
+/// z axis (prismatic); written into `frames`, the last one returned. One
+/// pass over slices of equal length (the caller's `check_model`), without
+/// indices or bounds checks.
+///
+/// Kept out of line on purpose: compiled on its own, the loop keeps the
+/// frame in registers whatever the caller inlines around it (inlined into
+/// `forward_kinematics` together with the trigonometry, it spilled to the
+/// stack and cost about 40 instructions more per joint).
+#[inline(never)]
+fn chain_frames(
+    placements: &[Pose],
+    kinds: &[JointKind],
+    sin_cos: &[(f64, f64)],
+    positions: &[f64],
+    frames: &mut [Pose],
+) -> Pose {
+    let joints = placements
+        .iter()
+        .zip(kinds)
+        .zip(sin_cos)
+        .zip(positions)
+        .zip(frames.iter_mut());
+    let mut frame = Pose::identity();
+    for ((((placement, kind), &sin_cos), &position), joint_frame) in joints {
+        frame = &frame * placement;
+        if kind.is_rotational() {
+            rotate_about_local_z(&mut frame, sin_cos);
+        } else {
+            frame.translation += frame.rotation.column(2) * position;
+        }
+        *joint_frame = frame;
+    }
+    frame
 }
 
 /// Finite inputs can still overflow (lengths near `f64::MAX`); a non-finite
@@ -190,17 +225,21 @@ pub fn jacobian<'d>(
     forward_kinematics(model, data, q)?;
     let end = data.end_effector.translation;
     let map = model.joint_map();
-    // Without mimic joints the chain's columns are the result (before the
-    // additive couplings, folded in place).
+    // Without mimic joints the chain's columns are the result, written
+    // straight into it (the additive couplings then fold in place).
     let chain_jacobian = if map.is_identity() {
         &mut data.jacobian
     } else {
         &mut data.chain_jacobian
     };
-    for (j, joint_frame) in data.joint_frames.iter().enumerate() {
+    let joints = data
+        .joint_frames
+        .iter()
+        .zip(model.chain_kinds())
+        .zip(chain_jacobian.column_iter_mut());
+    for ((joint_frame, kind), mut column) in joints {
         let axis: Vector3<f64> = joint_frame.rotation.column(2).into_owned();
-        let mut column = chain_jacobian.column_mut(j);
-        if model.chain_joints()[j].kind.is_rotational() {
+        if kind.is_rotational() {
             let linear = axis.cross(&(end - joint_frame.translation));
             column.fixed_rows_mut::<3>(0).copy_from(&linear);
             column.fixed_rows_mut::<3>(3).copy_from(&axis);

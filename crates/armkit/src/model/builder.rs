@@ -268,6 +268,7 @@ impl ModelBuilder {
         Ok(Model {
             name: self.name,
             joints: resolved.joints,
+            chain_kinds: joints.iter().map(|j| j.kind).collect(),
             chain_joints: joints,
             placements,
             tail: pending * self.tool,

@@ -176,15 +176,37 @@ pub(crate) enum Drive {
     },
 }
 
-/// The configuration-to-chain map, resolved at build time.
+/// An additive curve on a built model: (configuration source, chain
+/// target, curve).
+pub(crate) type AdditiveCurve = (usize, usize, Arc<dyn CouplingCurve>);
+
+/// The configuration-to-chain map, resolved at build time into one of
+/// three shapes, matched once per call: a model without couplings pays
+/// for nothing (forward kinematics copies `q`, the Jacobian is the chain's).
 #[derive(Clone, Debug)]
-pub(crate) struct JointMap {
-    /// One per chain joint.
-    drives: Vec<Drive>,
-    /// True when the chain joints are the configuration, in order.
-    identity: bool,
-    /// Additive curves: (configuration source, chain target, curve).
-    additive: Vec<(usize, usize, Arc<dyn CouplingCurve>)>,
+pub(crate) enum JointMap {
+    /// The chain's joints are the configuration's, in order, and nothing
+    /// is added: the chain's positions are `q`.
+    Identity {
+        /// Number of joints (chain = configuration).
+        joints: usize,
+    },
+    /// The chain's joints are the configuration's, in order, plus additive
+    /// curves (gantry9-flex): `d3' = d3 + w(d2)`; the Jacobian's columns
+    /// are folded in place (seed 000, eq 10).
+    Additive {
+        /// Number of joints (chain = configuration).
+        joints: usize,
+        /// At least one curve.
+        additive: Vec<AdditiveCurve>,
+    },
+    /// Mimic joints: each chain joint is driven by a configuration entry
+    /// (itself or a leader), then the additive curves (possibly none).
+    Mimic {
+        /// One per chain joint.
+        drives: Vec<Drive>,
+        additive: Vec<AdditiveCurve>,
+    },
 }
 
 impl JointMap {
@@ -193,54 +215,100 @@ impl JointMap {
             .iter()
             .enumerate()
             .all(|(j, d)| *d == Drive::Independent(j));
-        JointMap {
-            drives,
-            identity,
-            additive: Vec::new(),
+        if identity {
+            JointMap::Identity {
+                joints: drives.len(),
+            }
+        } else {
+            JointMap::Mimic {
+                drives,
+                additive: Vec::new(),
+            }
         }
     }
 
-    pub(crate) fn drives(&self) -> &[Drive] {
-        &self.drives
+    /// Number of chain joints.
+    pub(crate) fn chain_len(&self) -> usize {
+        match self {
+            JointMap::Identity { joints } | JointMap::Additive { joints, .. } => *joints,
+            JointMap::Mimic { drives, .. } => drives.len(),
+        }
+    }
+
+    /// Where chain joint `j` (< [`JointMap::chain_len`]) gets its position.
+    pub(crate) fn drive(&self, j: usize) -> Drive {
+        match self {
+            JointMap::Identity { .. } | JointMap::Additive { .. } => Drive::Independent(j),
+            JointMap::Mimic { drives, .. } => drives[j],
+        }
+    }
+
+    /// The additive curves (empty for most models).
+    pub(crate) fn additive(&self) -> &[AdditiveCurve] {
+        match self {
+            JointMap::Identity { .. } => &[],
+            JointMap::Additive { additive, .. } | JointMap::Mimic { additive, .. } => additive,
+        }
     }
 
     /// True when the chain's joints are the configuration's, in order
     /// (no mimic joint): the Jacobian is then computed in place.
     pub(crate) fn is_identity(&self) -> bool {
-        self.identity
+        !matches!(self, JointMap::Mimic { .. })
     }
 
-    pub(crate) fn set_additive(&mut self, additive: Vec<(usize, usize, Arc<dyn CouplingCurve>)>) {
-        self.additive = additive;
+    /// This map with its additive curves replaced by `additive`.
+    pub(crate) fn with_additive(&self, additive: Vec<AdditiveCurve>) -> JointMap {
+        match self {
+            JointMap::Identity { joints } | JointMap::Additive { joints, .. } => {
+                if additive.is_empty() {
+                    JointMap::Identity { joints: *joints }
+                } else {
+                    JointMap::Additive {
+                        joints: *joints,
+                        additive,
+                    }
+                }
+            }
+            JointMap::Mimic { drives, .. } => JointMap::Mimic {
+                drives: drives.clone(),
+                additive,
+            },
+        }
     }
 
     /// Chain joint positions from the configuration `q` (sizes checked by
     /// the caller): drives first, then the additive curves. Allocates nothing.
     #[inline]
     pub(crate) fn expand(&self, q: &[f64], chain: &mut [f64]) {
-        if self.identity {
-            chain.copy_from_slice(q);
-        } else {
-            for (value, drive) in chain.iter_mut().zip(&self.drives) {
-                *value = match *drive {
-                    Drive::Independent(i) => q[i],
-                    Drive::Mimic {
-                        leader,
-                        multiplier,
-                        offset,
-                    } => multiplier * q[leader] + offset,
-                };
+        match self {
+            JointMap::Identity { .. } => chain.copy_from_slice(q),
+            JointMap::Additive { additive, .. } => {
+                chain.copy_from_slice(q);
+                add_curves(additive, q, chain);
             }
-        }
-        for (source, target, curve) in &self.additive {
-            chain[*target] += curve.value_and_slope(q[*source]).0;
+            JointMap::Mimic { drives, additive } => {
+                for (value, drive) in chain.iter_mut().zip(drives) {
+                    *value = match *drive {
+                        Drive::Independent(i) => q[i],
+                        Drive::Mimic {
+                            leader,
+                            multiplier,
+                            offset,
+                        } => multiplier * q[leader] + offset,
+                    };
+                }
+                add_curves(additive, q, chain);
+            }
         }
     }
 
-    /// `J = J0 M`: folds the chain Jacobian `chain` (6 x chain joints) into
-    /// `out` (6 x dof). For an identity map `chain` is unused and `out`
-    /// already holds `J0` (only the additive columns change, in place: seed
-    /// 000 eq 10, `column(source) += slope * column(target)`).
+    /// `J = J0 M`: folds the chain Jacobian into `out` (6 x dof). For
+    /// [`JointMap::Identity`] there is nothing to do (`out` already holds
+    /// `J0`, `chain` is unused); for [`JointMap::Additive`] only the additive
+    /// columns change, in place (seed 000 eq 10, `column(source) += slope *
+    /// column(target)`); for [`JointMap::Mimic`], `chain` holds `J0`
+    /// (6 x chain joints).
     #[inline]
     pub(crate) fn fold_jacobian(
         &self,
@@ -248,28 +316,32 @@ impl JointMap {
         chain: &Matrix6xX<f64>,
         out: &mut Matrix6xX<f64>,
     ) {
-        if self.identity {
-            for (source, target, curve) in &self.additive {
-                let (_, slope) = curve.value_and_slope(q[*source]);
-                let column = out.column(*target).into_owned();
-                out.column_mut(*source).axpy(slope, &column, 1.0);
+        match self {
+            JointMap::Identity { .. } => {}
+            JointMap::Additive { additive, .. } => {
+                for (source, target, curve) in additive {
+                    let (_, slope) = curve.value_and_slope(q[*source]);
+                    let column = out.column(*target).into_owned();
+                    out.column_mut(*source).axpy(slope, &column, 1.0);
+                }
             }
-            return;
-        }
-        out.fill(0.0);
-        for (j, drive) in self.drives.iter().enumerate() {
-            let (index, factor) = match *drive {
-                Drive::Independent(i) => (i, 1.0),
-                Drive::Mimic {
-                    leader, multiplier, ..
-                } => (leader, multiplier),
-            };
-            out.column_mut(index).axpy(factor, &chain.column(j), 1.0);
-        }
-        for (source, target, curve) in &self.additive {
-            let (_, slope) = curve.value_and_slope(q[*source]);
-            out.column_mut(*source)
-                .axpy(slope, &chain.column(*target), 1.0);
+            JointMap::Mimic { drives, additive } => {
+                out.fill(0.0);
+                for (j, drive) in drives.iter().enumerate() {
+                    let (index, factor) = match *drive {
+                        Drive::Independent(i) => (i, 1.0),
+                        Drive::Mimic {
+                            leader, multiplier, ..
+                        } => (leader, multiplier),
+                    };
+                    out.column_mut(index).axpy(factor, &chain.column(j), 1.0);
+                }
+                for (source, target, curve) in additive {
+                    let (_, slope) = curve.value_and_slope(q[*source]);
+                    out.column_mut(*source)
+                        .axpy(slope, &chain.column(*target), 1.0);
+                }
+            }
         }
     }
 
@@ -277,19 +349,37 @@ impl JointMap {
     /// one per chain joint) as forces on the configuration (`out`, one per
     /// independent joint). Allocates nothing.
     pub(crate) fn fold_forces(&self, q: &[f64], chain: &[f64], out: &mut [f64]) {
-        out.fill(0.0);
-        for (&value, drive) in chain.iter().zip(&self.drives) {
-            match *drive {
-                Drive::Independent(i) => out[i] += value,
-                Drive::Mimic {
-                    leader, multiplier, ..
-                } => out[leader] += multiplier * value,
+        match self {
+            JointMap::Identity { .. } | JointMap::Additive { .. } => {
+                // `0 + value`, as the drives below (a -0.0 becomes 0.0).
+                for (o, &value) in out.iter_mut().zip(chain) {
+                    *o = 0.0 + value;
+                }
+            }
+            JointMap::Mimic { drives, .. } => {
+                out.fill(0.0);
+                for (&value, drive) in chain.iter().zip(drives) {
+                    match *drive {
+                        Drive::Independent(i) => out[i] += value,
+                        Drive::Mimic {
+                            leader, multiplier, ..
+                        } => out[leader] += multiplier * value,
+                    }
+                }
             }
         }
-        for (source, target, curve) in &self.additive {
+        for (source, target, curve) in self.additive() {
             let (_, slope) = curve.value_and_slope(q[*source]);
             out[*source] += slope * chain[*target];
         }
+    }
+}
+
+/// `chain[target] += f(q[source])` for each additive curve.
+#[inline]
+fn add_curves(additive: &[AdditiveCurve], q: &[f64], chain: &mut [f64]) {
+    for (source, target, curve) in additive {
+        chain[*target] += curve.value_and_slope(q[*source]).0;
     }
 }
 
@@ -308,7 +398,7 @@ pub(crate) fn check_additive(
     dof: usize,
     map: &JointMap,
     target_is_prismatic: bool,
-) -> Result<(usize, usize, Arc<dyn CouplingCurve>)> {
+) -> Result<AdditiveCurve> {
     let bad = |reason: String| Error::invalid_argument("coupling", reason);
     let CouplingLaw::Additive(curve) = &coupling.law else {
         return Err(bad(
@@ -316,14 +406,14 @@ pub(crate) fn check_additive(
         ));
     };
     curve.validate()?;
-    let chain_len = map.drives.len();
+    let chain_len = map.chain_len();
     if coupling.source >= dof || coupling.target >= chain_len {
         return Err(bad(format!(
             "source {} must index the model's {dof} independent joints and target {} its {chain_len} chain joints",
             coupling.source, coupling.target
         )));
     }
-    match map.drives[coupling.target] {
+    match map.drive(coupling.target) {
         Drive::Independent(i) if i == coupling.source => {
             return Err(bad("source and target must be different joints".into()))
         }

@@ -53,6 +53,7 @@ pub enum JointKind {
 
 impl JointKind {
     /// True for revolute and continuous joints (their position is an angle).
+    #[inline]
     pub fn is_rotational(self) -> bool {
         !matches!(self, JointKind::Prismatic)
     }
@@ -216,6 +217,8 @@ pub struct Model {
     joints: Vec<Joint>,
     /// Every moving joint of the chain, base to tip, with its own limits.
     chain_joints: Vec<Joint>,
+    /// `chain_joints[j].kind`, packed for the kinematics' loops.
+    chain_kinds: Vec<JointKind>,
     /// Placement of chain joint j's frame (before its motion) in the frame of
     /// chain joint j-1 after its motion; for j = 0, in the world frame (base folded in).
     placements: Vec<Pose>,
@@ -238,6 +241,7 @@ impl Model {
 
     /// Number of independent joints (degrees of freedom): the length of a
     /// configuration `q`. Mimic joints are not counted.
+    #[inline]
     pub fn dof(&self) -> usize {
         self.joints.len()
     }
@@ -254,6 +258,7 @@ impl Model {
     /// Every moving joint of the chain, base to tip, mimic joints included,
     /// with their own limits and the mass properties of the links they move
     /// (the joints [`crate::kinematics::Data::joint_frames`] reports).
+    #[inline]
     pub fn chain_joints(&self) -> &[Joint] {
         &self.chain_joints
     }
@@ -262,12 +267,14 @@ impl Model {
     /// joint's frame after its motion (the first in the world frame). Every
     /// joint moves about or along the local z axis of its frame. One per
     /// [`Model::chain_joints`].
+    #[inline]
     pub fn joint_placements(&self) -> &[Pose] {
         &self.placements
     }
 
     /// Placement of the end-effector frame in the last joint's frame (tool
     /// transform and any trailing fixed transforms folded in).
+    #[inline]
     pub fn end_effector_placement(&self) -> &Pose {
         &self.tail
     }
@@ -302,8 +309,15 @@ impl Model {
             .any(|c| matches!(c.law, CouplingLaw::Mimic { .. }))
     }
 
+    #[inline]
     pub(crate) fn joint_map(&self) -> &JointMap {
         &self.map
+    }
+
+    /// The kind of each chain joint ([`Model::chain_joints`]), packed.
+    #[inline]
+    pub(crate) fn chain_kinds(&self) -> &[JointKind] {
+        &self.chain_kinds
     }
 
     /// The chain joints' positions (one per [`Model::chain_joints`]) for the
@@ -383,7 +397,7 @@ impl Model {
         // The Jacobian folds additive columns in place: a target must not
         // be another coupling's source (its column would already be folded).
         for (_, target, _) in &additive {
-            if let crate::model::coupling::Drive::Independent(i) = self.map.drives()[*target] {
+            if let crate::model::coupling::Drive::Independent(i) = self.map.drive(*target) {
                 if additive.iter().any(|(source, ..)| *source == i) {
                     return Err(Error::invalid_argument(
                         "coupling",
@@ -393,7 +407,7 @@ impl Model {
             }
         }
         let mut model = self.clone();
-        model.map.set_additive(additive);
+        model.map = self.map.with_additive(additive);
         model
             .couplings
             .retain(|c| matches!(c.law, CouplingLaw::Mimic { .. }));
@@ -409,6 +423,7 @@ impl Model {
     }
 
     /// Checks that `q` has one finite value per joint.
+    #[inline]
     pub fn check_joint_positions(&self, q: &[f64]) -> Result<()> {
         check_finite_vector("joint_positions", q, self.dof())
     }

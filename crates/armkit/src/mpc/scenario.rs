@@ -186,10 +186,6 @@ pub struct MpcRun {
     pub summary: RunSummary,
 }
 
-/// The former name of [`MpcRun`], kept while the CLI's `commands/mpc.rs`
-/// still uses it (distinct from [`crate::trajectory::Trajectory`]).
-pub type Trajectory = MpcRun;
-
 impl MpcRun {
     /// Indices of the prismatic joints.
     pub fn prismatic_joints(&self) -> Vec<usize> {
@@ -304,18 +300,13 @@ impl MpcRun {
             row.extend(s.position.iter().chain(&s.rpy).map(|v| format!("{v:.9}")));
             row.push(format!("{:.3e}", s.position_error));
             row.push(format!("{:.3e}", s.orientation_error));
-            row.push(status_name(s.status).to_string());
+            row.push(s.status.as_str().to_string());
             row.push(s.iterations.to_string());
             out.push_str(&row.join(","));
             out.push('\n');
         }
         out
     }
-}
-
-/// Short lower-case name of a step status, for CSV and JSON.
-pub fn status_name(status: StepStatus) -> &'static str {
-    status.as_str()
 }
 
 /// Runs the planner in closed loop from `start` (joint positions) to

@@ -16,7 +16,7 @@
 //!   form (eq 19, corrected; eq 17 for energy weights), the generalized ones
 //!   from eq 8. [`best_partition`] picks the best-conditioned split. It gives
 //!   the same velocities as the weighted least norm (tested to 1e-9).
-//! * Energy weights from joint torques ([`energy`]): `a_i = tau_i^2`, so the
+//! * Energy weights from joint torques ([`joint_torques`], [`energy_measure`]): `a_i = tau_i^2`, so the
 //!   cost is seed 001's energy measure `F = sum (q_dot_i tau_i)^2` (eq 9), with
 //!   `tau = J' w + gravity` for a load ([`Load`]) and a documented floor for
 //!   zero torques ([`TorqueFloor`]).
@@ -25,7 +25,7 @@
 //!   weight: the joint does not move; seed 001's zero `A_Q` in eq 19), all
 //!   through [`JointWeights`].
 //! * Secondary objectives in the null space, in the same weighted metric
-//!   ([`nullspace`]): Liegeois' gradient projection for joint-limit avoidance
+//!   ([`SecondaryTask`], [`SecondaryObjective`]): Liegeois' gradient projection for joint-limit avoidance
 //!   and for manipulability.
 //! * A resolved-rate tracker ([`ResolvedRateTracker`]): this module's rate
 //!   law in the one tracking loop ([`crate::tracking`]), following a timed
@@ -50,8 +50,8 @@
 //! assert!((achieved - twist).norm() < 1e-10);
 //! ```
 
-pub mod energy;
-pub mod nullspace;
+mod energy;
+mod nullspace;
 mod partition;
 mod tracking;
 mod weighted;
@@ -59,7 +59,9 @@ mod weighted;
 pub use energy::{
     energy_measure, gravity_torques, joint_torques, Load, TorqueFloor, STANDARD_GRAVITY,
 };
-pub use nullspace::SecondaryObjective;
+pub use nullspace::{
+    joint_limit_cost, joint_limit_gradient, weighted_direction, SecondaryObjective, SecondaryTask,
+};
 pub use partition::{best_partition, Partition, PartitionChoice, PartitionedSolver};
 pub use tracking::{
     compare_distributions, ComparisonCase, ComparisonResult, Distribution, DistributionOptions,

@@ -18,7 +18,7 @@
 //! ```
 //! use armkit::kinematics::{jacobian, Data, JacobianFrame};
 //! use armkit::math::Vector6;
-//! use armkit::redundancy::nullspace::{joint_limit_cost, SecondaryTask};
+//! use armkit::redundancy::{joint_limit_cost, SecondaryTask};
 //! use armkit::redundancy::{JointWeights, SecondaryObjective, SolverOptions, WeightedLeastNorm};
 //! let model = armkit::robots::by_name("panda").unwrap();
 //! let mut data = Data::new(&model);

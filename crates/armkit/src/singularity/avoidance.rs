@@ -12,9 +12,9 @@ use crate::ik::{
 };
 use crate::math::{DMatrix, Pose, Vector6};
 use crate::tracking::{track, TrackingOptions, TrackingStatus};
-use crate::trajectory::cartesian::{CartesianTrajectory, LinePath, TimeLaw};
-use crate::trajectory::spline::clamped_cubic_spline;
+use crate::trajectory::clamped_cubic_spline;
 use crate::trajectory::JointState;
+use crate::trajectory::{CartesianTrajectory, LinePath, TimeLaw};
 
 /// How the joint rates are obtained from the commanded end-effector twist.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -320,6 +320,22 @@ pub enum SearchStatus {
     NotConverged,
 }
 
+impl SearchStatus {
+    /// `"converged"` or `"not_converged"`.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            SearchStatus::Converged => "converged",
+            SearchStatus::NotConverged => "not_converged",
+        }
+    }
+}
+
+impl std::fmt::Display for SearchStatus {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
 /// A singular configuration found by [`nearest_singularity`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct SingularConfiguration {

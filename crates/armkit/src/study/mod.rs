@@ -15,7 +15,7 @@
 //! | [`SpaceRobotStudy`] | 004, sec 1 | the free-floating space robot: momenta, centre of mass, `J*` |
 //!
 //! Seed 002's continuous path is planned by
-//! [`crate::trajectory::continuous_path::plan_continuous_path`] (the CLI's
+//! [`crate::trajectory::plan_continuous_path`] (the CLI's
 //! `[continuous_path]` scenario).
 //!
 //! ```

@@ -16,7 +16,7 @@
 //!
 //! ```
 //! use armkit::math::Pose;
-//! use armkit::trajectory::cartesian::{CartesianTrajectory, LinePath, TimeLaw};
+//! use armkit::trajectory::{CartesianTrajectory, LinePath, TimeLaw};
 //! let start = Pose::from_xyz_rpy([0.4, 0.0, 0.3], [0.0, 0.0, 0.0]);
 //! let end = Pose::from_xyz_rpy([0.4, 0.3, 0.3], [0.0, 0.0, 0.5]);
 //! let line = LinePath::new(start, end).unwrap();

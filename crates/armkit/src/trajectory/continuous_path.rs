@@ -30,8 +30,8 @@
 //!
 //! ```
 //! use armkit::math::{Pose, Vector3};
-//! use armkit::trajectory::cartesian::{CartesianTrajectory, LinePath, TimeLaw};
-//! use armkit::trajectory::continuous_path::{plan_continuous_path, ContinuousPathOptions, PathStatus, PathTolerance};
+//! use armkit::trajectory::{CartesianTrajectory, LinePath, TimeLaw};
+//! use armkit::trajectory::{plan_continuous_path, ContinuousPathOptions, PathStatus, PathTolerance};
 //! use armkit::{forward_kinematics, Data, Error, Model};
 //! use armkit::model::{DhConvention, DhLink};
 //! // A planar 2R arm (0.5 m, 0.4 m) and a 0.3 m line; its IK in closed form,
@@ -407,6 +407,22 @@ pub enum PathStatus {
     /// segmentation reached its maximum count (or a segment 1e-9 of the
     /// duration long). The trajectory is still valid, just coarser.
     ToleranceNotMet,
+}
+
+impl PathStatus {
+    /// `"tolerance_met"` or `"tolerance_not_met"` (the CLI's JSON).
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            PathStatus::ToleranceMet => "tolerance_met",
+            PathStatus::ToleranceNotMet => "tolerance_not_met",
+        }
+    }
+}
+
+impl std::fmt::Display for PathStatus {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
 }
 
 /// What [`plan_continuous_path`] returns.

@@ -9,9 +9,9 @@
 //! report a violation from rounding).
 //!
 //! ```
-//! use armkit::trajectory::limits::{check_limits, scale_to_limits, TimeScaling, TrajectoryLimits};
-//! use armkit::trajectory::{profile, JointState};
-//! let traj = profile::quintic(&JointState::at_rest(&[0.0]), &JointState::at_rest(&[2.0]), 1.0).unwrap();
+//! use armkit::trajectory::{check_limits, scale_to_limits, TimeScaling, TrajectoryLimits};
+//! use armkit::trajectory::{quintic, JointState};
+//! let traj = quintic(&JointState::at_rest(&[0.0]), &JointState::at_rest(&[2.0]), 1.0).unwrap();
 //! // A quintic's peak velocity is 1.875 d / T = 3.75 rad/s here.
 //! let limits = TrajectoryLimits::new(vec![3.0], vec![f64::INFINITY]).unwrap();
 //! let violations = check_limits(&traj, &limits).unwrap();

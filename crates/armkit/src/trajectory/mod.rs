@@ -6,26 +6,28 @@
 //! eq 25) over all joints, whose [`Trajectory::sample`] always fills
 //! position, velocity and acceleration.
 //!
-//! * [`profile`]: point-to-point cubic, quintic and trapezoidal profiles,
+//! * Profiles ([`cubic`], [`quintic`], [`trapezoidal`], [`rest_to_rest`],
+//!   [`minimum_time`]): point-to-point cubic, quintic and trapezoidal profiles,
 //!   synchronized over all joints, for a given duration or in minimum time
 //!   under velocity and acceleration limits.
-//! * [`spline`]: the clamped C2 cubic spline through via points at given times.
-//! * [`cartesian`]: straight lines (slerp, or seed 002's angles linear in
+//! * [`clamped_cubic_spline`]: the clamped C2 cubic spline through via points at given times.
+//! * Cartesian paths ([`CartesianPath`], [`LinePath`], [`ArcPath`], [`FnPath`],
+//!   [`CartesianTrajectory`]): straight lines (slerp, or seed 002's angles linear in
 //!   time), circular arcs and user curves, timed by a trapezoidal or quintic law.
-//! * [`continuous_path`]: seed 002's continuous-path method (IK at n + 1 path
+//! * [`plan_continuous_path`]: seed 002's continuous-path method (IK at n + 1 path
 //!   points, one polynomial per segment) and its adaptive segmentation (Fig 6).
-//! * [`path_ik`]: the IK the continuous path uses: closed form (arm4,
+//! * [`path_ik_for`]: the IK the continuous path uses: closed form (arm4,
 //!   PUMA-type arms) or numeric (any robot), nearest the previous knot.
-//! * [`limits`]: where a trajectory exceeds position, velocity or acceleration
+//! * [`check_limits`], [`scale_to_limits`]: where a trajectory exceeds position, velocity or acceleration
 //!   limits, and uniform time scaling to meet them.
 //!
 //! Units: seconds; rad, rad/s, rad/s^2 for revolute joints; m, m/s, m/s^2 for
 //! prismatic ones.
 //!
 //! ```
-//! use armkit::trajectory::{profile, JointState};
+//! use armkit::trajectory::{trapezoidal, JointState};
 //! // Seed 004's trapezoid: 20 s with 4 s of acceleration, two joints.
-//! let traj = profile::trapezoidal(&[0.0, 1.0], &[1.6, -0.6], 20.0, 4.0).unwrap();
+//! let traj = trapezoidal(&[0.0, 1.0], &[1.6, -0.6], 20.0, 4.0).unwrap();
 //! assert_eq!(traj.duration(), 20.0);
 //! let mut state = JointState::zeros(2);
 //! traj.sample_into(10.0, &mut state).unwrap(); // no allocation
@@ -34,16 +36,31 @@
 //! assert_eq!(state.acceleration[0], 0.0);
 //! ```
 
-pub mod cartesian;
-pub mod continuous_path;
-pub mod limits;
-pub mod path_ik;
+mod cartesian;
+mod continuous_path;
+mod limits;
+mod path_ik;
 mod poly;
-pub mod profile;
-pub mod spline;
+mod profile;
+mod spline;
 mod timed;
 
-pub use cartesian::{CartesianTrajectory, TimeLaw};
+pub use cartesian::{
+    ArcOrientation, ArcPath, CartesianPath, CartesianState, CartesianTrajectory, FnPath, LinePath,
+    OrientationLaw, PathDerivatives, TimeLaw,
+};
+pub use continuous_path::{
+    interpolate_via_points, measure_path_error, plan_continuous_path, BoundaryRates,
+    ContinuousPathOptions, ContinuousPathReport, PathError, PathIk, PathStatus, PathTolerance,
+    SegmentScheme, Segmentation, ViaVelocity,
+};
+pub use limits::{
+    check_limits, peak_rates, scale_to_limits, LimitKind, LimitViolation, PeakRates,
+    ScaledTrajectory, TimeScaling, TrajectoryLimits,
+};
+pub use path_ik::{path_ik_for, ClosedFormPathIk, IkTask, NumericPathIk};
+pub use profile::{cubic, minimum_time, quintic, rest_to_rest, trapezoidal, ProfileShape};
+pub use spline::clamped_cubic_spline;
 pub(crate) use timed::rename_argument;
 pub use timed::{TimeFn, TimedPath};
 

@@ -16,7 +16,7 @@
 //!
 //! ```
 //! use armkit::kinematics::{forward_kinematics, Data};
-//! use armkit::trajectory::path_ik::{path_ik_for, IkTask};
+//! use armkit::trajectory::{path_ik_for, IkTask};
 //! let model = armkit::robots::by_name("panda").unwrap();
 //! let q = [0.0, -0.3, 0.0, -2.2, 0.0, 2.0, 0.8];
 //! let target = *forward_kinematics(&model, &mut Data::new(&model), &[0.05, -0.25, 0.0, -2.1, 0.0, 2.0, 0.8]).unwrap();

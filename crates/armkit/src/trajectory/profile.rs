@@ -8,16 +8,16 @@
 //! `s(t)` from 0 to 1: a straight line in joint space, whatever the timing.
 //!
 //! ```
-//! use armkit::trajectory::{limits::TrajectoryLimits, profile, JointState};
+//! use armkit::trajectory::{minimum_time, quintic, JointState, ProfileShape, TrajectoryLimits};
 //! let q0 = [0.0, 0.5];
 //! let qf = [1.0, -0.5];
 //! // Quintic in 2 s, from and to rest.
-//! let quintic = profile::quintic(&JointState::at_rest(&q0), &JointState::at_rest(&qf), 2.0).unwrap();
-//! let mid = quintic.sample(1.0).unwrap();
+//! let profile = quintic(&JointState::at_rest(&q0), &JointState::at_rest(&qf), 2.0).unwrap();
+//! let mid = profile.sample(1.0).unwrap();
 //! assert!((mid.position[0] - 0.5).abs() < 1e-12);
 //! // The fastest trapezoid under 1 rad/s and 2 rad/s^2 on both joints.
 //! let limits = TrajectoryLimits::new(vec![1.0, 1.0], vec![2.0, 2.0]).unwrap();
-//! let fastest = profile::minimum_time(profile::ProfileShape::Trapezoidal, &q0, &qf, &limits).unwrap();
+//! let fastest = minimum_time(ProfileShape::Trapezoidal, &q0, &qf, &limits).unwrap();
 //! assert!((fastest.duration() - 1.5).abs() < 1e-12); // 0.5 s ramps, 0.5 s cruise
 //! ```
 

@@ -15,7 +15,7 @@
 //! solved by the Thomas algorithm (stable without pivoting) for all joints at once.
 //!
 //! ```
-//! use armkit::trajectory::spline::clamped_cubic_spline;
+//! use armkit::trajectory::clamped_cubic_spline;
 //! let times = [0.0, 1.0, 2.5, 4.0];
 //! let points = [vec![0.0, 1.0], vec![0.5, 0.8], vec![1.2, 0.2], vec![1.0, 0.0]];
 //! let spline = clamped_cubic_spline(&times, &points, &[0.0, 0.0], &[0.0, 0.0]).unwrap();

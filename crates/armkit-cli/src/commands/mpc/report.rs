@@ -3,36 +3,31 @@
 
 use std::path::{Path, PathBuf};
 
-use armkit::mpc::scenario::{simulate_with, Seed000Example, Trajectory};
+use armkit::mpc::scenario::{simulate_with, MpcRun, Seed000Example};
 use armkit::mpc::{MpcPlanner, PlantModel};
 
 use super::MpcArgs;
 use crate::common::{CliError, CliResult};
 use crate::plot::Figure;
-use crate::report::{Animation, Check, Report, Table};
+use crate::report::{write_text, Animation, Check, Report, Table};
 
 /// Writes `mpc.csv` and the plots of Figs 7-9 into `dir`; returns the paths.
-pub(super) fn write_outputs(dir: &Path, run: &Trajectory, title: &str) -> CliResult<Vec<PathBuf>> {
+pub(super) fn write_outputs(dir: &Path, run: &MpcRun, title: &str) -> CliResult<Vec<PathBuf>> {
     std::fs::create_dir_all(dir)
         .map_err(|e| CliError(format!("{}: cannot create directory: {e}", dir.display())))?;
     let mut files = Vec::new();
     let csv = dir.join("mpc.csv");
-    write_file(&csv, &run.to_csv())?;
+    write_text(&csv, &run.to_csv())?;
     files.push(csv);
     for (name, figure) in figures(run, title) {
         let path = dir.join(format!("{name}.svg"));
         let svg = figure
             .to_svg(900, 500)
             .map_err(|e| CliError(format!("{}: plot failed: {e}", path.display())))?;
-        write_file(&path, &svg)?;
+        write_text(&path, &svg)?;
         files.push(path);
     }
     Ok(files)
-}
-
-fn write_file(path: &Path, text: &str) -> CliResult {
-    std::fs::write(path, text)
-        .map_err(|e| CliError(format!("{}: cannot write: {e}", path.display())))
 }
 
 /// What a joint panel plots.
@@ -45,7 +40,7 @@ enum Quantity {
 /// The panels of seed 000's Figs 7-9: (a) end-effector coordinates, (b)
 /// rotary joint velocities, (c) rotary joint angles, (d) prismatic joint
 /// velocities, (e) prismatic joint positions.
-pub(super) fn figures(run: &Trajectory, title: &str) -> Vec<(&'static str, Figure)> {
+pub(super) fn figures(run: &MpcRun, title: &str) -> Vec<(&'static str, Figure)> {
     let t: Vec<f64> = run.samples.iter().map(|s| s.time).collect();
     let mut end_effector = Figure::new(
         format!("{title}: (a) end-effector position"),
@@ -255,7 +250,7 @@ fn mpc_notes(example: Seed000Example, plant: PlantModel) -> Vec<String> {
     notes
 }
 
-pub(super) fn summary_json(run: &Trajectory, planner: &MpcPlanner) -> serde_json::Value {
+pub(super) fn summary_json(run: &MpcRun, planner: &MpcPlanner) -> serde_json::Value {
     let s = &run.summary;
     let times = planner.solve_times();
     serde_json::json!({
@@ -292,7 +287,7 @@ pub(super) fn files_json(files: &[PathBuf]) -> serde_json::Value {
         .into()
 }
 
-pub(super) fn print_summary(run: &Trajectory, planner: &MpcPlanner) {
+pub(super) fn print_summary(run: &MpcRun, planner: &MpcPlanner) {
     let s = &run.summary;
     let orientation = if run.tracks_orientation {
         format!("orientation error {:.3e} rad", s.final_orientation_error)

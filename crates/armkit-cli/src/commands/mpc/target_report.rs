@@ -3,7 +3,7 @@
 
 use armkit::kinematics::{forward_kinematics, Data};
 use armkit::mpc::diagnose_run;
-use armkit::mpc::scenario::{simulate_with, Trajectory};
+use armkit::mpc::scenario::{simulate_with, MpcRun};
 use armkit::Model;
 
 use super::report::figures;
@@ -120,7 +120,7 @@ pub fn target_report(args: &MpcArgs) -> CliResult<Report> {
 }
 
 /// Each joint's start, end, travel and peak speed against its limits.
-fn joint_table(model: &Model, run: &Trajectory, start: &[f64], end: &[f64]) -> Table {
+fn joint_table(model: &Model, run: &MpcRun, start: &[f64], end: &[f64]) -> Table {
     let mut table = Table::new(
         "Joints (m for prismatic, rad for rotational joints)",
         &[

@@ -229,9 +229,9 @@ pub struct LineStudy {
     pub(super) task: IkTask,
     pub(super) tolerance: PathTolerance,
     pub(super) method: &'static str,
-    pub(super) report: armkit::trajectory::continuous_path::ContinuousPathReport,
+    pub(super) report: armkit::trajectory::ContinuousPathReport,
     pub(super) planning: std::time::Duration,
-    pub(super) interior: armkit::trajectory::continuous_path::PathError,
+    pub(super) interior: armkit::trajectory::PathError,
 }
 
 pub(super) fn run_line(args: &LineArgs) -> CliResult<Outcome> {
@@ -250,11 +250,7 @@ pub(super) fn run_line(args: &LineArgs) -> CliResult<Outcome> {
     let mut summary = summarize(&model, &report.trajectory, &limits)?;
     let met = report.status == PathStatus::ToleranceMet;
     summary["profile"] = serde_json::json!("cartesian line");
-    summary["status"] = serde_json::json!(if met {
-        "tolerance_met"
-    } else {
-        "tolerance_not_met"
-    });
+    summary["status"] = serde_json::json!(report.status.as_str());
     summary["ik"] = serde_json::json!(method);
     summary["length_m"] = serde_json::json!((goal.translation - start.translation).norm());
     summary["checked_error_m"] = serde_json::json!(report.checked_error.position);

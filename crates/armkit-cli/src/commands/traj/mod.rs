@@ -18,14 +18,14 @@
 use std::path::PathBuf;
 
 use armkit::kinematics::{forward_kinematics, Data};
-use armkit::trajectory::cartesian::{CartesianTrajectory, LinePath, OrientationLaw, TimeLaw};
-use armkit::trajectory::continuous_path::{
+use armkit::trajectory::{self, ProfileShape};
+use armkit::trajectory::{check_limits, peak_rates, LimitKind, TrajectoryLimits};
+use armkit::trajectory::{
     measure_path_error, plan_continuous_path, ContinuousPathOptions, PathIk, PathStatus,
     PathTolerance, SegmentScheme, Segmentation, ViaVelocity,
 };
-use armkit::trajectory::limits::{check_limits, peak_rates, LimitKind, TrajectoryLimits};
-use armkit::trajectory::path_ik::{path_ik_for, IkTask, NumericPathIk};
-use armkit::trajectory::profile::{self, ProfileShape};
+use armkit::trajectory::{path_ik_for, IkTask, NumericPathIk};
+use armkit::trajectory::{CartesianTrajectory, LinePath, OrientationLaw, TimeLaw};
 use armkit::trajectory::{JointState, Trajectory};
 use armkit::Model;
 use clap::{Args, Subcommand, ValueEnum};
@@ -153,14 +153,14 @@ fn run_joint(args: &JointArgs) -> CliResult<Outcome> {
     let shape = ProfileShape::from(args.profile);
     let limits = TrajectoryLimits::from_model(&model);
     let traj = match args.duration {
-        Some(duration) => profile::rest_to_rest(shape, &q0, &qf, duration, args.accel_time)?,
+        Some(duration) => trajectory::rest_to_rest(shape, &q0, &qf, duration, args.accel_time)?,
         None => {
             if args.accel_time.is_some() {
                 return Err(CliError(
                     "--accel-time needs --duration (without it the profile is minimum-time)".into(),
                 ));
             }
-            profile::minimum_time(shape, &q0, &qf, &limits).map_err(|e| {
+            trajectory::minimum_time(shape, &q0, &qf, &limits).map_err(|e| {
                 CliError(format!(
                     "{e} (the robot's limits; give --duration to plan without them)"
                 ))
