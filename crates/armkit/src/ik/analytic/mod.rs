@@ -65,6 +65,8 @@ pub use finish::{AnalyticSolution, Representatives, Verification};
 use self::chain::{Candidates, Chain};
 use self::class::{detect, Detected};
 use self::finish::Finisher;
+use self::parallel::ThreeParallel;
+use self::wrist::SphericalWrist;
 use self::srs::SrsChain;
 use self::structure::ArmStructure;
 pub use super::closed_form::{Fit, RangeFilter, EXACT_TOLERANCE};
@@ -122,8 +124,14 @@ pub enum Parameter {
 /// What the solver does per solve, fixed at set-up.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Plan {
-    Wrist { chain: Chain, detected: Detected },
-    ThreeParallel { chain: Chain, detected: Detected },
+    Wrist {
+        solver: SphericalWrist,
+        end: ChainEnd,
+    },
+    ThreeParallel {
+        solver: ThreeParallel,
+        end: ChainEnd,
+    },
     ShoulderElbowWrist(SrsChain),
 }
 
@@ -280,37 +288,16 @@ impl AnalyticSolver {
         let mut fixed = None;
         let mut reverse = false;
         match &self.plan {
-            Plan::Wrist { chain, detected } | Plan::ThreeParallel { chain, detected } => {
-                let (end, goal) = match detected {
-                    Detected::SphericalWrist { end, .. } | Detected::ThreeParallel { end, .. } => {
-                        (*end, *target)
-                    }
-                    _ => (ChainEnd::Tip, *target),
-                };
-                let goal = match end {
-                    ChainEnd::Tip => goal,
-                    ChainEnd::Base => goal.inverse(),
-                };
-                reverse = end == ChainEnd::Base;
-                match *detected {
-                    Detected::SphericalWrist {
-                        positioning,
-                        wrist,
-                        shoulder,
-                        ..
-                    } => wrist::solve(
-                        chain,
-                        positioning,
-                        &wrist,
-                        &shoulder,
-                        &goal,
-                        &mut self.candidates,
-                    ),
-                    Detected::ThreeParallel { meet, .. } => {
-                        parallel::solve(chain, &meet, &goal, &mut self.candidates)
-                    }
-                    _ => {}
+            Plan::Wrist { solver, end } => {
+                reverse = *end == ChainEnd::Base;
+                solver.solve(&goal_of(target, *end), &mut self.candidates);
+                if let Some(Parameter::FixedJoint { joint, value }) = self.parameter {
+                    fixed = Some((joint, value));
                 }
+            }
+            Plan::ThreeParallel { solver, end } => {
+                reverse = *end == ChainEnd::Base;
+                solver.solve(&goal_of(target, *end), &mut self.candidates);
                 if let Some(Parameter::FixedJoint { joint, value }) = self.parameter {
                     fixed = Some((joint, value));
                 }
@@ -471,18 +458,42 @@ fn plan(
         ) => Err(unsolvable(
             "; an elbow angle needs a spherical-shoulder-elbow-wrist 7-DOF arm",
         )),
-        (Detected::SphericalWrist { end, .. }, _) => {
+        (
+            Detected::SphericalWrist {
+                end,
+                positioning,
+                wrist,
+                shoulder,
+            },
+            _,
+        ) => {
             let chain = chain_of(&arm, end).ok_or_else(|| unsolvable(""))?;
-            Ok((class, Plan::Wrist { chain, detected }))
+            Ok((
+                class,
+                Plan::Wrist {
+                    solver: SphericalWrist::new(&chain, positioning, &wrist, &shoulder),
+                    end,
+                },
+            ))
         }
-        (Detected::ThreeParallel { end, .. }, _) => {
+        (Detected::ThreeParallel { end, meet }, _) => {
             let chain = chain_of(&arm, end).ok_or_else(|| unsolvable(""))?;
-            Ok((class, Plan::ThreeParallel { chain, detected }))
+            let solver = ThreeParallel::new(&chain, &meet);
+            Ok((class, Plan::ThreeParallel { solver, end }))
         }
         (Detected::Unsolvable(_), Some(Parameter::ElbowAngle(_))) => Err(unsolvable(
             "; an elbow angle needs a spherical-shoulder-elbow-wrist 7-DOF arm",
         )),
         (Detected::Unsolvable(_), _) => Err(unsolvable("")),
+    }
+}
+
+/// The target as the chain is solved: the pose itself, or its inverse for
+/// a chain solved from the base.
+fn goal_of(target: &Pose, end: ChainEnd) -> Pose {
+    match end {
+        ChainEnd::Tip => *target,
+        ChainEnd::Base => target.inverse(),
     }
 }
 
