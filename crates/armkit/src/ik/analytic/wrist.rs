@@ -7,7 +7,7 @@
 use super::chain::{Candidates, Chain, MAX_JOINTS};
 use super::class::Positioning;
 use super::subproblems::{
-    rotation, rotation_of, subproblem1, subproblem1_turn, subproblem2, subproblem2_turns,
+    rotation, rotation_of, subproblem1, subproblem1_turn, subproblem2,
     subproblem3,
     subproblem4, Distance, Sinusoid, Spoke, Turn,
 };
@@ -30,6 +30,8 @@ pub(crate) struct SphericalWrist {
     height: f64,
     joint3: Distance,
     arm3: Spoke,
+    /// Joints 4-6.
+    orientation: WristOrientation,
 }
 
 impl SphericalWrist {
@@ -52,6 +54,7 @@ impl SphericalWrist {
             height: h[1].dot(&(wrist - c[0])),
             joint3: Distance::new(&h[2], &(wrist - c[2]), &(c[1] - c[2])),
             arm3: Spoke::new(&h[2], &(wrist - c[2])),
+            orientation: WristOrientation::new(&h[3], &h[4], &h[5]),
         }
     }
 
@@ -91,13 +94,8 @@ impl SphericalWrist {
             };
             let r03 = rotation(0) * rotation(1) * rotation(2);
             let q = turns.map(|t| t.angle);
-            orientation(
-                [&h[3], &h[4], &h[5]],
-                &(r03.transpose() * wrist_goal),
-                &q,
-                *exact,
-                out,
-            );
+            self.orientation
+                .solve(&(r03.transpose() * wrist_goal), &q, *exact, out);
         }
     }
 
@@ -213,27 +211,49 @@ fn position(
     count
 }
 
-/// The last three joints, axes `h` meeting in one point, with
-/// `R(h[0]) R(h[1]) R(h[2]) = goal`, appended to the joint values `prefix`
-/// (subproblems 2 and 1).
-pub(crate) fn orientation(
-    h: [&Vector3<f64>; 3],
-    goal: &Matrix3<f64>,
-    prefix: &[f64],
-    exact: bool,
-    out: &mut Candidates,
-) {
-    // R4 R5 h6 = goal h6.
-    let pairs = subproblem2_turns(&-h[0], &(goal * h[2]), h[1], h[2]);
-    let n = prefix.len();
-    let mut q = [0.0; MAX_JOINTS];
-    q[..n].copy_from_slice(prefix);
-    for (t4, t5) in pairs.as_slice() {
-        let r45 = rotation_of(h[0], t4) * rotation_of(h[1], t5);
-        let (t6, e6) = subproblem1(h[2], h[1], &(r45.transpose() * goal * h[1]));
-        q[n] = t4.angle;
-        q[n + 1] = t5.angle;
-        q[n + 2] = t6;
-        out.push(&q[..n + 3], exact && pairs.exact && e6);
+/// The last three joints of a spherical wrist (axes `h4`, `h5`, `h6`
+/// meeting in one point), read once: `R4 R5 R6 = goal`.
+///
+/// `R4' h4 = h4` turns the first column condition `R4 R5 h6 = goal h6` into
+/// `h4 . R5 h6 = h4 . goal h6` (subproblem 4 for joint 5, prepared), then
+/// `R4 (R5 h6) = goal h6` (subproblem 1 for joint 4) and
+/// `R6 h5 = (R4 R5)' goal h5` (subproblem 1 for joint 6): one inverse
+/// cosine and four arctangents per wrist, no subproblem 2.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct WristOrientation {
+    h: [Vector3<f64>; 3],
+    joint5: Sinusoid,
+    /// `h6` turned by joint 5.
+    h6_by_5: Spoke,
+}
+
+impl WristOrientation {
+    pub(crate) fn new(h4: &Vector3<f64>, h5: &Vector3<f64>, h6: &Vector3<f64>) -> WristOrientation {
+        WristOrientation {
+            h: [*h4, *h5, *h6],
+            joint5: Sinusoid::new(h4, h5, h6),
+            h6_by_5: Spoke::new(h5, h6),
+        }
+    }
+
+    /// Every `(t4, t5, t6)` with `R4 R5 R6 = goal`, appended to the joint
+    /// values `prefix`.
+    pub(crate) fn solve(&self, goal: &Matrix3<f64>, prefix: &[f64], exact: bool, out: &mut Candidates) {
+        let [h4, h5, h6] = &self.h;
+        let goal_h6 = goal * h6;
+        let goal_h5 = goal * h5;
+        let t5s = self.joint5.solve(h4.dot(&goal_h6));
+        let n = prefix.len();
+        let mut q = [0.0; MAX_JOINTS];
+        q[..n].copy_from_slice(prefix);
+        for t5 in t5s.as_slice() {
+            let (t4, e4) = subproblem1_turn(h4, &self.h6_by_5.turned(t5), &goal_h6);
+            let r45 = rotation_of(h4, &t4) * rotation_of(h5, t5);
+            let (t6, e6) = subproblem1(h6, h5, &(r45.transpose() * goal_h5));
+            q[n] = t4.angle;
+            q[n + 1] = t5.angle;
+            q[n + 2] = t6;
+            out.push(&q[..n + 3], exact && t5s.exact && e4 && e6);
+        }
     }
 }
