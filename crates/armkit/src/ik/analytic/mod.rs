@@ -191,7 +191,11 @@ impl AnalyticSolver {
     ) -> Result<AnalyticSolver> {
         options.validate()?;
         let structure = ArmStructure::of_model(model)?;
-        let (class, plan) = plan(model, &structure, parameter)?;
+        if let Some(Parameter::FixedJoint { .. }) = parameter {
+            // The value is checked here: an end joint's plan is built at 0.
+            plan(model, &structure, parameter)?;
+        }
+        let (class, plan) = plan(model, &structure, reference(&structure, parameter))?;
         Ok(AnalyticSolver {
             model: model.clone(),
             finisher: Finisher::new(model, options),
@@ -230,8 +234,10 @@ impl AnalyticSolver {
     }
 
     /// Changes the redundancy parameter's value (the elbow angle in rad, or
-    /// the fixed joint's value). An elbow angle changes nothing else; a fixed
-    /// joint rebuilds the plan (allocates) and fails if the rest loses its class.
+    /// the fixed joint's value). An elbow angle, or the first or last joint
+    /// held, changes nothing else (the target is moved instead); another
+    /// fixed joint rebuilds the plan (allocates) and fails if the rest loses
+    /// its class.
     pub fn set_parameter_value(&mut self, value: f64) -> Result<()> {
         if !value.is_finite() {
             return Err(Error::invalid_argument(
@@ -243,9 +249,11 @@ impl AnalyticSolver {
             Some(Parameter::ElbowAngle(_)) => Parameter::ElbowAngle(value),
             Some(Parameter::FixedJoint { joint, .. }) => {
                 let parameter = Parameter::FixedJoint { joint, value };
-                let (class, plan) = plan(&self.model, &self.structure, Some(parameter))?;
-                self.class = class;
-                self.plan = plan;
+                if !held_at_end(&self.structure, joint) {
+                    let (class, plan) = plan(&self.model, &self.structure, Some(parameter))?;
+                    self.class = class;
+                    self.plan = plan;
+                }
                 parameter
             }
             None => {
@@ -285,19 +293,20 @@ impl AnalyticSolver {
         check_target(target)?;
         check_finite_vector("current", current, self.model.dof())?;
         self.candidates.clear();
+        let goal = &self.held_target(target);
         let mut fixed = None;
         let mut reverse = false;
         match &self.plan {
             Plan::Wrist { solver, end } => {
                 reverse = *end == ChainEnd::Base;
-                solver.solve(&goal_of(target, *end), &mut self.candidates);
+                solver.solve(&goal_of(goal, *end), &mut self.candidates);
                 if let Some(Parameter::FixedJoint { joint, value }) = self.parameter {
                     fixed = Some((joint, value));
                 }
             }
             Plan::ThreeParallel { solver, end } => {
                 reverse = *end == ChainEnd::Base;
-                solver.solve(&goal_of(target, *end), &mut self.candidates);
+                solver.solve(&goal_of(goal, *end), &mut self.candidates);
                 if let Some(Parameter::FixedJoint { joint, value }) = self.parameter {
                     fixed = Some((joint, value));
                 }
@@ -307,7 +316,7 @@ impl AnalyticSolver {
                     Some(Parameter::ElbowAngle(psi)) => psi,
                     _ => 0.0,
                 };
-                srs.solve(target, psi, &mut self.candidates);
+                srs.solve(goal, psi, &mut self.candidates);
             }
         }
         self.finisher.finish(
@@ -318,6 +327,28 @@ impl AnalyticSolver {
             target,
             current,
         )
+    }
+
+    /// The pose the plan solves for: `target` itself, or for the first or
+    /// last joint held at `v` (plan built at 0), `target` moved so that the
+    /// other joints' solution is unchanged: `M(v)^-1 T` for the first,
+    /// `T home^-1 M(v)^-1 home` for the last (`M` the joint's rigid motion at
+    /// zero configuration).
+    fn held_target(&self, target: &Pose) -> Pose {
+        match self.parameter {
+            Some(Parameter::FixedJoint { joint, value })
+                if held_at_end(&self.structure, joint) =>
+            {
+                let motion = self.structure.motion(joint, value).inverse();
+                if joint == 0 {
+                    motion * *target
+                } else {
+                    let home = &self.structure.home;
+                    *target * (home.inverse() * motion * *home)
+                }
+            }
+            _ => *target,
+        }
     }
 
     /// Solutions at each of `values` of the redundancy parameter (rad or m),
@@ -388,6 +419,23 @@ pub fn explain(model: &Model, parameter: Option<Parameter>) -> Result<(ArmClass,
         Err(_) => detect(&reduced(&structure, parameter)).class(),
     };
     Ok((class, structure))
+}
+
+/// True when `joint` is the first or last of `structure`: holding it moves
+/// the target only, not the other joints' lines.
+fn held_at_end(structure: &ArmStructure, joint: usize) -> bool {
+    joint == 0 || joint + 1 == structure.dof()
+}
+
+/// The parameter the plan is built for: an end joint held at 0 (its value
+/// moves the target, see [`AnalyticSolver::held_target`]), else `parameter`.
+fn reference(structure: &ArmStructure, parameter: Option<Parameter>) -> Option<Parameter> {
+    match parameter {
+        Some(Parameter::FixedJoint { joint, .. }) if held_at_end(structure, joint) => {
+            Some(Parameter::FixedJoint { joint, value: 0.0 })
+        }
+        other => other,
+    }
 }
 
 fn reduced(structure: &ArmStructure, parameter: Option<Parameter>) -> ArmStructure {
