@@ -66,9 +66,9 @@ use self::chain::{Candidates, Chain};
 use self::class::{detect, Detected};
 use self::finish::Finisher;
 use self::parallel::ThreeParallel;
-use self::wrist::SphericalWrist;
 use self::srs::SrsChain;
 use self::structure::ArmStructure;
+use self::wrist::SphericalWrist;
 pub use super::closed_form::{Fit, RangeFilter, EXACT_TOLERANCE};
 use super::numeric::check_target;
 use crate::error::{check_finite_vector, Error, Result};
@@ -336,9 +336,7 @@ impl AnalyticSolver {
     /// zero configuration).
     fn held_target(&self, target: &Pose) -> Pose {
         match self.parameter {
-            Some(Parameter::FixedJoint { joint, value })
-                if held_at_end(&self.structure, joint) =>
-            {
+            Some(Parameter::FixedJoint { joint, value }) if held_at_end(&self.structure, joint) => {
                 let motion = self.structure.motion(joint, value).inverse();
                 if joint == 0 {
                     motion * *target

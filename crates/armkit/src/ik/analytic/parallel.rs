@@ -99,11 +99,14 @@ impl ThreeParallel {
             for t5 in t5s.as_slice() {
                 // R6' R5' k = Rd' R1 k  (subproblem 1).
                 let (t6, e6) = subproblem1_turn(&self.h6, &rdt_r1_k, &self.k_by_5.turned_back(t5));
-                let r234 = r1t_rd * rotation_of(&self.h6, &t6).transpose()
+                let r234 = r1t_rd
+                    * rotation_of(&self.h6, &t6).transpose()
                     * rotation_of(&self.h5, t5).transpose();
                 // R234 = rotation about k by t2 + s3 t3 + s4 t4.
                 let turned = r234 * self.normal;
-                let t234 = turned.dot(&self.normal_cross).atan2(turned.dot(&self.normal));
+                let t234 = turned
+                    .dot(&self.normal_cross)
+                    .atan2(turned.dot(&self.normal));
                 // The planar 3R: E2 E3 c4 = E1' P - R234 (meet - c4).
                 let goal = p_before_1 - r234 * self.meet_c4;
                 let to_goal = goal - self.c2;

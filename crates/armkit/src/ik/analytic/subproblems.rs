@@ -108,7 +108,11 @@ pub fn subproblem1(k: &Vector3<f64>, p1: &Vector3<f64>, p2: &Vector3<f64>) -> (f
 /// Subproblem 1's angle as a direction `(y, x)` (the angle is
 /// `atan2(y, x)`) and whether it is exact.
 #[inline]
-fn subproblem1_direction(k: &Vector3<f64>, p1: &Vector3<f64>, p2: &Vector3<f64>) -> (f64, f64, bool) {
+fn subproblem1_direction(
+    k: &Vector3<f64>,
+    p1: &Vector3<f64>,
+    p2: &Vector3<f64>,
+) -> (f64, f64, bool) {
     let kp1 = k.dot(p1);
     let kp2 = k.dot(p2);
     let x = p1.dot(p2) - kp1 * kp2;

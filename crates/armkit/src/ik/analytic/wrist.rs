@@ -7,9 +7,8 @@
 use super::chain::{Candidates, Chain, MAX_JOINTS};
 use super::class::Positioning;
 use super::subproblems::{
-    rotation, rotation_of, subproblem1, subproblem1_turn, subproblem2,
-    subproblem3,
-    subproblem4, Distance, Sinusoid, Spoke, Turn,
+    rotation, rotation_of, subproblem1, subproblem1_turn, subproblem2, subproblem3, subproblem4,
+    Distance, Sinusoid, Spoke, Turn,
 };
 use crate::math::{Matrix3, Pose, Vector3};
 
@@ -238,7 +237,13 @@ impl WristOrientation {
 
     /// Every `(t4, t5, t6)` with `R4 R5 R6 = goal`, appended to the joint
     /// values `prefix`.
-    pub(crate) fn solve(&self, goal: &Matrix3<f64>, prefix: &[f64], exact: bool, out: &mut Candidates) {
+    pub(crate) fn solve(
+        &self,
+        goal: &Matrix3<f64>,
+        prefix: &[f64],
+        exact: bool,
+        out: &mut Candidates,
+    ) {
         let [h4, h5, h6] = &self.h;
         let goal_h6 = goal * h6;
         let goal_h5 = goal * h5;
