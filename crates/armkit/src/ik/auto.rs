@@ -284,9 +284,9 @@ fn held_values(limits: &JointLimits, own: f64, values: &mut [f64; HELD_TRIES]) {
     let mut used = [false; SWEEP_VALUES];
     for slot in values.iter_mut().skip(1) {
         let mut best: Option<usize> = None;
-        for k in 0..SWEEP_VALUES {
+        for (k, taken) in used.iter().enumerate() {
             let nearer = best.is_none_or(|b| (grid(k) - own).abs() < (grid(b) - own).abs());
-            if !used[k] && nearer {
+            if !taken && nearer {
                 best = Some(k);
             }
         }

@@ -208,7 +208,6 @@ impl Finisher {
     fn expand(&mut self, solution: AnalyticSolution, current: &[f64]) {
         let dof = solution.dof;
         let mut counts = [0usize; MAX_JOINTS];
-        let mut single = true;
         for j in 0..dof {
             counts[j] = representatives(
                 &self.options,
@@ -220,17 +219,6 @@ impl Finisher {
             if counts[j] == 0 {
                 return;
             }
-            single &= counts[j] == 1;
-        }
-        if single {
-            let mut s = solution;
-            s.distance2 = 0.0;
-            for j in 0..dof {
-                s.values[j] = self.choices[j][0];
-                s.distance2 += (s.values[j] - current[j]) * (s.values[j] - current[j]);
-            }
-            self.solutions.push(s);
-            return;
         }
         // Odometer over the per-joint choices.
         let mut index = [0usize; MAX_JOINTS];

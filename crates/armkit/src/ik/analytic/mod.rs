@@ -121,7 +121,10 @@ pub enum Parameter {
     ElbowAngle(f64),
 }
 
-/// What the solver does per solve, fixed at set-up.
+/// What the solver does per solve, fixed at set-up. Variants differ in
+/// size (the prepared geometry); a plan is built once per solver and read
+/// in place on every solve, so it is kept inline rather than boxed.
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Plan {
     Wrist {
