@@ -278,6 +278,30 @@ fn panda_with_the_last_joint_fixed_every_pose() {
     assert_all_recovered("panda q7 fixed", &tally);
 }
 
+/// The first or last joint held at several values, changed by
+/// `set_parameter_value` on one solver (the target is moved, the plan kept).
+#[test]
+fn an_end_joint_held_at_changing_values() {
+    let cases = [
+        (armkit::robots::by_name("panda").unwrap(), 6),
+        (ideal_iiwa14(), 0),
+        (ideal_iiwa14(), 6),
+    ];
+    for (model, joint) in cases {
+        let parameter = Parameter::FixedJoint { joint, value: 0.0 };
+        let mut s =
+            AnalyticSolver::with_parameter(&model, AnalyticOptions::default(), parameter).unwrap();
+        let class = s.class();
+        for (k, value) in [-2.5, -0.4, 0.9, 2.7].into_iter().enumerate() {
+            s.set_parameter_value(value).unwrap();
+            assert_eq!(s.class(), class);
+            let tally = check(&model, &mut s, POSES / 4, 40 + k as u64, &no_parameter);
+            let name = format!("{} joint {} held at {value}", model.name(), joint + 1);
+            assert_all_recovered(&name, &tally);
+        }
+    }
+}
+
 // ---------------------------------------------------------------- random arms
 
 fn unit(rng: &mut ChaCha8Rng) -> Vector3<f64> {

@@ -689,3 +689,31 @@ fn analytic_ik_solves_do_not_allocate() {
         assert!(solutions > 0, "{name}");
     }
 }
+
+#[test]
+fn analytic_ik_with_a_changing_held_end_joint_does_not_allocate() {
+    use armkit::ik::analytic::{AnalyticOptions, AnalyticSolver, Parameter};
+    let model = armkit::robots::by_name("panda").unwrap();
+    let targets = benchmark_targets(&model, 20, 4).unwrap();
+    let parameter = Parameter::FixedJoint {
+        joint: 6,
+        value: 0.0,
+    };
+    let mut solver =
+        AnalyticSolver::with_parameter(&model, AnalyticOptions::default(), parameter).unwrap();
+    let start = model.neutral_configuration();
+    let mut solutions = 0;
+    for (i, (_, target)) in targets.iter().enumerate() {
+        let before = allocations();
+        solver.set_parameter_value(-2.0 + 0.2 * i as f64).unwrap();
+        solutions += solver.solve(target, &start).unwrap().len();
+        let after = allocations();
+        assert_eq!(
+            after - before,
+            0,
+            "panda q7 held: {} allocations",
+            after - before
+        );
+    }
+    assert!(solutions > 0);
+}

@@ -2,8 +2,7 @@
 //! of candidate solutions (nothing here allocates).
 
 use super::structure::{ArmStructure, Motion};
-use super::subproblems::rotation;
-use crate::math::{Matrix3, Pose, Vector3};
+use crate::math::{Pose, Vector3};
 
 /// Most candidate solutions one solve produces (8 for every class here;
 /// room for tangent duplicates).
@@ -43,15 +42,6 @@ impl Chain {
             chain.translation[i] = structure.motions[i] == Motion::Translation;
         }
         Some(chain)
-    }
-
-    /// The rotation of joint `i` at `value` (identity for a sliding joint).
-    pub(crate) fn rotation(&self, i: usize, value: f64) -> Matrix3<f64> {
-        if self.translation[i] {
-            Matrix3::identity()
-        } else {
-            rotation(&self.h[i], value)
-        }
     }
 }
 

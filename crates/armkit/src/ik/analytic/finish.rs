@@ -76,12 +76,51 @@ impl AnalyticSolution {
     }
 }
 
+/// A joint's range as the finishing stage reads it, fixed at set-up.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Range {
+    /// A sliding joint: kept when within `[lower, upper]`.
+    Slide { lower: f64, upper: f64 },
+    /// A rotation joint without finite limits: the representative nearest
+    /// the current value.
+    Unbounded,
+    /// A rotation joint with one finite limit.
+    HalfBounded { lower: f64, upper: f64 },
+    /// A rotation joint with both limits finite.
+    Bounded { lower: f64, upper: f64 },
+}
+
+impl Range {
+    fn of(model: &Model, j: usize) -> Range {
+        let joint = &model.joints()[j];
+        let (lower, upper) = (joint.limits.lower, joint.limits.upper);
+        if joint.kind == JointKind::Prismatic {
+            Range::Slide { lower, upper }
+        } else if lower == f64::NEG_INFINITY && upper == f64::INFINITY {
+            Range::Unbounded
+        } else if joint.limits.is_bounded() {
+            Range::Bounded { lower, upper }
+        } else {
+            Range::HalfBounded { lower, upper }
+        }
+    }
+
+    fn is_rotation(&self) -> bool {
+        !matches!(self, Range::Slide { .. })
+    }
+}
+
 /// The finishing stage's workspace, sized once for a model.
 #[derive(Clone, Debug)]
 pub(crate) struct Finisher {
     data: Data,
     options: AnalyticOptions,
+    ranges: [Range; MAX_JOINTS],
     solutions: Vec<AnalyticSolution>,
+    /// Distinct candidates of the current solve (model order, angles in (-pi, pi]).
+    accepted: [[f64; MAX_JOINTS]; MAX_CANDIDATES],
+    /// Per-joint representatives of the current candidate.
+    choices: [[f64; MAX_REPRESENTATIVES]; MAX_JOINTS],
 }
 
 impl Finisher {
@@ -93,10 +132,17 @@ impl Finisher {
             .map(|j| representatives_bound(j.limits.lower, j.limits.upper))
             .product();
         let capacity = (MAX_CANDIDATES * per_candidate).min(1 << 16);
+        let mut ranges = [Range::Unbounded; MAX_JOINTS];
+        for (j, range) in ranges.iter_mut().enumerate().take(model.dof()) {
+            *range = Range::of(model, j);
+        }
         Finisher {
             data: Data::new(model),
             options,
+            ranges,
             solutions: Vec::with_capacity(capacity),
+            accepted: [[0.0; MAX_JOINTS]; MAX_CANDIDATES],
+            choices: [[0.0; MAX_REPRESENTATIVES]; MAX_JOINTS],
         }
     }
 
@@ -113,18 +159,23 @@ impl Finisher {
     ) -> Result<&[AnalyticSolution]> {
         self.solutions.clear();
         let dof = model.dof();
-        let mut accepted = [[0.0; MAX_JOINTS]; MAX_CANDIDATES];
         let mut count = 0;
         for candidate in candidates {
-            let q = model_order(candidate, dof, reverse, fixed);
-            if accepted[..count]
+            let mut q = model_order(candidate, dof, reverse, fixed);
+            for (value, range) in q.iter_mut().zip(&self.ranges).take(dof) {
+                if range.is_rotation() {
+                    *value = wrap(*value);
+                }
+            }
+            let ranges = &self.ranges[..dof];
+            if self.accepted[..count]
                 .iter()
-                .any(|a| same_configuration(model, &a[..dof], &q[..dof]))
+                .any(|a| same_configuration(ranges, &a[..dof], &q[..dof]))
             {
                 continue;
             }
             if count < MAX_CANDIDATES {
-                accepted[count] = q;
+                self.accepted[count] = q;
                 count += 1;
             }
             let (fit, position_error, orientation_error) = match self.options.verification {
@@ -147,20 +198,24 @@ impl Finisher {
                 orientation_error,
                 distance2: 0.0,
             };
-            self.expand(model, solution, current);
+            self.expand(solution, current);
         }
         sort_by_distance(&mut self.solutions);
         Ok(&self.solutions)
     }
 
     /// Pushes every allowed representative combination of `solution`.
-    fn expand(&mut self, model: &Model, solution: AnalyticSolution, current: &[f64]) {
+    fn expand(&mut self, solution: AnalyticSolution, current: &[f64]) {
         let dof = solution.dof;
-        let mut choices = [[0.0; MAX_REPRESENTATIVES]; MAX_JOINTS];
         let mut counts = [0usize; MAX_JOINTS];
         for j in 0..dof {
-            counts[j] =
-                self.representatives(model, j, solution.values[j], current[j], &mut choices[j]);
+            counts[j] = representatives(
+                &self.options,
+                self.ranges[j],
+                solution.values[j],
+                current[j],
+                &mut self.choices[j],
+            );
             if counts[j] == 0 {
                 return;
             }
@@ -171,7 +226,7 @@ impl Finisher {
             let mut s = solution;
             s.distance2 = 0.0;
             for j in 0..dof {
-                s.values[j] = choices[j][index[j]];
+                s.values[j] = self.choices[j][index[j]];
                 s.distance2 += (s.values[j] - current[j]) * (s.values[j] - current[j]);
             }
             self.solutions.push(s);
@@ -189,60 +244,133 @@ impl Finisher {
             }
         }
     }
+}
 
-    /// The values of joint `j` to return for `value`; how many.
-    fn representatives(
-        &self,
-        model: &Model,
-        j: usize,
-        value: f64,
-        current: f64,
-        out: &mut [f64; MAX_REPRESENTATIVES],
-    ) -> usize {
-        use std::f64::consts::TAU;
-        let joint = &model.joints()[j];
-        let limits = &joint.limits;
-        if joint.kind == JointKind::Prismatic {
-            let keep = self.options.limits == RangeFilter::IgnoreLimits || limits.contains(value);
+/// The values of a joint with `range` to return for `value` (an angle in
+/// (-pi, pi] for a rotation joint); how many.
+fn representatives(
+    options: &AnalyticOptions,
+    range: Range,
+    value: f64,
+    current: f64,
+    out: &mut [f64; MAX_REPRESENTATIVES],
+) -> usize {
+    use std::f64::consts::TAU;
+    let ignore = options.limits == RangeFilter::IgnoreLimits;
+    let nearest = || value + TAU * round((current - value) / TAU);
+    match range {
+        Range::Slide { lower, upper } => {
             out[0] = value;
-            return usize::from(keep);
+            usize::from(ignore || (value >= lower && value <= upper))
         }
-        let nearest = value + TAU * ((current - value) / TAU).round();
-        let unbounded = limits.lower == f64::NEG_INFINITY && limits.upper == f64::INFINITY;
-        if self.options.limits == RangeFilter::IgnoreLimits || unbounded {
-            out[0] = nearest;
-            return 1;
+        Range::Unbounded => {
+            out[0] = nearest();
+            1
         }
-        if !limits.is_bounded() {
-            // Half-bounded range: the nearest multiple, else the one just inside.
-            out[0] = if limits.contains(nearest) {
-                nearest
-            } else if limits.lower.is_finite() {
-                value + TAU * ((limits.lower - value) / TAU).ceil()
-            } else {
-                value + TAU * ((limits.upper - value) / TAU).floor()
-            };
-            return usize::from(limits.contains(out[0]));
+        _ if ignore => {
+            out[0] = nearest();
+            1
         }
-        let first = ((limits.lower - value) / TAU).ceil();
-        let last = ((limits.upper - value) / TAU).floor();
-        let mut count = 0;
-        let mut k = first;
-        while k <= last && count < MAX_REPRESENTATIVES {
-            out[count] = value + TAU * k;
-            count += 1;
-            k += 1.0;
+        Range::HalfBounded { lower, upper } => nearest_inside(value, nearest(), lower, upper, out),
+        Range::Bounded { lower, upper }
+            if options.representatives == super::Representatives::Nearest =>
+        {
+            nearest_inside(value, nearest(), lower, upper, out)
         }
-        if self.options.representatives == super::Representatives::Nearest && count > 1 {
-            let best = out[..count]
-                .iter()
-                .copied()
-                .min_by(|a, b| (a - current).abs().total_cmp(&(b - current).abs()))
-                .unwrap_or(out[0]);
-            out[0] = best;
-            count = 1;
+        Range::Bounded { lower, upper } => {
+            let first = ceil((lower - value) / TAU);
+            let last = floor((upper - value) / TAU);
+            let mut count = 0;
+            let mut k = first;
+            // Every representative (`Nearest` was answered above).
+            while k <= last && count < MAX_REPRESENTATIVES {
+                out[count] = value + TAU * k;
+                count += 1;
+                k += 1.0;
+            }
+            count
         }
-        count
+    }
+}
+
+/// The representative of `value` within `[lower, upper]` nearest
+/// `nearest` (the one nearest the current value): `nearest` itself when
+/// inside, else the one just inside the bound it passed; 0 or 1 written.
+fn nearest_inside(
+    value: f64,
+    nearest: f64,
+    lower: f64,
+    upper: f64,
+    out: &mut [f64; MAX_REPRESENTATIVES],
+) -> usize {
+    use std::f64::consts::TAU;
+    out[0] = if nearest < lower {
+        value + TAU * ceil((lower - value) / TAU)
+    } else if nearest > upper {
+        value + TAU * floor((upper - value) / TAU)
+    } else {
+        nearest
+    };
+    usize::from(out[0] >= lower && out[0] <= upper)
+}
+
+/// Largest magnitude below which [`floor`], [`ceil`] and [`round`] go
+/// through an integer conversion (exact there) instead of the library call.
+const FAST_INTEGER_LIMIT: f64 = 4.0e15;
+
+/// `x.floor()`, inline for moderate `x` (the library call costs more than
+/// the rest of a representative).
+#[inline]
+fn floor(x: f64) -> f64 {
+    if x.abs() < FAST_INTEGER_LIMIT {
+        let t = x as i64 as f64;
+        if t > x {
+            t - 1.0
+        } else {
+            t
+        }
+    } else {
+        x.floor()
+    }
+}
+
+/// `x.ceil()`, inline for moderate `x`.
+#[inline]
+fn ceil(x: f64) -> f64 {
+    -floor(-x)
+}
+
+/// The nearest integer to `x` (halves away from zero, as `f64::round`),
+/// inline for moderate `x`.
+#[inline]
+fn round(x: f64) -> f64 {
+    let magnitude = x.abs();
+    let whole = floor(magnitude);
+    // `magnitude - whole` is exact (both within one unit of each other).
+    let rounded = if magnitude - whole >= 0.5 {
+        whole + 1.0
+    } else {
+        whole
+    };
+    rounded.copysign(x)
+}
+
+/// `angle` wrapped into (-pi, pi] (one addition for the angles the
+/// subproblems produce, which lie within a few turns).
+#[inline]
+fn wrap(angle: f64) -> f64 {
+    use std::f64::consts::{PI, TAU};
+    let shifted = if angle > PI {
+        angle - TAU
+    } else if angle <= -PI {
+        angle + TAU
+    } else {
+        return angle;
+    };
+    if shifted > -PI && shifted <= PI {
+        shifted
+    } else {
+        crate::math::wrap_angle(angle)
     }
 }
 
@@ -280,15 +408,13 @@ fn model_order(
     q
 }
 
-/// True when two configurations agree to [`DUPLICATE_TOLERANCE`] (angles modulo 2 pi).
-fn same_configuration(model: &Model, a: &[f64], b: &[f64]) -> bool {
-    a.iter().zip(b).zip(model.joints()).all(|((x, y), joint)| {
-        let gap = if joint.kind.is_rotational() {
-            crate::math::wrap_angle(x - y)
-        } else {
-            x - y
-        };
-        gap.abs() <= DUPLICATE_TOLERANCE
+/// True when two configurations (angles in (-pi, pi]) agree to
+/// [`DUPLICATE_TOLERANCE`], angles modulo 2 pi.
+fn same_configuration(ranges: &[Range], a: &[f64], b: &[f64]) -> bool {
+    use std::f64::consts::TAU;
+    a.iter().zip(b).zip(ranges).all(|((x, y), range)| {
+        let gap = (x - y).abs();
+        gap <= DUPLICATE_TOLERANCE || (range.is_rotation() && gap >= TAU - DUPLICATE_TOLERANCE)
     })
 }
 
@@ -319,4 +445,49 @@ pub(crate) fn sort_nearest(solutions: &mut [AnalyticSolution], current: &[f64]) 
 /// Sorts by the stored distances.
 fn sort_by_distance(solutions: &mut [AnalyticSolution]) {
     solutions.sort_unstable_by(|a, b| a.distance2.total_cmp(&b.distance2));
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn inline_rounding_matches_the_library() {
+        let values = [
+            0.0,
+            -0.0,
+            0.5,
+            -0.5,
+            1.5,
+            -1.5,
+            2.5,
+            0.49999999999999994,
+            -2.3,
+            7.9,
+            -7.9,
+            1e15,
+            -1e15,
+            3.9e15,
+            5e15,
+            -5e15,
+            1e300,
+            4503599627370495.5,
+        ];
+        for x in values {
+            assert_eq!(floor(x), x.floor(), "floor {x}");
+            assert_eq!(ceil(x), x.ceil(), "ceil {x}");
+            assert_eq!(round(x), x.round(), "round {x}");
+        }
+    }
+
+    #[test]
+    fn wrap_matches_wrap_angle() {
+        for k in -4000..4000 {
+            let x = k as f64 * 0.00377 + 1e-3;
+            let w = wrap(x);
+            assert!(w > -std::f64::consts::PI && w <= std::f64::consts::PI);
+            assert!((w - crate::math::wrap_angle(x)).abs() < 1e-15, "{x}");
+        }
+        assert_eq!(wrap(std::f64::consts::PI), std::f64::consts::PI);
+    }
 }

@@ -65,8 +65,10 @@ pub use finish::{AnalyticSolution, Representatives, Verification};
 use self::chain::{Candidates, Chain};
 use self::class::{detect, Detected};
 use self::finish::Finisher;
+use self::parallel::ThreeParallel;
 use self::srs::SrsChain;
 use self::structure::ArmStructure;
+use self::wrist::SphericalWrist;
 pub use super::closed_form::{Fit, RangeFilter, EXACT_TOLERANCE};
 use super::numeric::check_target;
 use crate::error::{check_finite_vector, Error, Result};
@@ -119,11 +121,20 @@ pub enum Parameter {
     ElbowAngle(f64),
 }
 
-/// What the solver does per solve, fixed at set-up.
+/// What the solver does per solve, fixed at set-up. Variants differ in
+/// size (the prepared geometry); a plan is built once per solver and read
+/// in place on every solve, so it is kept inline rather than boxed.
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Plan {
-    Wrist { chain: Chain, detected: Detected },
-    ThreeParallel { chain: Chain, detected: Detected },
+    Wrist {
+        solver: SphericalWrist,
+        end: ChainEnd,
+    },
+    ThreeParallel {
+        solver: ThreeParallel,
+        end: ChainEnd,
+    },
     ShoulderElbowWrist(SrsChain),
 }
 
@@ -183,7 +194,11 @@ impl AnalyticSolver {
     ) -> Result<AnalyticSolver> {
         options.validate()?;
         let structure = ArmStructure::of_model(model)?;
-        let (class, plan) = plan(model, &structure, parameter)?;
+        if let Some(Parameter::FixedJoint { .. }) = parameter {
+            // The value is checked here: an end joint's plan is built at 0.
+            plan(model, &structure, parameter)?;
+        }
+        let (class, plan) = plan(model, &structure, reference(&structure, parameter))?;
         Ok(AnalyticSolver {
             model: model.clone(),
             finisher: Finisher::new(model, options),
@@ -222,8 +237,10 @@ impl AnalyticSolver {
     }
 
     /// Changes the redundancy parameter's value (the elbow angle in rad, or
-    /// the fixed joint's value). An elbow angle changes nothing else; a fixed
-    /// joint rebuilds the plan (allocates) and fails if the rest loses its class.
+    /// the fixed joint's value). An elbow angle, or the first or last joint
+    /// held, changes nothing else (the target is moved instead); another
+    /// fixed joint rebuilds the plan (allocates) and fails if the rest loses
+    /// its class.
     pub fn set_parameter_value(&mut self, value: f64) -> Result<()> {
         if !value.is_finite() {
             return Err(Error::invalid_argument(
@@ -235,9 +252,11 @@ impl AnalyticSolver {
             Some(Parameter::ElbowAngle(_)) => Parameter::ElbowAngle(value),
             Some(Parameter::FixedJoint { joint, .. }) => {
                 let parameter = Parameter::FixedJoint { joint, value };
-                let (class, plan) = plan(&self.model, &self.structure, Some(parameter))?;
-                self.class = class;
-                self.plan = plan;
+                if !held_at_end(&self.structure, joint) {
+                    let (class, plan) = plan(&self.model, &self.structure, Some(parameter))?;
+                    self.class = class;
+                    self.plan = plan;
+                }
                 parameter
             }
             None => {
@@ -277,40 +296,20 @@ impl AnalyticSolver {
         check_target(target)?;
         check_finite_vector("current", current, self.model.dof())?;
         self.candidates.clear();
+        let goal = &self.held_target(target);
         let mut fixed = None;
         let mut reverse = false;
         match &self.plan {
-            Plan::Wrist { chain, detected } | Plan::ThreeParallel { chain, detected } => {
-                let (end, goal) = match detected {
-                    Detected::SphericalWrist { end, .. } | Detected::ThreeParallel { end, .. } => {
-                        (*end, *target)
-                    }
-                    _ => (ChainEnd::Tip, *target),
-                };
-                let goal = match end {
-                    ChainEnd::Tip => goal,
-                    ChainEnd::Base => goal.inverse(),
-                };
-                reverse = end == ChainEnd::Base;
-                match *detected {
-                    Detected::SphericalWrist {
-                        positioning,
-                        wrist,
-                        shoulder,
-                        ..
-                    } => wrist::solve(
-                        chain,
-                        positioning,
-                        &wrist,
-                        &shoulder,
-                        &goal,
-                        &mut self.candidates,
-                    ),
-                    Detected::ThreeParallel { meet, .. } => {
-                        parallel::solve(chain, &meet, &goal, &mut self.candidates)
-                    }
-                    _ => {}
+            Plan::Wrist { solver, end } => {
+                reverse = *end == ChainEnd::Base;
+                solver.solve(&goal_of(goal, *end), &mut self.candidates);
+                if let Some(Parameter::FixedJoint { joint, value }) = self.parameter {
+                    fixed = Some((joint, value));
                 }
+            }
+            Plan::ThreeParallel { solver, end } => {
+                reverse = *end == ChainEnd::Base;
+                solver.solve(&goal_of(goal, *end), &mut self.candidates);
                 if let Some(Parameter::FixedJoint { joint, value }) = self.parameter {
                     fixed = Some((joint, value));
                 }
@@ -320,7 +319,7 @@ impl AnalyticSolver {
                     Some(Parameter::ElbowAngle(psi)) => psi,
                     _ => 0.0,
                 };
-                srs.solve(target, psi, &mut self.candidates);
+                srs.solve(goal, psi, &mut self.candidates);
             }
         }
         self.finisher.finish(
@@ -331,6 +330,26 @@ impl AnalyticSolver {
             target,
             current,
         )
+    }
+
+    /// The pose the plan solves for: `target` itself, or for the first or
+    /// last joint held at `v` (plan built at 0), `target` moved so that the
+    /// other joints' solution is unchanged: `M(v)^-1 T` for the first,
+    /// `T home^-1 M(v)^-1 home` for the last (`M` the joint's rigid motion at
+    /// zero configuration).
+    fn held_target(&self, target: &Pose) -> Pose {
+        match self.parameter {
+            Some(Parameter::FixedJoint { joint, value }) if held_at_end(&self.structure, joint) => {
+                let motion = self.structure.motion(joint, value).inverse();
+                if joint == 0 {
+                    motion * *target
+                } else {
+                    let home = &self.structure.home;
+                    *target * (home.inverse() * motion * *home)
+                }
+            }
+            _ => *target,
+        }
     }
 
     /// Solutions at each of `values` of the redundancy parameter (rad or m),
@@ -403,6 +422,23 @@ pub fn explain(model: &Model, parameter: Option<Parameter>) -> Result<(ArmClass,
     Ok((class, structure))
 }
 
+/// True when `joint` is the first or last of `structure`: holding it moves
+/// the target only, not the other joints' lines.
+fn held_at_end(structure: &ArmStructure, joint: usize) -> bool {
+    joint == 0 || joint + 1 == structure.dof()
+}
+
+/// The parameter the plan is built for: an end joint held at 0 (its value
+/// moves the target, see [`AnalyticSolver::held_target`]), else `parameter`.
+fn reference(structure: &ArmStructure, parameter: Option<Parameter>) -> Option<Parameter> {
+    match parameter {
+        Some(Parameter::FixedJoint { joint, .. }) if held_at_end(structure, joint) => {
+            Some(Parameter::FixedJoint { joint, value: 0.0 })
+        }
+        other => other,
+    }
+}
+
 fn reduced(structure: &ArmStructure, parameter: Option<Parameter>) -> ArmStructure {
     match parameter {
         Some(Parameter::FixedJoint { joint, value }) if joint < structure.dof() => {
@@ -471,18 +507,42 @@ fn plan(
         ) => Err(unsolvable(
             "; an elbow angle needs a spherical-shoulder-elbow-wrist 7-DOF arm",
         )),
-        (Detected::SphericalWrist { end, .. }, _) => {
+        (
+            Detected::SphericalWrist {
+                end,
+                positioning,
+                wrist,
+                shoulder,
+            },
+            _,
+        ) => {
             let chain = chain_of(&arm, end).ok_or_else(|| unsolvable(""))?;
-            Ok((class, Plan::Wrist { chain, detected }))
+            Ok((
+                class,
+                Plan::Wrist {
+                    solver: SphericalWrist::new(&chain, positioning, &wrist, &shoulder),
+                    end,
+                },
+            ))
         }
-        (Detected::ThreeParallel { end, .. }, _) => {
+        (Detected::ThreeParallel { end, meet }, _) => {
             let chain = chain_of(&arm, end).ok_or_else(|| unsolvable(""))?;
-            Ok((class, Plan::ThreeParallel { chain, detected }))
+            let solver = ThreeParallel::new(&chain, &meet);
+            Ok((class, Plan::ThreeParallel { solver, end }))
         }
         (Detected::Unsolvable(_), Some(Parameter::ElbowAngle(_))) => Err(unsolvable(
             "; an elbow angle needs a spherical-shoulder-elbow-wrist 7-DOF arm",
         )),
         (Detected::Unsolvable(_), _) => Err(unsolvable("")),
+    }
+}
+
+/// The target as the chain is solved: the pose itself, or its inverse for
+/// a chain solved from the base.
+fn goal_of(target: &Pose, end: ChainEnd) -> Pose {
+    match end {
+        ChainEnd::Tip => *target,
+        ChainEnd::Base => target.inverse(),
     }
 }
 

@@ -2,46 +2,125 @@
 //! Universal Robots family), derived from two invariants: rotations about
 //! axes parallel to `h2` keep the `h2` component of every point and of every
 //! direction.
+//!
+//! Everything that depends on the arm alone (the subproblems' fixed
+//! vectors, their sinusoids, the axis signs) is read once by
+//! [`ThreeParallel::new`]; a solve takes four angles by subproblem 4 in its
+//! prepared form, whose sines and cosines come without trigonometry, and
+//! the rest by subproblem 1.
 
 use super::chain::{Candidates, Chain};
-use super::subproblems::{rotation, subproblem1, subproblem3, subproblem4};
-use crate::math::{Pose, Vector3};
+use super::subproblems::{rotation_of, subproblem1_turn, Distance, Sinusoid, Spoke};
+use crate::math::{Matrix3, Pose, Vector3};
 
-/// Every solution for a chain with `h2 || h3 || h4` and axes 5, 6 meeting at
-/// `meet` (zero configuration).
-pub(crate) fn solve(chain: &Chain, meet: &Vector3<f64>, target: &Pose, out: &mut Candidates) {
-    let (c, h) = (&chain.c, &chain.h);
-    let k = h[1];
-    // Signs of the parallel axes relative to h2 (they may point either way).
-    let s3 = k.dot(&h[2]).signum();
-    let s4 = k.dot(&h[3]).signum();
-    // Where the meeting point of axes 5 and 6 goes, and R1 R234 R5 R6.
-    let p = target.transform_point(&chain.home_inverse.transform_point(meet));
-    let rd = target.rotation * chain.home_inverse.rotation;
-    // Position: h2 . R1' (P - c1) = h2 . (meet - c1)  (subproblem 4).
-    let t1s = subproblem4(&k, &-h[0], &(p - c[0]), k.dot(&(meet - c[0])));
-    for &t1 in t1s.as_slice() {
-        let r1 = rotation(&h[0], t1);
-        let r1t_rd = r1.transpose() * rd;
-        // Orientation: h2' R5 h6 = h2' R1' Rd h6  (subproblem 4).
-        let t5s = subproblem4(&k, &h[4], &h[5], k.dot(&(r1t_rd * h[5])));
-        for &t5 in t5s.as_slice() {
-            let r5 = rotation(&h[4], t5);
-            // R6' R5' h2 = Rd' R1 h2  (subproblem 1).
-            let (t6, e6) = subproblem1(&h[5], &(r1t_rd.transpose() * k), &(r5.transpose() * k));
-            let r234 = r1t_rd * rotation(&h[5], t6).transpose() * r5.transpose();
-            // The planar 3R: E2 E3 c4 = E1' P - R234 (meet - c4).
-            let goal = c[0] + r1.transpose() * (p - c[0]) - r234 * (meet - c[3]);
-            let t3s = subproblem3(&h[2], &(c[3] - c[2]), &(c[1] - c[2]), (goal - c[1]).norm());
-            for &t3 in t3s.as_slice() {
-                let x3 = c[2] + rotation(&h[2], t3) * (c[3] - c[2]);
-                let (t2, e2) = subproblem1(&k, &(x3 - c[1]), &(goal - c[1]));
-                // R234 = rotation about h2 by t2 + s3 t3 + s4 t4.
-                let reference = any_normal(&k);
-                let (t234, e234) = subproblem1(&k, &reference, &(r234 * reference));
-                let t4 = s4 * (t234 - t2 - s3 * t3);
-                let exact = t1s.exact && t5s.exact && t3s.exact && e6 && e2 && e234;
-                out.push(&[t1, t2, t3, t4, t5, t6], exact);
+/// The arm-fixed quantities of a three-parallel chain (chain order).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct ThreeParallel {
+    /// Axes 1, 5, 6 and the common direction `k = h2` of axes 2-4.
+    h1: Vector3<f64>,
+    h5: Vector3<f64>,
+    h6: Vector3<f64>,
+    k: Vector3<f64>,
+    /// Signs of axes 3 and 4 relative to `h2`.
+    s3: f64,
+    s4: f64,
+    /// Points on axes 1 and 2.
+    c1: Vector3<f64>,
+    c2: Vector3<f64>,
+    /// `home^-1` applied to the meeting point of axes 5, 6, and its rotation.
+    meet_home: Vector3<f64>,
+    rotation_home: Matrix3<f64>,
+    /// `k . (meet - c1)`: the height every solution keeps (joint 1's equation).
+    height: f64,
+    /// Joint 5: `k . R5 h6 = d`.
+    joint5: Sinusoid,
+    /// Joint 3: `|R3 (c4 - c3) - (c2 - c3)| = d`.
+    joint3: Distance,
+    /// `c4 - c3` turned by joint 3, from `c3`.
+    elbow: Spoke,
+    c3: Vector3<f64>,
+    /// `meet - c4`, turned by joints 2-4.
+    meet_c4: Vector3<f64>,
+    /// `R5' k` as joint 5 turns.
+    k_by_5: Spoke,
+    /// A unit normal of `k` (reads the sum of joints 2-4 off `R234`).
+    normal: Vector3<f64>,
+    normal_cross: Vector3<f64>,
+}
+
+impl ThreeParallel {
+    /// The solver of `chain` with axes 5, 6 meeting at `meet`.
+    pub(crate) fn new(chain: &Chain, meet: &Vector3<f64>) -> ThreeParallel {
+        let (c, h) = (&chain.c, &chain.h);
+        let k = h[1];
+        let normal = any_normal(&k);
+        ThreeParallel {
+            h1: h[0],
+            h5: h[4],
+            h6: h[5],
+            k,
+            s3: k.dot(&h[2]).signum(),
+            s4: k.dot(&h[3]).signum(),
+            c1: c[0],
+            c2: c[1],
+            meet_home: chain.home_inverse.transform_point(meet),
+            rotation_home: chain.home_inverse.rotation,
+            height: k.dot(&(meet - c[0])),
+            joint5: Sinusoid::new(&k, &h[4], &h[5]),
+            joint3: Distance::new(&h[2], &(c[3] - c[2]), &(c[1] - c[2])),
+            elbow: Spoke::new(&h[2], &(c[3] - c[2])),
+            c3: c[2],
+            meet_c4: meet - c[3],
+            k_by_5: Spoke::new(&h[4], &k),
+            normal,
+            normal_cross: k.cross(&normal),
+        }
+    }
+
+    /// Every solution for `target` (the chain's end-effector pose).
+    pub(crate) fn solve(&self, target: &Pose, out: &mut Candidates) {
+        let k = &self.k;
+        // Where the meeting point of axes 5 and 6 goes, and R1 R234 R5 R6.
+        let p = target.transform_point(&self.meet_home);
+        let rd = target.rotation * self.rotation_home;
+        let rd_h6 = rd * self.h6;
+        // Position: k . R1' (P - c1) = k . (meet - c1)  (subproblem 4).
+        let p1 = p - self.c1;
+        let t1s = Sinusoid::new(k, &-self.h1, &p1).solve(self.height);
+        for t1 in t1s.as_slice() {
+            let r1 = rotation_of(&self.h1, t1);
+            // Orientation: k' R5 h6 = k' R1' Rd h6  (subproblem 4, prepared).
+            let r1_k = r1 * k;
+            let t5s = self.joint5.solve(r1_k.dot(&rd_h6));
+            let r1t_rd = r1.transpose() * rd;
+            let rdt_r1_k = rd.transpose() * r1_k;
+            // The wrist goal seen before joint 1.
+            let p_before_1 = self.c1 + r1.transpose() * p1;
+            for t5 in t5s.as_slice() {
+                // R6' R5' k = Rd' R1 k  (subproblem 1).
+                let (t6, e6) = subproblem1_turn(&self.h6, &rdt_r1_k, &self.k_by_5.turned_back(t5));
+                let r234 = r1t_rd
+                    * rotation_of(&self.h6, &t6).transpose()
+                    * rotation_of(&self.h5, t5).transpose();
+                // R234 = rotation about k by t2 + s3 t3 + s4 t4.
+                let turned = r234 * self.normal;
+                let t234 = turned
+                    .dot(&self.normal_cross)
+                    .atan2(turned.dot(&self.normal));
+                // The planar 3R: E2 E3 c4 = E1' P - R234 (meet - c4).
+                let goal = p_before_1 - r234 * self.meet_c4;
+                let to_goal = goal - self.c2;
+                let t3s = self.joint3.solve(to_goal.norm());
+                for t3 in t3s.as_slice() {
+                    let x3 = self.c3 + self.elbow.turned(t3);
+                    let (t2, e2) = subproblem1_turn(k, &(x3 - self.c2), &to_goal);
+                    let t4 = self.s4 * (t234 - t2.angle - self.s3 * t3.angle);
+                    let exact = t1s.exact && t5s.exact && t3s.exact && e6 && e2;
+                    out.push(
+                        &[t1.angle, t2.angle, t3.angle, t4, t5.angle, t6.angle],
+                        exact,
+                    );
+                }
             }
         }
     }

@@ -24,7 +24,7 @@
 //! poses, not 100 %.
 
 use super::chain::Chain;
-use super::subproblems::{rotation, subproblem1, subproblem4};
+use super::subproblems::{subproblem1, Sinusoid, Spoke, Turn, Turns};
 use crate::math::Vector3;
 
 /// Samples of `t1` over one turn.
@@ -36,44 +36,69 @@ const MAX_STEPS: usize = 100;
 
 /// The residuals of both branches at `t1` (one rotation and one
 /// subproblem 4 shared), for the sampling pass.
-fn residuals(chain: &Lines3, w: &Vector3<f64>, goal: &Vector3<f64>, t1: f64) -> [Option<f64>; 2] {
-    let (c, h) = (&chain.c, &chain.h);
-    let x = c[0] + rotation(&h[0], t1).transpose() * (goal - c[0]);
-    let t3s = subproblem4(&h[1], &h[2], &(w - c[2]), h[1].dot(&(x - c[2])));
+fn residuals(p: &Problem, t1: f64) -> [Option<f64>; 2] {
+    let (x, t3s) = p.joint3(t1);
     if !t3s.exact || t3s.as_slice().len() < 2 {
         return [None, None];
     }
-    let radius = (x - c[1]).norm_squared();
-    let at = |t3: f64| {
-        let y = c[2] + rotation(&h[2], t3) * (w - c[2]);
-        Some((y - c[1]).norm_squared() - radius)
-    };
-    [at(t3s.as_slice()[0]), at(t3s.as_slice()[1])]
+    let c2 = p.chain.c[1];
+    let radius = (x - c2).norm_squared();
+    let at = |t3: &Turn| Some((p.turned(t3) - c2).norm_squared() - radius);
+    [at(&t3s.as_slice()[0]), at(&t3s.as_slice()[1])]
 }
 
 /// The residual of branch `branch` at `t1`, if the branch exists there.
-fn residual(
-    chain: &Lines3,
-    w: &Vector3<f64>,
-    goal: &Vector3<f64>,
-    t1: f64,
-    branch: usize,
-) -> Option<f64> {
-    let (c, h) = (&chain.c, &chain.h);
-    let x = c[0] + rotation(&h[0], t1).transpose() * (goal - c[0]);
-    let t3s = subproblem4(&h[1], &h[2], &(w - c[2]), h[1].dot(&(x - c[2])));
+fn residual(p: &Problem, t1: f64, branch: usize) -> Option<f64> {
+    let (x, t3s) = p.joint3(t1);
     if !t3s.exact || t3s.as_slice().len() < 2 {
         return None;
     }
-    let t3 = t3s.as_slice()[branch];
-    let y = c[2] + rotation(&h[2], t3) * (w - c[2]);
-    Some((y - c[1]).norm_squared() - (x - c[1]).norm_squared())
+    let c2 = p.chain.c[1];
+    let y = p.turned(&t3s.as_slice()[branch]);
+    Some((y - c2).norm_squared() - (x - c2).norm_squared())
 }
 
 /// Three positioning axes as lines: points `c`, unit directions `h`.
 pub(crate) struct Lines3 {
     c: [Vector3<f64>; 3],
     h: [Vector3<f64>; 3],
+}
+
+/// One search: the lines, the point `w` joints 1-3 must carry onto `goal`,
+/// and what every residual evaluation shares (read once per search).
+struct Problem {
+    chain: Lines3,
+    /// `goal - c1`, turned back by joint 1.
+    goal_by_1: Spoke,
+    /// Joint 3's height equation `h2 . R3 (w - c3) = h2 . (X - c3)`.
+    height3: Sinusoid,
+    /// `w - c3` turned by joint 3.
+    arm3: Spoke,
+}
+
+impl Problem {
+    fn new(chain: Lines3, w: &Vector3<f64>, goal: &Vector3<f64>) -> Problem {
+        let (c, h) = (&chain.c, &chain.h);
+        Problem {
+            goal_by_1: Spoke::new(&h[0], &(goal - c[0])),
+            height3: Sinusoid::new(&h[1], &h[2], &(w - c[2])),
+            arm3: Spoke::new(&h[2], &(w - c[2])),
+            chain,
+        }
+    }
+
+    /// The wrist goal seen before joint 1, `X(t1) = c1 + R1' (goal - c1)`,
+    /// and joint 3's solutions of the height equation there.
+    fn joint3(&self, t1: f64) -> (Vector3<f64>, Turns) {
+        let (c, h) = (&self.chain.c, &self.chain.h);
+        let x = c[0] + self.goal_by_1.turned_back(&Turn::of_angle(t1));
+        (x, self.height3.solve(h[1].dot(&(x - c[2]))))
+    }
+
+    /// `E3 w = c3 + R3 (w - c3)` at joint 3's turn `t3`.
+    fn turned(&self, t3: &Turn) -> Vector3<f64> {
+        self.chain.c[2] + self.arm3.turned(t3)
+    }
 }
 
 /// Joints 1-3 of `chain` putting `w` at `goal`, by the search; written to
@@ -94,13 +119,13 @@ pub(crate) fn position(
         c: [c[0], c[1], c[2]],
         h: [h[0], h[1], h[2]],
     };
-    let mut count = search(&forward, w, goal, out);
+    let mut count = search(&Problem::new(forward, w, goal), out);
     let inverted = Lines3 {
         c: [c[2], c[1], c[0]],
         h: [-h[2], -h[1], -h[0]],
     };
     let mut more = [([0.0; 3], false); 16];
-    let extra = search(&inverted, goal, w, &mut more);
+    let extra = search(&Problem::new(inverted, goal, w), &mut more);
     for (mut q, exact) in more.into_iter().take(extra) {
         q.swap(0, 2);
         let duplicate = out[..count].iter().any(|(p, _)| {
@@ -117,16 +142,11 @@ pub(crate) fn position(
 }
 
 /// The search over the first joint of `chain`.
-fn search(
-    chain: &Lines3,
-    w: &Vector3<f64>,
-    goal: &Vector3<f64>,
-    out: &mut [([f64; 3], bool)],
-) -> usize {
+fn search(p: &Problem, out: &mut [([f64; 3], bool)]) -> usize {
     use std::f64::consts::{PI, TAU};
     let mut count = 0;
     let mut push = |t1: f64, branch: usize, out: &mut [([f64; 3], bool)]| {
-        let found = finish(chain, w, goal, t1, branch);
+        let found = finish(p, t1, branch);
         let duplicate = out[..count].iter().any(|(q, _)| {
             q.iter()
                 .zip(&found.0)
@@ -141,7 +161,7 @@ fn search(
     let mut samples = [[None; SAMPLES]; 2];
     let [first, second] = &mut samples;
     for (k, (a, b)) in first.iter_mut().zip(second.iter_mut()).enumerate() {
-        [*a, *b] = residuals(chain, w, goal, -PI + step * k as f64);
+        [*a, *b] = residuals(p, -PI + step * k as f64);
     }
     for (branch, row) in samples.iter().enumerate() {
         let at = |k: usize| row[k % SAMPLES];
@@ -155,13 +175,13 @@ fn search(
                 (Some(fa), Some(fb)) => Some(((ta, fa), (t, fb))),
                 // The branch ends between the samples (its two solutions of
                 // subproblem 4 merge): the root may lie before the end.
-                (Some(fa), None) => Some(((ta, fa), branch_end(chain, w, goal, branch, ta, t))),
-                (None, Some(fb)) => Some((branch_end(chain, w, goal, branch, t, ta), (t, fb))),
+                (Some(fa), None) => Some(((ta, fa), branch_end(p, branch, ta, t))),
+                (None, Some(fb)) => Some((branch_end(p, branch, t, ta), (t, fb))),
                 (None, None) => None,
             };
             if let Some(((ta, fa), (tb, fb))) = bracket {
                 if fa == 0.0 || fa.signum() != fb.signum() {
-                    if let Some(t1) = refine(chain, w, goal, branch, (ta, fa), (tb, fb)) {
+                    if let Some(t1) = refine(p, branch, (ta, fa), (tb, fb)) {
                         push(t1, branch, out);
                     }
                 }
@@ -176,7 +196,7 @@ fn search(
                     && parabola_nears_zero(f0, f1, f2)
                 {
                     let (a, b) = (ta - step, t);
-                    if let Some((tm, fm)) = minimize(chain, w, goal, branch, a, b) {
+                    if let Some((tm, fm)) = minimize(p, branch, a, b) {
                         if fm.signum() != f1.signum() {
                             for (x, fx) in [(a, f0), (b, f2)] {
                                 let (lo, hi) = if x < tm {
@@ -184,7 +204,7 @@ fn search(
                                 } else {
                                     ((tm, fm), (x, fx))
                                 };
-                                if let Some(t1) = refine(chain, w, goal, branch, lo, hi) {
+                                if let Some(t1) = refine(p, branch, lo, hi) {
                                     push(t1, branch, out);
                                 }
                             }
@@ -216,16 +236,9 @@ fn parabola_nears_zero(f0: f64, f1: f64, f2: f64) -> bool {
 /// Golden-section search for the minimum of `|f|` of branch `branch` on
 /// `[a, b]`, stopping early when `f` changes sign; `None` if the branch
 /// ends inside.
-fn minimize(
-    chain: &Lines3,
-    w: &Vector3<f64>,
-    goal: &Vector3<f64>,
-    branch: usize,
-    mut a: f64,
-    mut b: f64,
-) -> Option<(f64, f64)> {
+fn minimize(p: &Problem, branch: usize, mut a: f64, mut b: f64) -> Option<(f64, f64)> {
     const RATIO: f64 = 0.618_033_988_749_894_9;
-    let f = |t: f64| residual(chain, w, goal, t, branch);
+    let f = |t: f64| residual(p, t, branch);
     let reference = f(0.5 * (a + b))?.signum();
     let mut x1 = b - RATIO * (b - a);
     let mut x2 = a + RATIO * (b - a);
@@ -265,22 +278,15 @@ fn minimize(
 /// The last point (and residual) of branch `branch` between `defined`,
 /// where it exists, and `undefined`, where it does not (bisection to
 /// [`ROOT_TOLERANCE`]).
-fn branch_end(
-    chain: &Lines3,
-    w: &Vector3<f64>,
-    goal: &Vector3<f64>,
-    branch: usize,
-    defined: f64,
-    undefined: f64,
-) -> (f64, f64) {
+fn branch_end(p: &Problem, branch: usize, defined: f64, undefined: f64) -> (f64, f64) {
     let (mut a, mut b) = (defined, undefined);
-    let mut fa = residual(chain, w, goal, a, branch).unwrap_or(0.0);
+    let mut fa = residual(p, a, branch).unwrap_or(0.0);
     for _ in 0..60 {
         if (b - a).abs() < ROOT_TOLERANCE {
             break;
         }
         let m = 0.5 * (a + b);
-        match residual(chain, w, goal, m, branch) {
+        match residual(p, m, branch) {
             Some(f) => {
                 a = m;
                 fa = f;
@@ -292,14 +298,7 @@ fn branch_end(
 }
 
 /// Illinois regula falsi on a bracket `[a, b]` with `f(a) f(b) <= 0`.
-fn refine(
-    chain: &Lines3,
-    w: &Vector3<f64>,
-    goal: &Vector3<f64>,
-    branch: usize,
-    a: (f64, f64),
-    b: (f64, f64),
-) -> Option<f64> {
+fn refine(p: &Problem, branch: usize, a: (f64, f64), b: (f64, f64)) -> Option<f64> {
     let ((mut ta, mut fa), (mut tb, mut fb)) = (a, b);
     if fa == 0.0 {
         return Some(ta);
@@ -313,7 +312,7 @@ fn refine(
         if !(t > ta.min(tb) && t < ta.max(tb)) {
             t = 0.5 * (ta + tb);
         }
-        let f = residual(chain, w, goal, t, branch)?;
+        let f = residual(p, t, branch)?;
         if f == 0.0 {
             return Some(t);
         }
@@ -337,19 +336,12 @@ fn refine(
 }
 
 /// Joints 1-3 at a root `t1` of branch `branch`.
-fn finish(
-    chain: &Lines3,
-    w: &Vector3<f64>,
-    goal: &Vector3<f64>,
-    t1: f64,
-    branch: usize,
-) -> ([f64; 3], bool) {
-    let (c, h) = (&chain.c, &chain.h);
-    let x = c[0] + rotation(&h[0], t1).transpose() * (goal - c[0]);
-    let t3s = subproblem4(&h[1], &h[2], &(w - c[2]), h[1].dot(&(x - c[2])));
+fn finish(p: &Problem, t1: f64, branch: usize) -> ([f64; 3], bool) {
+    let (c, h) = (&p.chain.c, &p.chain.h);
+    let (x, t3s) = p.joint3(t1);
     let slice = t3s.as_slice();
     let t3 = slice[branch.min(slice.len() - 1)];
-    let y = c[2] + rotation(&h[2], t3) * (w - c[2]);
+    let y = p.turned(&t3);
     let (t2, exact) = subproblem1(&h[1], &(y - c[1]), &(x - c[1]));
-    ([t1, t2, t3], exact && t3s.exact)
+    ([t1, t2, t3.angle], exact && t3s.exact)
 }

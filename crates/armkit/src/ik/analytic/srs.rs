@@ -10,8 +10,8 @@
 
 use super::chain::{Candidates, MAX_JOINTS};
 use super::structure::ArmStructure;
-use super::subproblems::{rotation, subproblem1, subproblem2, subproblem3};
-use super::wrist::orientation;
+use super::subproblems::{rotation, rotation_of, subproblem1, subproblem2_turns, subproblem3};
+use super::wrist::WristOrientation;
 use crate::math::{Matrix3, Pose, Vector3};
 
 /// The geometry of an SRS arm in fixed-size form.
@@ -22,6 +22,7 @@ pub(crate) struct SrsChain {
     elbow: Vector3<f64>,
     wrist: Vector3<f64>,
     home_inverse: Pose,
+    orientation: WristOrientation,
 }
 
 impl SrsChain {
@@ -41,6 +42,7 @@ impl SrsChain {
             elbow,
             wrist,
             home_inverse: structure.home.inverse(),
+            orientation: WristOrientation::new(&h[4], &h[5], &h[6]),
         }
     }
 
@@ -94,9 +96,10 @@ impl SrsChain {
         for &t4 in t4s.as_slice() {
             let w4 = e + rotation(&h[3], t4) * (w - e);
             // R1 R2 (E - S) = E_goal - S; axis 3 runs along S -> E.
-            let pairs = subproblem2(&-h[0], &(elbow_goal - s), &h[1], &(e - s));
-            for &(t1, t2) in pairs.as_slice() {
-                let r12 = rotation(&h[0], t1) * rotation(&h[1], t2);
+            let pairs = subproblem2_turns(&-h[0], &(elbow_goal - s), &h[1], &(e - s));
+            for (turn1, turn2) in pairs.as_slice() {
+                let r12 = rotation_of(&h[0], turn1) * rotation_of(&h[1], turn2);
+                let (t1, t2) = (turn1.angle, turn2.angle);
                 let (t3, e3) = subproblem1(
                     &h[2],
                     &(w4 - e),
@@ -106,8 +109,7 @@ impl SrsChain {
                 let exact = t4s.exact && circle_exact && pairs.exact && e3;
                 let mut prefix = [0.0; MAX_JOINTS];
                 prefix[..4].copy_from_slice(&[t1, t2, t3, t4]);
-                orientation(
-                    [&h[4], &h[5], &h[6]],
+                self.orientation.solve(
                     &(r04.transpose() * wrist_rotation),
                     &prefix[..4],
                     exact,

@@ -48,22 +48,6 @@ pub struct Angles {
 }
 
 impl Angles {
-    fn one(value: f64, exact: bool) -> Angles {
-        Angles {
-            values: [value, value],
-            count: 1,
-            exact,
-        }
-    }
-
-    fn two(a: f64, b: f64) -> Angles {
-        Angles {
-            values: [a, b],
-            count: 2,
-            exact: true,
-        }
-    }
-
     /// The angles, rad (one or two).
     pub fn as_slice(&self) -> &[f64] {
         &self.values[..self.count]
@@ -89,6 +73,12 @@ impl AnglePairs {
 /// The rotation matrix `R(k, t)` about the unit axis `k` by `t` rad (Rodrigues).
 pub fn rotation(k: &Vector3<f64>, t: f64) -> Matrix3<f64> {
     let (s, c) = sin_cos(t);
+    rotation_sc(k, s, c)
+}
+
+/// `R(k, t)` from `sin t` and `cos t`.
+#[inline]
+fn rotation_sc(k: &Vector3<f64>, s: f64, c: f64) -> Matrix3<f64> {
     let v = 1.0 - c;
     let (x, y, z) = (k.x, k.y, k.z);
     Matrix3::new(
@@ -111,17 +101,28 @@ pub fn rotation(k: &Vector3<f64>, t: f64) -> Matrix3<f64> {
 /// and whether it is exact (to [`RELATIVE_TOLERANCE`]). If either projection
 /// is zero every angle is as good and 0 is returned.
 pub fn subproblem1(k: &Vector3<f64>, p1: &Vector3<f64>, p2: &Vector3<f64>) -> (f64, bool) {
+    let (y, x, exact) = subproblem1_direction(k, p1, p2);
+    (y.atan2(x), exact)
+}
+
+/// Subproblem 1's angle as a direction `(y, x)` (the angle is
+/// `atan2(y, x)`) and whether it is exact.
+#[inline]
+fn subproblem1_direction(
+    k: &Vector3<f64>,
+    p1: &Vector3<f64>,
+    p2: &Vector3<f64>,
+) -> (f64, f64, bool) {
     let kp1 = k.dot(p1);
     let kp2 = k.dot(p2);
     let x = p1.dot(p2) - kp1 * kp2;
     let y = k.dot(&p1.cross(p2));
-    let t = y.atan2(x);
     let n1 = (p1.norm_squared() - kp1 * kp1).max(0.0).sqrt();
     let n2 = (p2.norm_squared() - kp2 * kp2).max(0.0).sqrt();
     let scale = p1.norm().max(p2.norm()).max(f64::MIN_POSITIVE);
     let exact = (kp1 - kp2).abs() <= RELATIVE_TOLERANCE * scale
         && (n1 - n2).abs() <= RELATIVE_TOLERANCE * scale;
-    (t, exact)
+    (y, x, exact)
 }
 
 /// Subproblem 4: the angles `t` (rad) with `h . R(k, t) p = d` (`k` a unit
@@ -132,30 +133,7 @@ pub fn subproblem1(k: &Vector3<f64>, p1: &Vector3<f64>, p2: &Vector3<f64>) -> (f
 /// (least squares). Degenerate `r = 0` (the left side does not depend on
 /// `t`): angle 0, exact only if `c = 0`.
 pub fn subproblem4(h: &Vector3<f64>, k: &Vector3<f64>, p: &Vector3<f64>, d: f64) -> Angles {
-    let kp = k.dot(p);
-    let hk = h.dot(k);
-    let a = h.dot(p) - hk * kp;
-    let b = h.dot(&k.cross(p));
-    let c = d - hk * kp;
-    let r = a.hypot(b);
-    let scale = (h.norm() * p.norm()).max(d.abs()).max(f64::MIN_POSITIVE);
-    if r <= RELATIVE_TOLERANCE * scale * 1e-3 {
-        return Angles::one(0.0, c.abs() <= RELATIVE_TOLERANCE * scale);
-    }
-    let phi = b.atan2(a);
-    let ratio = c / r;
-    if ratio.abs() > 1.0 {
-        // No exact solution: cos(t - phi) = +-1 comes nearest.
-        let exact = (c.abs() - r) <= RELATIVE_TOLERANCE * scale;
-        let t = if ratio > 0.0 {
-            phi
-        } else {
-            phi + std::f64::consts::PI
-        };
-        return Angles::one(t, exact);
-    }
-    let spread = ratio.acos();
-    Angles::two(phi + spread, phi - spread)
+    Sinusoid::new(h, k, p).solve(d).angles()
 }
 
 /// Subproblem 3: the angles `t` (rad) with `|R(k, t) p1 - p2| = d` (`k` a
@@ -163,8 +141,238 @@ pub fn subproblem4(h: &Vector3<f64>, k: &Vector3<f64>, p: &Vector3<f64>, d: f64)
 /// / 2`, a subproblem 4. When no angle reaches `d` the least-squares answer
 /// is the angle whose distance comes nearest.
 pub fn subproblem3(k: &Vector3<f64>, p1: &Vector3<f64>, p2: &Vector3<f64>, d: f64) -> Angles {
-    let target = 0.5 * (p1.norm_squared() + p2.norm_squared() - d * d);
-    subproblem4(p2, k, p1, target)
+    Distance::new(k, p1, p2).solve(d).angles()
+}
+
+/// An angle (rad) with its sine and cosine, so that the rotation by it is
+/// built without trigonometry ([`rotation_of`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Turn {
+    /// The angle, rad.
+    pub angle: f64,
+    /// Its sine.
+    pub sin: f64,
+    /// Its cosine.
+    pub cos: f64,
+}
+
+impl Turn {
+    /// The turn by `angle` rad (one sine-cosine evaluation).
+    #[inline]
+    pub(crate) fn of_angle(angle: f64) -> Turn {
+        let (sin, cos) = sin_cos(angle);
+        Turn { angle, sin, cos }
+    }
+
+    const ZERO: Turn = Turn {
+        angle: 0.0,
+        sin: 0.0,
+        cos: 1.0,
+    };
+
+    /// The turn of the direction `(x, y)` (`atan2(y, x)`; zero for `(0, 0)`).
+    #[inline]
+    pub(crate) fn of_direction(y: f64, x: f64) -> Turn {
+        // Lengths here are products of arm dimensions: no overflow, so no
+        // need for `hypot`'s slower scaling.
+        let length = (x * x + y * y).sqrt();
+        if length > 0.0 {
+            Turn {
+                angle: y.atan2(x),
+                sin: y / length,
+                cos: x / length,
+            }
+        } else {
+            Turn::ZERO
+        }
+    }
+}
+
+/// Up to two [`Turn`]s with a flag, as [`Angles`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Turns {
+    items: [Turn; 2],
+    count: usize,
+    /// True when the turns solve the equation exactly (to round-off).
+    pub exact: bool,
+}
+
+impl Turns {
+    /// The turns (one or two).
+    pub(crate) fn as_slice(&self) -> &[Turn] {
+        &self.items[..self.count]
+    }
+
+    fn angles(&self) -> Angles {
+        Angles {
+            values: [self.items[0].angle, self.items[1].angle],
+            count: self.count,
+            exact: self.exact,
+        }
+    }
+}
+
+/// Subproblem 4 with `h`, `k`, `p` fixed (read once, at set-up), for many
+/// right-hand sides `d`: `A cos t + B sin t = d - (h . k)(k . p)` (see
+/// [`subproblem4`]). The solutions' sines and cosines come from `A`, `B`
+/// and `c / r` by algebra, without trigonometry.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Sinusoid {
+    /// `atan2(B, A)` and its cosine and sine (`A / r`, `B / r`).
+    phi: Turn,
+    /// `hypot(A, B)`.
+    r: f64,
+    /// `(h . k)(k . p)`.
+    offset: f64,
+    /// `|h| |p|`, the scale of the tolerances.
+    size: f64,
+}
+
+impl Sinusoid {
+    /// The sinusoid of `h . R(k, t) p`.
+    #[inline]
+    pub(crate) fn new(h: &Vector3<f64>, k: &Vector3<f64>, p: &Vector3<f64>) -> Sinusoid {
+        let kp = k.dot(p);
+        let hk = h.dot(k);
+        let a = h.dot(p) - hk * kp;
+        let b = h.dot(&k.cross(p));
+        let r = (a * a + b * b).sqrt();
+        let phi = if r > 0.0 {
+            Turn {
+                angle: b.atan2(a),
+                sin: b / r,
+                cos: a / r,
+            }
+        } else {
+            Turn::ZERO
+        };
+        Sinusoid {
+            phi,
+            r,
+            offset: hk * kp,
+            size: h.norm() * p.norm(),
+        }
+    }
+
+    /// The angles with `h . R(k, t) p = d` (see [`subproblem4`]).
+    #[inline]
+    pub(crate) fn solve(&self, d: f64) -> Turns {
+        let c = d - self.offset;
+        let scale = self.size.max(d.abs()).max(f64::MIN_POSITIVE);
+        let one = |turn: Turn, exact: bool| Turns {
+            items: [turn, turn],
+            count: 1,
+            exact,
+        };
+        if self.r <= RELATIVE_TOLERANCE * scale * 1e-3 {
+            return one(Turn::ZERO, c.abs() <= RELATIVE_TOLERANCE * scale);
+        }
+        let phi = self.phi;
+        let ratio = c / self.r;
+        if ratio.abs() > 1.0 {
+            // No exact solution: cos(t - phi) = +-1 comes nearest.
+            let exact = (c.abs() - self.r) <= RELATIVE_TOLERANCE * scale;
+            let turn = if ratio > 0.0 {
+                phi
+            } else {
+                Turn {
+                    angle: phi.angle + std::f64::consts::PI,
+                    sin: -phi.sin,
+                    cos: -phi.cos,
+                }
+            };
+            return one(turn, exact);
+        }
+        // t = phi +- spread with cos(spread) = ratio; (1 - ratio)(1 + ratio)
+        // keeps sin(spread) accurate near ratio = +-1.
+        let spread = ratio.acos();
+        let sine = ((1.0 - ratio) * (1.0 + ratio)).sqrt();
+        let turn = |sign: f64| Turn {
+            angle: phi.angle + sign * spread,
+            sin: phi.sin * ratio + sign * phi.cos * sine,
+            cos: phi.cos * ratio - sign * phi.sin * sine,
+        };
+        Turns {
+            items: [turn(1.0), turn(-1.0)],
+            count: 2,
+            exact: true,
+        }
+    }
+}
+
+/// Subproblem 3 with `k`, `p1`, `p2` fixed, for many distances `d`
+/// (see [`subproblem3`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Distance {
+    sinusoid: Sinusoid,
+    /// `(|p1|^2 + |p2|^2) / 2`.
+    half_sum: f64,
+}
+
+impl Distance {
+    /// The distance `|R(k, t) p1 - p2|` as a function of `t`.
+    #[inline]
+    pub(crate) fn new(k: &Vector3<f64>, p1: &Vector3<f64>, p2: &Vector3<f64>) -> Distance {
+        Distance {
+            sinusoid: Sinusoid::new(p2, k, p1),
+            half_sum: 0.5 * (p1.norm_squared() + p2.norm_squared()),
+        }
+    }
+
+    /// The angles with `|R(k, t) p1 - p2| = d`.
+    #[inline]
+    pub(crate) fn solve(&self, d: f64) -> Turns {
+        self.sinusoid.solve(self.half_sum - 0.5 * d * d)
+    }
+}
+
+/// A fixed vector `p` ready to be turned about a fixed unit axis `k`
+/// (Rodrigues, split once): `R(k, t) p = par + cos t perp + sin t (k x p)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Spoke {
+    par: Vector3<f64>,
+    perp: Vector3<f64>,
+    cross: Vector3<f64>,
+}
+
+impl Spoke {
+    pub(crate) fn new(k: &Vector3<f64>, p: &Vector3<f64>) -> Spoke {
+        let par = k * k.dot(p);
+        Spoke {
+            par,
+            perp: p - par,
+            cross: k.cross(p),
+        }
+    }
+
+    /// `R(k, t) p`.
+    #[inline]
+    pub(crate) fn turned(&self, t: &Turn) -> Vector3<f64> {
+        self.par + self.perp * t.cos + self.cross * t.sin
+    }
+
+    /// `R(k, t)' p = R(k, -t) p`.
+    #[inline]
+    pub(crate) fn turned_back(&self, t: &Turn) -> Vector3<f64> {
+        self.par + self.perp * t.cos - self.cross * t.sin
+    }
+}
+
+/// Subproblem 1 as a [`Turn`] (see [`subproblem1`]).
+#[inline]
+pub(crate) fn subproblem1_turn(
+    k: &Vector3<f64>,
+    p1: &Vector3<f64>,
+    p2: &Vector3<f64>,
+) -> (Turn, bool) {
+    let (y, x, exact) = subproblem1_direction(k, p1, p2);
+    (Turn::of_direction(y, x), exact)
+}
+
+/// The rotation matrix `R(k, t)` from the turn's sine and cosine (Rodrigues).
+#[inline]
+pub(crate) fn rotation_of(k: &Vector3<f64>, turn: &Turn) -> Matrix3<f64> {
+    rotation_sc(k, turn.sin, turn.cos)
 }
 
 /// Subproblem 2: the angle pairs `(t1, t2)` (rad) with
@@ -184,12 +392,44 @@ pub fn subproblem2(
     k2: &Vector3<f64>,
     p2: &Vector3<f64>,
 ) -> AnglePairs {
+    let pairs = subproblem2_turns(k1, p1, k2, p2);
+    let angles = |i: usize| (pairs.items[i].0.angle, pairs.items[i].1.angle);
+    AnglePairs {
+        values: [angles(0), angles(1)],
+        count: pairs.count,
+        exact: pairs.exact,
+    }
+}
+
+/// Up to two pairs of [`Turn`]s with a flag, as [`AnglePairs`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct TurnPairs {
+    items: [(Turn, Turn); 2],
+    count: usize,
+    /// True when the pairs solve the equation exactly (to round-off).
+    pub exact: bool,
+}
+
+impl TurnPairs {
+    /// The pairs (none, one or two).
+    pub(crate) fn as_slice(&self) -> &[(Turn, Turn)] {
+        &self.items[..self.count]
+    }
+}
+
+/// Subproblem 2 as [`Turn`]s (see [`subproblem2`]).
+pub(crate) fn subproblem2_turns(
+    k1: &Vector3<f64>,
+    p1: &Vector3<f64>,
+    k2: &Vector3<f64>,
+    p2: &Vector3<f64>,
+) -> TurnPairs {
     let cosine = k1.dot(k2);
     let normal = k1.cross(k2);
     let sine2 = normal.norm_squared();
     if sine2 <= 1e-24 {
-        return AnglePairs {
-            values: [(0.0, 0.0); 2],
+        return TurnPairs {
+            items: [(Turn::ZERO, Turn::ZERO); 2],
             count: 0,
             exact: false,
         };
@@ -206,8 +446,8 @@ pub fn subproblem2(
     let radius2 = n1 * n2;
     let c2 = (radius2 - base.norm_squared()) / sine2;
     let pair = |x: &Vector3<f64>| {
-        let (t1, e1) = subproblem1(k1, p1, x);
-        let (t2, e2) = subproblem1(k2, p2, x);
+        let (t1, e1) = subproblem1_turn(k1, p1, x);
+        let (t2, e2) = subproblem1_turn(k2, p2, x);
         ((t1, t2), e1 && e2)
     };
     if c2 < -RELATIVE_TOLERANCE * scale * scale {
@@ -218,8 +458,8 @@ pub fn subproblem2(
             base
         };
         let (values, _) = pair(&x);
-        return AnglePairs {
-            values: [values, values],
+        return TurnPairs {
+            items: [values, values],
             count: 1,
             exact: false,
         };
@@ -227,8 +467,8 @@ pub fn subproblem2(
     let c = c2.max(0.0).sqrt();
     let (first, e1) = pair(&(base + normal * c));
     let (second, e2) = pair(&(base - normal * c));
-    AnglePairs {
-        values: [first, second],
+    TurnPairs {
+        items: [first, second],
         count: if c == 0.0 { 1 } else { 2 },
         exact: same_radius && e1 && e2,
     }

@@ -6,35 +6,125 @@
 
 use super::chain::{Candidates, Chain, MAX_JOINTS};
 use super::class::Positioning;
-use super::subproblems::{rotation, subproblem1, subproblem2, subproblem3, subproblem4};
+use super::subproblems::{
+    rotation, rotation_of, subproblem1, subproblem1_turn, subproblem2, subproblem3, subproblem4,
+    Distance, Sinusoid, Spoke, Turn,
+};
 use crate::math::{Matrix3, Pose, Vector3};
 
-/// Every solution for a 6-joint chain whose axes 4, 5, 6 meet at `wrist`
-/// (zero configuration); `shoulder` is the meeting point of the
-/// intersecting pair among joints 1-3 when `positioning` has one.
-pub(crate) fn solve(
-    chain: &Chain,
+/// The arm-fixed quantities of a spherical-wrist chain, read once.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct SphericalWrist {
+    chain: Chain,
     positioning: Positioning,
-    wrist: &Vector3<f64>,
-    shoulder: &Vector3<f64>,
-    target: &Pose,
-    out: &mut Candidates,
-) {
-    // Joints 4-6 fix the wrist point: E1 E2 E3 w = T home^-1 w.
-    let goal = target.transform_point(&chain.home_inverse.transform_point(wrist));
-    let mut positions = [([0.0; 3], false); 16];
-    let count = position(chain, positioning, wrist, shoulder, &goal, &mut positions);
-    let wrist_goal = target.rotation * chain.home_inverse.rotation;
-    for &(q, exact) in &positions[..count] {
-        let r03 = chain.rotation(0, q[0]) * chain.rotation(1, q[1]) * chain.rotation(2, q[2]);
+    /// The wrist point and the meeting point of the intersecting pair
+    /// (zero configuration, chain as solved).
+    wrist: Vector3<f64>,
+    shoulder: Vector3<f64>,
+    /// `home^-1` applied to the wrist point, and its rotation.
+    wrist_home: Vector3<f64>,
+    rotation_home: Matrix3<f64>,
+    /// Parallel axes 2-3: `h2 . (w - c1)`, joint 3's distance equation and
+    /// the wrist point turned by joint 3.
+    height: f64,
+    joint3: Distance,
+    arm3: Spoke,
+    /// Joints 4-6.
+    orientation: WristOrientation,
+}
+
+impl SphericalWrist {
+    /// The solver of `chain` with axes 4-6 meeting at `wrist`; `shoulder`
+    /// is the intersecting pair's point when `positioning` has one.
+    pub(crate) fn new(
+        chain: &Chain,
+        positioning: Positioning,
+        wrist: &Vector3<f64>,
+        shoulder: &Vector3<f64>,
+    ) -> SphericalWrist {
+        let (c, h) = (&chain.c, &chain.h);
+        SphericalWrist {
+            chain: *chain,
+            positioning,
+            wrist: *wrist,
+            shoulder: *shoulder,
+            wrist_home: chain.home_inverse.transform_point(wrist),
+            rotation_home: chain.home_inverse.rotation,
+            height: h[1].dot(&(wrist - c[0])),
+            joint3: Distance::new(&h[2], &(wrist - c[2]), &(c[1] - c[2])),
+            arm3: Spoke::new(&h[2], &(wrist - c[2])),
+            orientation: WristOrientation::new(&h[3], &h[4], &h[5]),
+        }
+    }
+
+    /// Every solution for `target` (the chain's end-effector pose).
+    pub(crate) fn solve(&self, target: &Pose, out: &mut Candidates) {
+        let chain = &self.chain;
+        // Joints 4-6 fix the wrist point: E1 E2 E3 w = T home^-1 w.
+        let goal = target.transform_point(&self.wrist_home);
+        let mut positions = [([Turn::of_angle(0.0); 3], false); 16];
+        let count = match self.positioning {
+            Positioning::ParallelSecondThird => self.parallel_second_third(&goal, &mut positions),
+            _ => {
+                let mut angles = [([0.0; 3], false); 16];
+                let count = position(
+                    chain,
+                    self.positioning,
+                    &self.wrist,
+                    &self.shoulder,
+                    &goal,
+                    &mut angles,
+                );
+                for (slot, (q, exact)) in positions.iter_mut().zip(&angles[..count]) {
+                    *slot = (q.map(Turn::of_angle), *exact);
+                }
+                count
+            }
+        };
+        let wrist_goal = target.rotation * self.rotation_home;
         let h = &chain.h;
-        orientation(
-            [&h[3], &h[4], &h[5]],
-            &(r03.transpose() * wrist_goal),
-            &q,
-            exact,
-            out,
-        );
+        for (turns, exact) in &positions[..count] {
+            let rotation = |i: usize| {
+                if chain.translation[i] {
+                    Matrix3::identity()
+                } else {
+                    rotation_of(&h[i], &turns[i])
+                }
+            };
+            let r03 = rotation(0) * rotation(1) * rotation(2);
+            let q = turns.map(|t| t.angle);
+            self.orientation
+                .solve(&(r03.transpose() * wrist_goal), &q, *exact, out);
+        }
+    }
+
+    /// Axes 2 and 3 parallel (PUMA): rotations about axes parallel to h2
+    /// keep the h2 component: h2 . R1' (W - c1) = h2 . (w - c1)
+    /// (subproblem 4); the distance from axis 2's point fixes joint 3
+    /// (subproblem 3, prepared); joint 2 by subproblem 1.
+    fn parallel_second_third(
+        &self,
+        goal: &Vector3<f64>,
+        out: &mut [([Turn; 3], bool); 16],
+    ) -> usize {
+        let (c, h) = (&self.chain.c, &self.chain.h);
+        let mut count = 0;
+        let to_goal = goal - c[0];
+        let t1s = Sinusoid::new(&h[1], &-h[0], &to_goal).solve(self.height);
+        for t1 in t1s.as_slice() {
+            let goal1 = c[0] + rotation_of(&h[0], t1).transpose() * to_goal;
+            let to_goal1 = goal1 - c[1];
+            let t3s = self.joint3.solve(to_goal1.norm());
+            for t3 in t3s.as_slice() {
+                let w3 = c[2] + self.arm3.turned(t3);
+                let (t2, e2) = subproblem1_turn(&h[1], &(w3 - c[1]), &to_goal1);
+                if count < out.len() {
+                    out[count] = ([*t1, t2, *t3], t1s.exact && t3s.exact && e2);
+                    count += 1;
+                }
+            }
+        }
+        count
     }
 }
 
@@ -59,21 +149,6 @@ fn position(
         }
     };
     match positioning {
-        Positioning::ParallelSecondThird => {
-            // Rotations about axes parallel to h2 keep the h2 component:
-            // h2 . R1' (W - c1) = h2 . (w - c1) (subproblem 4).
-            let t1s = subproblem4(&h[1], &-h[0], &(goal - c[0]), h[1].dot(&(w - c[0])));
-            for &t1 in t1s.as_slice() {
-                let goal1 = c[0] + rotation(&h[0], t1).transpose() * (goal - c[0]);
-                // Distance from axis 2's point fixes joint 3 (subproblem 3).
-                let t3s = subproblem3(&h[2], &(w - c[2]), &(c[1] - c[2]), (goal1 - c[1]).norm());
-                for &t3 in t3s.as_slice() {
-                    let w3 = c[2] + rotation(&h[2], t3) * (w - c[2]);
-                    let (t2, e2) = subproblem1(&h[1], &(w3 - c[1]), &(goal1 - c[1]));
-                    push([t1, t2, t3], t1s.exact && t3s.exact && e2);
-                }
-            }
-        }
         Positioning::ParallelFirstSecond => {
             // h1 . W = h1 . E3 w (subproblem 4 for joint 3).
             let t3s = subproblem4(&h[0], &h[2], &(w - c[2]), h[0].dot(&(goal - c[2])));
@@ -109,7 +184,8 @@ fn position(
                 }
             }
         }
-        Positioning::General => {}
+        // Solved by `SphericalWrist::parallel_second_third` and the search.
+        Positioning::ParallelSecondThird | Positioning::General => {}
         Positioning::PrismaticThird => {
             // |w + d h3 - o|^2 = |W - o|^2: d^2 + 2 b d + (|w - o|^2 - |W - o|^2) = 0.
             let b = h[2].dot(&(w - o));
@@ -134,27 +210,55 @@ fn position(
     count
 }
 
-/// The last three joints, axes `h` meeting in one point, with
-/// `R(h[0]) R(h[1]) R(h[2]) = goal`, appended to the joint values `prefix`
-/// (subproblems 2 and 1).
-pub(crate) fn orientation(
-    h: [&Vector3<f64>; 3],
-    goal: &Matrix3<f64>,
-    prefix: &[f64],
-    exact: bool,
-    out: &mut Candidates,
-) {
-    // R4 R5 h6 = goal h6.
-    let pairs = subproblem2(&-h[0], &(goal * h[2]), h[1], h[2]);
-    let n = prefix.len();
-    let mut q = [0.0; MAX_JOINTS];
-    q[..n].copy_from_slice(prefix);
-    for &(t4, t5) in pairs.as_slice() {
-        let r45 = rotation(h[0], t4) * rotation(h[1], t5);
-        let (t6, e6) = subproblem1(h[2], h[1], &(r45.transpose() * goal * h[1]));
-        q[n] = t4;
-        q[n + 1] = t5;
-        q[n + 2] = t6;
-        out.push(&q[..n + 3], exact && pairs.exact && e6);
+/// The last three joints of a spherical wrist (axes `h4`, `h5`, `h6`
+/// meeting in one point), read once: `R4 R5 R6 = goal`.
+///
+/// `R4' h4 = h4` turns the first column condition `R4 R5 h6 = goal h6` into
+/// `h4 . R5 h6 = h4 . goal h6` (subproblem 4 for joint 5, prepared), then
+/// `R4 (R5 h6) = goal h6` (subproblem 1 for joint 4) and
+/// `R6 h5 = (R4 R5)' goal h5` (subproblem 1 for joint 6): one inverse
+/// cosine and four arctangents per wrist, no subproblem 2.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct WristOrientation {
+    h: [Vector3<f64>; 3],
+    joint5: Sinusoid,
+    /// `h6` turned by joint 5.
+    h6_by_5: Spoke,
+}
+
+impl WristOrientation {
+    pub(crate) fn new(h4: &Vector3<f64>, h5: &Vector3<f64>, h6: &Vector3<f64>) -> WristOrientation {
+        WristOrientation {
+            h: [*h4, *h5, *h6],
+            joint5: Sinusoid::new(h4, h5, h6),
+            h6_by_5: Spoke::new(h5, h6),
+        }
+    }
+
+    /// Every `(t4, t5, t6)` with `R4 R5 R6 = goal`, appended to the joint
+    /// values `prefix`.
+    pub(crate) fn solve(
+        &self,
+        goal: &Matrix3<f64>,
+        prefix: &[f64],
+        exact: bool,
+        out: &mut Candidates,
+    ) {
+        let [h4, h5, h6] = &self.h;
+        let goal_h6 = goal * h6;
+        let goal_h5 = goal * h5;
+        let t5s = self.joint5.solve(h4.dot(&goal_h6));
+        let n = prefix.len();
+        let mut q = [0.0; MAX_JOINTS];
+        q[..n].copy_from_slice(prefix);
+        for t5 in t5s.as_slice() {
+            let (t4, e4) = subproblem1_turn(h4, &self.h6_by_5.turned(t5), &goal_h6);
+            let r45 = rotation_of(h4, &t4) * rotation_of(h5, t5);
+            let (t6, e6) = subproblem1(h6, h5, &(r45.transpose() * goal_h5));
+            q[n] = t4.angle;
+            q[n + 1] = t5.angle;
+            q[n + 2] = t6;
+            out.push(&q[..n + 3], exact && t5s.exact && e4 && e6);
+        }
     }
 }
