@@ -5,8 +5,7 @@
 use armkit::kinematics::{forward_kinematics, Data};
 use armkit::trajectory::cartesian::{CartesianTrajectory, LinePath, OrientationLaw, TimeLaw};
 use armkit::trajectory::continuous_path::{
-    measure_path_error, plan_continuous_path, ContinuousPathOptions, PathStatus, PathTolerance,
-    Segmentation,
+    measure_path_error, plan_continuous_path, ContinuousPathOptions, PathTolerance, Segmentation,
 };
 use armkit::trajectory::limits::TrajectoryLimits;
 use armkit::trajectory::path_ik::{path_ik_for, IkTask};
@@ -428,10 +427,7 @@ pub fn continuous_path(
     };
     let (path, report, interior, method) = py.detach(run).or_raise()?;
     Ok(ContinuousPath {
-        status: match report.status {
-            PathStatus::ToleranceMet => "tolerance_met",
-            PathStatus::ToleranceNotMet => "tolerance_not_met",
-        },
+        status: report.status.as_str(),
         configurations: matrix_from_rows(py, &report.configurations, model.dof())?.unbind(),
         trajectory: Py::new(
             py,
