@@ -200,6 +200,18 @@ impl LineArgs {
         if self.accel_time.is_some() && self.law != LawArg::Trapezoidal {
             return Err(CliError("--accel-time is for --law trapezoidal".into()));
         }
+        let checked = self.torques.torques || self.torques.fit_torque_limits;
+        if !(self.speed_up.is_finite() && self.speed_up > 0.0) {
+            return Err(CliError(format!(
+                "--speed-up: must be finite and > 0, got {}",
+                self.speed_up
+            )));
+        }
+        if self.speed_up != 1.0 && !checked {
+            return Err(CliError(
+                "--speed-up needs --torques or --fit-torque-limits".into(),
+            ));
+        }
         let torques = (self.torques.torques || self.torques.fit_torque_limits).then(|| {
             self.torques
                 .torque_limits
@@ -285,7 +297,7 @@ pub(super) fn run_line(args: &LineArgs) -> CliResult<Outcome> {
     let report = planned.report;
     let (trajectory, torques) = super::super::traj_torques::check(
         dynamics.as_ref().unwrap_or(&model),
-        report.trajectory.clone(),
+        report.trajectory.time_scaled(1.0 / args.speed_up)?,
         &args.torques,
         &args.output,
     )?;
