@@ -292,7 +292,10 @@ fn line_torques_are_fitted_to_the_panda_limits() {
     assert!(factor > 1.0, "{factor}");
     // The written trajectory is the slowed-down one: 2 s / 20 * factor.
     let duration = summary["duration_s"].as_f64().unwrap();
-    assert!((duration - 0.1 * factor).abs() < 1e-9, "{duration} vs {factor}");
+    assert!(
+        (duration - 0.1 * factor).abs() < 1e-9,
+        "{duration} vs {factor}"
+    );
     let peaks = torques["peaks"].as_array().unwrap();
     assert_eq!(peaks.len(), 7);
     let worst = peaks
@@ -305,7 +308,10 @@ fn line_torques_are_fitted_to_the_panda_limits() {
     let mut no_check = args.to_vec();
     no_check.retain(|a| *a != "--fit-torque-limits");
     let err = refused(&no_check);
-    assert!(err.contains("needs --torques or --fit-torque-limits"), "{err}");
+    assert!(
+        err.contains("needs --torques or --fit-torque-limits"),
+        "{err}"
+    );
     let mut own = args.to_vec();
     own.retain(|a| *a != "--dynamics" && *a != "panda-urdf");
     let err = refused(&own);

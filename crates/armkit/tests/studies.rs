@@ -96,11 +96,7 @@ fn seed002_continuous_path_study_shows_the_papers_variants() {
     // tolerance but leaves several times the tolerance between them.
     let midpoint = outcome.midpoint_only.as_ref().unwrap();
     assert!(midpoint.report.checked_error.position <= 1e-4);
-    assert!(
-        midpoint.interior.position > 5e-4,
-        "{:?}",
-        midpoint.interior
-    );
+    assert!(midpoint.interior.position > 5e-4, "{:?}", midpoint.interior);
     assert!(outcome.main.interior.position <= 1e-4);
     let finding = |word: &str| {
         report
@@ -115,7 +111,13 @@ fn seed002_continuous_path_study_shows_the_papers_variants() {
     assert_eq!(sweep.x, vec![2.0, 4.0, 8.0, 16.0, 32.0, 64.0]);
     let errors = sweep.column("at 100 points per segment").unwrap();
     assert!(errors.windows(2).all(|w| w[1] < w[0]), "{errors:?}");
-    assert!(errors[5] < errors[0] / 100.0, "{errors:?}");
+    assert!(errors[5] < errors[0] - 2.0, "log10: {errors:?}");
+    let measured: Vec<f64> = outcome
+        .sweep
+        .iter()
+        .map(|r| r.interior.position.log10())
+        .collect();
+    assert_eq!(errors, measured.as_slice());
     assert_eq!(
         finding("larger the number of segments").status,
         FindingStatus::Reproduced
@@ -131,7 +133,10 @@ fn seed002_continuous_path_study_shows_the_papers_variants() {
     assert_eq!(finding("quintic last").status, FindingStatus::NotReproduced);
     // A position task: no orientation comparison, no orientation finding.
     assert!(outcome.other_orientation.is_none());
-    assert!(report.findings.iter().all(|f| !f.claim.contains("eqs 20-22")));
+    assert!(report
+        .findings
+        .iter()
+        .all(|f| !f.claim.contains("eqs 20-22")));
 }
 
 /// The Panda with the paper's orientation law and slerp beside it, and the
@@ -213,7 +218,10 @@ fn seed002_continuous_path_study_checks_its_options() {
         segment_sweep: vec![4, 0],
         ..Default::default()
     });
-    assert!(text.contains("segment_sweep") && text.contains(">= 1"), "{text}");
+    assert!(
+        text.contains("segment_sweep") && text.contains(">= 1"),
+        "{text}"
+    );
     let text = message(ContinuousPathStudy {
         law: LawKind::Quintic,
         ..Default::default()

@@ -376,28 +376,28 @@ impl ContinuousPathOutcome {
         ))
     }
 
-    /// The error against the number of segments, and the torques.
+    /// The error against the number of segments (log10 of the position
+    /// errors, m), and the torques.
     pub fn series(&self) -> Vec<Series> {
         let mut series = Vec::new();
         if !self.sweep.is_empty() {
+            // log10 of the errors: they span four decades over n = 2..64.
             let (tolerance, _) = self.tolerances();
+            let log = |f: fn(&SweepRow) -> f64| self.sweep.iter().map(|r| f(r).log10()).collect();
             series.push(
                 Series::new(
                     "error_vs_segments",
-                    "Seed 002: path error against the number of segments",
+                    "Seed 002: path error against the number of segments (log10)",
                     "segments n",
-                    "largest position error (m)",
+                    "log10 of the largest position error (m)",
                     self.sweep.iter().map(|r| r.segments as f64).collect(),
                 )
-                .with(
-                    "at 100 points per segment",
-                    self.sweep.iter().map(|r| r.interior.position).collect(),
-                )
+                .with("at 100 points per segment", log(|r| r.interior.position))
                 .with(
                     "at the segment midpoints (Fig 6)",
-                    self.sweep.iter().map(|r| r.midpoint.position).collect(),
+                    log(|r| r.midpoint.position),
                 )
-                .with("tolerance", vec![tolerance; self.sweep.len()]),
+                .with("tolerance", vec![tolerance.log10(); self.sweep.len()]),
             );
         }
         if let Some(torques) = &self.torques {
