@@ -223,10 +223,21 @@ fn seed002_continuous_path_study_checks_its_options() {
         "{text}"
     );
     let text = message(ContinuousPathStudy {
-        law: LawKind::Quintic,
+        acceleration_time: Some(1.5),
         ..Default::default()
     });
-    assert!(text.contains("acceleration_time"), "{text}");
+    assert!(
+        text.contains("acceleration_time") && text.contains("half the duration"),
+        "{text}"
+    );
+    // The other laws ignore the acceleration time.
+    let quintic = ContinuousPathStudy {
+        law: LawKind::Quintic,
+        segment_sweep: vec![],
+        cubic_quintic_segments: vec![],
+        ..Default::default()
+    };
+    assert!(quintic.run().unwrap().all_passed());
     let text = message(ContinuousPathStudy {
         torques: Some(TorqueStudy {
             speed_up: 0.0,

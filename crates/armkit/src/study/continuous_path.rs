@@ -239,8 +239,8 @@ pub struct ContinuousPathStudy {
     pub duration: f64,
     /// Timing law. Default trapezoidal.
     pub law: LawKind,
-    /// Acceleration time of the trapezoidal law, s. Default: 0.5 s
-    /// (`None`: a quarter of the duration).
+    /// Acceleration time of the trapezoidal law, s (the other laws ignore
+    /// it). Default: 0.5 s (`None`: a quarter of the duration).
     pub acceleration_time: Option<f64>,
     /// Orientation law. Default the paper's (eqs 20-22).
     pub orientation: OrientationKind,
@@ -345,18 +345,12 @@ impl ContinuousPathStudy {
 
     /// The timed line on `model` with orientation law `orientation`.
     pub fn path(&self, model: &Model, orientation: OrientationKind) -> Result<CartesianTrajectory> {
-        let law = match (self.law, self.acceleration_time) {
-            (LawKind::Trapezoidal, time) => TimeLaw::Trapezoidal {
-                acceleration_time: time.unwrap_or(0.25 * self.duration),
+        let law = match self.law {
+            LawKind::Trapezoidal => TimeLaw::Trapezoidal {
+                acceleration_time: self.acceleration_time.unwrap_or(0.25 * self.duration),
             },
-            (_, Some(_)) => {
-                return Err(Error::invalid_argument(
-                    "acceleration_time",
-                    "is for the trapezoidal law only",
-                ))
-            }
-            (LawKind::Quintic, None) => TimeLaw::Quintic,
-            (LawKind::Linear, None) => TimeLaw::Linear,
+            LawKind::Quintic => TimeLaw::Quintic,
+            LawKind::Linear => TimeLaw::Linear,
         };
         let (start, goal) = self.end_poses(model)?;
         Ok(

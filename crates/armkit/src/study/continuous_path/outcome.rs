@@ -429,7 +429,7 @@ impl ContinuousPathOutcome {
         )];
         if let Some(other) = &self.other_orientation {
             notes.push(format!(
-                "Comparison, labelled: the same line with the {}.",
+                "\"{}\": the same line and options with the other orientation law, for comparison.",
                 other.label
             ));
         }
