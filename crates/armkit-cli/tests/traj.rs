@@ -251,3 +251,69 @@ fn line_errors_and_unmet_tolerance() {
         "error: --accel-time is for --law trapezoidal"
     );
 }
+
+/// Issue 18 on a seed 002 line: the Panda's torques (Franka's inertias and
+/// effort limits from the built-in panda.urdf) with the line played 20 times
+/// faster, then slowed down uniformly until every torque is within its limit.
+#[test]
+fn line_torques_are_fitted_to_the_panda_limits() {
+    let args = [
+        "traj",
+        "line",
+        "--robot",
+        "panda",
+        "--from",
+        PANDA_FROM,
+        "--to-pose",
+        "0.4840068820263855,0.3,0.4130277771284139,3.141592653589793,-0.1,0.0",
+        "--law",
+        "linear",
+        "--orientation",
+        "rpy-linear",
+        "--boundary",
+        "finite-difference",
+        "--dynamics",
+        "panda-urdf",
+        "--speed-up",
+        "20",
+        "--fit-torque-limits",
+        "--json",
+    ];
+    let refused = |args: &[&str]| {
+        let output = armkit(args);
+        assert!(!output.status.success());
+        stderr(&output)
+    };
+    let summary = json(&armkit(&args));
+    assert_eq!(summary["status"], "tolerance_met");
+    let torques = &summary["torques"];
+    assert_eq!(torques["status"], "within-limits");
+    let factor = torques["time_scaling_factor"].as_f64().unwrap();
+    assert!(factor > 1.0, "{factor}");
+    // The written trajectory is the slowed-down one: 2 s / 20 * factor.
+    let duration = summary["duration_s"].as_f64().unwrap();
+    assert!(
+        (duration - 0.1 * factor).abs() < 1e-9,
+        "{duration} vs {factor}"
+    );
+    let peaks = torques["peaks"].as_array().unwrap();
+    assert_eq!(peaks.len(), 7);
+    let worst = peaks
+        .iter()
+        .map(|p| p["ratio"].as_f64().unwrap())
+        .fold(0.0, f64::max);
+    assert!(worst <= 1.0 && worst > 0.999, "tight: {worst}");
+    // Without --torques the dynamics choice is refused; the built-in panda
+    // has no masses of its own.
+    let mut no_check = args.to_vec();
+    no_check.retain(|a| *a != "--fit-torque-limits");
+    let err = refused(&no_check);
+    assert!(
+        err.contains("needs --torques or --fit-torque-limits"),
+        "{err}"
+    );
+    let mut own = args.to_vec();
+    own.retain(|a| *a != "--dynamics" && *a != "panda-urdf");
+    let err = refused(&own);
+    assert!(err.contains("mass"), "{err}");
+}

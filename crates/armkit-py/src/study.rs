@@ -4,8 +4,8 @@
 use armkit::mpc::qp::QpSolverKind;
 use armkit::mpc::scenario::Seed000Example;
 use armkit::study::{
-    AvoidanceStudy, BeamTableStudy, DistributionStudy, MpcExampleStudy, SpaceRobotStudy,
-    StudyReport as LibraryReport,
+    AvoidanceStudy, BeamTableStudy, ContinuousPathStudy, DistributionStudy, MpcExampleStudy,
+    SpaceRobotStudy, StudyReport as LibraryReport,
 };
 use armkit::Error;
 use numpy::PyArray1;
@@ -23,6 +23,7 @@ const STUDIES: &[&str] = &[
     "mpc-ex3",
     "mpc-ex3-undamped",
     "distribution",
+    "continuous-path",
     "avoidance",
     "space-robot",
 ];
@@ -160,6 +161,10 @@ pub fn run(
         }
         "distribution" => {
             let study: DistributionStudy = self::options(py, name, options)?;
+            py.detach(|| study.run())
+        }
+        "continuous-path" => {
+            let study: ContinuousPathStudy = self::options(py, name, options)?;
             py.detach(|| study.run())
         }
         "avoidance" => {

@@ -34,3 +34,10 @@ def test_study_options_and_bad_names():
         study.run("nope")
     with pytest.raises(ValueError, match=re.escape("invalid argument `options`: study `beam-table`: unknown field `weight`")):
         study.run("beam-table", weight=3.0)
+
+
+def test_continuous_path_study_takes_the_library_options():
+    report = study.run("continuous-path", segment_sweep=[4, 16], cubic_quintic_segments=[])
+    assert list(report.series["error_vs_segments"]["x"]) == [4.0, 16.0]
+    midpoint = [f for f in report.findings if "midpoint" in f["claim"]]
+    assert midpoint and midpoint[0]["status"] == "not reproduced"

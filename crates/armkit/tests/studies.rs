@@ -104,3 +104,181 @@ fn seed001_and_seed004_space_studies_check_their_options() {
     .unwrap_err();
     assert!(error.to_string().contains("start"), "{error}");
 }
+
+/// Seed 002's continuous path (issue 21 items 10-11): the default study on
+/// arm4, every check passing, the paper's variants as findings with their
+/// figures.
+#[test]
+fn seed002_continuous_path_study_shows_the_papers_variants() {
+    use armkit::study::{ContinuousPathStudy, FindingStatus};
+    let study = ContinuousPathStudy::default();
+    let model = armkit::robots::by_name("arm4").unwrap();
+    let outcome = study.outcome(&model, None).unwrap();
+    let report = outcome.report();
+    assert!(report.all_passed(), "{:#?}", report.checks);
+    // Fig 6's midpoint-only test stops with every midpoint within the
+    // tolerance but leaves several times the tolerance between them.
+    let midpoint = outcome.midpoint_only.as_ref().unwrap();
+    assert!(midpoint.report.checked_error.position <= 1e-4);
+    assert!(midpoint.interior.position > 5e-4, "{:?}", midpoint.interior);
+    assert!(outcome.main.interior.position <= 1e-4);
+    let finding = |word: &str| {
+        report
+            .findings
+            .iter()
+            .find(|f| f.claim.contains(word))
+            .unwrap_or_else(|| panic!("no finding on {word}: {:#?}", report.findings))
+    };
+    assert_eq!(finding("midpoint").status, FindingStatus::NotReproduced);
+    // The error falls with every doubling of n from 2 to 64, at about n^-2.
+    let sweep = report.series("error_vs_segments").unwrap();
+    assert_eq!(sweep.x, vec![2.0, 4.0, 8.0, 16.0, 32.0, 64.0]);
+    let errors = sweep.column("at 100 points per segment").unwrap();
+    assert!(errors.windows(2).all(|w| w[1] < w[0]), "{errors:?}");
+    assert!(errors[5] < errors[0] - 2.0, "log10: {errors:?}");
+    let measured: Vec<f64> = outcome
+        .sweep
+        .iter()
+        .map(|r| r.interior.position.log10())
+        .collect();
+    assert_eq!(errors, measured.as_slice());
+    assert_eq!(
+        finding("larger the number of segments").status,
+        FindingStatus::Reproduced
+    );
+    // The cubic-quintic scheme: its rate amplification grows with n and
+    // its error is far beyond the tolerance (an outcome, not an error).
+    let runs = &outcome.cubic_quintic;
+    assert_eq!(runs.len(), 3);
+    assert!(runs[0].amplification < runs[1].amplification);
+    assert!(runs[1].amplification < runs[2].amplification);
+    assert!(runs[2].amplification > 1e6, "{:?}", runs[2]);
+    assert!(runs.iter().all(|r| r.interior.position > 1e-2));
+    assert_eq!(finding("quintic last").status, FindingStatus::NotReproduced);
+    // A position task: no orientation comparison, no orientation finding.
+    assert!(outcome.other_orientation.is_none());
+    assert!(report
+        .findings
+        .iter()
+        .all(|f| !f.claim.contains("eqs 20-22")));
+}
+
+/// The Panda with the paper's orientation law and slerp beside it, and the
+/// torque check on the Panda URDF's inertias with the uniform slow-down.
+#[test]
+fn seed002_panda_study_checks_the_orientation_law_and_the_torques() {
+    use armkit::study::{
+        BoundaryKind, ContinuousPathStudy, FindingStatus, LawKind, OrientationKind, PathGoal,
+        TorqueStudy,
+    };
+    use armkit::urdf::{load, ChainSelection};
+    let data = concat!(env!("CARGO_MANIFEST_DIR"), "/../../tests/data/urdf/");
+    let urdf = load(
+        format!("{data}panda.urdf"),
+        &ChainSelection::between("panda_link0", "panda_link8"),
+    )
+    .unwrap();
+    let panda = armkit::robots::by_name("panda").unwrap();
+    let study = ContinuousPathStudy {
+        robot: "panda".into(),
+        start: vec![0.0, -0.3, 0.0, -2.2, 0.0, 2.0, 0.8],
+        goal: PathGoal::Pose([0.484, 0.268, 0.279, -2.94, 0.1, 0.385]),
+        law: LawKind::Linear,
+        acceleration_time: None,
+        boundary: BoundaryKind::FiniteDifference,
+        segment_sweep: vec![],
+        cubic_quintic_segments: vec![],
+        torques: Some(TorqueStudy {
+            speed_up: 20.0,
+            ..TorqueStudy::default()
+        }),
+        ..ContinuousPathStudy::default()
+    };
+    assert_eq!(study.orientation, OrientationKind::RpyLinear);
+    let outcome = study.outcome(&panda, Some(&urdf)).unwrap();
+    let report = outcome.report();
+    assert!(report.all_passed(), "{:#?}", report.checks);
+    let slerp = outcome.other_orientation.as_ref().unwrap();
+    assert!(slerp.label.starts_with("slerp"));
+    let orientation = report
+        .findings
+        .iter()
+        .find(|f| f.claim.contains("eqs 20-22"))
+        .unwrap();
+    assert_eq!(orientation.status, FindingStatus::Reproduced);
+    // The line played 20 times faster exceeds the limits; the slow-down
+    // found brings every torque within them, tightly.
+    let torques = outcome.torques.as_ref().unwrap();
+    assert!(torques.scaling.factor > 1.0);
+    assert!(torques.faster_status.is_some());
+    let worst = armkit::study::TorqueOutcome::worst_ratio(&torques.scaling.after);
+    assert!(worst <= 1.0 && worst > 0.999, "{worst}");
+    assert!(report.series("torques_scaled").is_some());
+    // A dynamics model whose joints are not the Panda's (joint 4 moved by
+    // 1 cm) is caught by the joint check.
+    let text = std::fs::read_to_string(format!("{data}panda.urdf")).unwrap();
+    assert_eq!(text.matches("0.0825").count(), 2);
+    let moved = armkit::urdf::parse_str(
+        &text.replacen("0.0825", "0.0925", 1),
+        "moved.urdf",
+        &ChainSelection::between("panda_link0", "panda_link8"),
+    )
+    .unwrap();
+    let report = study.outcome(&panda, Some(&moved)).unwrap().report();
+    let mismatch = report
+        .checks
+        .iter()
+        .find(|c| c.name.contains("move as the planning model's"))
+        .unwrap();
+    assert!(!mismatch.passed(), "{mismatch}");
+}
+
+#[test]
+fn seed002_continuous_path_study_checks_its_options() {
+    use armkit::study::{ContinuousPathStudy, LawKind, TorqueStudy};
+    let model = armkit::robots::by_name("arm4").unwrap();
+    let message = |study: ContinuousPathStudy| study.outcome(&model, None).unwrap_err().to_string();
+    let text = message(ContinuousPathStudy {
+        segment_sweep: vec![4, 0],
+        ..Default::default()
+    });
+    assert!(
+        text.contains("segment_sweep") && text.contains(">= 1"),
+        "{text}"
+    );
+    let text = message(ContinuousPathStudy {
+        acceleration_time: Some(1.5),
+        ..Default::default()
+    });
+    assert!(
+        text.contains("acceleration_time") && text.contains("half the duration"),
+        "{text}"
+    );
+    // The other laws ignore the acceleration time.
+    let quintic = ContinuousPathStudy {
+        law: LawKind::Quintic,
+        segment_sweep: vec![],
+        cubic_quintic_segments: vec![],
+        ..Default::default()
+    };
+    assert!(quintic.run().unwrap().all_passed());
+    let text = message(ContinuousPathStudy {
+        torques: Some(TorqueStudy {
+            speed_up: 0.0,
+            ..TorqueStudy::default()
+        }),
+        ..Default::default()
+    });
+    assert!(text.contains("torques.speed_up"), "{text}");
+    // arm4 has no mass properties: the torque check says which link.
+    let text = message(ContinuousPathStudy {
+        torques: Some(TorqueStudy::default()),
+        ..Default::default()
+    });
+    assert!(text.contains("mass"), "{text}");
+    let text = message(ContinuousPathStudy {
+        start: vec![0.0; 3],
+        ..Default::default()
+    });
+    assert!(text.contains("3"), "{text}");
+}

@@ -1146,6 +1146,55 @@ fn cubic_quintic_last_scheme_on_the_lines() {
     }
 }
 
+/// Issue 21 item 11: the adaptive segmentation with the cubic-quintic
+/// scheme refines until the recursion overflows; that is the scheme's
+/// outcome (status `scheme_diverged`, the last finite pass returned), not an
+/// error. The rate amplification shows the growth; the quartic-cubic scheme
+/// keeps it near 1.
+#[test]
+fn cubic_quintic_adaptive_divergence_is_a_status() {
+    use armkit::trajectory::rate_amplification;
+    let case = arm4_line();
+    let options = ContinuousPathOptions {
+        scheme: SegmentScheme::CubicQuinticLast,
+        segmentation: Segmentation::Adaptive {
+            initial: 4,
+            max: 4096,
+        },
+        tolerance: case.tolerance,
+        ..Default::default()
+    };
+    let (report, _) = plan(&case, &options);
+    assert_eq!(report.status, PathStatus::SchemeDiverged);
+    assert_eq!(report.status.to_string(), "scheme_diverged");
+    assert!(!within(&report.checked_error, &case.tolerance));
+    let segments = report.trajectory.segment_count();
+    assert_eq!(report.configurations.len(), segments + 1);
+    assert!(segments > 256, "{segments}");
+    let amplification = rate_amplification(&report.trajectory);
+    assert!(amplification > 1e10, "{amplification:e}");
+    // Fixed 4, 8, 16 segments: growing amplification; quartic-cubic near 1.
+    let mut previous = 0.0;
+    for n in [4, 8, 16] {
+        let fixed = ContinuousPathOptions {
+            segmentation: Segmentation::Fixed(n),
+            ..options.clone()
+        };
+        let a = rate_amplification(&plan(&case, &fixed).0.trajectory);
+        assert!(a > previous, "n = {n}: {a} after {previous}");
+        previous = a;
+        let stable = ContinuousPathOptions {
+            scheme: SegmentScheme::QuarticCubicQuartic(ViaVelocity::BackwardDifference),
+            ..fixed
+        };
+        let a = rate_amplification(&plan(&case, &stable).0.trajectory);
+        assert!(a <= 1.0 + 1e-9, "quartic-cubic n = {n}: {a}");
+    }
+    assert!(previous > 1e4, "{previous}");
+    assert_eq!(PathStatus::ToleranceMet.as_str(), "tolerance_met");
+    assert_eq!(PathStatus::ToleranceNotMet.to_string(), "tolerance_not_met");
+}
+
 #[test]
 fn fixed_segmentation_reports_the_tolerance_honestly() {
     let case = panda_line();

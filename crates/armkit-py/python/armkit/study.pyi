@@ -22,7 +22,7 @@ class StudyReport:
 
 def names() -> List[str]:
     """The studies ``run`` knows: beam-table, mpc-ex1 .. mpc-ex3-undamped,
-    distribution, avoidance, space-robot."""
+    distribution, continuous-path, avoidance, space-robot."""
 
 def run(name: str, **options: Any) -> StudyReport:
     """Runs a seed study; ``options`` are the library's option names (e.g.

@@ -11,12 +11,9 @@
 //! | [`BeamTableStudy`] | 000, sec 3.1 | Table 1: beam deflection under two carriages, to the printed digits; where the beam bends most |
 //! | [`MpcExampleStudy`] | 000, sec 4.4 | the MPC examples on the flexible gantry |
 //! | [`DistributionStudy`] | 001 (+ 000's priorities) | one motion distributed four ways, energy measure eq 9 |
+//! | [`ContinuousPathStudy`] | 002, sec 3 | a line by the continuous-path method, Fig 6's segmentation, the paper's variants, torques |
 //! | [`AvoidanceStudy`] | 004, sec 2 | singularity avoidance vs plain, DLS, SRI (Table 1, Figs 5-8) |
 //! | [`SpaceRobotStudy`] | 004, sec 1 | the free-floating space robot: momenta, centre of mass, `J*` |
-//!
-//! Seed 002's continuous path is planned by
-//! [`crate::trajectory::plan_continuous_path`] (the CLI's
-//! `[continuous_path]` scenario).
 //!
 //! ```
 //! use armkit::study::{Check, StudyReport};
@@ -31,6 +28,7 @@ use std::fmt;
 
 mod avoidance;
 mod beam_table;
+mod continuous_path;
 mod distribution;
 mod finding;
 mod mpc_examples;
@@ -43,6 +41,11 @@ pub use avoidance::{
 pub use beam_table::{
     BeamTableStudy, Table1Row, TABLE1_ROUNDING, TABLE1_SIMULATION, TABLE1_SPAN_GRID,
     TABLE1_TOLERANCE,
+};
+pub use continuous_path::{
+    BoundaryKind, ContinuousPathOutcome, ContinuousPathStudy, IkKind, LawKind, OrientationKind,
+    PathGoal, PlannedPath, SchemeKind, SchemeRun, SweepRow, TaskKind, TorqueOutcome, TorqueStudy,
+    ARM4_LINE_END, ARM4_LINE_START, MEASURE_POINTS,
 };
 pub use distribution::{
     DistributionOutcome, DistributionStudy, FormulationKind, ResolvedDistribution, SecondaryKind,

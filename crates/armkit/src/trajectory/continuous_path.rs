@@ -151,6 +151,20 @@ pub fn interpolate_via_points<P: AsRef<[f64]>>(
     positions: &[P],
     boundary: &BoundaryRates,
 ) -> Result<Trajectory> {
+    let (dof, coefficients) = via_point_coefficients(scheme, times, positions, boundary)?;
+    Trajectory::from_polynomials(times.to_vec(), dof, coefficients)
+}
+
+/// The number of joints and the per-segment, per-joint coefficients of
+/// [`interpolate_via_points`], not yet checked for finiteness (the
+/// cubic-quintic recursion can overflow: the planner reports that as
+/// [`PathStatus::SchemeDiverged`]).
+fn via_point_coefficients<P: AsRef<[f64]>>(
+    scheme: SegmentScheme,
+    times: &[f64],
+    positions: &[P],
+    boundary: &BoundaryRates,
+) -> Result<(usize, Vec<[f64; 6]>)> {
     let dof = check_via_points(times, positions)?;
     let n = times.len() - 1;
     let q = |i: usize| positions[i].as_ref();
@@ -249,7 +263,7 @@ pub fn interpolate_via_points<P: AsRef<[f64]>>(
             }
         }
     }
-    Trajectory::from_polynomials(times.to_vec(), dof, coefficients)
+    Ok((dof, coefficients))
 }
 
 /// The Cartesian tolerance of the adaptive segmentation.
@@ -407,14 +421,20 @@ pub enum PathStatus {
     /// segmentation reached its maximum count (or a segment 1e-9 of the
     /// duration long). The trajectory is still valid, just coarser.
     ToleranceNotMet,
+    /// The segment scheme blew up: refining made the cubic-quintic
+    /// recursion's coefficients overflow (its errors grow up to 3.73x per
+    /// segment). The report holds the last finite pass, which does not meet
+    /// the tolerance either.
+    SchemeDiverged,
 }
 
 impl PathStatus {
-    /// `"tolerance_met"` or `"tolerance_not_met"` (the CLI's JSON).
+    /// `tolerance_met`, `tolerance_not_met` or `scheme_diverged`.
     pub fn as_str(&self) -> &'static str {
         match self {
             PathStatus::ToleranceMet => "tolerance_met",
             PathStatus::ToleranceNotMet => "tolerance_not_met",
+            PathStatus::SchemeDiverged => "scheme_diverged",
         }
     }
 }
@@ -422,6 +442,38 @@ impl PathStatus {
 impl std::fmt::Display for PathStatus {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(self.as_str())
+    }
+}
+
+/// How much a trajectory amplifies the joint rates: the largest joint
+/// velocity at a knot over the largest mean velocity of a segment
+/// (`|q_i - q_{i-1}| / h_i`), over all joints (1 for a motion that does not
+/// move). About 1 for the quartic-cubic scheme, whose via velocities are
+/// segment slopes (eq 23); for the cubic-quintic recursion it grows like
+/// `3.73^n` with the number of segments `n` (see
+/// [`SegmentScheme::CubicQuinticLast`]).
+pub fn rate_amplification(trajectory: &Trajectory) -> f64 {
+    let knots = trajectory.knots();
+    let dof = trajectory.dof();
+    let mut state = JointState::zeros(dof);
+    let (mut fastest_knot, mut fastest_mean) = (0.0_f64, 0.0_f64);
+    let mut previous = trajectory.start_state().position;
+    for (i, w) in knots.windows(2).enumerate() {
+        for phi in [0.0, 1.0] {
+            if trajectory.sample_segment_into(i, phi, &mut state).is_ok() {
+                let v = state.velocity.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+                fastest_knot = fastest_knot.max(v);
+            }
+        }
+        for (j, q) in state.position.iter().enumerate() {
+            fastest_mean = fastest_mean.max((q - previous[j]).abs() / (w[1] - w[0]));
+        }
+        previous.clone_from(&state.position);
+    }
+    if fastest_mean > 0.0 {
+        fastest_knot / fastest_mean
+    } else {
+        1.0
     }
 }
 
@@ -532,10 +584,32 @@ pub fn plan_continuous_path(
     let mut state = JointState::zeros(model.dof());
     let min_segment = 1e-9 * duration;
     let mut passes = 0;
+    let mut last_finite: Option<ContinuousPathReport> = None;
     loop {
         passes += 1;
-        let trajectory =
-            interpolate_via_points(options.scheme, &times, &configurations, &options.boundary)?;
+        let (dof, coefficients) =
+            via_point_coefficients(options.scheme, &times, &configurations, &options.boundary)?;
+        if coefficients.iter().flatten().any(|c| !c.is_finite()) {
+            // The scheme's failure is an outcome: the last finite pass.
+            let segments = times.len() - 1;
+            return match last_finite {
+                Some(report) => Ok(ContinuousPathReport {
+                    status: PathStatus::SchemeDiverged,
+                    passes,
+                    ik_solves,
+                    ..report
+                }),
+                None => Err(Error::invalid_argument(
+                    "scheme",
+                    format!(
+                        "the polynomial coefficients overflow on {segments} segments (the cubic-quintic \
+                         recursion multiplies errors by up to 3.73 per segment): use fewer segments or \
+                         the quartic-cubic-quartic scheme"
+                    ),
+                )),
+            };
+        }
+        let trajectory = Trajectory::from_polynomials(times.clone(), dof, coefficients)?;
         let mut checked_error = PathError::default();
         let mut failing = Vec::new();
         let checks = options.checks_per_segment;
@@ -571,6 +645,16 @@ pub fn plan_continuous_path(
                 trajectory,
                 status,
                 configurations,
+                checked_error,
+                passes,
+                ik_solves,
+            });
+        }
+        if options.scheme == SegmentScheme::CubicQuinticLast {
+            last_finite = Some(ContinuousPathReport {
+                trajectory,
+                status: PathStatus::ToleranceNotMet,
+                configurations: configurations.clone(),
                 checked_error,
                 passes,
                 ik_solves,

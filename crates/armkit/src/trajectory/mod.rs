@@ -50,9 +50,9 @@ pub use cartesian::{
     OrientationLaw, PathDerivatives, TimeLaw,
 };
 pub use continuous_path::{
-    interpolate_via_points, measure_path_error, plan_continuous_path, BoundaryRates,
-    ContinuousPathOptions, ContinuousPathReport, PathError, PathIk, PathStatus, PathTolerance,
-    SegmentScheme, Segmentation, ViaVelocity,
+    interpolate_via_points, measure_path_error, plan_continuous_path, rate_amplification,
+    BoundaryRates, ContinuousPathOptions, ContinuousPathReport, PathError, PathIk, PathStatus,
+    PathTolerance, SegmentScheme, Segmentation, ViaVelocity,
 };
 pub use limits::{
     check_limits, peak_rates, scale_to_limits, LimitKind, LimitViolation, PeakRates,

@@ -22,6 +22,15 @@ pub enum OrientationArg {
     RpyLinear,
 }
 
+/// `--boundary` values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum BoundaryArg {
+    /// Joints at rest at both ends (for rest-to-rest laws).
+    Rest,
+    /// End rates by finite differences of the knots (seed 002, eqs 23-24).
+    FiniteDifference,
+}
+
 /// `--task` values.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum TaskArg {
@@ -90,6 +99,9 @@ pub struct LineArgs {
     /// How the orientation moves.
     #[arg(long, value_enum, default_value_t = OrientationArg::Slerp)]
     pub orientation: OrientationArg,
+    /// Joint rates at both ends.
+    #[arg(long, value_enum, default_value_t = BoundaryArg::Rest)]
+    pub boundary: BoundaryArg,
     /// What the tolerance and the IK cover.
     #[arg(long, value_enum, default_value_t = TaskArg::Auto)]
     pub task: TaskArg,
@@ -127,142 +139,186 @@ pub struct LineArgs {
     /// Accept configurations outside the joint limits.
     #[arg(long)]
     pub allow_out_of_limits: bool,
+    /// Report only (a scenario's [continuous_path]): the segment counts of
+    /// the error-against-segments sweep.
+    #[arg(long, value_name = "N,N,...", value_delimiter = ',', default_values_t = [2, 4, 8, 16, 32, 64])]
+    pub sweep_segments: Vec<usize>,
+    /// Report only: the segment counts at which the cubic-quintic scheme is shown.
+    #[arg(long, value_name = "N,N,...", value_delimiter = ',', default_values_t = [4, 8, 16])]
+    pub cubic_quintic_segments: Vec<usize>,
+    #[command(flatten)]
+    pub torques: crate::commands::traj_torques::TorqueArgs,
+    /// Play the planned motion this many times faster before the torque
+    /// check (which then slows it down to the limits): how fast can the path run?
+    #[arg(
+        long,
+        default_value_t = 1.0,
+        value_name = "X",
+        allow_hyphen_values = true
+    )]
+    pub speed_up: f64,
+    /// Whose mass properties and effort limits the torque check uses.
+    #[arg(long, value_enum, default_value_t = DynamicsArg::Robot)]
+    pub dynamics: DynamicsArg,
     #[command(flatten)]
     pub output: OutputArgs,
 }
 
-/// Plans the line the arguments describe with seed 002's continuous-path method.
-pub fn plan_line(args: &LineArgs) -> CliResult<LineStudy> {
-    let model = args.robot.load()?;
-    let policy = LimitPolicy::from_flag(args.allow_out_of_limits);
-    let q0 = parse_joint_positions(&args.from, &model, policy).map_err(|e| rename(e, "--from"))?;
-    let mut data = Data::new(&model);
-    let start = *forward_kinematics(&model, &mut data, &q0)?;
-    let goal = match (&args.to_pose, &args.to_q) {
-        (Some(text), _) => parse_pose(text, "--to-pose")?,
-        (None, Some(text)) => {
-            let q1 =
-                parse_joint_positions(text, &model, policy).map_err(|e| rename(e, "--to-q"))?;
-            *forward_kinematics(&model, &mut data, &q1)?
-        }
-        (None, None) => return Err(CliError("give --to-pose or --to-q".into())),
-    };
-    let law = match args.law {
-        LawArg::Quintic => TimeLaw::Quintic,
-        LawArg::Linear => TimeLaw::Linear,
-        LawArg::Trapezoidal => TimeLaw::Trapezoidal {
-            acceleration_time: args.accel_time.unwrap_or(0.25 * args.duration),
-        },
-    };
-    if args.accel_time.is_some() && args.law != LawArg::Trapezoidal {
-        return Err(CliError("--accel-time is for --law trapezoidal".into()));
-    }
-    let orientation = match args.orientation {
-        OrientationArg::Slerp => OrientationLaw::FollowPath,
-        OrientationArg::RpyLinear => OrientationLaw::RpyLinearInTime,
-    };
-    let path = CartesianTrajectory::new(LinePath::new(start, goal)?, law.timing(args.duration)?)?
-        .with_orientation_law(orientation);
-    let task = match args.task {
-        TaskArg::Pose => IkTask::Pose,
-        TaskArg::Position => IkTask::Position,
-        TaskArg::Auto if model.dof() < 6 => IkTask::Position,
-        TaskArg::Auto => IkTask::Pose,
-    };
-    let tolerance = match task {
-        IkTask::Position => PathTolerance::Position(args.tolerance),
-        IkTask::Pose => PathTolerance::Pose {
-            position: args.tolerance,
-            orientation: args.orientation_tolerance,
-        },
-    };
-    let options = ContinuousPathOptions {
-        scheme: match args.scheme {
-            SchemeArg::QuarticCubic => {
-                SegmentScheme::QuarticCubicQuartic(ViaVelocity::BackwardDifference)
-            }
-            SchemeArg::QuarticCubicCentral => {
-                SegmentScheme::QuarticCubicQuartic(ViaVelocity::CentralDifference)
-            }
-            SchemeArg::CubicQuintic => SegmentScheme::CubicQuinticLast,
-        },
-        segmentation: match args.segments {
-            Some(n) => Segmentation::Fixed(n),
-            None => Segmentation::Adaptive {
-                initial: 4.min(args.max_segments),
-                max: args.max_segments,
-            },
-        },
-        tolerance,
-        checks_per_segment: args.checks,
-        ..Default::default()
-    };
-    let (mut ik, method): (Box<dyn PathIk>, &str) = match args.ik {
-        IkArg::Auto => path_ik_for(&model, task)?,
-        IkArg::Numeric => (
-            Box::new(NumericPathIk::for_path(&model, task)?),
-            "numeric (Levenberg-Marquardt from the previous knot)",
-        ),
-    };
-    let clock = std::time::Instant::now();
-    let report = plan_continuous_path(&model, &path, &mut *ik, &q0, &options)?;
-    let planning = clock.elapsed();
-    let interior = measure_path_error(&model, &report.trajectory, &path, 100)?;
-    Ok(LineStudy {
-        model,
-        start,
-        goal,
-        task,
-        tolerance,
-        method,
-        report,
-        planning,
-        interior,
-    })
+/// `--dynamics` values: whose mass properties and effort limits the torque
+/// check uses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum DynamicsArg {
+    /// The planning robot's own (it must have mass properties).
+    Robot,
+    /// Franka's Panda from example-robot-data's panda.urdf (panda_link0 to
+    /// panda_link8, built into armkit): inertias and the effort limits 87 /
+    /// 12 N m; for --robot panda, whose joints it shares (checked).
+    PandaUrdf,
 }
 
-/// A planned continuous path and the figures measured on it.
-pub struct LineStudy {
-    pub(super) model: Model,
-    pub(super) start: armkit::math::Pose,
-    pub(super) goal: armkit::math::Pose,
-    pub(super) task: IkTask,
-    pub(super) tolerance: PathTolerance,
-    pub(super) method: &'static str,
-    pub(super) report: armkit::trajectory::ContinuousPathReport,
-    pub(super) planning: std::time::Duration,
-    pub(super) interior: armkit::trajectory::PathError,
+/// The Panda URDF behind `--dynamics panda-urdf` (tests/data/urdf).
+const PANDA_URDF: &str = include_str!("../../../../../tests/data/urdf/panda.urdf");
+
+impl LineArgs {
+    /// The library study these flags describe, on `model`.
+    pub fn study(&self, model: &Model) -> CliResult<ContinuousPathStudy> {
+        let policy = LimitPolicy::from_flag(self.allow_out_of_limits);
+        let start =
+            parse_joint_positions(&self.from, model, policy).map_err(|e| rename(e, "--from"))?;
+        let goal = match (&self.to_pose, &self.to_q) {
+            (Some(text), _) => {
+                let pose = parse_pose(text, "--to-pose")?;
+                let (r, p, y) = pose.rpy();
+                let t = pose.translation;
+                PathGoal::Pose([t.x, t.y, t.z, r, p, y])
+            }
+            (None, Some(text)) => PathGoal::Configuration(
+                parse_joint_positions(text, model, policy).map_err(|e| rename(e, "--to-q"))?,
+            ),
+            (None, None) => return Err(CliError("give --to-pose or --to-q".into())),
+        };
+        if self.accel_time.is_some() && self.law != LawArg::Trapezoidal {
+            return Err(CliError("--accel-time is for --law trapezoidal".into()));
+        }
+        let checked = self.torques.torques || self.torques.fit_torque_limits;
+        if !(self.speed_up.is_finite() && self.speed_up > 0.0) {
+            return Err(CliError(format!(
+                "--speed-up: must be finite and > 0, got {}",
+                self.speed_up
+            )));
+        }
+        if self.speed_up != 1.0 && !checked {
+            return Err(CliError(
+                "--speed-up needs --torques or --fit-torque-limits".into(),
+            ));
+        }
+        let torques = (self.torques.torques || self.torques.fit_torque_limits).then(|| {
+            self.torques
+                .torque_limits
+                .as_ref()
+                .map(|t| parse_fixed_numbers(t, "--torque-limits", model.dof()))
+                .transpose()
+                .map(|limits| TorqueStudy {
+                    limits,
+                    speed_up: self.speed_up,
+                    ..TorqueStudy::default()
+                })
+        });
+        Ok(ContinuousPathStudy {
+            robot: model.name().to_string(),
+            start,
+            goal,
+            duration: self.duration,
+            law: match self.law {
+                LawArg::Quintic => LawKind::Quintic,
+                LawArg::Trapezoidal => LawKind::Trapezoidal,
+                LawArg::Linear => LawKind::Linear,
+            },
+            acceleration_time: self.accel_time,
+            orientation: match self.orientation {
+                OrientationArg::Slerp => OrientationKind::Slerp,
+                OrientationArg::RpyLinear => OrientationKind::RpyLinear,
+            },
+            boundary: match self.boundary {
+                BoundaryArg::Rest => BoundaryKind::Rest,
+                BoundaryArg::FiniteDifference => BoundaryKind::FiniteDifference,
+            },
+            task: match self.task {
+                TaskArg::Auto => TaskKind::Auto,
+                TaskArg::Pose => TaskKind::Pose,
+                TaskArg::Position => TaskKind::Position,
+            },
+            tolerance: self.tolerance,
+            orientation_tolerance: self.orientation_tolerance,
+            scheme: match self.scheme {
+                SchemeArg::QuarticCubic => SchemeKind::QuarticCubic,
+                SchemeArg::QuarticCubicCentral => SchemeKind::QuarticCubicCentral,
+                SchemeArg::CubicQuintic => SchemeKind::CubicQuintic,
+            },
+            checks_per_segment: self.checks,
+            segments: self.segments,
+            max_segments: self.max_segments,
+            ik: match self.ik {
+                IkArg::Auto => IkKind::Auto,
+                IkArg::Numeric => IkKind::Numeric,
+            },
+            segment_sweep: self.sweep_segments.clone(),
+            cubic_quintic_segments: self.cubic_quintic_segments.clone(),
+            torques: torques.transpose()?,
+        })
+    }
+
+    /// The model the torque check runs on, when it is not the robot itself.
+    pub fn dynamics_model(&self) -> CliResult<Option<Model>> {
+        if self.dynamics != DynamicsArg::Robot
+            && !(self.torques.torques || self.torques.fit_torque_limits)
+        {
+            return Err(CliError(
+                "--dynamics needs --torques or --fit-torque-limits".into(),
+            ));
+        }
+        Ok(match self.dynamics {
+            DynamicsArg::Robot => None,
+            DynamicsArg::PandaUrdf => Some(armkit::urdf::parse_str(
+                PANDA_URDF,
+                "panda.urdf (built in)",
+                &armkit::urdf::ChainSelection::between("panda_link0", "panda_link8"),
+            )?),
+        })
+    }
 }
 
 pub(super) fn run_line(args: &LineArgs) -> CliResult<Outcome> {
-    let LineStudy {
-        model,
-        start,
-        goal,
-        report,
-        planning,
-        interior,
-        method,
-        ..
-    } = plan_line(args)?;
-
+    let model = args.robot.load()?;
+    let study = args.study(&model)?;
+    let dynamics = args.dynamics_model()?;
+    let (planned, method) = study.plan(&model)?;
+    let (start, goal) = study.end_poses(&model)?;
+    let report = planned.report;
+    let (trajectory, torques) = super::super::traj_torques::check(
+        dynamics.as_ref().unwrap_or(&model),
+        report.trajectory.time_scaled(1.0 / args.speed_up)?,
+        &args.torques,
+        &args.output,
+    )?;
     let limits = TrajectoryLimits::from_model(&model);
-    let mut summary = summarize(&model, &report.trajectory, &limits)?;
-    let met = report.status == PathStatus::ToleranceMet;
+    let mut summary = summarize(&model, &trajectory, &limits)?;
+    summary["torques"] = torques.json();
     summary["profile"] = serde_json::json!("cartesian line");
     summary["status"] = serde_json::json!(report.status.as_str());
     summary["ik"] = serde_json::json!(method);
     summary["length_m"] = serde_json::json!((goal.translation - start.translation).norm());
     summary["checked_error_m"] = serde_json::json!(report.checked_error.position);
     summary["checked_error_rad"] = serde_json::json!(report.checked_error.orientation);
-    summary["error_100_points_m"] = serde_json::json!(interior.position);
-    summary["error_100_points_rad"] = serde_json::json!(interior.orientation);
-    summary["planning_ms"] = serde_json::json!(planning.as_secs_f64() * 1e3);
+    summary["error_100_points_m"] = serde_json::json!(planned.interior.position);
+    summary["error_100_points_rad"] = serde_json::json!(planned.interior.orientation);
+    summary["planning_ms"] = serde_json::json!(planned.planning.as_secs_f64() * 1e3);
     summary["ik_solves"] = serde_json::json!(report.ik_solves);
-    let files = write_outputs(&model, &report.trajectory, &args.output)?;
+    let files = write_outputs(&model, &trajectory, &args.output)?;
     summary["files"] = serde_json::json!(files);
     report_summary(&summary, args.output.json)?;
-    Ok(if met {
+    torques.print(args.output.json);
+    Ok(if report.status == PathStatus::ToleranceMet {
         Outcome::Success
     } else {
         Outcome::NotConverged

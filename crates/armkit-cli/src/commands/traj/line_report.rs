@@ -1,139 +1,202 @@
-//! Seed 002's continuous path as a scenario report.
+//! Seed 002's continuous path as a scenario report: the library's
+//! [`ContinuousPathStudy`] run and formatted.
 
-use super::line::{plan_line, LineArgs};
+use armkit::study::{ContinuousPathOutcome, PlannedPath, TorqueOutcome};
+use armkit::trajectory::IkTask;
+use armkit::trajectory::PathError;
+
+use super::line::LineArgs;
 use super::*;
 
 /// Seed 002's continuous path as a report (a scenario's `[continuous_path]`
-/// table, with the options of `armkit traj line`): the segments chosen, the
-/// error at the check points and, measured separately, at 100 points inside
-/// every segment, the joint motion, the arm moving.
+/// table, with the options of `armkit traj line`): the main run, the
+/// paper's variants beside it, the torque check when asked for, the joint
+/// motion, the arm moving.
 pub fn line_report(args: &LineArgs) -> CliResult<Report> {
-    let study = plan_line(args)?;
-    let (position_tolerance, orientation_tolerance) = match study.tolerance {
-        PathTolerance::Position(p) => (p, None),
-        PathTolerance::Pose {
-            position,
-            orientation,
-        } => (position, Some(orientation)),
-    };
-    let report = &study.report;
-    let traj = &report.trajectory;
-    let mut checks = vec![
-        Check::at_most(
-            "position error at the check points",
-            report.checked_error.position,
-            position_tolerance,
-            "m",
+    let model = args.robot.load()?;
+    let study = args.study(&model)?;
+    let dynamics = args.dynamics_model()?;
+    let outcome = study.outcome(&model, dynamics.as_ref())?;
+    let (start, goal) = study.end_poses(&model)?;
+    let length = (goal.translation - start.translation).norm();
+    let mut report = Report::from_study(
+        "continuous-path",
+        format!("Seed 002: continuous path on {}", model.name()),
+        format!(
+            "A straight line of {length:.3} m, planned by seed 002's method (sec 3): IK at the n + 1 path points \
+             (nearest the previous solution), joint rates by finite differences (eqs 23-24), one polynomial per \
+             segment in normalized time (eq 25), and the adaptive segmentation of Fig 6 until the tolerance is met \
+             at the check points; the paper's variants beside it, each labelled."
         ),
-        Check::at_most(
-            "position error at 100 points inside every segment (measured separately)",
-            study.interior.position,
-            position_tolerance,
-            "m",
-        ),
+        outcome.report(),
+    );
+    report.tables = vec![
+        plan_table(&outcome, length),
+        variants_table(&outcome),
+        sweep_table(&outcome),
     ];
-    if let Some(tolerance) = orientation_tolerance {
-        checks.push(Check::at_most(
-            "orientation error at the check points",
-            report.checked_error.orientation,
-            tolerance,
-            "rad",
-        ));
-        checks.push(Check::at_most(
-            "orientation error at 100 points inside every segment",
-            study.interior.orientation,
-            tolerance,
-            "rad",
-        ));
+    if let Some(torques) = &outcome.torques {
+        report.tables.push(torque_table(torques));
     }
-    let jumps = traj.knot_discontinuities();
-    checks.push(Check::at_most(
-        "largest position jump at a knot",
-        jumps[0],
-        1e-12,
-        "rad or m",
-    ));
-    checks.push(Check::at_most(
-        "largest velocity jump at a knot",
-        jumps[1],
-        1e-9,
-        "rad/s or m/s",
-    ));
-    let violations = check_limits(traj, &TrajectoryLimits::from_model(&study.model))?;
-    checks.push(Check::holds(
-        "within the robot's joint position, velocity and acceleration limits",
-        violations.is_empty(),
-        format!("{} violation(s)", violations.len()),
-    ));
+    let traj = &outcome.main.report.trajectory;
+    let (times, states) = sample(traj, (traj.duration() / 400.0).max(1e-3))?;
+    let configurations: Vec<Vec<f64>> = states.iter().map(|s| s.position.clone()).collect();
+    report.figures.extend(
+        joint_figures(model.name(), &times, &states)
+            .into_iter()
+            .map(|(stem, figure)| (stem.to_string(), figure)),
+    );
+    report.animation = Some(Animation::from_configurations(
+        &model,
+        &times,
+        &configurations,
+    )?);
+    Ok(report)
+}
+
+fn error_text(error: &PathError, task: IkTask) -> String {
+    match task {
+        IkTask::Position => format!("{:.3e} m", error.position),
+        IkTask::Pose => format!("{:.3e} m, {:.3e} rad", error.position, error.orientation),
+    }
+}
+
+fn plan_table(outcome: &ContinuousPathOutcome, length: f64) -> Table {
+    let main = &outcome.main;
     let mut table = Table::new("Plan", &["quantity", "value"]);
     for (quantity, value) in [
-        ("robot", study.model.name().to_string()),
-        (
-            "line length",
-            format!(
-                "{:.4} m",
-                (study.goal.translation - study.start.translation).norm()
-            ),
-        ),
+        ("robot", outcome.robot.clone()),
+        ("line length", format!("{length:.4} m")),
         (
             "task",
-            match study.task {
+            match outcome.task {
                 IkTask::Position => "position".to_string(),
                 IkTask::Pose => "full pose".to_string(),
             },
         ),
-        ("IK", study.method.to_string()),
-        ("segments chosen", traj.segment_count().to_string()),
-        ("plan-and-check passes", report.passes.to_string()),
-        ("IK solves", report.ik_solves.to_string()),
+        ("orientation law", main.label.clone()),
+        ("IK", outcome.ik_method.to_string()),
+        (
+            "segments chosen",
+            main.report.trajectory.segment_count().to_string(),
+        ),
+        ("plan-and-check passes", main.report.passes.to_string()),
+        ("IK solves", main.report.ik_solves.to_string()),
         (
             "planning time",
-            format!("{:.3} ms", study.planning.as_secs_f64() * 1e3),
+            format!("{:.3} ms", main.planning.as_secs_f64() * 1e3),
         ),
         (
             "error at check points",
             format!(
                 "{:.3e} m, {:.3e} rad",
-                report.checked_error.position, report.checked_error.orientation
+                main.report.checked_error.position, main.report.checked_error.orientation
             ),
         ),
         (
             "error at 100 points per segment",
             format!(
                 "{:.3e} m, {:.3e} rad",
-                study.interior.position, study.interior.orientation
+                main.interior.position, main.interior.orientation
             ),
         ),
     ] {
         table.push(vec![quantity.to_string(), value]);
     }
-    let (times, states) = sample(traj, (traj.duration() / 400.0).max(1e-3))?;
-    let configurations: Vec<Vec<f64>> = states.iter().map(|s| s.position.clone()).collect();
-    Ok(Report {
-        name: "continuous-path".into(),
-        title: format!("Seed 002: continuous path on {}", study.model.name()),
-        description: format!(
-            "A straight line of {:.3} m, planned by seed 002's method (sec 3): IK at the n + 1 path points \
-             (nearest the previous solution), joint rates by finite differences (eqs 23-24), one polynomial per \
-             segment in normalized time (eq 25), and the adaptive segmentation of Fig 6 until the tolerance is met \
-             at the check points.",
-            (study.goal.translation - study.start.translation).norm()
-        ),
-        checks,
-        findings: Vec::new(),
-        tables: vec![table],
-        figures: joint_figures(study.model.name(), &times, &states)
-            .into_iter()
-            .map(|(stem, figure)| (stem.to_string(), figure))
-            .collect(),
-        notes: vec![
-            "Seed 002 checks each segment at its midpoint only (Fig 6). With eq 23's backward-difference via \
-             velocities the error vanishes near the midpoint and peaks near the quarter points, so a midpoint-only \
-             check passes segments whose interior error is up to ten times the tolerance; we check 3 points per \
-             segment by default and report the error at 100 points per segment separately. The seed's other scheme \
-             (cubic segments with a quintic last one) is unstable: errors grow by 2 + sqrt(3) per segment."
-                .into(),
+    table
+}
+
+fn run_row(run: &PlannedPath, task: IkTask) -> Vec<String> {
+    vec![
+        run.label.clone(),
+        run.report.trajectory.segment_count().to_string(),
+        run.report.status.to_string(),
+        error_text(&run.report.checked_error, task),
+        error_text(&run.interior, task),
+        String::new(),
+    ]
+}
+
+fn variants_table(outcome: &ContinuousPathOutcome) -> Table {
+    let mut table = Table::new(
+        "Seed 002's variants (each labelled; the main run first)",
+        &[
+            "run",
+            "segments",
+            "status",
+            "error at check points",
+            "error at 100 points per segment",
+            "rate amplification",
         ],
-        animation: Some(Animation::from_configurations(&study.model, &times, &configurations)?),
-    })
+    );
+    let task = outcome.task;
+    table.push(run_row(&outcome.main, task));
+    for run in [&outcome.other_orientation, &outcome.midpoint_only]
+        .into_iter()
+        .flatten()
+    {
+        table.push(run_row(run, task));
+    }
+    for run in &outcome.cubic_quintic {
+        table.push(vec![
+            "cubic segments, quintic last (fixed n)".into(),
+            run.segments.to_string(),
+            run.status.to_string(),
+            String::new(),
+            error_text(&run.interior, task),
+            format!("{:.3e}", run.amplification),
+        ]);
+    }
+    table
+}
+
+fn sweep_table(outcome: &ContinuousPathOutcome) -> Table {
+    let mut table = Table::new(
+        "Error against the number of segments (fixed n, the main run's scheme)",
+        &[
+            "segments",
+            "error at the midpoints",
+            "error at 100 points per segment",
+        ],
+    );
+    for row in &outcome.sweep {
+        table.push(vec![
+            row.segments.to_string(),
+            error_text(&row.midpoint, outcome.task),
+            error_text(&row.interior, outcome.task),
+        ]);
+    }
+    table
+}
+
+fn torque_table(torques: &TorqueOutcome) -> Table {
+    let scaling = &torques.scaling;
+    let mut table = Table::new(
+        format!(
+            "Joint torques on {} (played in {:.3} s; uniform slow-down x{:.4} to {:.3} s)",
+            torques.dynamics_robot,
+            torques.planned_duration / torques.speed_up,
+            scaling.factor,
+            scaling.trajectory.duration()
+        ),
+        &[
+            "joint",
+            "peak |tau| as played",
+            "at",
+            "limit",
+            "peak / limit",
+            "peak after slow-down",
+        ],
+    );
+    for (before, after) in scaling.before.peaks.iter().zip(&scaling.after.peaks) {
+        table.push(vec![
+            before.name.clone(),
+            format!("{:.3}", before.peak),
+            format!("{:.3} s", before.time),
+            before.limit.map_or("none".into(), |l| format!("{l:.1}")),
+            before.ratio().map_or("-".into(), |r| format!("{r:.3}")),
+            format!("{:.3}", after.peak),
+        ]);
+    }
+    table
 }

@@ -18,31 +18,32 @@
 use std::path::PathBuf;
 
 use armkit::kinematics::{forward_kinematics, Data};
+use armkit::study::{
+    BoundaryKind, ContinuousPathStudy, IkKind, LawKind, OrientationKind, PathGoal, SchemeKind,
+    TaskKind, TorqueStudy,
+};
+use armkit::trajectory::PathStatus;
 use armkit::trajectory::{self, ProfileShape};
 use armkit::trajectory::{check_limits, peak_rates, LimitKind, TrajectoryLimits};
-use armkit::trajectory::{
-    measure_path_error, plan_continuous_path, ContinuousPathOptions, PathIk, PathStatus,
-    PathTolerance, SegmentScheme, Segmentation, ViaVelocity,
-};
-use armkit::trajectory::{path_ik_for, IkTask, NumericPathIk};
-use armkit::trajectory::{CartesianTrajectory, LinePath, OrientationLaw, TimeLaw};
 use armkit::trajectory::{JointState, Trajectory};
 use armkit::Model;
 use clap::{Args, Subcommand, ValueEnum};
 
 use crate::common::{
-    parse_joint_positions, parse_pose, print_json, CliError, CliResult, LimitPolicy, Outcome,
-    RobotArgs,
+    parse_fixed_numbers, parse_joint_positions, parse_pose, print_json, CliError, CliResult,
+    LimitPolicy, Outcome, RobotArgs,
 };
 use crate::plot::Figure;
-use crate::report::{Animation, Check, Report, Table};
+use crate::report::{Animation, Report, Table};
 
 mod line;
 mod line_report;
 mod output;
 
 use line::run_line;
-pub use line::{plan_line, IkArg, LawArg, LineArgs, LineStudy, OrientationArg, SchemeArg, TaskArg};
+pub use line::{
+    BoundaryArg, DynamicsArg, IkArg, LawArg, LineArgs, OrientationArg, SchemeArg, TaskArg,
+};
 pub use line_report::line_report;
 use output::sample;
 pub use output::{joint_figures, write_outputs};
