@@ -98,6 +98,12 @@ pub enum ThresholdRule {
     Calibrated,
     /// A given threshold (m^3 for a 6R arm, > 0).
     Given(f64),
+    /// [`FITTED_DETERMINANT_THRESHOLD`], fitted to the paper's region on the
+    /// rebuilt seed 004 path. Also what [`ThresholdRule::Calibrated`]
+    /// resolves to, with a note, when the plain run has no jump to
+    /// calibrate on (a line the plain tracker crosses smoothly, as on many
+    /// users' arms): [`AvoidanceOutcome::threshold`] records the rule used.
+    Fitted,
 }
 
 impl ThresholdRule {
@@ -106,6 +112,7 @@ impl ThresholdRule {
         match self {
             ThresholdRule::Calibrated => "calibrated (seed 004's rule)",
             ThresholdRule::Given(_) => "given",
+            ThresholdRule::Fitted => "fitted to the paper's region",
         }
     }
 }
@@ -135,9 +142,8 @@ pub struct AvoidanceOutcome {
     /// Largest drift of the system's centre of mass over the attitude-held
     /// runs (m); `None` on a fixed base.
     pub com_drift: Option<f64>,
-    /// The threshold rule used, and the plain run of the line through the
-    /// singular pose the paper's rule was calibrated on (`None` for a given
-    /// threshold).
+    /// The threshold rule used: the one asked for, or
+    /// [`ThresholdRule::Fitted`] when seed 004's rule found no jump.
     pub threshold: ThresholdRule,
     /// The avoidance with the first `k` under the fitted threshold
     /// ([`FITTED_DETERMINANT_THRESHOLD`]): a labelled comparison, run when
@@ -164,15 +170,17 @@ impl AvoidanceStudy {
         }
     }
 
-    /// The threshold by the study's rule on `manipulator` (already placed):
-    /// the given one, or the paper's rule on the plain run of the line
-    /// through `through` without miss.
-    fn determinant_threshold(&self, manipulator: Manipulator<'_>) -> Result<f64> {
+    /// The threshold by the study's rule on `manipulator` (already placed),
+    /// and the rule it came from: the given one, or the paper's rule on the
+    /// plain run of the line through `through` without miss, or the fitted
+    /// one when that run has no jump to calibrate on.
+    fn determinant_threshold(&self, manipulator: Manipulator<'_>) -> Result<(f64, ThresholdRule)> {
         match self.threshold {
             ThresholdRule::Given(value) => {
                 check_positive("threshold", value)?;
-                Ok(value)
+                Ok((value, self.threshold))
             }
+            ThresholdRule::Fitted => Ok((FITTED_DETERMINANT_THRESHOLD, ThresholdRule::Fitted)),
             ThresholdRule::Calibrated => {
                 let options = self.options(FITTED_DETERMINANT_THRESHOLD);
                 options.validate()?;
@@ -183,14 +191,10 @@ impl AvoidanceStudy {
                     options,
                 )?;
                 let plain = tracker.run(&Method::Plain)?;
-                calibrate_determinant_threshold(&plain, self.joint_step_threshold).ok_or_else(
-                    || {
-                        Error::invalid_argument(
-                            "threshold",
-                            "seed 004's rule needs a jump: plain tracking of the line through \
-                             `through` never steps a joint by more than eps_dq per period; give \
-                             a threshold",
-                        )
+                Ok(
+                    match calibrate_determinant_threshold(&plain, self.joint_step_threshold) {
+                        Some(value) => (value, ThresholdRule::Calibrated),
+                        None => (FITTED_DETERMINANT_THRESHOLD, ThresholdRule::Fitted),
                     },
                 )
             }
@@ -216,15 +220,15 @@ impl AvoidanceStudy {
             ));
         }
         self.options(FITTED_DETERMINANT_THRESHOLD).validate()?;
-        let threshold = self.determinant_threshold(manipulator)?;
+        let (threshold, rule) = self.determinant_threshold(manipulator)?;
         let options = self.options(threshold);
         // The baselines' damping region is their own tuning: Nakamura's
         // threshold stays at the fitted 0.004 m^3 under the paper's rule
         // (tied to the calibrated 1.4e-4 m^3 DLS would hardly damp on the
         // lines that miss the singular pose, and track as plain does).
-        let damping_threshold = match self.threshold {
+        let damping_threshold = match rule {
             ThresholdRule::Given(value) => value,
-            ThresholdRule::Calibrated => FITTED_DETERMINANT_THRESHOLD,
+            ThresholdRule::Calibrated | ThresholdRule::Fitted => FITTED_DETERMINANT_THRESHOLD,
         };
         let baselines = Baselines::for_detection(&self.options(damping_threshold).detection);
         let line = line_through(&manipulator, &self.through, &self.direction, self.miss)?;
@@ -232,13 +236,13 @@ impl AvoidanceStudy {
         let task = line.task(self.duration, self.acceleration_time);
         let tracker = PathTracker::new(placed, task.clone(), options)?;
         let comparison = tracker.compare(&baselines, &self.ks)?;
-        let fitted = match self.threshold {
+        let fitted = match rule {
             ThresholdRule::Calibrated => {
                 let fitted =
                     PathTracker::new(placed, task, self.options(FITTED_DETERMINANT_THRESHOLD))?;
                 Some(fitted.run(&comparison.avoidance.method)?)
             }
-            ThresholdRule::Given(_) => None,
+            ThresholdRule::Given(_) | ThresholdRule::Fitted => None,
         };
         let com_drift = match placed {
             Manipulator::FixedBase(_) => None,
@@ -258,7 +262,7 @@ impl AvoidanceStudy {
             ks: self.ks.clone(),
             options,
             com_drift,
-            threshold: self.threshold,
+            threshold: rule,
             fitted,
             sweep,
         })
@@ -458,6 +462,12 @@ impl AvoidanceOutcome {
                 self.comparison.avoidance.summary.peak_joint_rate,
                 self.comparison.avoidance.summary.max_position_error,
                 self.comparison.avoidance.summary.max_orientation_error,
+            ),
+            None if self.threshold == ThresholdRule::Fitted => format!(
+                "{used} Seed 004's rule (the threshold where the joint angles start to jump) \
+                 was not used: it was not asked for, or the plain run of the line through the \
+                 singular pose steps no joint by more than eps_dq per period, so it has no jump \
+                 to calibrate on."
             ),
             None => used,
         }
