@@ -94,12 +94,14 @@ pub(super) fn newton_euler(
     // every body then feels it through its inertia.
     let mut velocity = Motion::ZERO;
     let mut acceleration = Motion::new(Vector3::zeros(), gravity.map_or(Vector3::zeros(), |g| -g));
+    let (v, a) = (&v[..n], &a[..n]);
+    let transforms = &data.transforms[..n];
+    let axes = &data.joint_axes[..n];
+    let inertias = &data.local_inertias[..n];
+    let forces = &mut data.forces[..n];
+    let velocities = &mut data.velocities[..n];
     for j in 0..n {
-        let (transform, axis, body) = (
-            &data.transforms[j],
-            data.joint_axes[j],
-            &data.local_inertias[j],
-        );
+        let (transform, axis, body) = (&transforms[j], axes[j], &inertias[j]);
         let (qd, qdd) = (v[j], a[j]);
         // v_j = X_j v_{j-1} + S qd_j; a_j = X_j a_{j-1} + S qdd_j + v_j x S qd_j.
         if j > 0 {
@@ -107,19 +109,20 @@ pub(super) fn newton_euler(
         }
         acceleration = acceleration.inverse_transformed(transform);
         axis.add_rate(&mut velocity, qd);
-        acceleration = acceleration + axis.velocity_product(&velocity, qd);
+        axis.add_velocity_product(&mut acceleration, &velocity, qd);
         axis.add_rate(&mut acceleration, qdd);
-        data.velocities[j] = velocity;
+        velocities[j] = velocity;
         // f_j = I_j a_j + v_j x* I_j v_j.
         let momentum = body.apply(&velocity);
-        data.forces[j] = body.apply(&acceleration) + velocity.cross_force(&momentum);
+        forces[j] = body.apply(&acceleration) + velocity.cross_force(&momentum);
     }
     // Tip to base: tau_j = S' f_j, f_{j-1} += X_j* f_j.
-    let mut transmitted = data.forces[n - 1];
-    data.tau[n - 1] = data.joint_axes[n - 1].component(&transmitted);
+    let tau = &mut data.tau[..n];
+    let mut transmitted = forces[n - 1];
+    tau[n - 1] = axes[n - 1].component(&transmitted);
     for j in (0..n - 1).rev() {
-        transmitted = transmitted.transformed(&data.transforms[j + 1]) + data.forces[j];
-        data.tau[j] = data.joint_axes[j].component(&transmitted);
+        transmitted = transmitted.transformed(&transforms[j + 1]) + forces[j];
+        tau[j] = axes[j].component(&transmitted);
     }
 }
 
@@ -138,7 +141,7 @@ pub fn mass_matrix<'d>(
 ) -> Result<&'d DMatrix<f64>> {
     data.update_transforms(model, q)?;
     joint_space_inertia(data);
-    check_not_overflowed("mass matrix", data.mass_matrix.iter())?;
+    check_not_overflowed("mass matrix", data.mass_matrix.as_slice())?;
     Ok(&data.mass_matrix)
 }
 
@@ -197,14 +200,21 @@ fn composite_rigid_body(data: &mut DynamicsData, out: &mut DMatrix<f64>) {
             data.local_inertias[j] + data.composite[j + 1].transformed(&data.transforms[j + 1]);
     }
     // Column j: F = Ic_j S_j, then carried inwards joint by joint; row i
-    // reads its S_i component. Column-major buffer, mirrored as it goes.
-    let m = out.as_mut_slice();
+    // reads its S_i component (the last step computes that component only).
+    // Column-major buffer, mirrored as it goes.
+    let m = &mut out.as_mut_slice()[..n * n];
+    let transforms = &data.transforms[..n];
+    let axes = &data.joint_axes[..n];
     for j in 0..n {
-        let mut force = data.joint_axes[j].inertia_column(&data.composite[j]);
-        m[j * n + j] = data.joint_axes[j].component(&force);
+        let mut force = axes[j].inertia_column(&data.composite[j]);
+        m[j * n + j] = axes[j].component(&force);
         for i in (0..j).rev() {
-            force = force.transformed(&data.transforms[i + 1]);
-            let value = data.joint_axes[i].component(&force);
+            let value = if i > 0 {
+                force = force.transformed(&transforms[i + 1]);
+                axes[i].component(&force)
+            } else {
+                axes[0].component_of_transformed(&force, &transforms[1])
+            };
             m[j * n + i] = value;
             m[i * n + j] = value;
         }

@@ -33,7 +33,7 @@ pub fn kinetic_energy(model: &Model, data: &mut DynamicsData, q: &[f64], v: &[f6
         energy += data.local_inertias[j].kinetic_energy(&velocity);
     }
     data.coupled = coupled;
-    check_not_overflowed("kinetic energy", [&energy])?;
+    check_not_overflowed("kinetic energy", &[energy])?;
     Ok(energy)
 }
 
@@ -51,6 +51,6 @@ pub fn potential_energy(model: &Model, data: &mut DynamicsData, q: &[f64]) -> Re
         .iter()
         .map(|body| gravity.dot(&body.first_moment))
         .sum::<f64>();
-    check_not_overflowed("potential energy", [&energy])?;
+    check_not_overflowed("potential energy", &[energy])?;
     Ok(energy)
 }

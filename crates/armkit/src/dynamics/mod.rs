@@ -297,19 +297,24 @@ impl DynamicsData {
     fn update_transforms(&mut self, model: &Model, q: &[f64]) -> Result<()> {
         self.check_model(model)?;
         model.check_joint_positions(q)?;
-        model.joint_map().expand(q, &mut self.chain_positions);
-        if let Some(coupled) = &mut self.coupled {
-            coupled.update_map(model, q);
-        }
+        // Without coupling the chain's positions are `q` itself.
+        let positions: &[f64] = match &mut self.coupled {
+            None => q,
+            Some(coupled) => {
+                model.joint_map().expand(q, &mut self.chain_positions);
+                coupled.update_map(model, q);
+                &self.chain_positions
+            }
+        };
         // The trigonometry in a loop of its own: the calls are independent,
         // so the processor overlaps them.
-        sin_cos_slice(&self.chain_positions, &mut self.sin_cos);
+        sin_cos_slice(positions, &mut self.sin_cos);
         for ((((transform, placement), axis), &position), &sin_cos) in self
             .transforms
             .iter_mut()
             .zip(model.joint_placements())
             .zip(&self.joint_axes)
-            .zip(&self.chain_positions)
+            .zip(positions)
             .zip(&self.sin_cos)
         {
             *transform = axis.moved(placement, position, sin_cos);
@@ -372,11 +377,9 @@ impl DynamicsData {
 
 /// Finite inputs can still overflow (lengths or prismatic positions near
 /// `f64::MAX`); a non-finite result is an error rather than a result.
-fn check_not_overflowed<'a>(
-    context: &str,
-    values: impl IntoIterator<Item = &'a f64>,
-) -> Result<()> {
-    if values.into_iter().all(|v| v.is_finite()) {
+fn check_not_overflowed(context: &str, values: &[f64]) -> Result<()> {
+    // `x - x` is 0 for a finite x and NaN otherwise: one branch for the slice.
+    if values.iter().map(|v| v - v).sum::<f64>() == 0.0 {
         return Ok(());
     }
     Err(Error::Numerical {

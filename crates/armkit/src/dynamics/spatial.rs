@@ -39,6 +39,50 @@ pub struct Force {
 /// The zero 3-vector, usable in `const` contexts.
 const ZERO3: Vector3<f64> = Vector3::new(0.0, 0.0, 0.0);
 
+// Scalar forms of the 3-vector products the recursions run per joint:
+// written out, they compile to fewer instructions than nalgebra's generic
+// products (which pack pairs of lanes and shuffle them).
+
+/// `a x b`.
+#[inline(always)]
+fn cross(a: &Vector3<f64>, b: &Vector3<f64>) -> Vector3<f64> {
+    Vector3::new(
+        a.y * b.z - a.z * b.y,
+        a.z * b.x - a.x * b.z,
+        a.x * b.y - a.y * b.x,
+    )
+}
+
+/// `R v`.
+#[inline(always)]
+fn rotate(r: &Matrix3<f64>, v: &Vector3<f64>) -> Vector3<f64> {
+    Vector3::new(
+        r.m11 * v.x + r.m12 * v.y + r.m13 * v.z,
+        r.m21 * v.x + r.m22 * v.y + r.m23 * v.z,
+        r.m31 * v.x + r.m32 * v.y + r.m33 * v.z,
+    )
+}
+
+/// `R' v`.
+#[inline(always)]
+fn rotate_back(r: &Matrix3<f64>, v: &Vector3<f64>) -> Vector3<f64> {
+    Vector3::new(
+        r.m11 * v.x + r.m21 * v.y + r.m31 * v.z,
+        r.m12 * v.x + r.m22 * v.y + r.m32 * v.z,
+        r.m13 * v.x + r.m23 * v.y + r.m33 * v.z,
+    )
+}
+
+/// `S v` for a symmetric `S` (its upper triangle is read).
+#[inline(always)]
+fn symmetric_product(s: &Matrix3<f64>, v: &Vector3<f64>) -> Vector3<f64> {
+    Vector3::new(
+        s.m11 * v.x + s.m12 * v.y + s.m13 * v.z,
+        s.m12 * v.x + s.m22 * v.y + s.m23 * v.z,
+        s.m13 * v.x + s.m23 * v.y + s.m33 * v.z,
+    )
+}
+
 impl Motion {
     /// The zero motion.
     pub const ZERO: Motion = Motion {
@@ -57,8 +101,8 @@ impl Motion {
     #[inline(always)]
     pub fn cross(&self, m: &Motion) -> Motion {
         Motion {
-            angular: self.angular.cross(&m.angular),
-            linear: self.angular.cross(&m.linear) + self.linear.cross(&m.angular),
+            angular: cross(&self.angular, &m.angular),
+            linear: cross(&self.angular, &m.linear) + cross(&self.linear, &m.angular),
         }
     }
 
@@ -66,8 +110,8 @@ impl Motion {
     #[inline(always)]
     pub fn cross_force(&self, f: &Force) -> Force {
         Force {
-            moment: self.angular.cross(&f.moment) + self.linear.cross(&f.force),
-            force: self.angular.cross(&f.force),
+            moment: cross(&self.angular, &f.moment) + cross(&self.linear, &f.force),
+            force: cross(&self.angular, &f.force),
         }
     }
 
@@ -84,10 +128,10 @@ impl Motion {
     #[inline(always)]
     pub fn inverse_transformed(&self, placement: &Pose) -> Motion {
         let r = &placement.rotation;
-        let linear = self.linear + self.angular.cross(&placement.translation);
+        let linear = self.linear + cross(&self.angular, &placement.translation);
         Motion {
-            angular: r.tr_mul(&self.angular),
-            linear: r.tr_mul(&linear),
+            angular: rotate_back(r, &self.angular),
+            linear: rotate_back(r, &linear),
         }
     }
 
@@ -127,9 +171,9 @@ impl Force {
     #[inline(always)]
     pub fn transformed(&self, placement: &Pose) -> Force {
         let r = &placement.rotation;
-        let force = r * self.force;
+        let force = rotate(r, &self.force);
         Force {
-            moment: r * self.moment + placement.translation.cross(&force),
+            moment: rotate(r, &self.moment) + cross(&placement.translation, &force),
             force,
         }
     }
@@ -287,8 +331,9 @@ impl SpatialInertia {
     #[inline(always)]
     pub fn apply(&self, m: &Motion) -> Force {
         Force {
-            moment: self.rotational * m.angular + self.first_moment.cross(&m.linear),
-            force: m.linear * self.mass - self.first_moment.cross(&m.angular),
+            moment: symmetric_product(&self.rotational, &m.angular)
+                + cross(&self.first_moment, &m.linear),
+            force: m.linear * self.mass - cross(&self.first_moment, &m.angular),
         }
     }
 

@@ -34,15 +34,41 @@ impl JointAxis {
         }
     }
 
-    /// `m x (S rate)`: the velocity-product acceleration of a body moving
-    /// with `m` whose joint moves at `rate` (Featherstone eq 5.7's `v x S qd`).
+    /// `a + m x (S rate)`: adds the velocity-product acceleration of a body
+    /// moving with `m` whose joint moves at `rate` (Featherstone eq 5.7's
+    /// `v x S qd`) to `a`.
     #[inline(always)]
-    pub(crate) fn velocity_product(self, m: &Motion, rate: f64) -> Motion {
-        // w x e_z = (w_y, -w_x, 0).
-        let turn = |u: &Vector3<f64>| Vector3::new(u.y * rate, -u.x * rate, 0.0);
+    pub(crate) fn add_velocity_product(self, a: &mut Motion, m: &Motion, rate: f64) {
+        // u x e_z = (u_y, -u_x, 0).
+        let turn = |a: &mut Vector3<f64>, u: &Vector3<f64>| {
+            a.x += u.y * rate;
+            a.y -= u.x * rate;
+        };
         match self {
-            JointAxis::Rotation => Motion::new(turn(&m.angular), turn(&m.linear)),
-            JointAxis::Translation => Motion::new(Vector3::zeros(), turn(&m.angular)),
+            JointAxis::Rotation => {
+                turn(&mut a.angular, &m.angular);
+                turn(&mut a.linear, &m.linear);
+            }
+            JointAxis::Translation => turn(&mut a.linear, &m.angular),
+        }
+    }
+
+    /// `S' (X* f)`: the generalized force on the joint of a force `f` given
+    /// in a frame placed at `placement` in the joint's frame (the last step
+    /// of carrying a force inwards, one component of
+    /// [`Force::transformed`]).
+    #[inline(always)]
+    pub(crate) fn component_of_transformed(self, f: &Force, placement: &Pose) -> f64 {
+        let r = &placement.rotation;
+        let p = &placement.translation;
+        // Rows 0 and 1, or row 2, of R f; (p x R f)_z = p_x (R f)_y - p_y (R f)_x.
+        match self {
+            JointAxis::Rotation => {
+                let fx = r.row(0).transpose().dot(&f.force);
+                let fy = r.row(1).transpose().dot(&f.force);
+                r.row(2).transpose().dot(&f.moment) + p.x * fy - p.y * fx
+            }
+            JointAxis::Translation => r.row(2).transpose().dot(&f.force),
         }
     }
 
