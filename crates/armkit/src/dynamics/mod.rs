@@ -83,7 +83,7 @@ use crate::error::{check_finite, Error, Result};
 use crate::math::{sin_cos_slice, DMatrix, Pose, Vector3, Vector6};
 use crate::model::{CouplingLaw, LinkInertia, Model};
 use spatial::{Force, Motion, SpatialInertia};
-use subspace::JointAxis;
+pub(crate) use subspace::JointAxis;
 
 /// Standard gravity in the world frame, m/s^2: `(0, 0, -9.81)`, as
 /// Pinocchio and the Robotics Toolbox use.
@@ -328,7 +328,11 @@ impl DynamicsData {
     fn update_world_bodies(&mut self) {
         let mut frame = Pose::identity();
         for (j, transform) in self.transforms.iter().enumerate() {
-            frame = if j == 0 { *transform } else { &frame * transform };
+            frame = if j == 0 {
+                *transform
+            } else {
+                &frame * transform
+            };
             self.world_axes[j] = self.joint_axes[j].in_frame(&frame);
             self.world_inertias[j] = self.local_inertias[j].transformed(&frame);
         }
@@ -378,8 +382,8 @@ impl DynamicsData {
 /// Finite inputs can still overflow (lengths or prismatic positions near
 /// `f64::MAX`); a non-finite result is an error rather than a result.
 fn check_not_overflowed(context: &str, values: &[f64]) -> Result<()> {
-    // `x - x` is 0 for a finite x and NaN otherwise: one branch for the slice.
-    if values.iter().map(|v| v - v).sum::<f64>() == 0.0 {
+    // `0 x` is 0 for a finite x and NaN otherwise: one branch for the slice.
+    if values.iter().map(|v| v * 0.0).sum::<f64>() == 0.0 {
         return Ok(());
     }
     Err(Error::Numerical {

@@ -274,7 +274,8 @@ impl SpatialInertia {
         let c = link.com;
         let h = c * m;
         // I_O = I_c + m (|c|^2 E - c c') (parallel-axis theorem).
-        let rotational = link.inertia + Matrix3::from_diagonal_element(c.dot(&h)) - h * c.transpose();
+        let rotational =
+            link.inertia + Matrix3::from_diagonal_element(c.dot(&h)) - h * c.transpose();
         SpatialInertia {
             mass: m,
             first_moment: h,
