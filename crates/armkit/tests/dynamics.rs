@@ -491,6 +491,37 @@ fn bad_input_is_a_clear_error() {
 }
 
 #[test]
+fn a_workspace_follows_the_model_it_is_used_with() {
+    // Two arms of the same size with different joints and masses: a
+    // workspace made for one gives the other's dynamics when used with it
+    // (the mass properties are read again), and the first's after that.
+    let (first, second) = (random_arm(11, 5), random_arm(12, 5));
+    let mut r = rng(13);
+    let q = random_vector(&mut r, 5, 1.0);
+    let v = random_vector(&mut r, 5, 1.0);
+    let a = random_vector(&mut r, 5, 1.0);
+    let mut shared = DynamicsData::new(&first).unwrap();
+    let own = |model: &Model| {
+        let mut data = DynamicsData::new(model).unwrap();
+        let tau = rnea(model, &mut data, &q, &v, &a).unwrap().to_vec();
+        let m = mass_matrix(model, &mut data, &q).unwrap().clone();
+        (tau, m)
+    };
+    let (tau_first, m_first) = own(&first);
+    let (tau_second, m_second) = own(&second);
+    assert!(violation(&tau_first, &tau_second) > 1e-3, "the arms differ");
+    for (model, tau, m) in [
+        (&second, &tau_second, &m_second),
+        (&first, &tau_first, &m_first),
+        (&second, &tau_second, &m_second),
+    ] {
+        let shared_tau = rnea(model, &mut shared, &q, &v, &a).unwrap().to_vec();
+        assert_eq!(&shared_tau, tau, "{}", model.name());
+        assert_eq!(mass_matrix(model, &mut shared, &q).unwrap(), m);
+    }
+}
+
+#[test]
 fn one_link_pendulum_matches_closed_form() {
     // A point mass m at distance l on a horizontal revolute axis (y):
     // M = m l^2, g(q) = m g l sin(q) for q measured from hanging down.

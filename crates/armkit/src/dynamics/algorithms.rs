@@ -90,26 +90,31 @@ pub(super) fn newton_euler(
     if n == 0 {
         return;
     }
-    // Gravity as an upward acceleration of the base (Featherstone 5.3):
-    // every body then feels it through its inertia.
-    let mut velocity = Motion::ZERO;
-    let mut acceleration = Motion::new(Vector3::zeros(), gravity.map_or(Vector3::zeros(), |g| -g));
     let (v, a) = (&v[..n], &a[..n]);
     let transforms = &data.transforms[..n];
     let axes = &data.joint_axes[..n];
     let inertias = &data.local_inertias[..n];
     let forces = &mut data.forces[..n];
     let velocities = &mut data.velocities[..n];
+    // Gravity as an upward acceleration of the base (Featherstone 5.3):
+    // every body then feels it through its inertia. The first body moves
+    // with S qd_0 alone (so v_0 x S qd_0 = 0) and accelerates with the base,
+    // at rest: X_0 (0, -g) = (0, R_0' (-g)).
+    let mut velocity = Motion::ZERO;
+    let lifted = gravity.map_or(Vector3::zeros(), |g| transforms[0].rotation.tr_mul(&-g));
+    let mut acceleration = Motion::new(Vector3::zeros(), lifted);
     for j in 0..n {
         let (transform, axis, body) = (&transforms[j], axes[j], &inertias[j]);
         let (qd, qdd) = (v[j], a[j]);
         // v_j = X_j v_{j-1} + S qd_j; a_j = X_j a_{j-1} + S qdd_j + v_j x S qd_j.
         if j > 0 {
             velocity = velocity.inverse_transformed(transform);
+            acceleration = acceleration.inverse_transformed(transform);
+            axis.add_rate(&mut velocity, qd);
+            axis.add_velocity_product(&mut acceleration, &velocity, qd);
+        } else {
+            axis.add_rate(&mut velocity, qd);
         }
-        acceleration = acceleration.inverse_transformed(transform);
-        axis.add_rate(&mut velocity, qd);
-        axis.add_velocity_product(&mut acceleration, &velocity, qd);
         axis.add_rate(&mut acceleration, qdd);
         velocities[j] = velocity;
         // f_j = I_j a_j + v_j x* I_j v_j.

@@ -92,9 +92,9 @@ pub const DEFAULT_GRAVITY: Vector3<f64> = Vector3::new(0.0, 0.0, -9.81);
 /// Workspace for the dynamics algorithms, sized once for one model.
 ///
 /// Holds the gravity vector, the model's mass properties in each joint's
-/// frame (read once, here: the workspace is for the model it was made from),
-/// every per-body buffer, and the results of the last call of each
-/// algorithm. Create it once per model and thread with
+/// frame (read here, and read again when the workspace is next used with
+/// another [`Model`] value of the same size), every per-body buffer, and the
+/// results of the last call of each algorithm. Create it once per model and thread with
 /// [`DynamicsData::new`], which also checks that the model has mass
 /// properties.
 #[derive(Clone, Debug)]
@@ -103,6 +103,9 @@ pub struct DynamicsData {
     gravity: Vector3<f64>,
     /// Buffers of the configuration-to-chain map; `None` without coupling.
     coupled: Option<CoupledBuffers>,
+    /// Address of the chain joints of the model the mass properties below
+    /// were read from.
+    source: usize,
     /// Each chain joint's motion subspace, in its own frame (set-up).
     joint_axes: Vec<JointAxis>,
     /// Each body's spatial inertia about its joint frame's origin, in that
@@ -188,21 +191,13 @@ impl DynamicsData {
             unit: vec![0.0; chain],
             row: vec![0.0; n],
         });
-        let mut local_inertias = Vec::with_capacity(chain);
-        for (link, joint) in model.chain_joints().iter().enumerate() {
-            let inertia = link_inertia(model, link, joint.inertia.as_ref())?;
-            local_inertias.push(SpatialInertia::of_link(inertia));
-        }
-        Ok(DynamicsData {
+        let mut data = DynamicsData {
             dof: n,
             gravity: DEFAULT_GRAVITY,
             coupled,
-            joint_axes: model
-                .chain_joints()
-                .iter()
-                .map(|joint| JointAxis::of(joint.kind))
-                .collect(),
-            local_inertias,
+            source: 0,
+            joint_axes: vec![JointAxis::Rotation; chain],
+            local_inertias: vec![SpatialInertia::ZERO; chain],
             chain_positions: vec![0.0; chain],
             sin_cos: vec![(0.0, 1.0); chain],
             transforms: vec![Pose::identity(); chain],
@@ -221,7 +216,28 @@ impl DynamicsData {
             ddq: vec![0.0; n],
             mass_matrix: DMatrix::zeros(n, n),
             mass_matrix_inverse: DMatrix::zeros(n, n),
-        })
+        };
+        data.read_mass_properties(model)?;
+        Ok(data)
+    }
+
+    /// Each chain joint's motion subspace and its link's spatial inertia in
+    /// its own frame, from `model` (sizes checked by the caller).
+    fn read_mass_properties(&mut self, model: &Model) -> Result<()> {
+        // Unknown until every link is read (an error leaves it unknown).
+        self.source = 0;
+        for (link, ((joint, axis), inertia)) in model
+            .chain_joints()
+            .iter()
+            .zip(self.joint_axes.iter_mut())
+            .zip(self.local_inertias.iter_mut())
+            .enumerate()
+        {
+            *axis = JointAxis::of(joint.kind);
+            *inertia = SpatialInertia::of_link(link_inertia(model, link, joint.inertia.as_ref())?);
+        }
+        self.source = model.chain_joints().as_ptr() as usize;
+        Ok(())
     }
 
     /// The gravitational acceleration, world frame, m/s^2.
@@ -272,7 +288,9 @@ impl DynamicsData {
         &self.mass_matrix
     }
 
-    fn check_model(&self, model: &Model) -> Result<()> {
+    /// Checks that the workspace fits `model`'s sizes, and reads its mass
+    /// properties again if it is another model value than last time.
+    fn check_model(&mut self, model: &Model) -> Result<()> {
         if self.dof != model.dof() {
             return Err(Error::DimensionMismatch {
                 what: "dynamics data (workspace made for another model)",
@@ -288,6 +306,9 @@ impl DynamicsData {
                 expected: model.chain_joints().len(),
                 got: self.joint_axes.len(),
             });
+        }
+        if model.chain_joints().as_ptr() as usize != self.source {
+            self.read_mass_properties(model)?;
         }
         Ok(())
     }

@@ -132,3 +132,65 @@ impl JointAxis {
         frame
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::{Rotation3, Vector3};
+    use crate::model::LinkInertia;
+
+    /// `S` as a spatial motion in the joint's own frame.
+    fn subspace(axis: JointAxis) -> Motion {
+        let z = Vector3::z();
+        match axis {
+            JointAxis::Rotation => Motion::new(z, Vector3::zeros()),
+            JointAxis::Translation => Motion::new(Vector3::zeros(), z),
+        }
+    }
+
+    #[test]
+    fn shortcuts_equal_the_general_spatial_products() {
+        let m = Motion::new(Vector3::new(0.3, -1.2, 0.7), Vector3::new(-0.4, 0.9, 1.5));
+        let f = Force {
+            moment: Vector3::new(1.1, -0.6, 0.2),
+            force: Vector3::new(-2.0, 0.5, 0.8),
+        };
+        let inertia = SpatialInertia::of_link(&LinkInertia {
+            mass: 2.5,
+            com: Vector3::new(0.1, -0.3, 0.2),
+            inertia: nalgebra::Matrix3::new(0.4, 0.02, -0.03, 0.02, 0.3, 0.05, -0.03, 0.05, 0.2),
+        });
+        let placement = Pose::new(
+            Rotation3::from_euler_angles(0.7, -0.2, 1.9).into_inner(),
+            Vector3::new(0.2, 0.5, -0.3),
+        );
+        let close = |a: &Motion, b: &Motion| (a.to_vector() - b.to_vector()).amax() < 1e-15;
+        for axis in [JointAxis::Rotation, JointAxis::Translation] {
+            let s = subspace(axis);
+            let mut moved = m;
+            axis.add_rate(&mut moved, 0.6);
+            assert!(close(&moved, &(m + s * 0.6)));
+            let mut a = m;
+            axis.add_velocity_product(&mut a, &moved, 0.6);
+            assert!(close(&a, &(m + moved.cross(&(s * 0.6)))));
+            assert!((axis.component(&f) - s.dot(&f)).abs() < 1e-15);
+            let column = axis.inertia_column(&inertia).to_vector();
+            assert!((column - inertia.apply(&s).to_vector()).amax() < 1e-15);
+            let carried = s.dot(&f.transformed(&placement));
+            assert!((axis.component_of_transformed(&f, &placement) - carried).abs() < 1e-14);
+            // The axis seen from the outer frame carries the same power.
+            let outer = axis.in_frame(&placement);
+            assert!((outer.dot(&f.transformed(&placement)) - s.dot(&f)).abs() < 1e-14);
+            // The moved frame: placement, then Rz(q) or Tz(q).
+            let q = 0.8_f64;
+            let frame = axis.moved(&placement, q, q.sin_cos());
+            let motion = match axis {
+                JointAxis::Rotation => Pose::rot_z(q),
+                JointAxis::Translation => Pose::trans_z(q),
+            };
+            let expected = &placement * &motion;
+            assert!((frame.rotation - expected.rotation).amax() < 1e-15);
+            assert!((frame.translation - expected.translation).amax() < 1e-15);
+        }
+    }
+}
