@@ -103,8 +103,8 @@ pub struct DynamicsData {
     gravity: Vector3<f64>,
     /// Buffers of the configuration-to-chain map; `None` without coupling.
     coupled: Option<CoupledBuffers>,
-    /// Address of the chain joints of the model the mass properties below
-    /// were read from.
+    /// Address of the chain joints of the model the subspaces, inertias and
+    /// placements below were read from.
     source: usize,
     /// Each chain joint's motion subspace, in its own frame (set-up).
     joint_axes: Vec<JointAxis>,
@@ -115,7 +115,9 @@ pub struct DynamicsData {
     chain_positions: Vec<f64>,
     sin_cos: Vec<(f64, f64)>,
     /// Each joint's frame, after its motion, in the previous joint's frame
-    /// (the first in the world frame): Featherstone's `X_J X_T`.
+    /// (the first in the world frame): Featherstone's `X_J X_T`. Holds the
+    /// model's placements from `read_model` on, and only the moving
+    /// part is written per call.
     transforms: Vec<Pose>,
     /// ABA: motion subspace of each chain joint, world frame.
     world_axes: Vec<Motion>,
@@ -217,13 +219,14 @@ impl DynamicsData {
             mass_matrix: DMatrix::zeros(n, n),
             mass_matrix_inverse: DMatrix::zeros(n, n),
         };
-        data.read_mass_properties(model)?;
+        data.read_model(model)?;
         Ok(data)
     }
 
-    /// Each chain joint's motion subspace and its link's spatial inertia in
-    /// its own frame, from `model` (sizes checked by the caller).
-    fn read_mass_properties(&mut self, model: &Model) -> Result<()> {
+    /// Each chain joint's motion subspace, its link's spatial inertia in its
+    /// own frame and its placement, from `model` (sizes checked by the
+    /// caller).
+    fn read_model(&mut self, model: &Model) -> Result<()> {
         // Unknown until every link is read (an error leaves it unknown).
         self.source = 0;
         for (link, ((joint, axis), inertia)) in model
@@ -236,6 +239,9 @@ impl DynamicsData {
             *axis = JointAxis::of(joint.kind);
             *inertia = SpatialInertia::of_link(link_inertia(model, link, joint.inertia.as_ref())?);
         }
+        // The parts of each joint transform that its motion leaves alone
+        // (`JointAxis::move_frame` writes the rest).
+        self.transforms.copy_from_slice(model.joint_placements());
         self.source = model.chain_joints().as_ptr() as usize;
         Ok(())
     }
@@ -308,7 +314,7 @@ impl DynamicsData {
             });
         }
         if model.chain_joints().as_ptr() as usize != self.source {
-            self.read_mass_properties(model)?;
+            self.read_model(model)?;
         }
         Ok(())
     }
@@ -338,7 +344,7 @@ impl DynamicsData {
             .zip(positions)
             .zip(&self.sin_cos)
         {
-            *transform = axis.moved(placement, position, sin_cos);
+            axis.move_frame(transform, placement, position, sin_cos);
         }
         Ok(())
     }

@@ -111,13 +111,20 @@ impl JointAxis {
         }
     }
 
-    /// The joint's own frame after it moved to position `position` (whose
-    /// `(sin, cos)` is `sin_cos`), in the frame in which it sits at
-    /// `placement` before moving: `placement Rz(position)` or
-    /// `placement Tz(position)`.
+    /// Writes into `frame` the joint's own frame after it moved to position
+    /// `position` (whose `(sin, cos)` is `sin_cos`), in the frame in which it
+    /// sits at `placement` before moving: `placement Rz(position)` or
+    /// `placement Tz(position)`. Only the part that moves is written (the
+    /// first two rotation columns, or the translation): `frame` must hold
+    /// `placement` or an earlier result of this call for it.
     #[inline(always)]
-    pub(crate) fn moved(self, placement: &Pose, position: f64, (s, c): (f64, f64)) -> Pose {
-        let mut frame = *placement;
+    pub(crate) fn move_frame(
+        self,
+        frame: &mut Pose,
+        placement: &Pose,
+        position: f64,
+        (s, c): (f64, f64),
+    ) {
         match self {
             JointAxis::Rotation => {
                 let x = placement.rotation.column(0);
@@ -126,10 +133,9 @@ impl JointAxis {
                 frame.rotation.set_column(1, &(y * c - x * s));
             }
             JointAxis::Translation => {
-                frame.translation += placement.rotation.column(2) * position;
+                frame.translation = placement.translation + placement.rotation.column(2) * position;
             }
         }
-        frame
     }
 }
 
@@ -183,12 +189,14 @@ mod tests {
             assert!((outer.dot(&f.transformed(&placement)) - s.dot(&f)).abs() < 1e-14);
             // The moved frame: placement, then Rz(q) or Tz(q).
             let q = 0.8_f64;
-            let frame = axis.moved(&placement, q, q.sin_cos());
+            let mut frame = placement;
+            axis.move_frame(&mut frame, &placement, 0.3, 0.3_f64.sin_cos());
+            axis.move_frame(&mut frame, &placement, q, q.sin_cos());
             let motion = match axis {
                 JointAxis::Rotation => Pose::rot_z(q),
                 JointAxis::Translation => Pose::trans_z(q),
             };
-            let expected = &placement * &motion;
+            let expected = placement * motion;
             assert!((frame.rotation - expected.rotation).amax() < 1e-15);
             assert!((frame.translation - expected.translation).amax() < 1e-15);
         }
