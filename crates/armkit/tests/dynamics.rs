@@ -522,6 +522,42 @@ fn a_workspace_follows_the_model_it_is_used_with() {
 }
 
 #[test]
+fn an_overflowing_result_is_an_error() {
+    // A revolute joint, then a prismatic one at a finite position near
+    // f64::MAX: the second body's moment about the first axis overflows.
+    let mut r = rng(21);
+    let model = ModelBuilder::new("far")
+        .joint(random_link(&mut r, |_| {
+            JointSpec::revolute("r0", -3.0, 3.0)
+        }))
+        .joint(random_link(&mut r, |_| {
+            JointSpec::prismatic("p1", -1.0, 1.0)
+        }))
+        .build()
+        .unwrap();
+    let mut data = DynamicsData::new(&model).unwrap();
+    let (q, v) = ([0.3, 1e308], [2.0, 0.0]);
+    let err = rnea(&model, &mut data, &q, &v, &v).unwrap_err().to_string();
+    assert!(err.contains("overflowed"), "{err}");
+    let err = mass_matrix(&model, &mut data, &q).unwrap_err().to_string();
+    assert!(err.contains("overflowed"), "{err}");
+    assert!(aba(&model, &mut data, &q, &v, &v).is_err());
+    // The same workspace still works at a sane configuration.
+    assert!(rnea(&model, &mut data, &[0.3, 0.2], &v, &v).is_ok());
+    // In body frames, a far translation along gantry9's first (prismatic)
+    // joint is no overflow: the torques do not depend on it.
+    let gantry = armkit::robots::by_name("gantry9").unwrap();
+    let mut data = DynamicsData::new(&gantry).unwrap();
+    let n = gantry.dof();
+    let (v, a) = (vec![0.5; n], vec![-0.3; n]);
+    let mut q = gantry.neutral_configuration();
+    let near = rnea(&gantry, &mut data, &q, &v, &a).unwrap().to_vec();
+    q[0] = 1e308;
+    let far = rnea(&gantry, &mut data, &q, &v, &a).unwrap().to_vec();
+    assert_eq!(near, far);
+}
+
+#[test]
 fn one_link_pendulum_matches_closed_form() {
     // A point mass m at distance l on a horizontal revolute axis (y):
     // M = m l^2, g(q) = m g l sin(q) for q measured from hanging down.
