@@ -491,6 +491,73 @@ fn bad_input_is_a_clear_error() {
 }
 
 #[test]
+fn a_workspace_follows_the_model_it_is_used_with() {
+    // Two arms of the same size with different joints and masses: a
+    // workspace made for one gives the other's dynamics when used with it
+    // (the mass properties are read again), and the first's after that.
+    let (first, second) = (random_arm(11, 5), random_arm(12, 5));
+    let mut r = rng(13);
+    let q = random_vector(&mut r, 5, 1.0);
+    let v = random_vector(&mut r, 5, 1.0);
+    let a = random_vector(&mut r, 5, 1.0);
+    let mut shared = DynamicsData::new(&first).unwrap();
+    let own = |model: &Model| {
+        let mut data = DynamicsData::new(model).unwrap();
+        let tau = rnea(model, &mut data, &q, &v, &a).unwrap().to_vec();
+        let m = mass_matrix(model, &mut data, &q).unwrap().clone();
+        (tau, m)
+    };
+    let (tau_first, m_first) = own(&first);
+    let (tau_second, m_second) = own(&second);
+    assert!(violation(&tau_first, &tau_second) > 1e-3, "the arms differ");
+    for (model, tau, m) in [
+        (&second, &tau_second, &m_second),
+        (&first, &tau_first, &m_first),
+        (&second, &tau_second, &m_second),
+    ] {
+        let shared_tau = rnea(model, &mut shared, &q, &v, &a).unwrap().to_vec();
+        assert_eq!(&shared_tau, tau, "{}", model.name());
+        assert_eq!(mass_matrix(model, &mut shared, &q).unwrap(), m);
+    }
+}
+
+#[test]
+fn an_overflowing_result_is_an_error() {
+    // A revolute joint, then a prismatic one at a finite position near
+    // f64::MAX: the second body's moment about the first axis overflows.
+    let mut r = rng(21);
+    let model = ModelBuilder::new("far")
+        .joint(random_link(&mut r, |_| {
+            JointSpec::revolute("r0", -3.0, 3.0)
+        }))
+        .joint(random_link(&mut r, |_| {
+            JointSpec::prismatic("p1", -1.0, 1.0)
+        }))
+        .build()
+        .unwrap();
+    let mut data = DynamicsData::new(&model).unwrap();
+    let (q, v) = ([0.3, 1e308], [2.0, 0.0]);
+    let err = rnea(&model, &mut data, &q, &v, &v).unwrap_err().to_string();
+    assert!(err.contains("overflowed"), "{err}");
+    let err = mass_matrix(&model, &mut data, &q).unwrap_err().to_string();
+    assert!(err.contains("overflowed"), "{err}");
+    assert!(aba(&model, &mut data, &q, &v, &v).is_err());
+    // The same workspace still works at a sane configuration.
+    assert!(rnea(&model, &mut data, &[0.3, 0.2], &v, &v).is_ok());
+    // In body frames, a far translation along gantry9's first (prismatic)
+    // joint is no overflow: the torques do not depend on it.
+    let gantry = armkit::robots::by_name("gantry9").unwrap();
+    let mut data = DynamicsData::new(&gantry).unwrap();
+    let n = gantry.dof();
+    let (v, a) = (vec![0.5; n], vec![-0.3; n]);
+    let mut q = gantry.neutral_configuration();
+    let near = rnea(&gantry, &mut data, &q, &v, &a).unwrap().to_vec();
+    q[0] = 1e308;
+    let far = rnea(&gantry, &mut data, &q, &v, &a).unwrap().to_vec();
+    assert_eq!(near, far);
+}
+
+#[test]
 fn one_link_pendulum_matches_closed_form() {
     // A point mass m at distance l on a horizontal revolute axis (y):
     // M = m l^2, g(q) = m g l sin(q) for q measured from hanging down.

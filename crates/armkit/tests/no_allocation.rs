@@ -717,3 +717,27 @@ fn analytic_ik_with_a_changing_held_end_joint_does_not_allocate() {
     }
     assert!(solutions > 0);
 }
+
+#[test]
+fn dynamics_workspace_moving_between_models_does_not_allocate() {
+    use armkit::dynamics::{mass_matrix, rnea, DynamicsData};
+    // Two model values of the same size: each switch reads the other's mass
+    // properties and placements again, in place.
+    let first = armkit::robots::by_name("space6r").unwrap();
+    let second = first.clone();
+    let mut data = DynamicsData::new(&first).unwrap();
+    let q = first.neutral_configuration();
+    let v = vec![0.3; 6];
+    let before = allocations();
+    for _ in 0..50 {
+        for model in [&first, &second] {
+            rnea(model, &mut data, &q, &v, &v).unwrap();
+            mass_matrix(model, &mut data, &q).unwrap();
+        }
+    }
+    assert_eq!(
+        allocations() - before,
+        0,
+        "dynamics with a workspace moving between models"
+    );
+}

@@ -1,7 +1,8 @@
-//! RNEA, CRBA, ABA and what derives from them, in the world frame.
+//! RNEA and CRBA in body frames, ABA in the world frame, and what derives
+//! from them (module documentation).
 
-use super::spatial::{Force, Motion};
-use super::DynamicsData;
+use super::spatial::Motion;
+use super::{check_not_overflowed, DynamicsData};
 use crate::error::{check_finite_vector, Error, Result};
 use crate::math::{DMatrix, Matrix6, Vector3, Vector6};
 use crate::model::Model;
@@ -26,9 +27,9 @@ pub fn rnea<'d>(
 ) -> Result<&'d [f64]> {
     check_finite_vector("joint_velocities", v, model.dof())?;
     check_finite_vector("joint_accelerations", a, model.dof())?;
-    data.update_bodies(model, q)?;
+    data.update_transforms(model, q)?;
     let gravity = data.gravity;
-    data.chain_newton_euler(Some(v), Some(a), Some(&gravity));
+    data.chain_newton_euler(Some(v), Some(a), Some(&gravity))?;
     Ok(data.torques())
 }
 
@@ -40,9 +41,9 @@ pub fn gravity_torques<'d>(
     data: &'d mut DynamicsData,
     q: &[f64],
 ) -> Result<&'d [f64]> {
-    data.update_bodies(model, q)?;
+    data.update_transforms(model, q)?;
     let gravity = data.gravity;
-    data.chain_newton_euler(None, None, Some(&gravity));
+    data.chain_newton_euler(None, None, Some(&gravity))?;
     Ok(data.torques())
 }
 
@@ -55,8 +56,8 @@ pub fn coriolis_torques<'d>(
     v: &[f64],
 ) -> Result<&'d [f64]> {
     check_finite_vector("joint_velocities", v, model.dof())?;
-    data.update_bodies(model, q)?;
-    data.chain_newton_euler(Some(v), None, None);
+    data.update_transforms(model, q)?;
+    data.chain_newton_euler(Some(v), None, None)?;
     Ok(data.torques())
 }
 
@@ -69,48 +70,64 @@ pub fn nonlinear_effects<'d>(
     v: &[f64],
 ) -> Result<&'d [f64]> {
     check_finite_vector("joint_velocities", v, model.dof())?;
-    data.update_bodies(model, q)?;
+    data.update_transforms(model, q)?;
     let gravity = data.gravity;
-    data.chain_newton_euler(Some(v), None, Some(&gravity));
+    data.chain_newton_euler(Some(v), None, Some(&gravity))?;
     Ok(data.torques())
 }
 
-/// The two passes of the RNEA on the chain's bodies already placed by
-/// `update_bodies`, at chain velocities `v` and accelerations `a`, into the
-/// chain torques `data.tau`; `gravity` `None` leaves it out.
+/// The two passes of the RNEA (Featherstone table 5.1) in body frames, on
+/// the joint transforms of `update_transforms`, at chain velocities `v` and
+/// accelerations `a`, into the chain torques `data.tau`; `gravity` `None`
+/// leaves it out. Leaves each body's velocity in `data.velocities`.
 pub(super) fn newton_euler(
     data: &mut DynamicsData,
     v: &[f64],
     a: &[f64],
     gravity: Option<&Vector3<f64>>,
 ) {
-    // Gravity as an upward acceleration of the base (Featherstone 5.3):
-    // every body then feels it through its inertia.
-    let mut velocity = Motion::ZERO;
-    let mut acceleration = Motion::new(Vector3::zeros(), gravity.map_or(Vector3::zeros(), |g| -g));
-    for (((axis, body), force), (&qd, &qdd)) in data
-        .axes
-        .iter()
-        .zip(&data.bodies)
-        .zip(data.forces.iter_mut())
-        .zip(v.iter().zip(a))
-    {
-        let joint_velocity = *axis * qd;
-        velocity = velocity + joint_velocity;
-        acceleration = acceleration + *axis * qdd + velocity.cross(&joint_velocity);
-        let momentum = body.apply(&velocity);
-        *force = body.apply(&acceleration) + velocity.cross_force(&momentum);
+    let n = data.tau.len();
+    if n == 0 {
+        return;
     }
-    let mut transmitted = Force::ZERO;
-    for ((axis, force), tau) in data
-        .axes
-        .iter()
-        .zip(&data.forces)
-        .zip(data.tau.iter_mut())
-        .rev()
-    {
-        transmitted += *force;
-        *tau = axis.dot(&transmitted);
+    let (v, a) = (&v[..n], &a[..n]);
+    let transforms = &data.transforms[..n];
+    let axes = &data.joint_axes[..n];
+    let inertias = &data.local_inertias[..n];
+    let forces = &mut data.forces[..n];
+    let velocities = &mut data.velocities[..n];
+    // Gravity as an upward acceleration of the base (Featherstone 5.3):
+    // every body then feels it through its inertia. The first body moves
+    // with S qd_0 alone (so v_0 x S qd_0 = 0) and accelerates with the base,
+    // at rest: X_0 (0, -g) = (0, R_0' (-g)).
+    let mut velocity = Motion::ZERO;
+    let lifted = gravity.map_or(Vector3::zeros(), |g| transforms[0].rotation.tr_mul(&-g));
+    let mut acceleration = Motion::new(Vector3::zeros(), lifted);
+    for j in 0..n {
+        let (transform, axis, body) = (&transforms[j], axes[j], &inertias[j]);
+        let (qd, qdd) = (v[j], a[j]);
+        // v_j = X_j v_{j-1} + S qd_j; a_j = X_j a_{j-1} + S qdd_j + v_j x S qd_j.
+        if j > 0 {
+            velocity = velocity.inverse_transformed(transform);
+            acceleration = acceleration.inverse_transformed(transform);
+            axis.add_rate(&mut velocity, qd);
+            axis.add_velocity_product(&mut acceleration, &velocity, qd);
+        } else {
+            axis.add_rate(&mut velocity, qd);
+        }
+        axis.add_rate(&mut acceleration, qdd);
+        velocities[j] = velocity;
+        // f_j = I_j a_j + v_j x* I_j v_j.
+        let momentum = body.apply(&velocity);
+        forces[j] = body.apply(&acceleration) + velocity.cross_force(&momentum);
+    }
+    // Tip to base: tau_j = S' f_j, f_{j-1} += X_j* f_j.
+    let tau = &mut data.tau[..n];
+    let mut transmitted = forces[n - 1];
+    tau[n - 1] = axes[n - 1].component(&transmitted);
+    for j in (0..n - 1).rev() {
+        transmitted = transmitted.transformed(&transforms[j + 1]) + forces[j];
+        tau[j] = axes[j].component(&transmitted);
     }
 }
 
@@ -119,19 +136,21 @@ pub(super) fn newton_euler(
 /// kg m^2 (kg for two prismatic joints, kg m for mixed entries).
 ///
 /// `M[i][j] = S_i' Ic_j S_j` for `i <= j`, with `Ic_j` the inertia of bodies
-/// j..n-1 together (world frame). Also kept in [`DynamicsData::mass_matrix`].
-/// Errors as [`rnea`]. Allocates nothing.
+/// j..n-1 together (each in its own joint frame, carried to frame `i`).
+/// Also kept in [`DynamicsData::mass_matrix`]. Errors as [`rnea`].
+/// Allocates nothing.
 pub fn mass_matrix<'d>(
     model: &Model,
     data: &'d mut DynamicsData,
     q: &[f64],
 ) -> Result<&'d DMatrix<f64>> {
-    data.update_bodies(model, q)?;
+    data.update_transforms(model, q)?;
     joint_space_inertia(data);
+    check_not_overflowed("mass matrix", data.mass_matrix.as_slice())?;
     Ok(&data.mass_matrix)
 }
 
-/// The mass matrix of the bodies placed by `update_bodies` into
+/// The mass matrix at the joint transforms of `update_transforms` into
 /// `data.mass_matrix`: the CRBA, folded `M' H_c M` for a coupled model.
 fn joint_space_inertia(data: &mut DynamicsData) {
     // Checked before `take` so that an uncoupled call moves nothing.
@@ -172,32 +191,37 @@ fn joint_space_inertia(data: &mut DynamicsData) {
     }
 }
 
-/// The chain's mass matrix (chain joints x chain joints) into `out`.
+/// The chain's mass matrix (chain joints x chain joints) into `out`, by the
+/// CRBA in body frames (Featherstone table 6.2).
 fn composite_rigid_body(data: &mut DynamicsData, out: &mut DMatrix<f64>) {
-    let n = data.axes.len();
-    let mut composite = super::spatial::SpatialInertia::ZERO;
-    for (body, slot) in data.bodies.iter().zip(data.composite.iter_mut()).rev() {
-        composite += *body;
-        *slot = composite;
+    let n = data.local_inertias.len();
+    if n == 0 {
+        return;
     }
-    // Column j, rows 0..=j, of the column-major buffer: S_i' (Ic_j S_j).
-    let m = out.as_mut_slice();
-    for (j, ((composite, axis), column)) in data
-        .composite
-        .iter()
-        .zip(&data.axes)
-        .zip(m.chunks_exact_mut(n))
-        .enumerate()
-    {
-        let force = composite.apply(axis);
-        for (value, axis_i) in column.iter_mut().zip(&data.axes[..=j]) {
-            *value = axis_i.dot(&force);
-        }
+    // Ic_j = I_j + X_{j+1}* Ic_{j+1}, in frame j.
+    data.composite[n - 1] = data.local_inertias[n - 1];
+    for j in (0..n - 1).rev() {
+        data.composite[j] =
+            data.local_inertias[j] + data.composite[j + 1].transformed(&data.transforms[j + 1]);
     }
-    // The lower triangle mirrors the upper: M[j][i] = M[i][j].
-    for i in 0..n {
-        for j in i + 1..n {
-            m[i * n + j] = m[j * n + i];
+    // Column j: F = Ic_j S_j, then carried inwards joint by joint; row i
+    // reads its S_i component (the last step computes that component only).
+    // Column-major buffer, mirrored as it goes.
+    let m = &mut out.as_mut_slice()[..n * n];
+    let transforms = &data.transforms[..n];
+    let axes = &data.joint_axes[..n];
+    for j in 0..n {
+        let mut force = axes[j].inertia_column(&data.composite[j]);
+        m[j * n + j] = axes[j].component(&force);
+        for i in (0..j).rev() {
+            let value = if i > 0 {
+                force = force.transformed(&transforms[i + 1]);
+                axes[i].component(&force)
+            } else {
+                axes[0].component_of_transformed(&force, &transforms[1])
+            };
+            m[j * n + i] = value;
+            m[i * n + j] = value;
         }
     }
 }
@@ -302,18 +326,20 @@ pub fn aba<'d>(
 ) -> Result<&'d [f64]> {
     check_finite_vector("joint_velocities", v, model.dof())?;
     check_finite_vector("joint_torques", tau, model.dof())?;
-    data.update_bodies(model, q)?;
+    data.update_transforms(model, q)?;
     if data.coupled.is_some() {
         coupled_forward_dynamics(model, data, v, tau)?;
+        check_not_overflowed("forward dynamics", &data.ddq)?;
         return Ok(&data.ddq);
     }
+    data.update_world_bodies();
     // Pass 1: velocities and velocity-product accelerations c_j = v_j x S_j qd_j.
     let mut velocity = Motion::ZERO;
     for (((axis, &qd), slot), c) in data
-        .axes
+        .world_axes
         .iter()
         .zip(v)
-        .zip(data.velocities.iter_mut())
+        .zip(data.world_velocities.iter_mut())
         .zip(data.accelerations.iter_mut())
     {
         let joint_velocity = *axis * qd;
@@ -328,11 +354,11 @@ pub fn aba<'d>(
     let mut articulated = Matrix6::zeros();
     let mut bias = Vector6::zeros();
     for j in (0..data.dof).rev() {
-        let body = &data.bodies[j];
-        let velocity = data.velocities[j];
+        let body = &data.world_inertias[j];
+        let velocity = data.world_velocities[j];
         articulated += body.to_matrix();
         bias += velocity.cross_force(&body.apply(&velocity)).to_vector();
-        let s = data.axes[j].to_vector();
+        let s = data.world_axes[j].to_vector();
         let u_column = articulated * s;
         let d = s.dot(&u_column);
         if !(d > 0.0 && d.is_finite()) {
@@ -357,13 +383,14 @@ pub fn aba<'d>(
     for j in 0..data.dof {
         acceleration += data.accelerations[j].to_vector();
         let qdd = (data.u_values[j] - data.u_columns[j].dot(&acceleration)) / data.d_values[j];
-        acceleration += data.axes[j].to_vector() * qdd;
+        acceleration += data.world_axes[j].to_vector() * qdd;
         data.ddq[j] = qdd;
     }
+    check_not_overflowed("forward dynamics", &data.ddq)?;
     Ok(&data.ddq)
 }
 
-/// Forward dynamics of a coupled model (bodies placed by `update_bodies`):
+/// Forward dynamics of a coupled model (after `update_transforms`):
 /// `(M' H_c M) ddq = tau - M'(C + g)` by a Cholesky factorization, O(n^3)
 /// (the articulated-body recursion holds for unconstrained chains only),
 /// into `data.ddq`.
@@ -374,7 +401,7 @@ fn coupled_forward_dynamics(
     tau: &[f64],
 ) -> Result<()> {
     let gravity = data.gravity;
-    data.chain_newton_euler(Some(v), None, Some(&gravity));
+    data.chain_newton_euler(Some(v), None, Some(&gravity))?;
     joint_space_inertia(data);
     cholesky_factor(model, data)?;
     let n = data.dof;

@@ -1,17 +1,18 @@
 //! Kinetic and potential energy of the chain.
 
 use super::spatial::Motion;
-use super::DynamicsData;
+use super::{check_not_overflowed, DynamicsData};
 use crate::error::{check_finite_vector, Result};
 use crate::model::Model;
 
 /// Kinetic energy `T = v' M(q) v / 2` (J) at positions `q` and velocities
-/// `v`, summed body by body (`v_j' I_j v_j / 2`, world frame). Also leaves
-/// the body velocities in [`DynamicsData::body_velocities`]. Errors as
-/// [`super::rnea`]. Allocates nothing.
+/// `v`, summed body by body (`v_j' I_j v_j / 2`, each body in its own joint
+/// frame). Also leaves the body velocities in
+/// [`DynamicsData::body_velocities`]. Errors as [`super::rnea`]. Allocates
+/// nothing.
 pub fn kinetic_energy(model: &Model, data: &mut DynamicsData, q: &[f64], v: &[f64]) -> Result<f64> {
     check_finite_vector("joint_velocities", v, model.dof())?;
-    data.update_bodies(model, q)?;
+    data.update_transforms(model, q)?;
     // A coupled model's chain moves at M v; take the buffer out to keep the
     // per-body ones borrowable.
     let mut coupled = data.coupled.take();
@@ -24,18 +25,15 @@ pub fn kinetic_energy(model: &Model, data: &mut DynamicsData, q: &[f64], v: &[f6
     };
     let mut velocity = Motion::ZERO;
     let mut energy = 0.0;
-    for (((axis, body), slot), &qd) in data
-        .axes
-        .iter()
-        .zip(&data.bodies)
-        .zip(data.velocities.iter_mut())
-        .zip(chain_velocities)
-    {
-        velocity = velocity + *axis * qd;
-        *slot = velocity;
-        energy += body.kinetic_energy(&velocity);
+    for (j, &qd) in chain_velocities.iter().enumerate() {
+        // v_j = X_j v_{j-1} + S qd_j (Featherstone table 5.1).
+        velocity = velocity.inverse_transformed(&data.transforms[j]);
+        data.joint_axes[j].add_rate(&mut velocity, qd);
+        data.velocities[j] = velocity;
+        energy += data.local_inertias[j].kinetic_energy(&velocity);
     }
     data.coupled = coupled;
+    check_not_overflowed("kinetic energy", &[energy])?;
     Ok(energy)
 }
 
@@ -45,11 +43,14 @@ pub fn kinetic_energy(model: &Model, data: &mut DynamicsData, q: &[f64], v: &[f6
 /// height (for gravity along -z). Its gradient is
 /// [`super::gravity_torques`]. Errors as [`super::rnea`]. Allocates nothing.
 pub fn potential_energy(model: &Model, data: &mut DynamicsData, q: &[f64]) -> Result<f64> {
-    data.update_bodies(model, q)?;
+    data.update_transforms(model, q)?;
+    data.update_world_bodies();
     let gravity = data.gravity;
-    Ok(-data
-        .bodies
+    let energy = -data
+        .world_inertias
         .iter()
         .map(|body| gravity.dot(&body.first_moment))
-        .sum::<f64>())
+        .sum::<f64>();
+    check_not_overflowed("potential energy", &[energy])?;
+    Ok(energy)
 }

@@ -4,15 +4,24 @@
 //! energy, and a simulation step.
 //!
 //! The algorithms are Featherstone's (*Rigid Body Dynamics Algorithms*,
-//! 2008: RNEA table 5.1, CRBA table 6.2, ABA table 7.1), written with every
-//! spatial quantity in the **world frame**, about the world origin. Forward
-//! kinematics ([`crate::kinematics::forward_kinematics`]) gives each joint's
-//! world frame, in which the model folds every joint into "a fixed placement,
-//! then motion about local z": the joint's motion subspace is then
-//! `S = (z, p x z)` for a rotational joint and `(0, z)` for a prismatic one
-//! (`z` its axis, `p` its origin, world frame), and bodies' inertias add up
-//! without any transform. Each link's [`crate::model::LinkInertia`] is given
-//! in its joint's frame.
+//! 2008: RNEA table 5.1, CRBA table 6.2, ABA table 7.1). The model folds
+//! every joint into "a fixed placement, then motion about local z", so in a
+//! joint's own frame its motion subspace is the constant `S = (e_z, 0)`
+//! (rotational) or `(0, e_z)` (prismatic), and each link's
+//! [`crate::model::LinkInertia`], given in that frame, is a constant spatial
+//! inertia (computed once, in [`DynamicsData::new`]).
+//!
+//! * The RNEA and the CRBA run in these **body frames**: one transform per
+//!   joint, `X_i` = the joint's placement turned by `Rz(q_i)` (or shifted by
+//!   `Tz(q_i)`), carries velocities and accelerations outwards and forces
+//!   and composite inertias inwards (on the 3 x 3 blocks, see
+//!   [`spatial`]); the products with `S` pick one component. No world pose
+//!   is formed. The CRBA's `M[i][j]` (`i < j`) is the `S_i` component of
+//!   `Ic_j S_j` carried inwards from frame `j` to frame `i`.
+//! * The ABA runs in the **world frame** (world poses from the same joint
+//!   transforms), where the articulated inertias of parent and child add
+//!   without a 6 x 6 transform: `S = (z, p x z)` or `(0, z)` there (`z` the
+//!   joint axis, `p` its origin).
 //!
 //! Conventions, as in Pinocchio and the Robotics Toolbox:
 //! * `q`, `v`, `a` (joint positions, velocities, accelerations) in rad, rad/s,
@@ -61,6 +70,7 @@ mod energy;
 pub mod energy_weights;
 pub mod simulate;
 pub mod spatial;
+mod subspace;
 pub mod torque_limits;
 
 pub use algorithms::{
@@ -70,10 +80,10 @@ pub use algorithms::{
 pub use energy::{kinetic_energy, potential_energy};
 
 use crate::error::{check_finite, Error, Result};
-use crate::kinematics::{forward_kinematics, Data};
-use crate::math::{DMatrix, Vector3, Vector6};
+use crate::math::{sin_cos_slice, DMatrix, Pose, Vector3, Vector6};
 use crate::model::{CouplingLaw, LinkInertia, Model};
 use spatial::{Force, Motion, SpatialInertia};
+pub(crate) use subspace::JointAxis;
 
 /// Standard gravity in the world frame, m/s^2: `(0, 0, -9.81)`, as
 /// Pinocchio and the Robotics Toolbox use.
@@ -81,23 +91,43 @@ pub const DEFAULT_GRAVITY: Vector3<f64> = Vector3::new(0.0, 0.0, -9.81);
 
 /// Workspace for the dynamics algorithms, sized once for one model.
 ///
-/// Holds the gravity vector, the kinematics workspace and every per-body
-/// buffer, and the results of the last call of each algorithm. Create it
-/// once per model and thread with [`DynamicsData::new`], which also checks
-/// that the model has mass properties and no coupling.
+/// Holds the gravity vector, the model's mass properties in each joint's
+/// frame (read here, and read again when the workspace is next used with
+/// another [`Model`] value of the same size), every per-body buffer, and the
+/// results of the last call of each algorithm. Create it once per model and thread with
+/// [`DynamicsData::new`], which also checks that the model has mass
+/// properties.
 #[derive(Clone, Debug)]
 pub struct DynamicsData {
     dof: usize,
     gravity: Vector3<f64>,
-    kinematics: Data,
     /// Buffers of the configuration-to-chain map; `None` without coupling.
     coupled: Option<CoupledBuffers>,
-    /// Motion subspace of each chain joint, world frame.
-    axes: Vec<Motion>,
-    /// Each body's spatial inertia, world frame.
-    bodies: Vec<SpatialInertia>,
+    /// Address of the chain joints of the model the subspaces, inertias and
+    /// placements below were read from.
+    source: usize,
+    /// Each chain joint's motion subspace, in its own frame (set-up).
+    joint_axes: Vec<JointAxis>,
+    /// Each body's spatial inertia about its joint frame's origin, in that
+    /// frame's axes (set-up).
+    local_inertias: Vec<SpatialInertia>,
+    /// Chain joint positions at the last configuration, and their (sin, cos).
+    chain_positions: Vec<f64>,
+    sin_cos: Vec<(f64, f64)>,
+    /// Each joint's frame, after its motion, in the previous joint's frame
+    /// (the first in the world frame): Featherstone's `X_J X_T`. Holds the
+    /// model's placements from `read_model` on, and only the moving
+    /// part is written per call.
+    transforms: Vec<Pose>,
+    /// ABA: motion subspace of each chain joint, world frame.
+    world_axes: Vec<Motion>,
+    /// ABA: each body's spatial inertia, world frame.
+    world_inertias: Vec<SpatialInertia>,
+    /// Each body's velocity, in its own frame (RNEA, kinetic energy).
     velocities: Vec<Motion>,
-    /// RNEA: body accelerations; ABA: velocity-product accelerations `v x S qd`.
+    /// ABA: body velocities in the world frame.
+    world_velocities: Vec<Motion>,
+    /// ABA: velocity-product accelerations `v x S qd`, world frame.
     accelerations: Vec<Motion>,
     forces: Vec<Force>,
     composite: Vec<SpatialInertia>,
@@ -141,8 +171,8 @@ struct CoupledBuffers {
 impl DynamicsData {
     /// A workspace for `model`, with gravity [`DEFAULT_GRAVITY`].
     ///
-    /// Errors: a link without mass properties (the first one is named), or a
-    /// model with a joint coupling (see the module documentation).
+    /// Errors: a link without mass properties (the first one is named), or
+    /// an additive coupling curve without a second derivative.
     pub fn new(model: &Model) -> Result<Self> {
         check_dynamics_model(model)?;
         let n = model.dof();
@@ -163,14 +193,20 @@ impl DynamicsData {
             unit: vec![0.0; chain],
             row: vec![0.0; n],
         });
-        Ok(DynamicsData {
+        let mut data = DynamicsData {
             dof: n,
             gravity: DEFAULT_GRAVITY,
-            kinematics: Data::new(model),
             coupled,
-            axes: vec![Motion::ZERO; chain],
-            bodies: vec![SpatialInertia::ZERO; chain],
+            source: 0,
+            joint_axes: vec![JointAxis::Rotation; chain],
+            local_inertias: vec![SpatialInertia::ZERO; chain],
+            chain_positions: vec![0.0; chain],
+            sin_cos: vec![(0.0, 1.0); chain],
+            transforms: vec![Pose::identity(); chain],
+            world_axes: vec![Motion::ZERO; chain],
+            world_inertias: vec![SpatialInertia::ZERO; chain],
             velocities: vec![Motion::ZERO; chain],
+            world_velocities: vec![Motion::ZERO; chain],
             accelerations: vec![Motion::ZERO; chain],
             forces: vec![Force::ZERO; chain],
             composite: vec![SpatialInertia::ZERO; chain],
@@ -182,7 +218,32 @@ impl DynamicsData {
             ddq: vec![0.0; n],
             mass_matrix: DMatrix::zeros(n, n),
             mass_matrix_inverse: DMatrix::zeros(n, n),
-        })
+        };
+        data.read_model(model)?;
+        Ok(data)
+    }
+
+    /// Each chain joint's motion subspace, its link's spatial inertia in its
+    /// own frame and its placement, from `model` (sizes checked by the
+    /// caller).
+    fn read_model(&mut self, model: &Model) -> Result<()> {
+        // Unknown until every link is read (an error leaves it unknown).
+        self.source = 0;
+        for (link, ((joint, axis), inertia)) in model
+            .chain_joints()
+            .iter()
+            .zip(self.joint_axes.iter_mut())
+            .zip(self.local_inertias.iter_mut())
+            .enumerate()
+        {
+            *axis = JointAxis::of(joint.kind);
+            *inertia = SpatialInertia::of_link(link_inertia(model, link, joint.inertia.as_ref())?);
+        }
+        // The parts of each joint transform that its motion leaves alone
+        // (`JointAxis::move_frame` writes the rest).
+        self.transforms.copy_from_slice(model.joint_placements());
+        self.source = model.chain_joints().as_ptr() as usize;
+        Ok(())
     }
 
     /// The gravitational acceleration, world frame, m/s^2.
@@ -204,15 +265,10 @@ impl DynamicsData {
         Ok(self)
     }
 
-    /// The kinematics workspace, holding the forward kinematics of the last
-    /// call (joint frames, end-effector pose).
-    pub fn kinematics(&self) -> &Data {
-        &self.kinematics
-    }
-
-    /// Each body's spatial velocity from the last [`rnea`], [`aba`] or
-    /// [`kinetic_energy`] call, world frame, about the world origin (one per
-    /// chain joint, [`Model::chain_joints`]).
+    /// Each body's spatial velocity from the last [`rnea`],
+    /// [`nonlinear_effects`], [`coriolis_torques`] or [`kinetic_energy`]
+    /// call, in the body's own joint frame ([`crate::kinematics::Data::joint_frames`]'s
+    /// axes, about its origin; one per chain joint, [`Model::chain_joints`]).
     pub fn body_velocities(&self) -> &[Motion] {
         &self.velocities
     }
@@ -238,7 +294,9 @@ impl DynamicsData {
         &self.mass_matrix
     }
 
-    fn check_model(&self, model: &Model) -> Result<()> {
+    /// Checks that the workspace fits `model`'s sizes, and reads its mass
+    /// properties again if it is another model value than last time.
+    fn check_model(&mut self, model: &Model) -> Result<()> {
         if self.dof != model.dof() {
             return Err(Error::DimensionMismatch {
                 what: "dynamics data (workspace made for another model)",
@@ -246,57 +304,79 @@ impl DynamicsData {
                 got: self.dof,
             });
         }
-        if self.axes.len() != model.chain_joints().len()
+        if self.joint_axes.len() != model.chain_joints().len()
             || self.coupled.is_some() == model.couplings().is_empty()
         {
             return Err(Error::DimensionMismatch {
                 what: "dynamics data chain joints (workspace made for another model)",
                 expected: model.chain_joints().len(),
-                got: self.axes.len(),
+                got: self.joint_axes.len(),
             });
         }
+        if model.chain_joints().as_ptr() as usize != self.source {
+            self.read_model(model)?;
+        }
         Ok(())
     }
 
-    /// Forward kinematics at `q`, then each joint's motion subspace and each
-    /// body's inertia in the world frame.
-    fn update_bodies(&mut self, model: &Model, q: &[f64]) -> Result<()> {
+    /// Each joint's frame at `q` in its predecessor's
+    /// ([`DynamicsData::joint_transforms`]), and a coupled model's map.
+    fn update_transforms(&mut self, model: &Model, q: &[f64]) -> Result<()> {
         self.check_model(model)?;
-        forward_kinematics(model, &mut self.kinematics, q)?;
-        if let Some(coupled) = &mut self.coupled {
-            coupled.update_map(model, q);
-        }
-        let frames = self.kinematics.joint_frames();
-        for (link, ((joint, frame), (axis, body))) in model
-            .chain_joints()
-            .iter()
-            .zip(frames)
-            .zip(self.axes.iter_mut().zip(self.bodies.iter_mut()))
-            .enumerate()
+        model.check_joint_positions(q)?;
+        // Without coupling the chain's positions are `q` itself.
+        let positions: &[f64] = match &mut self.coupled {
+            None => q,
+            Some(coupled) => {
+                model.joint_map().expand(q, &mut self.chain_positions);
+                coupled.update_map(model, q);
+                &self.chain_positions
+            }
+        };
+        // The trigonometry in a loop of its own: the calls are independent,
+        // so the processor overlaps them.
+        sin_cos_slice(positions, &mut self.sin_cos);
+        for ((((transform, placement), axis), &position), &sin_cos) in self
+            .transforms
+            .iter_mut()
+            .zip(model.joint_placements())
+            .zip(&self.joint_axes)
+            .zip(positions)
+            .zip(&self.sin_cos)
         {
-            let z: Vector3<f64> = frame.rotation.column(2).into_owned();
-            *axis = if joint.kind.is_rotational() {
-                Motion::new(z, frame.translation.cross(&z))
-            } else {
-                Motion::new(Vector3::zeros(), z)
-            };
-            let inertia = link_inertia(model, link, joint.inertia.as_ref())?;
-            *body = SpatialInertia::from_link(inertia, frame);
+            axis.move_frame(transform, placement, position, sin_cos);
         }
         Ok(())
     }
 
-    /// The RNEA's two passes on the chain (after `update_bodies`) at joint
-    /// velocities `v` and accelerations `a` (each `None`: zero) of the
+    /// After `update_transforms`: each joint's world frame, motion subspace
+    /// and body inertia in the world frame (what the ABA and the potential
+    /// energy use).
+    fn update_world_bodies(&mut self) {
+        let mut frame = Pose::identity();
+        for (j, transform) in self.transforms.iter().enumerate() {
+            frame = if j == 0 {
+                *transform
+            } else {
+                &frame * transform
+            };
+            self.world_axes[j] = self.joint_axes[j].in_frame(&frame);
+            self.world_inertias[j] = self.local_inertias[j].transformed(&frame);
+        }
+    }
+
+    /// The RNEA's two passes on the chain (after `update_transforms`) at
+    /// joint velocities `v` and accelerations `a` (each `None`: zero) of the
     /// independent joints, `gravity` `None` leaving it out; the torques are
     /// then in [`DynamicsData::torques`]. A coupled model's chain moves at
-    /// `M v`, `M a + Md v`, and its torques fold to `M' tau_c`.
+    /// `M v`, `M a + Md v`, and its torques fold to `M' tau_c`. Error: a
+    /// torque that overflowed.
     fn chain_newton_euler(
         &mut self,
         v: Option<&[f64]>,
         a: Option<&[f64]>,
         gravity: Option<&Vector3<f64>>,
-    ) {
+    ) -> Result<()> {
         let zeros = std::mem::take(&mut self.zeros);
         let v = v.unwrap_or(&zeros);
         // Checked before `take` so that an uncoupled call moves nothing.
@@ -322,7 +402,23 @@ impl DynamicsData {
             }
         }
         self.zeros = zeros;
+        check_not_overflowed("inverse dynamics", self.torques())
     }
+}
+
+/// Finite inputs can still overflow (lengths or prismatic positions near
+/// `f64::MAX`); a non-finite result is an error rather than a result.
+fn check_not_overflowed(context: &str, values: &[f64]) -> Result<()> {
+    // `0 x` is 0 for a finite x and NaN otherwise: one branch for the slice.
+    if values.iter().map(|v| v * 0.0).sum::<f64>() == 0.0 {
+        return Ok(());
+    }
+    Err(Error::Numerical {
+        context: context.into(),
+        reason: "the result overflowed to a non-finite value (link lengths or joint positions \
+                 too large)"
+            .into(),
+    })
 }
 
 impl CoupledBuffers {

@@ -2,9 +2,12 @@
 //! *Rigid Body Dynamics Algorithms*, ch. 2), in Plücker coordinates.
 //!
 //! Every quantity here is expressed in one frame's axes and about that
-//! frame's origin; the dynamics algorithms use the world frame for all of
-//! them, so that adding the vectors of different bodies needs no transform.
-//! Motion vectors are `(angular, linear)` = `(w, v)` with `v` the velocity of
+//! frame's origin. The inverse dynamics and the mass matrix work in each
+//! body's own joint frame and carry vectors and inertias from one joint
+//! frame to the next with [`Motion::inverse_transformed`],
+//! [`Force::transformed`] and [`SpatialInertia::transformed`] (Featherstone
+//! 2.8 and 2.13, done on the 3 x 3 blocks); the articulated-body algorithm
+//! works in the world frame. Motion vectors are `(angular, linear)` = `(w, v)` with `v` the velocity of
 //! the body point that passes through the origin; force vectors are
 //! `(moment, force)` = `(n, f)` with `n` the moment about the origin.
 
@@ -36,6 +39,50 @@ pub struct Force {
 /// The zero 3-vector, usable in `const` contexts.
 const ZERO3: Vector3<f64> = Vector3::new(0.0, 0.0, 0.0);
 
+// Scalar forms of the 3-vector products the recursions run per joint:
+// written out, they compile to fewer instructions than nalgebra's generic
+// products (which pack pairs of lanes and shuffle them).
+
+/// `a x b`.
+#[inline(always)]
+fn cross(a: &Vector3<f64>, b: &Vector3<f64>) -> Vector3<f64> {
+    Vector3::new(
+        a.y * b.z - a.z * b.y,
+        a.z * b.x - a.x * b.z,
+        a.x * b.y - a.y * b.x,
+    )
+}
+
+/// `R v`.
+#[inline(always)]
+fn rotate(r: &Matrix3<f64>, v: &Vector3<f64>) -> Vector3<f64> {
+    Vector3::new(
+        r.m11 * v.x + r.m12 * v.y + r.m13 * v.z,
+        r.m21 * v.x + r.m22 * v.y + r.m23 * v.z,
+        r.m31 * v.x + r.m32 * v.y + r.m33 * v.z,
+    )
+}
+
+/// `R' v`.
+#[inline(always)]
+fn rotate_back(r: &Matrix3<f64>, v: &Vector3<f64>) -> Vector3<f64> {
+    Vector3::new(
+        r.m11 * v.x + r.m21 * v.y + r.m31 * v.z,
+        r.m12 * v.x + r.m22 * v.y + r.m32 * v.z,
+        r.m13 * v.x + r.m23 * v.y + r.m33 * v.z,
+    )
+}
+
+/// `S v` for a symmetric `S` (its upper triangle is read).
+#[inline(always)]
+fn symmetric_product(s: &Matrix3<f64>, v: &Vector3<f64>) -> Vector3<f64> {
+    Vector3::new(
+        s.m11 * v.x + s.m12 * v.y + s.m13 * v.z,
+        s.m12 * v.x + s.m22 * v.y + s.m23 * v.z,
+        s.m13 * v.x + s.m23 * v.y + s.m33 * v.z,
+    )
+}
+
 impl Motion {
     /// The zero motion.
     pub const ZERO: Motion = Motion {
@@ -54,8 +101,8 @@ impl Motion {
     #[inline(always)]
     pub fn cross(&self, m: &Motion) -> Motion {
         Motion {
-            angular: self.angular.cross(&m.angular),
-            linear: self.angular.cross(&m.linear) + self.linear.cross(&m.angular),
+            angular: cross(&self.angular, &m.angular),
+            linear: cross(&self.angular, &m.linear) + cross(&self.linear, &m.angular),
         }
     }
 
@@ -63,8 +110,8 @@ impl Motion {
     #[inline(always)]
     pub fn cross_force(&self, f: &Force) -> Force {
         Force {
-            moment: self.angular.cross(&f.moment) + self.linear.cross(&f.force),
-            force: self.angular.cross(&f.force),
+            moment: cross(&self.angular, &f.moment) + cross(&self.linear, &f.force),
+            force: cross(&self.angular, &f.force),
         }
     }
 
@@ -72,6 +119,20 @@ impl Motion {
     #[inline(always)]
     pub fn dot(&self, f: &Force) -> f64 {
         self.angular.dot(&f.moment) + self.linear.dot(&f.force)
+    }
+
+    /// The same motion seen from a frame placed at `placement` (that
+    /// frame's pose in this vector's frame): `(R' w, R' (v + w x p))`, the
+    /// velocity of the point at the new origin `p`, in the new axes `R`
+    /// (Featherstone's `X` of eq 2.24).
+    #[inline(always)]
+    pub fn inverse_transformed(&self, placement: &Pose) -> Motion {
+        let r = &placement.rotation;
+        let linear = self.linear + cross(&self.angular, &placement.translation);
+        Motion {
+            angular: rotate_back(r, &self.angular),
+            linear: rotate_back(r, &linear),
+        }
     }
 
     /// As a 6-vector `[w; v]`.
@@ -103,6 +164,19 @@ impl Force {
         moment: ZERO3,
         force: ZERO3,
     };
+
+    /// The same force seen from the frame in which this vector's frame sits
+    /// at `placement`: `(R n + p x R f, R f)` (Featherstone's `X^*`, the
+    /// transpose of [`Motion::inverse_transformed`]'s matrix).
+    #[inline(always)]
+    pub fn transformed(&self, placement: &Pose) -> Force {
+        let r = &placement.rotation;
+        let force = rotate(r, &self.force);
+        Force {
+            moment: rotate(r, &self.moment) + cross(&placement.translation, &force),
+            force,
+        }
+    }
 
     /// As a 6-vector `[n; f]`.
     #[inline(always)]
@@ -193,33 +267,15 @@ impl SpatialInertia {
         rotational: Matrix3::new(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0),
     };
 
-    /// The inertia of `link` (given in a body frame: centre of mass and
-    /// inertia about it in that frame's axes) seen from the frame in which
-    /// the body frame sits at `frame`: `c' = R c + p`, `I_c' = R I_c R'`,
-    /// then moved to the origin (parallel-axis theorem).
-    #[inline(always)]
-    pub fn from_link(link: &LinkInertia, frame: &Pose) -> Self {
-        let r = &frame.rotation;
-        let c = r * link.com + frame.translation;
+    /// The inertia of `link` about its body frame's origin, in that frame's
+    /// axes (the frame its centre of mass and inertia are given in).
+    pub fn of_link(link: &LinkInertia) -> Self {
         let m = link.mass;
+        let c = link.com;
         let h = c * m;
-        // I_O = R I_c R' + m (|c|^2 E - c c') (parallel-axis theorem), the
-        // six distinct entries of the symmetric result only.
-        let a = r * link.inertia;
-        let c2 = c.dot(&h);
-        let entry = |i: usize, j: usize| a.row(i).dot(&r.row(j)) - h[i] * c[j];
-        let (xy, xz, yz) = (entry(0, 1), entry(0, 2), entry(1, 2));
-        let rotational = Matrix3::new(
-            entry(0, 0) + c2,
-            xy,
-            xz,
-            xy,
-            entry(1, 1) + c2,
-            yz,
-            xz,
-            yz,
-            entry(2, 2) + c2,
-        );
+        // I_O = I_c + m (|c|^2 E - c c') (parallel-axis theorem).
+        let rotational =
+            link.inertia + Matrix3::from_diagonal_element(c.dot(&h)) - h * c.transpose();
         SpatialInertia {
             mass: m,
             first_moment: h,
@@ -227,13 +283,58 @@ impl SpatialInertia {
         }
     }
 
+    /// This inertia (about its frame's origin, in its axes) seen from the
+    /// frame in which its frame sits at `placement` (`R`, `p`):
+    /// `h' = R h + m p` and, by the parallel-axis theorem,
+    /// `I' = R I R' - (p k' + k p') + 2 (k . p) E` with `k = R h + m p / 2`
+    /// (Featherstone eq 2.66 on the 3 x 3 blocks; the six distinct entries of
+    /// the symmetric result only).
+    #[inline(always)]
+    pub fn transformed(&self, placement: &Pose) -> Self {
+        let r = &placement.rotation;
+        let p = placement.translation;
+        let m = self.mass;
+        let rotated_moment = r * self.first_moment;
+        let k = rotated_moment + p * (0.5 * m);
+        let kp = 2.0 * k.dot(&p);
+        let a = r * self.rotational;
+        let entry = |i: usize, j: usize| a.row(i).dot(&r.row(j)) - p[i] * k[j] - k[i] * p[j];
+        let (xy, xz, yz) = (entry(0, 1), entry(0, 2), entry(1, 2));
+        let rotational = Matrix3::new(
+            entry(0, 0) + kp,
+            xy,
+            xz,
+            xy,
+            entry(1, 1) + kp,
+            yz,
+            xz,
+            yz,
+            entry(2, 2) + kp,
+        );
+        SpatialInertia {
+            mass: m,
+            first_moment: rotated_moment + p * m,
+            rotational,
+        }
+    }
+
+    /// The inertia of `link` (given in a body frame: centre of mass and
+    /// inertia about it in that frame's axes) seen from the frame in which
+    /// the body frame sits at `frame`: `c' = R c + p`, `I_c' = R I_c R'`,
+    /// then moved to the origin (parallel-axis theorem).
+    #[inline(always)]
+    pub fn from_link(link: &LinkInertia, frame: &Pose) -> Self {
+        Self::of_link(link).transformed(frame)
+    }
+
     /// `I m`: the momentum (for a velocity) or the force (for an
     /// acceleration) `(I_O w + h x v, m v - h x w)`.
     #[inline(always)]
     pub fn apply(&self, m: &Motion) -> Force {
         Force {
-            moment: self.rotational * m.angular + self.first_moment.cross(&m.linear),
-            force: m.linear * self.mass - self.first_moment.cross(&m.angular),
+            moment: symmetric_product(&self.rotational, &m.angular)
+                + cross(&self.first_moment, &m.linear),
+            force: m.linear * self.mass - cross(&self.first_moment, &m.angular),
         }
     }
 
@@ -253,6 +354,15 @@ impl SpatialInertia {
     #[inline(always)]
     pub fn kinetic_energy(&self, v: &Motion) -> f64 {
         0.5 * v.dot(&self.apply(v))
+    }
+}
+
+impl Add for SpatialInertia {
+    type Output = SpatialInertia;
+    #[inline(always)]
+    fn add(mut self, other: SpatialInertia) -> SpatialInertia {
+        self += other;
+        self
     }
 }
 
@@ -290,6 +400,39 @@ mod tests {
         // The centre of mass maps as a point.
         let c = frame.transform_point(&link.com);
         assert!((inertia.first_moment / inertia.mass - c).norm() < 1e-15);
+    }
+
+    #[test]
+    fn transforms_keep_power_and_momentum() {
+        let link = LinkInertia {
+            mass: 1.5,
+            com: Vector3::new(-0.2, 0.1, 0.4),
+            inertia: Matrix3::new(0.2, 0.02, -0.01, 0.02, 0.3, 0.04, -0.01, 0.04, 0.25),
+        };
+        let placement = Pose::new(
+            crate::math::Rotation3::from_euler_angles(-0.4, 0.9, 2.1).into_inner(),
+            Vector3::new(0.3, -0.6, 0.8),
+        );
+        // A motion in the outer frame, seen in the inner one.
+        let outer = Motion::new(Vector3::new(0.7, -0.2, 1.1), Vector3::new(0.4, 0.9, -0.3));
+        let inner = outer.inverse_transformed(&placement);
+        // The velocity of the inner origin: v + w x p, in inner axes.
+        let point = outer.linear + outer.angular.cross(&placement.translation);
+        assert!((placement.rotation * inner.linear - point).amax() < 1e-15);
+        // Power is frame-independent: (X m) . f = m . (X* f).
+        let force = Force::from_vector(&Vector6::new(0.5, -1.0, 0.2, 2.0, 0.3, -0.7));
+        let power_inner = inner.dot(&force);
+        let power_outer = outer.dot(&force.transformed(&placement));
+        assert!((power_inner - power_outer).abs() < 1e-14);
+        // The body's inertia seen from the outer frame: I' m = X* (I (X m)).
+        let local = SpatialInertia::of_link(&link);
+        let moved = local.transformed(&placement);
+        let direct = moved.apply(&outer).to_vector();
+        let through = local.apply(&inner).transformed(&placement).to_vector();
+        assert!((direct - through).amax() < 1e-14);
+        // The same as placing the link directly.
+        let placed = SpatialInertia::from_link(&link.transformed(&placement), &Pose::identity());
+        assert!((placed.to_matrix() - moved.to_matrix()).amax() < 1e-14);
     }
 
     #[test]

@@ -2,9 +2,12 @@
 //! the generalized Jacobian and the momenta (seed 004, eqs 3-17).
 
 use super::{check_pose, BaseMode, FreeFloatingModel, SpaceData};
+use crate::dynamics::spatial::{Motion, SpatialInertia};
+use crate::dynamics::JointAxis;
 use crate::error::{check_finite_vector, Error, Result};
 use crate::kinematics::forward_kinematics;
 use crate::math::{skew, Matrix3, Matrix6xX, Pose, Vector3, Vector6};
+use crate::model::LinkInertia;
 
 /// Forward kinematics of every body at `(base, q)`: joint origins and axes,
 /// link centres of mass and orientations, the system's centre of mass and the
@@ -200,9 +203,14 @@ pub struct Momentum {
 /// `base_twist = [v0; w0]` (velocity of the base frame's origin, m/s, and
 /// angular velocity, rad/s, inertial frame) and joint rates `q_dot`.
 ///
-/// Computed body by body from each link's velocity (seed 004, eqs 3 and 7),
-/// independently of the suffix sums of [`generalized_jacobian`]: a check of
-/// `J*` and of simulated motions. O(n^2); allocates nothing.
+/// Computed body by body from each body's spatial velocity (seed 004, eqs 3
+/// and 7) with the rigid-body algebra of [`crate::dynamics::spatial`]: the
+/// base moves with `V_0 = (w0, v0 - w0 x p0)` about the inertial origin,
+/// body i with `V_i = V_{i-1} + S_i q_dot_i` (`S_i` its joint's motion
+/// subspace), and the system's spatial momentum `sum I_i V_i` holds `P` and
+/// the angular momentum about the origin, moved to `r_g` at the end. This is
+/// independent of the suffix sums of [`generalized_jacobian`]: a check of
+/// `J*` and of simulated motions. O(n); allocates nothing.
 pub fn momentum(
     model: &FreeFloatingModel,
     data: &mut SpaceData,
@@ -216,31 +224,25 @@ pub fn momentum(
     update_kinematics(model, data, base, q)?;
     let v0: Vector3<f64> = base_twist.fixed_rows::<3>(0).into_owned();
     let w0: Vector3<f64> = base_twist.fixed_rows::<3>(3).into_owned();
-    let origin = data.base_pose.translation;
     let body = &model.base;
-    let base_com_velocity = v0 + w0.cross(&(data.base_com - origin));
-    let mut linear = base_com_velocity * body.mass;
-    let rotation = data.base_pose.rotation;
-    let mut angular = rotation * body.inertia * rotation.transpose() * w0
-        + data.base_com.cross(&base_com_velocity) * body.mass;
-    for (i, link) in model.links.iter().enumerate() {
-        let r = data.link_coms[i];
-        let mut v = v0 + w0.cross(&(r - origin));
-        let mut w = w0;
-        for (j, rate) in q_dot.iter().enumerate().take(i + 1) {
-            let axis = data.joint_axes[j];
-            if model.arm.joints()[j].kind.is_rotational() {
-                v += axis.cross(&(r - data.joint_origins[j])) * *rate;
-                w += axis * *rate;
-            } else {
-                v += axis * *rate;
-            }
-        }
-        let rotation = data.link_rotations[i];
-        linear += v * link.mass;
-        angular += rotation * link.inertia * rotation.transpose() * w + r.cross(&v) * link.mass;
+    let base_link = LinkInertia {
+        mass: body.mass,
+        com: body.com,
+        inertia: body.inertia,
+    };
+    // Spatial velocities about the inertial origin: the linear part is the
+    // velocity of the body point passing through the origin.
+    let mut velocity = Motion::new(w0, v0 - w0.cross(&data.base_pose.translation));
+    let mut total = SpatialInertia::from_link(&base_link, &data.base_pose).apply(&velocity);
+    for (i, (link, &rate)) in model.links.iter().zip(q_dot).enumerate() {
+        let frame = Pose::new(data.link_rotations[i], data.joint_origins[i]);
+        let axis = JointAxis::of(model.arm.joints()[i].kind).in_frame(&frame);
+        velocity = velocity + axis * rate;
+        total += SpatialInertia::from_link(link, &frame).apply(&velocity);
     }
-    // Shift the angular momentum from the inertial origin to r_g.
-    angular -= data.com.cross(&linear);
+    // Force part: P; moment part: the angular momentum about the inertial
+    // origin, shifted to r_g.
+    let linear = total.force;
+    let angular = total.moment - data.com.cross(&linear);
     Ok(Momentum { linear, angular })
 }

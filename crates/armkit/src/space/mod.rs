@@ -77,6 +77,30 @@
 //! `q`, and is integrated with the fourth-order Magnus (Gauss-Legendre) scheme
 //! on SO(3) through the exponential map.
 //!
+//! # Relation to the rigid-body dynamics ([`crate::dynamics`], issue 18)
+//!
+//! [`momentum`] is computed with the dynamics module's spatial algebra
+//! (each body's spatial velocity and inertia, `sum I_i V_i`). The time
+//! stepping does not use [`crate::dynamics::simulate::Simulator`], for three
+//! reasons that are properties of the two problems, not of the code:
+//!
+//! * [`step`] is *kinematic*, as seed 004 is: the joint rates are the input
+//!   and the base follows from the momentum conditions, so there is no
+//!   torque and no joint acceleration to integrate. The simulator integrates
+//!   `ddq = ABA(q, v, tau)` from joint torques.
+//! * The simulator's chain has a fixed base (its [`Model`]'s base pose is a
+//!   constant, its state `(q, v)` a vector in R^n). A torque-driven
+//!   free-floating system needs a six-degree-of-freedom floating root joint
+//!   in the articulated-body recursion (Featherstone, ch. 9, floating bases:
+//!   the base's articulated inertia solved as a 6 x 6 system) and a state on
+//!   SE(3) x R^n with a Lie-group integrator; in the attitude-held mode also
+//!   the attitude controller's torque on the base. None of this exists in
+//!   `dynamics`.
+//! * Here zero linear momentum is imposed exactly (the base position is
+//!   solved from the fixed centre of mass), which the demo's seed004-space
+//!   checks rely on (centre-of-mass drift at round-off); integrating forces
+//!   would only keep it to the integrator's accuracy.
+//!
 //! # Velocity-level use
 //!
 //! Because the base moves, inverse kinematics and path tracking on this system
