@@ -3,11 +3,12 @@
 //! line (`armkit.continuous_path`), sampled as arrays.
 
 use armkit::kinematics::{forward_kinematics, Data};
+use armkit::trajectory::{self, ProfileShape};
+use armkit::trajectory::{clamped_cubic_spline, TrajectoryLimits};
 use armkit::trajectory::{
     measure_path_error, plan_continuous_path, ContinuousPathOptions, PathTolerance, Segmentation,
 };
 use armkit::trajectory::{path_ik_for, IkTask};
-use armkit::trajectory::{CartesianTrajectory, LinePath, OrientationLaw, TimeLaw};
 use armkit::trajectory::{CartesianTrajectory, LinePath, OrientationLaw, TimeLaw};
 use armkit::trajectory::{JointState, Trajectory};
 use armkit::Error;
