@@ -105,6 +105,29 @@ fn seed001_and_seed004_space_studies_check_their_options() {
     assert!(error.to_string().contains("start"), "{error}");
 }
 
+/// Seed 004 sec 1's claims on the space robot: one finding per claim and
+/// mode, each with its figure, and each reproduced exactly when the check on
+/// the same figure passes.
+#[test]
+fn seed004_space_study_states_the_papers_claims() {
+    use armkit::study::FindingStatus;
+    let report = SpaceRobotStudy::default().run().unwrap();
+    assert!(report.all_passed(), "{:#?}", report.checks);
+    // Free-floating: momentum + CoM, angular momentum, J*; held: CoM, J*.
+    assert_eq!(report.findings.len(), 5, "{:#?}", report.findings);
+    for finding in &report.findings {
+        assert!(finding.claim.starts_with("seed 004, sec 1"), "{finding}");
+        assert_eq!(finding.status, FindingStatus::Reproduced, "{finding}");
+        assert!(finding.measured.contains("e-"), "a figure: {finding}");
+    }
+    let drift = report.check("free-floating: centre-of-mass drift").unwrap();
+    let com = &report.findings[0];
+    assert!(
+        com.measured.contains(&format!("{:.2e}", drift.value)),
+        "{com}"
+    );
+}
+
 /// Seed 002's continuous path (issue 21 items 10-11): the default study on
 /// arm4, every check passing, the paper's variants as findings with their
 /// figures.

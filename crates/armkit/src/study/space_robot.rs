@@ -2,7 +2,7 @@
 //! smooth joint motion, once with the base free-floating and once with its
 //! attitude held, checked for what momentum conservation implies.
 
-use super::{Check, Series, StudyReport};
+use super::{Check, Finding, FindingStatus, Series, StudyReport};
 use crate::error::{check_finite_vector, check_positive, Error, Result};
 use crate::ik::pose_error;
 use crate::math::{rotation_log, Pose, Vector6};
@@ -142,6 +142,7 @@ impl SpaceRobotStudy {
         ] {
             let run = self.simulate(model, mode)?;
             run.check(mode, label, &mut report);
+            run.findings(mode, label, &mut report);
             run.series(key, label, &mut report);
         }
         report.notes.push(
@@ -265,6 +266,52 @@ impl Run {
             travel,
             1e-4,
             "m",
+        ));
+    }
+
+    /// Seed 004 sec 1's claims on this run, at the checks' thresholds.
+    fn findings(&self, mode: BaseMode, label: &str, report: &mut StudyReport) {
+        let verdict = |holds: bool| {
+            if holds {
+                FindingStatus::Reproduced
+            } else {
+                FindingStatus::NotReproduced
+            }
+        };
+        report.findings.push(Finding::new(
+            format!(
+                "seed 004, sec 1 ({label}): no external force, so the linear momentum is conserved \
+                 and the system's centre of mass stays put (eqs 10-12)"
+            ),
+            format!(
+                "centre of mass drifts {:.2e} m, linear momentum {:.2e} kg m/s over the run",
+                self.com_drift, self.linear
+            ),
+            verdict(self.com_drift <= COM_DRIFT && self.linear <= MOMENTUM),
+        ));
+        if mode == BaseMode::FreeFloating {
+            report.findings.push(Finding::new(
+                format!(
+                    "seed 004, sec 1 ({label}): the angular momentum is conserved (zero from \
+                     rest), so the base turns in reaction to the arm (eqs 13-16)"
+                ),
+                format!(
+                    "angular momentum {:.2e} kg m^2/s over the run",
+                    self.angular
+                ),
+                verdict(self.angular <= MOMENTUM),
+            ));
+        }
+        report.findings.push(Finding::new(
+            format!(
+                "seed 004, sec 1 ({label}): the generalized Jacobian J* maps the joint rates to \
+                 the hand's velocity with the base moving"
+            ),
+            format!(
+                "J* q_dot against the differenced simulated hand motion: {:.2e} relative",
+                self.jacobian_error
+            ),
+            verdict(self.jacobian_error <= JACOBIAN_RELATIVE),
         ));
     }
 
