@@ -24,25 +24,21 @@
 //! (median, p99, max, us) and the solver used.
 
 mod report;
+mod target;
 mod target_report;
 
 use std::path::PathBuf;
 
 use armkit::mpc::qp::QpSolverKind;
 use armkit::mpc::scenario::{simulate_with, MpcRun, Seed000Example, SimulationOptions};
-use armkit::mpc::{
-    diagnose_run, ActuatorPrecision, MpcOptions, MpcPlanner, PlantModel, ReachAid, TaskWeights,
-    VelocityWeights,
-};
+use armkit::mpc::{diagnose_run, ActuatorPrecision, MpcOptions, MpcPlanner, PlantModel, ReachAid};
 use clap::{Args, ValueEnum};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
-use crate::common::{
-    parse_fixed_numbers, parse_joint_positions, parse_pose, print_json, CliError, CliResult,
-    LimitPolicy, Outcome, RobotArgs,
-};
+use crate::common::{print_json, CliError, CliResult, Outcome, RobotArgs};
 pub use report::example_report;
 use report::{files_json, print_files, print_summary, summary_json, write_outputs};
+pub(crate) use target::{target_setup, TargetSetup};
 pub use target_report::target_report;
 
 /// `armkit mpc` arguments.
@@ -203,77 +199,6 @@ pub fn run(args: &MpcArgs) -> CliResult<Outcome> {
         Some(id) => run_examples(args, id),
         None => run_target(args),
     }
-}
-
-fn task_weights(text: &str, terminal_factor: f64) -> CliResult<TaskWeights> {
-    let tracking: [f64; 6] = match text.trim() {
-        "position" => [10.0, 10.0, 10.0, 0.0, 0.0, 0.0],
-        "pose" => [10.0; 6],
-        other => {
-            let v = parse_fixed_numbers(other, "--weights", 6)?;
-            [v[0], v[1], v[2], v[3], v[4], v[5]]
-        }
-    };
-    if !(terminal_factor.is_finite() && terminal_factor >= 0.0) {
-        return Err(CliError(format!(
-            "--terminal-factor: must be finite and >= 0, got {terminal_factor}"
-        )));
-    }
-    Ok(TaskWeights {
-        tracking,
-        terminal: tracking.map(|w| w * terminal_factor),
-    })
-}
-
-/// The MPC of a `--target` run, set up from the flags: the robot, the
-/// target, the start, the planner and the simulation options (shared by the
-/// command and a scenario's `[mpc]` table without `example`).
-pub(crate) struct TargetSetup {
-    pub model: armkit::Model,
-    pub target: armkit::math::Pose,
-    pub start: Vec<f64>,
-    pub planner: MpcPlanner,
-    pub simulation: SimulationOptions,
-}
-
-/// Parses the flags of a `--target` run and builds its planner.
-pub(crate) fn target_setup(args: &MpcArgs) -> CliResult<TargetSetup> {
-    let model = args.robot.load()?;
-    let target_text = args
-        .target
-        .as_deref()
-        .ok_or_else(|| CliError("--target is required (or --example)".into()))?;
-    let target = parse_pose(target_text, "--target")?;
-    let start = match &args.start {
-        Some(text) => parse_joint_positions(text, &model, LimitPolicy::Allow)?,
-        None => model.neutral_configuration(),
-    };
-    let priorities = match &args.priorities {
-        Some(text) => Some(parse_fixed_numbers(text, "--priorities", model.dof())?),
-        None => None,
-    };
-    let mut options = MpcOptions {
-        horizon: args.horizon,
-        sample_time: args.dt,
-        task_weights: task_weights(&args.weights, args.terminal_factor)?,
-        increment_weights: priorities,
-        velocity_weights: VelocityWeights::Proportional(args.velocity_weight),
-        ..MpcOptions::default()
-    };
-    args.apply(&mut options);
-    let simulation = SimulationOptions {
-        max_steps: args.max_steps,
-        plant: args.plant()?,
-        ..SimulationOptions::default()
-    };
-    let planner = MpcPlanner::new(&model, options)?;
-    Ok(TargetSetup {
-        model,
-        target,
-        start,
-        planner,
-        simulation,
-    })
 }
 
 fn run_target(args: &MpcArgs) -> CliResult<Outcome> {

@@ -1,0 +1,82 @@
+//! The set-up of an `armkit mpc --target` run from its flags (robot,
+//! target, start, planner, simulation options), shared by the command and a
+//! scenario's `[mpc]` table without `example`.
+
+use armkit::mpc::scenario::SimulationOptions;
+use armkit::mpc::{MpcOptions, MpcPlanner, TaskWeights, VelocityWeights};
+
+use super::MpcArgs;
+use crate::common::{
+    parse_fixed_numbers, parse_joint_positions, parse_pose, CliError, CliResult, LimitPolicy,
+};
+
+fn task_weights(text: &str, terminal_factor: f64) -> CliResult<TaskWeights> {
+    let tracking: [f64; 6] = match text.trim() {
+        "position" => [10.0, 10.0, 10.0, 0.0, 0.0, 0.0],
+        "pose" => [10.0; 6],
+        other => {
+            let v = parse_fixed_numbers(other, "--weights", 6)?;
+            [v[0], v[1], v[2], v[3], v[4], v[5]]
+        }
+    };
+    if !(terminal_factor.is_finite() && terminal_factor >= 0.0) {
+        return Err(CliError(format!(
+            "--terminal-factor: must be finite and >= 0, got {terminal_factor}"
+        )));
+    }
+    Ok(TaskWeights {
+        tracking,
+        terminal: tracking.map(|w| w * terminal_factor),
+    })
+}
+
+/// The MPC of a `--target` run, set up from the flags: the robot, the
+/// target, the start, the planner and the simulation options (shared by the
+/// command and a scenario's `[mpc]` table without `example`).
+pub(crate) struct TargetSetup {
+    pub model: armkit::Model,
+    pub target: armkit::math::Pose,
+    pub start: Vec<f64>,
+    pub planner: MpcPlanner,
+    pub simulation: SimulationOptions,
+}
+
+/// Parses the flags of a `--target` run and builds its planner.
+pub(crate) fn target_setup(args: &MpcArgs) -> CliResult<TargetSetup> {
+    let model = args.robot.load()?;
+    let target_text = args
+        .target
+        .as_deref()
+        .ok_or_else(|| CliError("--target is required (or --example)".into()))?;
+    let target = parse_pose(target_text, "--target")?;
+    let start = match &args.start {
+        Some(text) => parse_joint_positions(text, &model, LimitPolicy::Allow)?,
+        None => model.neutral_configuration(),
+    };
+    let priorities = match &args.priorities {
+        Some(text) => Some(parse_fixed_numbers(text, "--priorities", model.dof())?),
+        None => None,
+    };
+    let mut options = MpcOptions {
+        horizon: args.horizon,
+        sample_time: args.dt,
+        task_weights: task_weights(&args.weights, args.terminal_factor)?,
+        increment_weights: priorities,
+        velocity_weights: VelocityWeights::Proportional(args.velocity_weight),
+        ..MpcOptions::default()
+    };
+    args.apply(&mut options);
+    let simulation = SimulationOptions {
+        max_steps: args.max_steps,
+        plant: args.plant()?,
+        ..SimulationOptions::default()
+    };
+    let planner = MpcPlanner::new(&model, options)?;
+    Ok(TargetSetup {
+        model,
+        target,
+        start,
+        planner,
+        simulation,
+    })
+}
