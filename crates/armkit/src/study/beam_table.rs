@@ -229,11 +229,7 @@ impl BeamTableStudy {
                         .collect::<Vec<_>>()
                         .join(" / ")
                 ),
-                if all_round {
-                    FindingStatus::Reproduced
-                } else {
-                    FindingStatus::NotReproduced
-                },
+                FindingStatus::from_holds(all_round),
             ),
             Finding::new(
                 "seed 000, Table 1: the Ansys simulation (0.0046 / 0.0054 / 0.0022 m) agrees with the \
@@ -244,11 +240,7 @@ impl BeamTableStudy {
                     list(&|r| format!("{:+.1} %", 100.0 * r.simulation_error())),
                     100.0 * worst_simulation
                 ),
-                if worst_simulation < TABLE1_TOLERANCE {
-                    FindingStatus::Reproduced
-                } else {
-                    FindingStatus::NotReproduced
-                },
+                FindingStatus::from_holds(worst_simulation < TABLE1_TOLERANCE),
             ),
             Finding::new(
                 "seed 000, sec 3.1 on Fig 5: the largest deflection lies under the loads",
@@ -259,11 +251,7 @@ impl BeamTableStudy {
                     list(&|r| format!("{:.3}", r.largest_at)),
                     list(&|r| format!("{:.6}", r.under_each[0]))
                 ),
-                if under_loads {
-                    FindingStatus::Reproduced
-                } else {
-                    FindingStatus::NotReproduced
-                },
+                FindingStatus::from_holds(under_loads),
             ),
         ])
     }

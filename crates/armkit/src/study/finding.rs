@@ -26,6 +26,32 @@ impl FindingStatus {
             FindingStatus::NotReproduced => "not reproduced",
         }
     }
+
+    /// `Reproduced` when the claim holds as measured, `NotReproduced` when
+    /// not.
+    ///
+    /// ```
+    /// use armkit::study::FindingStatus;
+    /// assert_eq!(FindingStatus::from_holds(true), FindingStatus::Reproduced);
+    /// assert_eq!(FindingStatus::from_holds(false), FindingStatus::NotReproduced);
+    /// let deviation = FindingStatus::ReproducedWithDeviation;
+    /// assert_eq!(deviation.if_holds(true), deviation);
+    /// assert_eq!(deviation.if_holds(false), FindingStatus::NotReproduced);
+    /// ```
+    pub fn from_holds(holds: bool) -> Self {
+        FindingStatus::Reproduced.if_holds(holds)
+    }
+
+    /// `self` when the claim holds as measured (e.g. `ReproducedWithDeviation`
+    /// for a claim that holds only with a stated deviation), `NotReproduced`
+    /// when not.
+    pub fn if_holds(self, holds: bool) -> Self {
+        if holds {
+            self
+        } else {
+            FindingStatus::NotReproduced
+        }
+    }
 }
 
 impl fmt::Display for FindingStatus {

@@ -271,13 +271,6 @@ impl Run {
 
     /// Seed 004 sec 1's claims on this run, at the checks' thresholds.
     fn findings(&self, mode: BaseMode, label: &str, report: &mut StudyReport) {
-        let verdict = |holds: bool| {
-            if holds {
-                FindingStatus::Reproduced
-            } else {
-                FindingStatus::NotReproduced
-            }
-        };
         report.findings.push(Finding::new(
             format!(
                 "seed 004, sec 1 ({label}): no external force, so the linear momentum is conserved \
@@ -287,7 +280,7 @@ impl Run {
                 "centre of mass drifts {:.2e} m, linear momentum {:.2e} kg m/s over the run",
                 self.com_drift, self.linear
             ),
-            verdict(self.com_drift <= COM_DRIFT && self.linear <= MOMENTUM),
+            FindingStatus::from_holds(self.com_drift <= COM_DRIFT && self.linear <= MOMENTUM),
         ));
         if mode == BaseMode::FreeFloating {
             report.findings.push(Finding::new(
@@ -299,7 +292,7 @@ impl Run {
                     "angular momentum {:.2e} kg m^2/s over the run",
                     self.angular
                 ),
-                verdict(self.angular <= MOMENTUM),
+                FindingStatus::from_holds(self.angular <= MOMENTUM),
             ));
         }
         report.findings.push(Finding::new(
@@ -311,7 +304,7 @@ impl Run {
                 "J* q_dot against the differenced simulated hand motion: {:.2e} relative",
                 self.jacobian_error
             ),
-            verdict(self.jacobian_error <= JACOBIAN_RELATIVE),
+            FindingStatus::from_holds(self.jacobian_error <= JACOBIAN_RELATIVE),
         ));
     }
 

@@ -46,14 +46,6 @@ impl Seed000Example {
     }
 }
 
-fn status(holds: bool, when_it_holds: FindingStatus) -> FindingStatus {
-    if holds {
-        when_it_holds
-    } else {
-        FindingStatus::NotReproduced
-    }
-}
-
 /// Seconds to convergence (or to the step limit).
 fn seconds(run: &MpcRun) -> f64 {
     run.summary.steps as f64 * run.sample_time
@@ -118,7 +110,7 @@ fn large_move(run: &MpcRun) -> Vec<Finding> {
                 run.summary.final_position_error,
                 largest_final_speed(run)
             ),
-            status(converged, FindingStatus::ReproducedWithDeviation),
+            FindingStatus::ReproducedWithDeviation.if_holds(converged),
         ),
         Finding::new(
             "seed 000, Example 1 (Fig 7d): the prismatic joints' velocities are all held to the \
@@ -132,7 +124,7 @@ fn large_move(run: &MpcRun) -> Vec<Finding> {
                     "not all three reach the limit"
                 }
             ),
-            status(all_at_limit, FindingStatus::Reproduced),
+            FindingStatus::from_holds(all_at_limit),
         ),
     ]
 }
@@ -154,7 +146,7 @@ fn small_move(run: &MpcRun) -> Result<Vec<Finding>> {
                  of the motion",
                 prismatic_travel_mm(&paper).1
             ),
-            status(still, FindingStatus::ReproducedWithDeviation),
+            FindingStatus::ReproducedWithDeviation.if_holds(still),
         ),
         Finding::new(
             "seed 000, Example 2 (Fig 8a against Fig 7a): the small move reaches the target in less \
@@ -166,12 +158,12 @@ fn small_move(run: &MpcRun) -> Result<Vec<Finding>> {
                 converged_word(run),
                 converged_word(&large)
             ),
-            status(faster, FindingStatus::Reproduced),
+            FindingStatus::from_holds(faster),
         ),
         Finding::new(
             "seed 000, Example 2 (Fig 8c): the rotary joint angles change (the arm makes the move)",
             format!("rotary travel q4..q9 = {rotary_text}"),
-            status(rotary.iter().any(|&d| d > 1e-3), FindingStatus::Reproduced),
+            FindingStatus::from_holds(rotary.iter().any(|&d| d > 1e-3)),
         ),
     ])
 }
@@ -199,7 +191,7 @@ fn paper_weights(run: &MpcRun) -> Finding {
             "{text}, peak |v| {}: a 10:1 weight only scales the beam joints' share of the motion",
             format_values(&peaks, "m/s")
         ),
-        status(still, FindingStatus::Reproduced),
+        FindingStatus::from_holds(still),
     )
 }
 
@@ -263,7 +255,7 @@ fn paper_weights_limited(run: &MpcRun) -> Finding {
             },
             settling.describe(run.sample_time)
         ),
-        status(settling.settles(), FindingStatus::Reproduced),
+        FindingStatus::from_holds(settling.settles()),
     )
 }
 
@@ -273,7 +265,7 @@ fn prismatic_move(run: &MpcRun) -> Finding {
         "seed 000, Example 3 (Fig 9d-e): with every R = 10 the prismatic joints move on the small \
          move",
         text,
-        status(travel.iter().any(|&d| d >= 1e-3), FindingStatus::Reproduced),
+        FindingStatus::from_holds(travel.iter().any(|&d| d >= 1e-3)),
     )
 }
 
@@ -292,7 +284,7 @@ fn equal_weights(run: &MpcRun) -> Vec<Finding> {
                 seconds(run),
                 rotary_travel(run).1
             ),
-            status(!converged, FindingStatus::ReproducedWithDeviation),
+            FindingStatus::ReproducedWithDeviation.if_holds(!converged),
         ),
         Finding::new(
             EX3_OSCILLATION,
@@ -309,7 +301,7 @@ fn equal_weights(run: &MpcRun) -> Vec<Finding> {
                 seconds(run),
                 settling.describe(run.sample_time)
             ),
-            status(settling.oscillates(), FindingStatus::ReproducedWithDeviation),
+            FindingStatus::ReproducedWithDeviation.if_holds(settling.oscillates()),
         ),
     ]
 }
@@ -340,10 +332,7 @@ fn equal_weights_limited(run: &MpcRun, small: &MpcRun) -> Vec<Finding> {
                 },
                 example2.describe(small.sample_time)
             ),
-            status(
-                settling.oscillates(),
-                FindingStatus::ReproducedWithDeviation,
-            ),
+            FindingStatus::ReproducedWithDeviation.if_holds(settling.oscillates()),
         ),
     ]
 }
@@ -364,7 +353,7 @@ fn undamped(run: &MpcRun) -> Vec<Finding> {
                 seconds(run),
                 largest_final_speed(run)
             ),
-            status(drifts, FindingStatus::ReproducedWithDeviation),
+            FindingStatus::ReproducedWithDeviation.if_holds(drifts),
         ),
         Finding::new(
             EX3_OSCILLATION,
@@ -377,10 +366,7 @@ fn undamped(run: &MpcRun) -> Vec<Finding> {
                 },
                 settling.describe(run.sample_time)
             ),
-            status(
-                settling.oscillates(),
-                FindingStatus::ReproducedWithDeviation,
-            ),
+            FindingStatus::ReproducedWithDeviation.if_holds(settling.oscillates()),
         ),
     ]
 }

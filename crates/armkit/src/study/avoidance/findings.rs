@@ -14,14 +14,6 @@ const FIG6_BAND: (f64, f64) = (-5.0, 3.0);
 /// at most this fraction of the largest k's.
 const CLEARLY: f64 = 0.5;
 
-fn status(holds: bool) -> FindingStatus {
-    if holds {
-        FindingStatus::Reproduced
-    } else {
-        FindingStatus::NotReproduced
-    }
-}
-
 /// `start to end s` of a run's regions, or `None`.
 fn region_span(run: &MethodRun) -> Option<(f64, f64)> {
     Some((
@@ -90,7 +82,7 @@ impl AvoidanceOutcome {
                 self.threshold,
                 avoidance.method.label()
             ),
-            status(holds),
+            FindingStatus::from_holds(holds),
         )
     }
 
@@ -121,7 +113,7 @@ impl AvoidanceOutcome {
         Finding::new(
             "seed 004, Fig 5: plain tracking's joint rates start to jump at about 8.8 s",
             measured,
-            status(first.is_some_and(|t| (t - PAPER_REGION.0).abs() <= ABOUT)),
+            FindingStatus::from_holds(first.is_some_and(|t| (t - PAPER_REGION.0).abs() <= ABOUT)),
         )
     }
 
@@ -198,7 +190,7 @@ impl AvoidanceOutcome {
                  here)",
                 self.per_k(&errors)
             ),
-            status(holds),
+            FindingStatus::from_holds(holds),
         )
     }
 
@@ -233,7 +225,7 @@ impl AvoidanceOutcome {
                 self.per_k(&errors),
                 self.options.ik_tolerance
             ),
-            status(holds),
+            FindingStatus::from_holds(holds),
         )
     }
 
@@ -250,7 +242,7 @@ impl AvoidanceOutcome {
                 "IK solves {}",
                 self.sweep_detail(|r| r.summary.ik_solves.to_string())
             ),
-            status(self.sorted_ks() && rising(&solves)),
+            FindingStatus::from_holds(self.sorted_ks() && rising(&solves)),
         )
     }
 
@@ -301,7 +293,7 @@ impl AvoidanceOutcome {
                 "seed 004, conclusion 1: the avoidance tracks with a smaller error than the \
                  damped-inverse methods",
                 measured,
-                status(worse.is_empty()),
+                FindingStatus::from_holds(worse.is_empty()),
             ));
         }
         let through = lines.iter().find(|l| l.miss == 0.0).map(|l| l.avoidance);
@@ -315,7 +307,7 @@ impl AvoidanceOutcome {
                      {:.2e} m / {:.2e} rad (at most 1e-6)",
                     summary.max_position_error, summary.max_orientation_error
                 ),
-                status(holds),
+                FindingStatus::from_holds(holds),
             ));
         }
         findings

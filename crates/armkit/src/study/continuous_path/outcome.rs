@@ -248,7 +248,7 @@ impl ContinuousPathOutcome {
                     jumps[1],
                     jumps[2]
                 ),
-                verdict(jumps[0] <= 1e-12 && jumps[1] <= 1e-9),
+                FindingStatus::from_holds(jumps[0] <= 1e-12 && jumps[1] <= 1e-9),
             ));
         }
         findings
@@ -279,7 +279,7 @@ impl ContinuousPathOutcome {
                 error_text(&slerp.interior, self.task),
                 orientation_gap(&paper.path, &slerp.path)
             ),
-            verdict(holds),
+            FindingStatus::from_holds(holds),
         ))
     }
 
@@ -305,7 +305,7 @@ impl ContinuousPathOutcome {
             "seed 002, Fig 6: inserting midpoints until every segment's midpoint is within the tolerance \
              brings the whole path within it",
             measured,
-            verdict(midpoint.report.status == PathStatus::ToleranceMet && factor <= 1.0),
+            FindingStatus::from_holds(midpoint.report.status == PathStatus::ToleranceMet && factor <= 1.0),
         )
     }
 
@@ -333,7 +333,7 @@ impl ContinuousPathOutcome {
                 first.segments,
                 last.segments
             ),
-            verdict(falling),
+            FindingStatus::from_holds(falling),
         ))
     }
 
@@ -460,14 +460,6 @@ impl ContinuousPathOutcome {
             series: self.series(),
             notes: self.notes(),
         }
-    }
-}
-
-fn verdict(holds: bool) -> FindingStatus {
-    if holds {
-        FindingStatus::Reproduced
-    } else {
-        FindingStatus::NotReproduced
     }
 }
 

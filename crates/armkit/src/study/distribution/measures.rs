@@ -327,11 +327,7 @@ impl DistributionOutcome {
                     self.winner(torque_model).unwrap_or_default()
                 );
             }
-            let status = if wins {
-                FindingStatus::Reproduced
-            } else {
-                FindingStatus::NotReproduced
-            };
+            let status = FindingStatus::from_holds(wins);
             findings.push(Finding::new(claim, measured, status));
         }
         if let Some(lock) = &self.zero_weight_lock {
@@ -352,11 +348,7 @@ impl DistributionOutcome {
                      equal the locked run's (infinite weights) to {:.1e} (largest rate {:.3})",
                     lock.samples, lock.max_extra_rate, lock.max_rate_difference, lock.max_rate
                 ),
-                if holds {
-                    FindingStatus::Reproduced
-                } else {
-                    FindingStatus::NotReproduced
-                },
+                FindingStatus::from_holds(holds),
             ));
         }
         findings
