@@ -236,7 +236,7 @@ fn the_table_csv_svg_and_report_agree() {
         assert!(line.ends_with("completed"), "{line}");
     }
     assert!(!text.contains("[FAIL]"), "{text}");
-    assert!(text.contains("[pass] peak joint rate: plain / avoidance k=1"));
+    assert!(text.contains("[reproduced] seed 004, Fig 6"), "{text}");
     assert!(text.contains("report.html"));
     let plain_peak = value("plain", "peak_joint_rate");
     let avoidance_peak = value("avoidance k=1", "peak_joint_rate");

@@ -28,8 +28,11 @@ use crate::tracking::{TrackingOptions, TrackingStatus};
 /// // Seed 004's Table 1 and Figs 5-8, on the attitude-held satellite.
 /// let report = AvoidanceStudy::default().run().unwrap();
 /// assert!(report.all_passed());
-/// let ratio = report.check("peak joint rate: plain / avoidance k=1").unwrap();
-/// assert!(ratio.value >= 10.0);
+/// let error = report.check("avoidance k=1: final position error").unwrap();
+/// assert!(error.value <= 1e-6);
+/// // The paper's claims (the plain / avoidance peak-rate ratio among them)
+/// // are findings, apart from the checks.
+/// assert!(report.findings.iter().any(|f| f.claim.starts_with("seed 004, Fig 6")));
 /// ```
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "io", derive(serde::Serialize, serde::Deserialize))]
@@ -329,8 +332,7 @@ fn falling(values: &[f64]) -> bool {
 }
 
 impl AvoidanceOutcome {
-    /// The checks: plain's peak at least 10 times avoidance's, avoidance's
-    /// final pose error at most 1e-6, a region detected, every damped or
+    /// The checks: avoidance's final pose error at most 1e-6, a region detected, every damped or
     /// avoiding run completes, fewer IK solves for larger k; on every line
     /// of the miss sweep, the avoidance completes with its peak joint rate
     /// within `eps_dq / h` (the rate bound of its knots).
@@ -338,13 +340,10 @@ impl AvoidanceOutcome {
         let c = &self.comparison;
         let avoidance = &c.avoidance;
         let label = avoidance.method.label();
+        // Plain's peak against the avoidance's is the paper's claim (Fig 6,
+        // with its ratio): a finding, not a check, so that a line on a user's
+        // arm where plain tracking stays calm does not fail a promise.
         let mut checks = vec![
-            Check::at_least(
-                format!("peak joint rate: plain / {label}"),
-                c.plain.summary.peak_joint_rate / avoidance.summary.peak_joint_rate,
-                10.0,
-                "",
-            ),
             Check::at_most(
                 format!("{label}: final position error"),
                 avoidance.summary.final_position_error,
