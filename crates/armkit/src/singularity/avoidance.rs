@@ -4,6 +4,7 @@
 use super::detection::{below_threshold, detect, DetectionOptions, Trigger};
 use super::method_law::MethodLaw;
 use super::plant::{KnotSolve, Plant};
+use super::region_plan::{plan_jointly, KnotProblem, RegionPlan};
 use super::Manipulator;
 use crate::error::{check_finite_vector, check_positive, Error, Result};
 use crate::ik::{
@@ -32,22 +33,34 @@ pub enum Method {
     },
     /// Damped least squares with Nakamura's adaptive damping.
     DampedLeastSquares(NakamuraDamping),
+    /// Damped least squares (Nakamura) with its rates scaled down, all
+    /// joints by one factor (the direction kept), so that none exceeds
+    /// `max_rate`: the damped baseline at the arm's joint speed limit, the
+    /// bound the avoidance's knots keep.
+    ClampedDampedLeastSquares {
+        /// The damping.
+        damping: NakamuraDamping,
+        /// Largest joint rate, rad/s or m/s (> 0).
+        max_rate: f64,
+    },
     /// Chiaverini's singularity-robust inverse with numerical filtering.
     SingularityRobust(ChiaveriniFilter),
 }
 
 impl Method {
-    /// A short label: `plain`, `avoidance k=5`, `dls`, `sri`.
+    /// A short label: `plain`, `avoidance k=5`, `dls`, `dls clamped`, `sri`.
     pub fn label(&self) -> String {
         match self {
             Method::Plain => "plain".into(),
             Method::Avoidance { k } => format!("avoidance k={k}"),
             Method::DampedLeastSquares(_) => "dls".into(),
+            Method::ClampedDampedLeastSquares { .. } => "dls clamped".into(),
             Method::SingularityRobust(_) => "sri".into(),
         }
     }
 
-    /// Checks the parameters: `k >= 1`, and the baselines' own checks.
+    /// Checks the parameters: `k >= 1`, a positive finite `max_rate`, and
+    /// the baselines' own checks.
     pub fn validate(&self) -> Result<()> {
         match self {
             Method::Plain => Ok(()),
@@ -62,6 +75,10 @@ impl Method {
                 }
             }
             Method::DampedLeastSquares(d) => d.validate(),
+            Method::ClampedDampedLeastSquares { damping, max_rate } => {
+                damping.validate()?;
+                check_positive("max_rate", *max_rate)
+            }
             Method::SingularityRobust(f) => f.validate(),
         }
     }
@@ -100,6 +117,10 @@ pub struct AvoidanceOptions {
     pub ik_tolerance: f64,
     /// Newton-Raphson iterations per solve (>= 1).
     pub ik_max_iterations: usize,
+    /// How a region's knots are chosen when the arm cannot follow its
+    /// planned poses exactly (a path missing the singular pose). Default
+    /// [`RegionPlan::Joint`].
+    pub region_plan: RegionPlan,
 }
 
 impl Default for AvoidanceOptions {
@@ -109,6 +130,7 @@ impl Default for AvoidanceOptions {
             detection: DetectionOptions::default(),
             ik_tolerance: 1e-8,
             ik_max_iterations: 50,
+            region_plan: RegionPlan::default(),
         }
     }
 }
@@ -150,8 +172,18 @@ pub struct SingularRegion {
     /// pose within that reach, and may miss the planned pose (see
     /// `max_knot_error`).
     pub bounded_knots: usize,
-    /// Largest position (m) and orientation (rad) error of a knot's solution.
+    /// Largest position (m) and orientation (rad) error of a knot (of the
+    /// plan kept).
     pub max_knot_error: (f64, f64),
+    /// The plan kept: [`RegionPlan::Joint`] when the joint plan ran on a
+    /// region with least-squares knots and lowered its largest error, else
+    /// [`RegionPlan::Greedy`] (also for regions whose knots are all exact).
+    pub plan: RegionPlan,
+    /// Largest knot error of the greedy plan (norm of the 6-vector pose
+    /// error, m and rad); equal to the kept plan's when that is the greedy.
+    pub greedy_max_error: f64,
+    /// Cone programs the joint plan solved (0 when it did not run).
+    pub cone_programs: usize,
 }
 
 /// Summary figures of a [`MethodRun`].
@@ -163,6 +195,9 @@ pub struct MethodSummary {
     pub max_position_error: f64,
     /// Largest orientation error from the planned pose, rad.
     pub max_orientation_error: f64,
+    /// Largest norm of the 6-vector pose error (position m and rotation
+    /// vector rad together), `max sqrt(p^2 + o^2)` over the samples.
+    pub max_pose_error: f64,
     /// Position error at the last sample, m.
     pub final_position_error: f64,
     /// Orientation error at the last sample, rad.
@@ -280,6 +315,11 @@ impl<'m> PathTracker<'m> {
         };
         tracker.check_reach(&mut plant)?;
         Ok(tracker)
+    }
+
+    /// The manipulator.
+    pub fn manipulator(&self) -> Manipulator<'m> {
+        self.manipulator
     }
 
     /// The planned path.
@@ -413,6 +453,15 @@ impl<'m> PathTracker<'m> {
             Method::DampedLeastSquares(nakamura) => {
                 damped_least_squares_step(j, twist, nakamura.damping_at(j), rates).map(|_| ())
             }
+            Method::ClampedDampedLeastSquares { damping, max_rate } => {
+                damped_least_squares_step(j, twist, damping.damping_at(j), rates).map(|_| {
+                    let peak = rates.iter().fold(0.0, |m: f64, r| m.max(r.abs()));
+                    if peak > *max_rate {
+                        let scale = max_rate / peak;
+                        rates.iter_mut().for_each(|r| *r *= scale);
+                    }
+                })
+            }
             Method::SingularityRobust(filter) => {
                 singularity_robust_step(j, twist, filter, rates).map(|_| ())
             }
@@ -443,6 +492,9 @@ impl<'m> PathTracker<'m> {
             ik_failures: 0,
             bounded_knots: 0,
             max_knot_error: (0.0, 0.0),
+            plan: RegionPlan::Greedy,
+            greedy_max_error: 0.0,
+            cone_programs: 0,
         };
         let mut index = entry;
         loop {
@@ -498,6 +550,9 @@ impl<'m> PathTracker<'m> {
             }
             region.max_knot_error.0 = region.max_knot_error.0.max(solve.position_error);
             region.max_knot_error.1 = region.max_knot_error.1.max(solve.orientation_error);
+            region.greedy_max_error = region
+                .greedy_max_error
+                .max(solve.position_error.hypot(solve.orientation_error));
             let end = index == self.steps;
             // The region ends at an exact knot where the motion is regular
             // again: |det J| at or above the threshold and the plain rates
@@ -510,6 +565,9 @@ impl<'m> PathTracker<'m> {
                 break;
             }
         }
+        if region.bounded_knots > 0 && self.options.region_plan == RegionPlan::Joint {
+            self.plan_jointly(plant, &times, &mut knots, index == self.steps, &mut region)?;
+        }
         // End rates: the plain inverse of the planned twist at the exit knot
         // (regular there), or rest at the end of the path.
         let n = plant.dof();
@@ -521,6 +579,44 @@ impl<'m> PathTracker<'m> {
         region.end_time = index as f64 * h;
         region.knot_times = times;
         Ok((fit, index, region))
+    }
+
+    /// Replaces the greedy knots of a region by the joint plan
+    /// ([`RegionPlan::Joint`], module [`super::region_plan`]) when it lowers
+    /// their largest error, and records it in `region`.
+    fn plan_jointly(
+        &self,
+        plant: &mut Plant<'_>,
+        times: &[f64],
+        knots: &mut [Vec<f64>],
+        free_last: bool,
+        region: &mut SingularRegion,
+    ) -> Result<()> {
+        let targets: Vec<Pose> = times.iter().map(|t| self.trajectory.pose_at(*t)).collect();
+        let limits = self.manipulator.arm().position_limits();
+        let problem = KnotProblem {
+            targets: &targets,
+            times,
+            rate_bound: self.options.detection.joint_step_threshold / self.h,
+            limits: &limits,
+            free_last,
+        };
+        let mut planned = knots.to_vec();
+        let outcome = plan_jointly(plant, &problem, knots, &mut planned)?;
+        region.cone_programs = outcome.programs;
+        if outcome.max_error < outcome.greedy_max_error {
+            region.plan = RegionPlan::Joint;
+            region.max_knot_error = (0.0, 0.0);
+            for (knot, target) in planned.iter().zip(&targets).skip(1) {
+                plant.evaluate(knot)?;
+                let e = pose_error(target, plant.pose());
+                let error = &mut region.max_knot_error;
+                error.0 = error.0.max(e.fixed_rows::<3>(0).norm());
+                error.1 = error.1.max(e.fixed_rows::<3>(3).norm());
+            }
+            knots.clone_from_slice(&planned);
+        }
+        Ok(())
     }
 
     /// The plain rates of the planned twist at time `t` (s) at the plant's
@@ -627,6 +723,11 @@ impl<'m> PathTracker<'m> {
             peak_joint_rate,
             max_position_error: max(&run.position_error),
             max_orientation_error: max(&run.orientation_error),
+            max_pose_error: run
+                .position_error
+                .iter()
+                .zip(&run.orientation_error)
+                .fold(0.0, |m: f64, (p, o)| m.max(p.hypot(*o))),
             final_position_error: run.position_error.last().copied().unwrap_or(0.0),
             final_orientation_error: run.orientation_error.last().copied().unwrap_or(0.0),
             time_in_singular_region: count as f64 * self.h,

@@ -143,8 +143,10 @@ mod comparison;
 mod configurations;
 mod detection;
 mod ellipsoid;
+mod gap;
 mod method_law;
 mod plant;
+mod region_plan;
 mod scenario;
 
 pub use avoidance::{
@@ -157,7 +159,9 @@ pub use configurations::{
     WristFactors,
 };
 pub use detection::{detect, jacobian_determinant, Detection, DetectionOptions, Trigger};
+pub use gap::SingularGap;
 pub use ellipsoid::{manipulability_ellipsoid, Ellipsoid, JacobianPart};
+pub use region_plan::RegionPlan;
 pub use scenario::{line_through, seed004_path, LineThrough, SEED004_DIRECTION, SEED004_THROUGH};
 
 use crate::math::Pose;

@@ -119,7 +119,16 @@ impl<'m> Plant<'m> {
                     arm,
                     data: Data::new(arm),
                     newton: IkSolver::new(arm, options)?,
-                    robust: IkSolver::new(arm, IkOptions::default())?,
+                    // No time budget: a loaded machine must not turn a
+                    // reachable path into an "out of reach" error (the
+                    // restarts are seeded, so the check is deterministic).
+                    robust: IkSolver::new(
+                        arm,
+                        IkOptions {
+                            time_budget: None,
+                            ..IkOptions::default()
+                        },
+                    )?,
                 }
             }
             Manipulator::AttitudeHeld { system, base } => {
@@ -299,12 +308,26 @@ impl<'m> Plant<'m> {
         radius: f64,
         start: &[f64],
     ) -> Result<KnotSolve> {
-        let n = self.dof();
         let lower: Vec<f64> = centre.iter().map(|c| c - radius).collect();
         let upper: Vec<f64> = centre.iter().map(|c| c + radius).collect();
+        self.box_solve(target, &lower, &upper, start)
+    }
+
+    /// The joint positions within `lower <= q <= upper` (rad or m, every
+    /// joint; a joint with equal bounds is held) whose pose is nearest
+    /// `target`, by the box-constrained Levenberg-Marquardt of
+    /// [`Plant::bounded_solve`], from `start` clamped into the box.
+    pub fn box_solve(
+        &mut self,
+        target: &Pose,
+        lower: &[f64],
+        upper: &[f64],
+        start: &[f64],
+    ) -> Result<KnotSolve> {
+        let n = self.dof();
         let mut q: Vec<f64> = start
             .iter()
-            .zip(lower.iter().zip(&upper))
+            .zip(lower.iter().zip(upper))
             .map(|(s, (lo, hi))| s.clamp(*lo, *hi))
             .collect();
         let mut trial = q.clone();

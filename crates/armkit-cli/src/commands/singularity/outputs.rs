@@ -79,11 +79,19 @@ pub(super) fn summary_json(study: &Study, args: &SingularityArgs) -> serde_json:
         "miss_sweep": study.outcome.sweep.lines.iter().map(|l| serde_json::json!({
             "miss": l.miss,
             "least_squares_knots": l.bounded_knots,
+            "joint_planned_regions": l.joint_planned_regions,
+            "floor": l.floor.map(|f| serde_json::json!({
+                "time": f.time,
+                "position": f.position,
+                "orientation": f.orientation,
+                "pose_error": f.norm,
+            })),
             "methods": l.methods().iter().map(|(name, s)| serde_json::json!({
                 "method": name,
                 "peak_joint_rate": s.peak_joint_rate,
                 "max_position_error": s.max_position_error,
                 "max_orientation_error": s.max_orientation_error,
+                "max_pose_error": s.max_pose_error,
             })).collect::<Vec<_>>(),
         })).collect::<Vec<_>>(),
         "methods": table_runs(study).iter().map(|r| serde_json::json!({
@@ -107,6 +115,9 @@ pub(super) fn summary_json(study: &Study, args: &SingularityArgs) -> serde_json:
                 "ik_solves": g.ik_solves,
                 "ik_failures": g.ik_failures,
                 "bounded_knots": g.bounded_knots,
+                "plan": g.plan.as_str(),
+                "greedy_max_error": g.greedy_max_error,
+                "cone_programs": g.cone_programs,
             })).collect::<Vec<_>>(),
         })).collect::<Vec<_>>(),
     })

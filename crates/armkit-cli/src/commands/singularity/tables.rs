@@ -114,23 +114,23 @@ pub(super) fn k_table(study: &Study) -> Table {
 }
 
 /// Table 4: the lines missing the singular pose, every method's peak joint
-/// rate and largest errors.
+/// rate and largest errors, and the floor of a wrist-branch switch.
 pub(super) fn sweep_table(study: &Study) -> Table {
     let sweep = &study.outcome.sweep;
+    let mut headers = vec!["miss (mm)"];
+    if let Some(first) = sweep.lines.first() {
+        headers.extend(first.methods().iter().map(|(name, _)| *name));
+    }
+    headers.extend(["floor (m / rad)", "least-squares knots"]);
     let mut table = Table::new(
         format!(
             "Lines missing the singular pose: peak joint rate (rad/s) and largest position (m) / \
-             orientation (rad) error; {} for the avoidance",
+             orientation (rad) error; {} for the avoidance (regions planned jointly; greedy: \
+             knot by knot); dls clamped: DLS scaled to the avoidance's joint speed bound; floor: \
+             the distance from the line to the wrist-singular poses",
             sweep.avoidance_label()
         ),
-        &[
-            "miss (mm)",
-            "plain",
-            "avoidance",
-            "dls",
-            "sri",
-            "least-squares knots",
-        ],
+        &headers,
     );
     for line in &sweep.lines {
         let mut row = vec![format!("{:+}", line.miss * 1e3)];
@@ -140,6 +140,9 @@ pub(super) fn sweep_table(study: &Study) -> Table {
                 s.peak_joint_rate, s.max_position_error, s.max_orientation_error
             ));
         }
+        row.push(line.floor.map_or("-".into(), |f| {
+            format!("{:.2e} / {:.2e}", f.position, f.orientation)
+        }));
         row.push(line.bounded_knots.to_string());
         table.push(row);
     }
