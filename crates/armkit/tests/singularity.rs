@@ -832,3 +832,82 @@ fn the_study_calibrates_sweeps_the_miss_and_states_the_paper_claims() {
     assert_eq!(verdict("conclusion 3").status, FindingStatus::Reproduced);
     assert!(verdict("conclusion 1").measured.contains("miss sweep"));
 }
+
+/// Issue 21 item 2: a line missing the wrist singularity by d = 1 or 3 mm.
+/// The regions planned jointly keep every step within eps_dq and drop no
+/// knot, err about the floor (the distance to the wrist-singular poses,
+/// about d: the line is offset by d along the direction J loses there) and
+/// about half the greedy plan; DLS clamped to the same speed stays within it.
+#[test]
+fn a_near_miss_planned_jointly_errs_the_floor() {
+    use armkit::ik::NakamuraDamping;
+    use armkit::singularity::{RegionPlan, SEED004_DIRECTION};
+    let arm = armkit::robots::space6r().unwrap();
+    let manipulator = Manipulator::FixedBase(&arm);
+    let options = AvoidanceOptions::default();
+    let eps_dq = options.detection.joint_step_threshold;
+    let greedy_options = AvoidanceOptions {
+        region_plan: RegionPlan::Greedy,
+        ..options
+    };
+    for miss in [-0.003, 0.001] {
+        let line = line_through(&manipulator, &SEED004_THROUGH, &SEED004_DIRECTION, miss).unwrap();
+        let task = line.task(20.0, 4.0);
+        let tracker = PathTracker::new(manipulator, task.clone(), options).unwrap();
+        let joint = tracker.run(&Method::Avoidance { k: 1 }).unwrap();
+        let greedy = PathTracker::new(manipulator, task, greedy_options)
+            .unwrap()
+            .run(&Method::Avoidance { k: 1 })
+            .unwrap();
+        let floor = tracker
+            .singular_gap(4, 0.0, &SEED004_THROUGH, 10.0, 1.0)
+            .unwrap();
+        let d = miss.abs();
+        println!(
+            "miss {miss}: joint {:.3e}, greedy {:.3e}, floor {:.3e} (at {:.2} s)",
+            joint.summary.max_pose_error, greedy.summary.max_pose_error, floor.norm, floor.time
+        );
+        assert_eq!(joint.status, TrackingStatus::Completed);
+        for region in &joint.regions {
+            assert_eq!(region.knot_times.len(), region.ik_solves + 1);
+        }
+        assert!(joint.regions.iter().any(|r| r.plan == RegionPlan::Joint));
+        assert!(greedy.regions.iter().all(|r| r.plan == RegionPlan::Greedy));
+        assert!(largest_step(&joint, 0.01) <= eps_dq * (1.0 + 1e-9));
+        assert!(joint.summary.final_position_error <= 1e-6);
+        // The floor: about d, near mid-path.
+        assert!((floor.norm - d).abs() < 0.05 * d, "{floor:?}");
+        assert!((floor.time - 10.0).abs() < 0.5, "{floor:?}");
+        // The joint plan errs about the floor, the greedy one far more.
+        let error = joint.summary.max_pose_error;
+        assert!(error >= 0.95 * floor.norm && error <= 1.1 * floor.norm, "{error}");
+        assert!(error < 0.7 * greedy.summary.max_pose_error, "{error}");
+        // DLS clamped to eps_dq / h: within it, and equal to DLS when DLS is.
+        let nakamura = Baselines::for_detection(&options.detection).nakamura;
+        let clamped = tracker
+            .run(&Method::ClampedDampedLeastSquares {
+                damping: nakamura,
+                max_rate: eps_dq / 0.01,
+            })
+            .unwrap();
+        assert!(clamped.summary.peak_joint_rate <= eps_dq / 0.01 * (1.0 + 1e-12));
+        let dls = tracker.run(&Method::DampedLeastSquares(nakamura)).unwrap();
+        if dls.summary.peak_joint_rate <= eps_dq / 0.01 {
+            assert_eq!(dls.summary, clamped.summary);
+        } else {
+            assert!(clamped.summary.max_pose_error > dls.summary.max_pose_error);
+        }
+    }
+    // Bad input: a rate bound that is not positive, a joint out of range.
+    let line = seed004_path(&manipulator).unwrap();
+    let tracker = PathTracker::new(manipulator, line.task(20.0, 4.0), options).unwrap();
+    let bad = tracker.run(&Method::ClampedDampedLeastSquares {
+        damping: NakamuraDamping::default(),
+        max_rate: 0.0,
+    });
+    assert!(error_message(bad).contains("max_rate"));
+    let bad = tracker.singular_gap(6, 0.0, &SEED004_THROUGH, 10.0, 1.0);
+    assert!(error_message(bad).contains("joint"));
+    let bad = tracker.singular_gap(4, 0.0, &SEED004_THROUGH, 10.0, f64::NAN);
+    assert!(error_message(bad).contains("window"));
+}

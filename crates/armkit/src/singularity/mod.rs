@@ -24,7 +24,8 @@
 //!   joints follow it; plain tracking resumes after the exit.
 //! * [`Method::DampedLeastSquares`] (Nakamura's adaptive damping) and
 //!   [`Method::SingularityRobust`] (Chiaverini's filtered inverse): the
-//!   baselines, over the whole path.
+//!   baselines, over the whole path; [`Method::ClampedDampedLeastSquares`]
+//!   is DLS held to a joint speed bound.
 //!
 //! [`PathTracker::compare`] runs them all from the same start and a sweep of
 //! `k` (Figs 7-8); each [`MethodRun`] records, per sample, the time, joint
@@ -94,15 +95,24 @@
 //!   `q6 - d`); a knot's drift along it is removed (projected back toward
 //!   the warm start) when that keeps the pose within `eps_T`.
 //! * A path that misses the singular pose by a little asks the wrist to flip
-//!   (joints 4 and 6 turn by about pi in a time proportional to the miss),
-//!   faster than the arm can: the paper does not say what its knots do then.
-//!   Here a knot whose Newton solution would move some joint more than
-//!   `eps_dq` per period since the last knot (or whose solve does not
-//!   converge) is the least-squares knot: the nearest pose reachable within
-//!   `eps_dq` per period ([`SingularRegion::bounded_knots`]). The region's
-//!   rates then stay within `eps_dq / h` for `k = 1` and the end effector
-//!   leaves the path by what the arm cannot do (`AvoidanceStudy` sweeps the
-//!   miss and compares with DLS).
+//!   (joints 4 and 6 turn by about pi in a time proportional to the miss
+//!   `d`), faster than the arm can: the paper does not say what its knots
+//!   do then. Staying on the wrist branch with bounded rates costs an error
+//!   that grows with the lag; crossing `q5 = 0` (switching branch, joints 4
+//!   and 6 barely moving) costs about `d` at the crossing, the distance from
+//!   the target to the singular poses ([`PathTracker::singular_gap`]): a
+//!   rate-bounded plan has a floor near `d` on such lines. Here a knot whose
+//!   Newton solution would move some joint more than `eps_dq` per period
+//!   since the last knot (or whose solve does not converge) is first the
+//!   least-squares knot, the nearest pose within `eps_dq` per period of the
+//!   last ([`SingularRegion::bounded_knots`]); this greedy plan reacts late
+//!   (about `2 d` of error). The region's knots are then planned jointly
+//!   ([`RegionPlan::Joint`]): a sequential cone program minimises the
+//!   largest knot error under the joint-step bound from the greedy knots,
+//!   and is kept where it errs less (about `d` at 1 and 3 mm). The region's
+//!   rates stay within `eps_dq / h` for `k = 1`; `AvoidanceStudy` sweeps the
+//!   miss and compares with DLS, DLS clamped to that speed
+//!   ([`Method::ClampedDampedLeastSquares`]) and the floor.
 //! * The paper sees larger errors at the region's entry for smaller `k`
 //!   (error accumulated before it). Here tracking before the entry is the
 //!   same for every `k`, so the entry errors are equal; `AvoidanceStudy`

@@ -53,6 +53,26 @@
 //! rate bound holds throughout. The plan starts from the greedy knots
 //! (feasible), and the greedy plan is kept if the joint one does not lower
 //! the largest error: the result is never worse than the greedy plan.
+//!
+//! To keep the program small, a region of more than 48 intervals is planned
+//! on every `s`-th knot (the nodes; at most 48 free), the knots between
+//! following the nodes linearly in time: a node step within the speed bound
+//! over the nodes' time apart keeps every period's step within `eps_dq`.
+//! The errors are bounded at the nodes and midway between them; the largest
+//! error compared with the greedy plan's is taken over every knot.
+//!
+//! # What it reaches, and what it does not
+//!
+//! The program is solved locally, from the greedy knots: it improves the
+//! plan within the greedy plan's way through. On space6r's lines missing
+//! the singular pose by 1 and 3 mm the greedy plan crosses `q5 = 0` late;
+//! the joint plan crosses at the closest approach and errs the floor (the
+//! distance to the singular poses) to within a few percent, about half the
+//! greedy plan's error. At 10 and 30 mm the greedy plan stays on its branch
+//! and lags the flip; the joint plan can spread the lag but not start it
+//! earlier than the region's entry (the detection), so it gains less or
+//! nothing there. It does not try the other way through (a branch switch
+//! where the greedy plan lags), whose error is at least the floor.
 
 use super::plant::Plant;
 use crate::error::{Error, Result};
@@ -138,7 +158,7 @@ pub(super) struct JointPlanOutcome {
 struct Layout {
     /// Node knot indices, increasing, from 0 to the last knot.
     nodes: Vec<usize>,
-    /// Number of leading fixed nodes (1: the entry) and whether the last is fixed.
+    /// True when the last node is fixed (the exit knot); the entry always is.
     last_fixed: bool,
     /// Error knots: `(knot, node a, node b, alpha)` with the knot at
     /// `(1 - alpha) node_a + alpha node_b`.
