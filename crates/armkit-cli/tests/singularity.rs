@@ -131,6 +131,21 @@ fn default_json_matches_the_library_on_the_held_space6r() {
         let avoidance = &line["methods"][1];
         assert_eq!(avoidance["method"], "avoidance");
         assert!(avoidance["peak_joint_rate"].as_f64().unwrap() <= 0.5 * (1.0 + 1e-9));
+        // DLS clamped to the same speed, and the floor of a wrist-branch
+        // switch: about the miss (the line is offset along the lost direction).
+        let clamped = &line["methods"][4];
+        assert_eq!(clamped["method"], "dls clamped");
+        assert!(clamped["peak_joint_rate"].as_f64().unwrap() <= 0.5 * (1.0 + 1e-9));
+        let miss = line["miss"].as_f64().unwrap().abs();
+        let floor = line["floor"]["pose_error"].as_f64().unwrap();
+        assert!((floor - miss).abs() <= 0.05 * miss + 1e-7, "{line}");
+        // The joint plan is kept only where it errs less than the greedy one.
+        let greedy = &line["methods"][2];
+        assert_eq!(greedy["method"], "avoidance greedy");
+        assert!(
+            avoidance["max_pose_error"].as_f64().unwrap()
+                <= greedy["max_pose_error"].as_f64().unwrap() * (1.0 + 1e-9)
+        );
     }
     assert_eq!(value["threshold_rule"], "calibrated (seed 004's rule)");
     let findings = value["findings"].as_array().unwrap();

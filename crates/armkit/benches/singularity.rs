@@ -3,8 +3,9 @@
 //! period (Jacobian, pose error, plain inverse, detection, joint update;
 //! composed from the public pieces `PathTracker::run` uses), one
 //! Newton-Raphson knot solve inside the singular region (warm-started from
-//! the previous knot, as the avoidance does), and a full 20 s run (2000
-//! periods) per method.
+//! the previous knot, as the avoidance does), a full 20 s run (2000
+//! periods) per method, and the avoidance on lines missing the singular pose
+//! by 3 and 10 mm with the region planned jointly and greedily.
 //!
 //! Run: `cargo bench -p armkit --bench singularity -- --warm-up-time 1 --measurement-time 3`.
 
@@ -14,7 +15,7 @@ use armkit::ik::{
 use armkit::math::Pose;
 use armkit::singularity::{
     detect, seed004_path, AvoidanceOptions, Baselines, DetectionOptions, Manipulator, Method,
-    PathTracker,
+    PathTracker, RegionPlan,
 };
 use armkit::space::space6r_free_floating;
 use armkit::{jacobian, Data, JacobianFrame};
@@ -139,24 +140,33 @@ fn singularity(c: &mut Criterion) {
     }
     group.finish();
 
-    // A line 10 mm off the singular pose: the avoidance's least-squares
-    // knots (the wrist cannot flip within eps_dq per period).
+    // Lines 3 and 10 mm off the singular pose: the avoidance's least-squares
+    // knots (the wrist cannot flip within eps_dq per period), the region
+    // planned jointly (the cone programs) and greedily.
     let fixed = manipulator;
-    let near = armkit::singularity::line_through(
-        &fixed,
-        &armkit::singularity::SEED004_THROUGH,
-        &armkit::singularity::SEED004_DIRECTION,
-        0.01,
-    )
-    .unwrap();
-    let near_miss = PathTracker::new(fixed, near.task(20.0, 4.0), options).unwrap();
-    let mut group = c.benchmark_group("run_20s/space6r/fixed_miss_10mm");
-    group.sample_size(10);
-    let avoidance = Method::Avoidance { k: 1 };
-    group.bench_function(avoidance.label(), |b| {
-        b.iter(|| near_miss.run(black_box(&avoidance)).unwrap())
-    });
-    group.finish();
+    for (miss, name) in [(0.003, "fixed_miss_3mm"), (0.01, "fixed_miss_10mm")] {
+        let near = armkit::singularity::line_through(
+            &fixed,
+            &armkit::singularity::SEED004_THROUGH,
+            &armkit::singularity::SEED004_DIRECTION,
+            miss,
+        )
+        .unwrap();
+        let mut group = c.benchmark_group(format!("run_20s/space6r/{name}"));
+        group.sample_size(10);
+        let avoidance = Method::Avoidance { k: 1 };
+        for plan in [RegionPlan::Joint, RegionPlan::Greedy] {
+            let plan_options = AvoidanceOptions {
+                region_plan: plan,
+                ..options
+            };
+            let near_miss = PathTracker::new(fixed, near.task(20.0, 4.0), plan_options).unwrap();
+            group.bench_function(format!("{} ({plan} plan)", avoidance.label()), |b| {
+                b.iter(|| near_miss.run(black_box(&avoidance)).unwrap())
+            });
+        }
+        group.finish();
+    }
 
     // The whole seed 004 study of the demo (threshold calibration, the
     // comparison, the fitted variant and the nine-line miss sweep).
