@@ -880,7 +880,10 @@ fn a_near_miss_planned_jointly_errs_the_floor() {
         assert!((floor.time - 10.0).abs() < 0.5, "{floor:?}");
         // The joint plan errs about the floor, the greedy one far more.
         let error = joint.summary.max_pose_error;
-        assert!(error >= 0.95 * floor.norm && error <= 1.1 * floor.norm, "{error}");
+        assert!(
+            error >= 0.95 * floor.norm && error <= 1.1 * floor.norm,
+            "{error}"
+        );
         assert!(error < 0.7 * greedy.summary.max_pose_error, "{error}");
         // DLS clamped to eps_dq / h: within it, and equal to DLS when DLS is.
         let nakamura = Baselines::for_detection(&options.detection).nakamura;

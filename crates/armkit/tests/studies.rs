@@ -26,8 +26,12 @@ fn seed004_avoidance_study_passes_and_states_the_held_drift() {
     }
     if sweep.status != armkit::study::FindingStatus::Reproduced {
         assert!(
-            sweep.measured.contains("moves a joint faster than 0.5 rad/s")
-                && sweep.measured.contains("DLS clamped to 0.5 rad/s errs more"),
+            sweep
+                .measured
+                .contains("moves a joint faster than 0.5 rad/s")
+                && sweep
+                    .measured
+                    .contains("DLS clamped to 0.5 rad/s errs more"),
             "{sweep}"
         );
     }

@@ -169,8 +169,8 @@ pub use configurations::{
     WristFactors,
 };
 pub use detection::{detect, jacobian_determinant, Detection, DetectionOptions, Trigger};
-pub use gap::SingularGap;
 pub use ellipsoid::{manipulability_ellipsoid, Ellipsoid, JacobianPart};
+pub use gap::SingularGap;
 pub use region_plan::RegionPlan;
 pub use scenario::{line_through, seed004_path, LineThrough, SEED004_DIRECTION, SEED004_THROUGH};
 

@@ -294,7 +294,14 @@ pub(super) fn plan_jointly(
     let samples = || layout.samples.iter().map(|s| s.0);
     let weight = SUM_WEIGHT / (layout.samples.len() as f64 * greedy_max_error);
     let mut jacobians = Vec::with_capacity(layout.samples.len());
-    knot_errors(plant, problem, planned, samples(), &mut errors, Some(&mut jacobians))?;
+    knot_errors(
+        plant,
+        problem,
+        planned,
+        samples(),
+        &mut errors,
+        Some(&mut jacobians),
+    )?;
     let mut current = merit(&errors, weight);
     let mut trust = FIRST_TRUST_RADIUS;
     let mut trial_nodes = node_q.clone();
@@ -326,7 +333,14 @@ pub(super) fn plan_jointly(
         if fall >= 0.1 * predicted_fall {
             node_q.clone_from_slice(&trial_nodes);
             planned.clone_from_slice(&trial);
-            knot_errors(plant, problem, planned, samples(), &mut errors, Some(&mut jacobians))?;
+            knot_errors(
+                plant,
+                problem,
+                planned,
+                samples(),
+                &mut errors,
+                Some(&mut jacobians),
+            )?;
             current = merit(&errors, weight);
             if fall >= 0.75 * predicted_fall {
                 trust *= 2.0;
@@ -469,7 +483,12 @@ fn solve_program(
     let rows = b.len();
     let a = CscMatrix::new_from_triplets(rows, variables, ai, aj, av);
     let mut cones = vec![SupportedConeT::NonnegativeConeT(nonnegative)];
-    cones.extend(layout.samples.iter().map(|_| SupportedConeT::SecondOrderConeT(7)));
+    cones.extend(
+        layout
+            .samples
+            .iter()
+            .map(|_| SupportedConeT::SecondOrderConeT(7)),
+    );
     // A set-up failure leaves the plan as it is (no step), like a program
     // without a solution.
     let Ok(settings) = DefaultSettingsBuilder::default()

@@ -34,7 +34,12 @@ fn is_wrist_singular(manipulator: &Manipulator<'_>, through: &[f64]) -> Result<b
     if arm.dof() != 6 || through.len() != 6 {
         return Ok(false);
     }
-    let classification = classify(arm, &mut Data::new(arm), through, &ClassifyOptions::default())?;
+    let classification = classify(
+        arm,
+        &mut Data::new(arm),
+        through,
+        &ClassifyOptions::default(),
+    )?;
     Ok(classification.kinds.contains(&SingularityKind::Wrist))
 }
 
