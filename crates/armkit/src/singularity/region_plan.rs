@@ -434,8 +434,8 @@ fn solve_program(
     // step is within eps_dq).
     for (a, w) in layout.nodes.windows(2).enumerate() {
         let radius = problem.rate_bound * (problem.times[w[1]] - problem.times[w[0]]);
-        for j in 0..n {
-            let difference = node_q[a + 1][j] - node_q[a][j];
+        for (j, (next, last)) in node_q[a + 1].iter().zip(&node_q[a]).enumerate() {
+            let difference = next - last;
             let radius = radius.max(difference.abs());
             let mut entries = Vec::with_capacity(2);
             if let Some(slot) = layout.slot(a + 1) {
