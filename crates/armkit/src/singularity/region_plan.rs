@@ -270,10 +270,10 @@ pub(super) fn plan_jointly(
     planned: &mut [Vec<f64>],
 ) -> Result<JointPlanOutcome> {
     let count = knots.len();
-    if count < 3 || problem.times.len() != count || problem.targets.len() != count {
+    if count < 2 || problem.times.len() != count || problem.targets.len() != count {
         return Err(Error::invalid_argument(
             "knots",
-            "a region plan needs at least three knots, with a time and a pose each",
+            "a region plan needs at least two knots, with a time and a pose each",
         ));
     }
     let n = plant.dof();
