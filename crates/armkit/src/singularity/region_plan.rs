@@ -48,7 +48,8 @@
 //! `|e_i - J_i dq_i| <= s` per knot, and solves the cone program with
 //! Clarabel. A step is kept when the true merit (forward kinematics at the
 //! new knots) falls by at least a tenth of the predicted fall; the trust
-//! region grows after a good step and shrinks after a rejected one. The
+//! region (0.2 rad at first) grows after a good step and shrinks after a
+//! rejected one; at most 8 programs per region. The
 //! constraints are linear in the knots, so every iterate is feasible: the
 //! rate bound holds throughout. The plan starts from the greedy knots
 //! (feasible), and the greedy plan is kept if the joint one does not lower
