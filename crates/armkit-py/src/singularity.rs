@@ -9,6 +9,7 @@ use armkit::singularity::{
     AvoidanceOptions, ClassifyOptions, DetectionOptions, LineTask, Manipulator, Method,
     PathTracker,
 };
+use armkit::study::FITTED_DETERMINANT_THRESHOLD;
 use armkit::tracking::TrackingOptions;
 use numpy::ndarray::Dim;
 use numpy::{PyArray1, PyArray2};
@@ -101,13 +102,16 @@ pub fn line_through<'py>(
 /// `k`-th pose of the singular region, joined by a C2 cubic), `"dls"` or
 /// `"sri"`. The region is entered when |det J| < `determinant_threshold`
 /// (m^3 for a 6R arm) or a plain joint step exceeds `joint_step_threshold`
-/// (rad). Returns a dict of arrays (`time`, `q`, `joint_rates`,
+/// (rad). Without `determinant_threshold`, seed 004's rule sets it: the
+/// largest |det J| where the plain run of this line jumps (the fitted
+/// 0.004 m^3 when it never jumps); the dict's `determinant_threshold` and
+/// `threshold_rule` (`"given"`, `"calibrated"`, `"fitted"`) say which. Returns a dict of arrays (`time`, `q`, `joint_rates`,
 /// `position_error`, `orientation_error`, `determinant`, `in_region`) and
 /// the summary (`status`, `peak_joint_rate`, `max_position_error`,
 /// `max_orientation_error`, `final_position_error`,
 /// `time_in_singular_region`, `ik_solves`).
 #[pyfunction]
-#[pyo3(signature = (robot, q_start, T_goal, method="avoidance", k=5, duration=20.0, acceleration_time=4.0, dt=0.01, determinant_threshold=0.004, joint_step_threshold=0.005))]
+#[pyo3(signature = (robot, q_start, T_goal, method="avoidance", k=5, duration=20.0, acceleration_time=4.0, dt=0.01, determinant_threshold=None, joint_step_threshold=0.005))]
 #[allow(non_snake_case, clippy::too_many_arguments)]
 pub fn track_line<'py>(
     py: Python<'py>,
@@ -119,7 +123,7 @@ pub fn track_line<'py>(
     duration: f64,
     acceleration_time: f64,
     dt: f64,
-    determinant_threshold: f64,
+    determinant_threshold: Option<f64>,
     joint_step_threshold: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
     let model = &robot.model;
@@ -133,7 +137,7 @@ pub fn track_line<'py>(
         duration,
         acceleration_time,
     };
-    let options = AvoidanceOptions {
+    let options = |determinant_threshold| AvoidanceOptions {
         tracking: TrackingOptions {
             dt,
             ..TrackingOptions::default()
@@ -144,10 +148,30 @@ pub fn track_line<'py>(
         },
         ..AvoidanceOptions::default()
     };
-    let run = py
-        .detach(|| PathTracker::new(Manipulator::FixedBase(model), task, options)?.run(&method))
+    let tracker = |threshold| {
+        PathTracker::new(
+            Manipulator::FixedBase(model),
+            task.clone(),
+            options(threshold),
+        )
+    };
+    let (run, threshold, rule) = py
+        .detach(|| {
+            // No threshold given: seed 004's rule on this line's plain run,
+            // the fitted value when the plain run never jumps (as the study).
+            let (threshold, rule) = match determinant_threshold {
+                Some(value) => (value, "given"),
+                None => match tracker(FITTED_DETERMINANT_THRESHOLD)?.calibrated_threshold()? {
+                    Some(value) => (value, "calibrated"),
+                    None => (FITTED_DETERMINANT_THRESHOLD, "fitted"),
+                },
+            };
+            Ok::<_, armkit::Error>((tracker(threshold)?.run(&method)?, threshold, rule))
+        })
         .or_raise()?;
     let out = PyDict::new(py);
+    out.set_item("determinant_threshold", threshold)?;
+    out.set_item("threshold_rule", rule)?;
     out.set_item("time", vector(py, &run.time))?;
     // The library keeps one series per joint: samples become rows here.
     out.set_item(

@@ -210,3 +210,11 @@ def test_seed_004_avoidance_crosses_the_wrist_singularity_slowly():
     np.testing.assert_allclose(arm.fk(avoid["q"][-1]), goal, atol=1e-9)
     with pytest.raises(ValueError, match=re.escape("invalid argument `k`: the knot stride must be >= 1")):
         singularity.track_line(arm, q_start, goal, method="avoidance", k=0)
+    # Seed 004's rule by default: the largest |det J| where the plain run's
+    # joints jump by more than eps_dq in one period; a given threshold is kept.
+    jumps = (np.abs(plain["joint_rates"]) * 0.01 > 0.005).any(axis=1)
+    assert avoid["threshold_rule"] == "calibrated"
+    assert avoid["determinant_threshold"] == pytest.approx(plain["determinant"][jumps].max(), rel=1e-12)
+    given = singularity.track_line(arm, q_start, goal, method="avoidance", determinant_threshold=0.004)
+    assert (given["threshold_rule"], given["determinant_threshold"]) == ("given", 0.004)
+    assert given["time_in_singular_region"] > avoid["time_in_singular_region"]

@@ -1,6 +1,6 @@
 """Singularity detection and avoidance (seed 004)."""
 
-from typing import Any, Dict, Literal, Tuple
+from typing import Any, Dict, Literal, Optional, Tuple
 
 import numpy as np
 import numpy.typing as npt
@@ -24,11 +24,14 @@ def track_line(
     robot: Robot, q_start: npt.ArrayLike, T_goal: npt.ArrayLike,
     method: Literal["plain", "avoidance", "dls", "sri"] = "avoidance", k: int = 5,
     duration: float = 20.0, acceleration_time: float = 4.0, dt: float = 0.01,
-    determinant_threshold: float = 0.004, joint_step_threshold: float = 0.005,
+    determinant_threshold: Optional[float] = None, joint_step_threshold: float = 0.005,
 ) -> Dict[str, Any]:
     """Tracks the pose line from FK(q_start) to T_goal (trapezoidal speed)
     every ``dt`` s with ``method``; arrays ``time``, ``q``, ``joint_rates``
     (samples, dof), ``position_error`` (m), ``orientation_error`` (rad),
     ``determinant``, ``in_region``; summary ``status``, ``peak_joint_rate``
     (rad/s), ``max_position_error``, ``max_orientation_error``,
-    ``final_position_error``, ``time_in_singular_region`` (s), ``ik_solves``."""
+    ``final_position_error``, ``time_in_singular_region`` (s), ``ik_solves``;
+    ``determinant_threshold`` (m^3) and ``threshold_rule``: ``"given"``, or
+    without one, seed 004's rule (``"calibrated"``: the largest |det J| where
+    this line's plain run jumps; ``"fitted"`` 0.004 when it never jumps)."""

@@ -383,6 +383,22 @@ impl<'m> PathTracker<'m> {
     /// follows it (`q_dot = (q_fit(t + h) - q) / h`, so the joints are on the
     /// fit at every sample). Plain tracking resumes from the exit.
     ///
+    /// The `|det J|` threshold by seed 004's own rule (sec 2.3.1) on this
+    /// tracker's line: [`calibrate_determinant_threshold`] on a
+    /// [`Method::Plain`] run with this tracker's `eps_dq`
+    /// ([`DetectionOptions::joint_step_threshold`]). `None` when the plain
+    /// run never jumps (a line tracked smoothly: there is nothing to
+    /// calibrate on). m^3 for a 6R arm.
+    ///
+    /// [`calibrate_determinant_threshold`]: super::calibrate_determinant_threshold
+    pub fn calibrated_threshold(&self) -> Result<Option<f64>> {
+        let plain = self.run(&Method::Plain)?;
+        Ok(super::calibrate_determinant_threshold(
+            &plain,
+            self.options.detection.joint_step_threshold,
+        ))
+    }
+
     /// Errors: bad method parameters, and numerical failures of the model
     /// evaluation. An exactly singular Jacobian under the plain method is a
     /// status ([`TrackingStatus::Singular`]).

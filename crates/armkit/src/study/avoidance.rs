@@ -11,9 +11,8 @@ use super::{Check, StudyReport};
 use crate::error::{check_positive, Error, Result};
 use crate::math::{Pose, Vector3};
 use crate::singularity::{
-    calibrate_determinant_threshold, line_through, AvoidanceOptions, BaseKind, Baselines,
-    Comparison, DetectionOptions, LineThrough, Manipulator, Method, MethodRun, PathTracker,
-    SEED004_DIRECTION, SEED004_THROUGH,
+    line_through, AvoidanceOptions, BaseKind, Baselines, Comparison, DetectionOptions, LineThrough,
+    Manipulator, MethodRun, PathTracker, SEED004_DIRECTION, SEED004_THROUGH,
 };
 use crate::space::center_of_mass;
 use crate::tracking::{TrackingOptions, TrackingStatus};
@@ -95,7 +94,7 @@ impl Default for AvoidanceStudy {
 #[cfg_attr(feature = "io", serde(rename_all = "snake_case"))]
 pub enum ThresholdRule {
     /// Seed 004's rule (sec 2.3.1: the threshold from the point where the
-    /// joint angles start to jump): [`calibrate_determinant_threshold`] on
+    /// joint angles start to jump): [`PathTracker::calibrated_threshold`] on
     /// the plain run of the line through the singular pose (no miss). The
     /// fitted 0.004 m^3 is then run beside it as a labelled comparison.
     Calibrated,
@@ -193,13 +192,10 @@ impl AvoidanceStudy {
                     line.task(self.duration, self.acceleration_time),
                     options,
                 )?;
-                let plain = tracker.run(&Method::Plain)?;
-                Ok(
-                    match calibrate_determinant_threshold(&plain, self.joint_step_threshold) {
-                        Some(value) => (value, ThresholdRule::Calibrated),
-                        None => (FITTED_DETERMINANT_THRESHOLD, ThresholdRule::Fitted),
-                    },
-                )
+                Ok(match tracker.calibrated_threshold()? {
+                    Some(value) => (value, ThresholdRule::Calibrated),
+                    None => (FITTED_DETERMINANT_THRESHOLD, ThresholdRule::Fitted),
+                })
             }
         }
     }
