@@ -2,7 +2,9 @@
 
 use armkit::mpc::qp::QpSolverKind;
 use armkit::mpc::scenario::{simulate, SimulationOptions};
-use armkit::mpc::{MpcOptions, MpcPlanner as LibraryPlanner, ReachAid, TaskWeights};
+use armkit::mpc::{
+    ActuatorPrecision, MpcOptions, MpcPlanner as LibraryPlanner, PlantModel, ReachAid, TaskWeights,
+};
 use armkit::Error;
 use numpy::ndarray::Dim;
 use pyo3::prelude::*;
@@ -123,13 +125,17 @@ impl MpcPlanner {
     }
 
     /// Closed loop from `q_start` to the target `T` (velocities integrated
-    /// exactly) until converged or `max_steps`. Returns a dict of arrays:
+    /// exactly, or by actuators of limited precision: `*_resolution` the
+    /// position resolution (m for prismatic joints, rad for rotary ones),
+    /// `*_deadband` the speed below which an axis does not move (m/s,
+    /// rad/s); seed 000 Example 3's prismatic drives) until converged or
+    /// `max_steps`. Returns a dict of arrays:
     /// `time` (K,), `q` (K, dof), `velocity` (K, dof), `position` (K, 3),
     /// `position_error` (K,), `orientation_error` (K,), `status` (list), and
     /// the summary: `converged`, `steps`, `final_position_error`,
     /// `final_orientation_error`, `max_velocity_violation`,
     /// `max_position_violation`. Not converging is `converged = False`.
-    #[pyo3(signature = (T, q_start, max_steps=2000, position_tolerance=1e-4, orientation_tolerance=1e-3, velocity_tolerance=1e-3))]
+    #[pyo3(signature = (T, q_start, max_steps=2000, position_tolerance=1e-4, orientation_tolerance=1e-3, velocity_tolerance=1e-3, prismatic_resolution=0.0, prismatic_deadband=0.0, rotary_resolution=0.0, rotary_deadband=0.0))]
     #[allow(non_snake_case, clippy::too_many_arguments)]
     fn run<'py>(
         &self,
@@ -140,6 +146,10 @@ impl MpcPlanner {
         position_tolerance: f64,
         orientation_tolerance: f64,
         velocity_tolerance: f64,
+        prismatic_resolution: f64,
+        prismatic_deadband: f64,
+        rotary_resolution: f64,
+        rotary_deadband: f64,
     ) -> PyResult<Bound<'py, PyDict>> {
         let model = self.planner.model().clone();
         let dof = model.dof();
@@ -150,6 +160,19 @@ impl MpcPlanner {
             position_tolerance,
             orientation_tolerance,
             velocity_tolerance,
+            plant: PlantModel::of_actuators(
+                ActuatorPrecision {
+                    position_resolution: prismatic_resolution,
+                    deadband: prismatic_deadband,
+                    ..ActuatorPrecision::EXACT
+                },
+                ActuatorPrecision {
+                    position_resolution: rotary_resolution,
+                    deadband: rotary_deadband,
+                    ..ActuatorPrecision::EXACT
+                },
+            )
+            .or_raise()?,
             ..SimulationOptions::default()
         };
         let options = self.options.clone();

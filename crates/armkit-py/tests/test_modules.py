@@ -150,6 +150,15 @@ def test_mpc_reaches_the_target_within_the_limits():
     assert run["converged"] and run["max_position_violation"] == 0.0
     with pytest.raises(ValueError, match=re.escape("invalid argument `solver`: unknown QP solver `cvx`")):
         armkit.MpcPlanner(panda, solver="cvx")
+    # Actuators of limited precision (seed 000 Example 3's plant): rotary
+    # axes resting only on 0.01 rad steps from the start.
+    q0 = np.array([0.0, -0.3, 0.0, -2.2, 0.0, 2.0, 0.8])
+    coarse = planner.run(target, q0, max_steps=200, rotary_resolution=0.01)
+    steps = (coarse["q"] - q0) / 0.01
+    np.testing.assert_allclose(steps, np.round(steps), atol=1e-9)
+    assert np.abs(steps).max() >= 1.0  # the axes moved
+    with pytest.raises(ValueError, match=re.escape("plant.rotary.deadband")):
+        planner.run(target, q0, rotary_deadband=-1.0)
 
 
 def test_beam_deflection_is_the_textbook_one():

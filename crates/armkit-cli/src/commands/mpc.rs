@@ -174,14 +174,10 @@ impl MpcArgs {
             deadband: self.prismatic_deadband,
             ..ActuatorPrecision::EXACT
         };
-        Ok(if prismatic.is_exact() {
-            PlantModel::Exact
-        } else {
-            PlantModel::LimitedPrecision {
-                prismatic,
-                rotary: ActuatorPrecision::EXACT,
-            }
-        })
+        Ok(PlantModel::of_actuators(
+            prismatic,
+            ActuatorPrecision::EXACT,
+        )?)
     }
 
     /// The example's simulation settings on the flags' plant.

@@ -278,8 +278,12 @@ class MpcPlanner:
     def run(
         self, T: _ArrayLike, q_start: _ArrayLike, max_steps: int = 2000, position_tolerance: float = 1e-4,
         orientation_tolerance: float = 1e-3, velocity_tolerance: float = 1e-3,
+        prismatic_resolution: float = 0.0, prismatic_deadband: float = 0.0,
+        rotary_resolution: float = 0.0, rotary_deadband: float = 0.0,
     ) -> Dict[str, Any]:
-        """Closed loop to ``T`` from ``q_start``: arrays ``time`` (K,), ``q``
+        """Closed loop to ``T`` from ``q_start`` (the joints follow the
+        commands exactly, or by actuators of limited precision: position
+        resolution in m / rad, speed deadband in m/s / rad/s); arrays ``time`` (K,), ``q``
         and ``velocity`` (K, dof), ``position`` (K, 3), ``position_error``,
         ``orientation_error`` (K,), ``status`` (list); summary ``converged``,
         ``steps``, ``final_position_error``, ``final_orientation_error``,

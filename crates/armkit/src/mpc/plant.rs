@@ -143,6 +143,22 @@ impl PlantModel {
         }
     }
 
+    /// The plant of the given actuators: [`PlantModel::Exact`] when both are
+    /// exact, else [`PlantModel::LimitedPrecision`]. Errors: a field not
+    /// finite or negative (named, e.g. `plant.prismatic.deadband`).
+    pub fn of_actuators(
+        prismatic: ActuatorPrecision,
+        rotary: ActuatorPrecision,
+    ) -> Result<PlantModel> {
+        let model = if prismatic.is_exact() && rotary.is_exact() {
+            PlantModel::Exact
+        } else {
+            PlantModel::LimitedPrecision { prismatic, rotary }
+        };
+        model.validate()?;
+        Ok(model)
+    }
+
     /// The prismatic joints' position resolution, m (0: continuous, and
     /// for [`PlantModel::Exact`]).
     pub fn prismatic_position_resolution(&self) -> f64 {
