@@ -603,6 +603,30 @@ fn a_ur5_with_an_offset_wrist_is_the_three_parallel_class_without_a_pair() {
     assert!(error.contains("non-finite"), "{error}");
 }
 
+/// The heavy version: 10 000 poses of the offset-wrist UR5 and 200 random
+/// arms of 100 poses at each end.
+#[test]
+#[ignore]
+fn three_parallel_without_a_pair_heavy() {
+    let model = ur5_with_an_offset_wrist(0.04);
+    let mut s = solver(&model);
+    let tally = check(&model, &mut s, 10 * POSES, 25, &no_parameter);
+    assert_all_recovered("ur5 offset wrist", &tally);
+    for (seed, reverse) in [(26, false), (27, true)] {
+        let mut rng = common::rng(seed);
+        for arm in 0..200 {
+            let mut lines = three_parallel_offset_lines(&mut rng);
+            if reverse {
+                lines.reverse();
+            }
+            let model = model_from_lines("offset", &lines, random_home(&mut rng));
+            let mut s = solver(&model);
+            let tally = check(&model, &mut s, POSES / 10, seed * 1000 + arm, &no_parameter);
+            assert_all_recovered(&format!("random arm {arm} ({})", s.class()), &tally);
+        }
+    }
+}
+
 #[test]
 fn random_shoulder_elbow_wrist_arms() {
     let mut rng = common::rng(30);

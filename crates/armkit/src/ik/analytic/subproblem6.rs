@@ -214,16 +214,19 @@ struct Trig2 {
 }
 
 impl Trig2 {
-    fn at(&self, phi: f64) -> f64 {
-        let (s, c) = phi.sin_cos();
+    /// `f` at the angle of sine `s` and cosine `c`.
+    fn at_direction(&self, s: f64, c: f64) -> f64 {
         let (s2, c2) = (2.0 * s * c, c * c - s * s);
         self.c2 * c2 + self.s2 * s2 + self.c1 * c + self.s1 * s + self.c0
     }
 
-    fn slope(&self, phi: f64) -> f64 {
-        let (s, c) = phi.sin_cos();
+    /// `f` and `df / dphi` at the angle of sine `s` and cosine `c`.
+    fn value_and_slope(&self, s: f64, c: f64) -> (f64, f64) {
         let (s2, c2) = (2.0 * s * c, c * c - s * s);
-        2.0 * (self.s2 * c2 - self.c2 * s2) + self.s1 * c - self.c1 * s
+        (
+            self.c2 * c2 + self.s2 * s2 + self.c1 * c + self.s1 * s + self.c0,
+            2.0 * (self.s2 * c2 - self.c2 * s2) + self.s1 * c - self.c1 * s,
+        )
     }
 
     /// The same polynomial in `psi = phi - shift`.
@@ -251,23 +254,27 @@ impl Trig2 {
         ]
     }
 
-    /// Newton on `f`, kept while it lowers `|f|`.
-    fn polish(&self, mut phi: f64) -> f64 {
-        let mut value = self.at(phi).abs();
-        for _ in 0..4 {
-            let slope = self.slope(phi);
+    /// Newton on `f` (at most 3 steps), kept while it lowers `|f|`;
+    /// returns the angle with its sine and cosine.
+    fn polish(&self, phi: f64) -> (f64, f64, f64) {
+        let (s, c) = phi.sin_cos();
+        let mut best = (phi, s, c);
+        let (mut value, mut slope) = self.value_and_slope(s, c);
+        for _ in 0..3 {
             if slope == 0.0 || value == 0.0 {
                 break;
             }
-            let next = phi - self.at(phi) / slope;
-            let next_value = self.at(next).abs();
-            if next_value >= value {
+            let next = best.0 - value / slope;
+            let (s, c) = next.sin_cos();
+            let (next_value, next_slope) = self.value_and_slope(s, c);
+            if next_value.abs() >= value.abs() {
                 break;
             }
-            phi = next;
+            best = (next, s, c);
             value = next_value;
+            slope = next_slope;
         }
-        phi
+        best
     }
 }
 
@@ -432,9 +439,20 @@ impl Sinusoids {
         // Sample f; the quartic in u is taken about the sample of largest |f|.
         let mut far = 0.0;
         let mut far_value = 0.0_f64;
-        for i in 0..8 {
+        let h = std::f64::consts::FRAC_1_SQRT_2;
+        let directions = [
+            (0.0, 1.0),
+            (h, h),
+            (1.0, 0.0),
+            (h, -h),
+            (0.0, -1.0),
+            (-h, -h),
+            (-1.0, 0.0),
+            (-h, h),
+        ];
+        for (i, (s, c)) in directions.into_iter().enumerate() {
             let phi = i as f64 * std::f64::consts::FRAC_PI_4;
-            let v = f.at(phi);
+            let v = f.at_direction(s, c);
             if v.abs() > far_value.abs() {
                 far = phi;
                 far_value = v;
@@ -446,8 +464,8 @@ impl Sinusoids {
         if rho2 >= -RELATIVE_TOLERANCE && far_value != 0.0 {
             let (roots, count) = real_roots(&quartic);
             for u in &roots[..count] {
-                let phi = f.polish(shift + 2.0 * u.atan());
-                let pair = self.pair_at(&space.point(rho, phi), &m, &e, scale);
+                let (_, s, c) = f.polish(shift + 2.0 * u.atan());
+                let pair = self.pair_at(&space.point(rho, s, c), &m, &e, scale);
                 out.push(pair);
             }
         }
@@ -461,7 +479,8 @@ impl Sinusoids {
         if rho > 0.0 {
             let (critical, count) = real_roots(&derivative_of(&quartic));
             for u in &critical[..count.min(3)] {
-                starts[n] = space.point(rho, shift + 2.0 * u.atan());
+                let (s, c) = (shift + 2.0 * u.atan()).sin_cos();
+                starts[n] = space.point(rho, s, c);
                 n += 1;
             }
         }
@@ -678,9 +697,8 @@ impl Solutions {
         }
     }
 
-    /// `x0 + N rho (cos phi, sin phi)`.
-    fn point(&self, rho: f64, phi: f64) -> Vector4 {
-        let (s, c) = phi.sin_cos();
+    /// `x0 + N rho (cos phi, sin phi)`, from `s = sin phi`, `c = cos phi`.
+    fn point(&self, rho: f64, s: f64, c: f64) -> Vector4 {
         axpy(
             rho * c,
             &self.null[0],
