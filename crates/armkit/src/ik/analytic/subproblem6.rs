@@ -285,6 +285,18 @@ const MAX_ROOTS: usize = 4;
 /// Real roots (ascending) of `sum p[i] u^i`, `p.len() - 1 <= 4` its degree
 /// with `p[last] != 0`: see the module docs.
 fn real_roots(p: &[f64]) -> ([f64; MAX_ROOTS], usize) {
+    roots_to(p, FULL_PRECISION)
+}
+
+/// Relative bracket width at which [`real_roots`] stops: a few ulps.
+const FULL_PRECISION: f64 = 4.0 * f64::EPSILON;
+/// Relative bracket width for the derivatives' roots, which only split the
+/// line into monotone pieces (an error `delta` there changes the
+/// polynomial's value at a critical point by `O(delta^2)`).
+const CRITICAL_PRECISION: f64 = 1e-10;
+
+/// [`real_roots`] with the brackets closed to `precision` (relative).
+fn roots_to(p: &[f64], precision: f64) -> ([f64; MAX_ROOTS], usize) {
     let mut roots = [0.0; MAX_ROOTS];
     let n = p.len() - 1;
     if n == 0 {
@@ -294,11 +306,14 @@ fn real_roots(p: &[f64]) -> ([f64; MAX_ROOTS], usize) {
         roots[0] = -p[0] / p[1];
         return (roots, 1);
     }
+    if n == 2 {
+        return quadratic_roots(p);
+    }
     let mut derivative = [0.0; 4];
     for i in 0..n {
         derivative[i] = (i + 1) as f64 * p[i + 1];
     }
-    let (critical, m) = real_roots(&derivative[..n]);
+    let (critical, m) = roots_to(&derivative[..n], CRITICAL_PRECISION);
     // Cauchy's bound: every root has |u| < 1 + max |p[i] / p[n]|.
     let bound = 1.0 + p[..n].iter().fold(0.0_f64, |b, c| b.max((c / p[n]).abs()));
     let mut points = [0.0; MAX_ROOTS + 2];
@@ -326,7 +341,7 @@ fn real_roots(p: &[f64]) -> ([f64; MAX_ROOTS], usize) {
             push(a, &mut count);
             changed[i] = true;
         } else if fb == 0.0 || (fa < 0.0) != (fb < 0.0) {
-            push(bracketed_root(p, a, b, fa, fb), &mut count);
+            push(bracketed_root(p, a, b, fa, fb, precision), &mut count);
             changed[i] = true;
         }
     }
@@ -341,6 +356,31 @@ fn real_roots(p: &[f64]) -> ([f64; MAX_ROOTS], usize) {
     }
     roots[..count].sort_unstable_by(f64::total_cmp);
     (roots, count)
+}
+
+/// Real roots of `p[0] + p[1] u + p[2] u^2` (`p[2] != 0`), ascending, by
+/// the cancellation-free formula; a double root when the discriminant is
+/// negative within [`TANGENT_TOLERANCE`] of its terms.
+fn quadratic_roots(p: &[f64]) -> ([f64; MAX_ROOTS], usize) {
+    let mut roots = [0.0; MAX_ROOTS];
+    let (c, b, a) = (p[0], p[1], p[2]);
+    let discriminant = b * b - 4.0 * a * c;
+    let terms = b * b + (4.0 * a * c).abs();
+    if discriminant < 0.0 {
+        if discriminant >= -TANGENT_TOLERANCE * terms {
+            roots[0] = -b / (2.0 * a);
+            return (roots, 1);
+        }
+        return (roots, 0);
+    }
+    let q = -0.5 * (b + b.signum() * discriminant.sqrt());
+    if q == 0.0 {
+        return (roots, 1); // b = c = 0: the double root 0
+    }
+    let (r1, r2) = (q / a, c / q);
+    roots[0] = r1.min(r2);
+    roots[1] = r1.max(r2);
+    (roots, 2)
 }
 
 fn evaluate(p: &[f64], u: f64) -> f64 {
@@ -362,8 +402,10 @@ fn size(p: &[f64], u: f64) -> f64 {
 
 /// The root of `p` in `[a, b]` (monotone there, `fa`, `fb` of opposite
 /// signs or `fb = 0`): Newton, falling back to bisection whenever a step
-/// leaves the bracket, until the bracket is a few ulps wide.
-fn bracketed_root(p: &[f64], mut a: f64, mut b: f64, fa: f64, fb: f64) -> f64 {
+/// leaves the bracket, until the bracket or the step is `precision` wide
+/// (relative to `max(1, |u|)`: `u = tan(psi / 2)`, so that is the
+/// precision of `psi` near 0 too).
+fn bracketed_root(p: &[f64], mut a: f64, mut b: f64, fa: f64, fb: f64, precision: f64) -> f64 {
     if fb == 0.0 {
         return b;
     }
@@ -387,8 +429,8 @@ fn bracketed_root(p: &[f64], mut a: f64, mut b: f64, fa: f64, fb: f64) -> f64 {
         } else {
             0.5 * (a + b)
         };
-        if b - a <= 4.0 * f64::EPSILON * u.abs().max(f64::MIN_POSITIVE)
-            || (u - previous).abs() <= f64::EPSILON * u.abs()
+        let size = u.abs().max(1.0);
+        if b - a <= precision * size || (u - previous).abs() <= 0.25 * precision * size
         {
             break;
         }
