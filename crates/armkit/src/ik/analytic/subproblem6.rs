@@ -314,12 +314,11 @@ fn roots_to(p: &[f64], precision: f64) -> ([f64; MAX_ROOTS], usize) {
         derivative[i] = (i + 1) as f64 * p[i + 1];
     }
     let (critical, m) = roots_to(&derivative[..n], CRITICAL_PRECISION);
-    // Cauchy's bound: every root has |u| < 1 + max |p[i] / p[n]|.
-    let bound = 1.0 + p[..n].iter().fold(0.0_f64, |b, c| b.max((c / p[n]).abs()));
+    let bound = root_bound(p);
     let mut points = [0.0; MAX_ROOTS + 2];
     points[0] = -bound;
     for (slot, c) in points[1..].iter_mut().zip(&critical[..m]) {
-        *slot = c.clamp(-bound, bound);
+        *slot = c.max(-bound).min(bound);
     }
     points[m + 1] = bound;
     let points = &points[..m + 2];
@@ -341,7 +340,8 @@ fn roots_to(p: &[f64], precision: f64) -> ([f64; MAX_ROOTS], usize) {
             push(a, &mut count);
             changed[i] = true;
         } else if fb == 0.0 || (fa < 0.0) != (fb < 0.0) {
-            push(bracketed_root(p, a, b, fa, fb, precision), &mut count);
+            let start = 0.5 * (a + b);
+            push(bracketed_root(p, a, b, fa, fb, start, precision), &mut count);
             changed[i] = true;
         }
     }
@@ -383,6 +383,27 @@ fn quadratic_roots(p: &[f64]) -> ([f64; MAX_ROOTS], usize) {
     (roots, 2)
 }
 
+/// Fujiwara's bound, a little widened: every root has `|u| < 2 max_i
+/// |p[n - i] / p[n]|^(1 / i)` (the last term halved first).
+fn root_bound(p: &[f64]) -> f64 {
+    let n = p.len() - 1;
+    let mut bound = 0.0_f64;
+    for i in 1..=n {
+        let mut ratio = (p[n - i] / p[n]).abs();
+        if i == n {
+            ratio *= 0.5;
+        }
+        let term = match i {
+            1 => ratio,
+            2 => ratio.sqrt(),
+            4 => ratio.sqrt().sqrt(),
+            _ => ratio.cbrt(),
+        };
+        bound = bound.max(term);
+    }
+    2.0 * bound * (1.0 + 1e-12) + f64::MIN_POSITIVE
+}
+
 fn evaluate(p: &[f64], u: f64) -> f64 {
     p.iter().rev().fold(0.0, |acc, c| acc * u + c)
 }
@@ -401,16 +422,24 @@ fn size(p: &[f64], u: f64) -> f64 {
 }
 
 /// The root of `p` in `[a, b]` (monotone there, `fa`, `fb` of opposite
-/// signs or `fb = 0`): Newton, falling back to bisection whenever a step
+/// signs or `fb = 0`): Newton from `start`, falling back to bisection whenever a step
 /// leaves the bracket, until the bracket or the step is `precision` wide
 /// (relative to `max(1, |u|)`: `u = tan(psi / 2)`, so that is the
 /// precision of `psi` near 0 too).
-fn bracketed_root(p: &[f64], mut a: f64, mut b: f64, fa: f64, fb: f64, precision: f64) -> f64 {
+fn bracketed_root(
+    p: &[f64],
+    mut a: f64,
+    mut b: f64,
+    fa: f64,
+    fb: f64,
+    start: f64,
+    precision: f64,
+) -> f64 {
     if fb == 0.0 {
         return b;
     }
     let rising = fa < 0.0;
-    let mut u = 0.5 * (a + b);
+    let mut u = start;
     for _ in 0..200 {
         let value = evaluate(p, u);
         if value == 0.0 {
@@ -423,15 +452,17 @@ fn bracketed_root(p: &[f64], mut a: f64, mut b: f64, fa: f64, fb: f64, precision
         }
         let slope = evaluate_slope(p, u);
         let newton = u - value / slope;
-        let previous = u;
+        let size = u.abs().max(1.0);
+        if slope != 0.0 && (newton - u).abs() <= precision * size {
+            // Converged: the last step is within the precision.
+            return newton.max(a).min(b);
+        }
         u = if slope != 0.0 && newton > a && newton < b {
             newton
         } else {
             0.5 * (a + b)
         };
-        let size = u.abs().max(1.0);
-        if b - a <= precision * size || (u - previous).abs() <= 0.25 * precision * size
-        {
+        if b - a <= precision * size {
             break;
         }
     }
