@@ -232,7 +232,14 @@ fn explain_and_solve_a_three_parallel_arm_without_an_intersecting_pair() {
     let file = dir.join("ur5-offset-wrist.toml");
     std::fs::write(&file, UR5_OFFSET_WRIST_DH).unwrap();
     let path = file.to_str().unwrap();
-    let output = armkit(&["ik", "--robot-file", path, "--solver", "analytic", "--explain"]);
+    let output = armkit(&[
+        "ik",
+        "--robot-file",
+        path,
+        "--solver",
+        "analytic",
+        "--explain",
+    ]);
     assert!(output.status.success(), "{}", stderr(&output));
     let text = stdout(&output);
     assert!(text.contains("class: three_parallel_2_3_4 "), "{text}");

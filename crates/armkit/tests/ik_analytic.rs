@@ -577,9 +577,7 @@ fn a_ur5_with_an_offset_wrist_is_the_three_parallel_class_without_a_pair() {
     let mut s = solver(&model);
     assert_eq!(
         s.class(),
-        ArmClass::ThreeParallelOffset {
-            end: ChainEnd::Tip
-        }
+        ArmClass::ThreeParallelOffset { end: ChainEnd::Tip }
     );
     let tally = check(&model, &mut s, POSES, 24, &no_parameter);
     assert_all_recovered("ur5 offset wrist", &tally);

@@ -714,7 +714,11 @@ fn analytic_ik_solves_do_not_allocate() {
     let far = armkit::math::Pose::from_translation(armkit::math::Vector3::new(9.0, 0.0, 0.5));
     let before = allocations();
     assert!(!solver.solve(&far, &start).unwrap().is_empty());
-    assert_eq!(allocations() - before, 0, "three_parallel_2_3_4 out of reach");
+    assert_eq!(
+        allocations() - before,
+        0,
+        "three_parallel_2_3_4 out of reach"
+    );
 }
 
 #[test]

@@ -175,7 +175,9 @@ pub(crate) enum Detected {
         meet: Vector3<f64>,
     },
     /// Three parallel without an intersecting end pair.
-    ThreeParallelOffset { end: ChainEnd },
+    ThreeParallelOffset {
+        end: ChainEnd,
+    },
     /// 7-DOF SRS: shoulder, elbow, wrist points.
     ShoulderElbowWrist {
         shoulder: Vector3<f64>,

@@ -9,8 +9,8 @@
 //! (`k1`, `k2` unit axes, the rest any vectors; `R(k, t)` as in
 //! [`super::subproblems`]). Up to 4 solutions.
 //!
-//! Derivation. Each term is a sinusoid, `h . R(k, t) p = a . (cos t, sin t)
-//! + c` ([`Wave`]), so with the unit vectors `x1 = (cos t1, sin t1)` and
+//! Derivation. Each term is a sinusoid,
+//! `h . R(k, t) p = a . (cos t, sin t) + c` ([`Wave`]), so with the unit vectors `x1 = (cos t1, sin t1)` and
 //! `x2 = (cos t2, sin t2)` stacked as `x` in R^4 the two equations are
 //! linear: `M x = e` (`M` 2 x 4). Its solutions are `x = x0 + N z`, `x0`
 //! the least-norm one and `N` (4 x 2, orthonormal columns) the null space
@@ -341,7 +341,10 @@ fn roots_to(p: &[f64], precision: f64) -> ([f64; MAX_ROOTS], usize) {
             changed[i] = true;
         } else if fb == 0.0 || (fa < 0.0) != (fb < 0.0) {
             let start = 0.5 * (a + b);
-            push(bracketed_root(p, a, b, fa, fb, start, precision), &mut count);
+            push(
+                bracketed_root(p, a, b, fa, fb, start, precision),
+                &mut count,
+            );
             changed[i] = true;
         }
     }
@@ -557,7 +560,12 @@ impl Sinusoids {
                 n += 1;
             }
         }
-        out.push(least_squares(&m, &e, scale, &with_axis_starts(&starts[..n])));
+        out.push(least_squares(
+            &m,
+            &e,
+            scale,
+            &with_axis_starts(&starts[..n]),
+        ));
         out
     }
 
@@ -597,11 +605,7 @@ fn least_squares(
     scale: f64,
     starts: &([Vector4; 8], usize),
 ) -> TurnPair {
-    let mut best = (
-        f64::INFINITY,
-        Turn::of_angle(0.0),
-        Turn::of_angle(0.0),
-    );
+    let mut best = (f64::INFINITY, Turn::of_angle(0.0), Turn::of_angle(0.0));
     for x in &starts.0[..starts.1] {
         let (t1, t2) = minimize(
             m,
@@ -659,7 +663,12 @@ fn minimize(m: &[Vector4; 2], e: &[f64; 2], mut t1: f64, mut t2: f64) -> (f64, f
         };
         let (j0, j1) = (j(0), j(1));
         let g = (r[0] * j0.0 + r[1] * j1.0, r[0] * j0.1 + r[1] * j1.1);
-        let curl = |i: usize| (m[i][0] * a.cos + m[i][1] * a.sin, m[i][2] * b.cos + m[i][3] * b.sin);
+        let curl = |i: usize| {
+            (
+                m[i][0] * a.cos + m[i][1] * a.sin,
+                m[i][2] * b.cos + m[i][3] * b.sin,
+            )
+        };
         let (w0, w1) = (curl(0), curl(1));
         let h11 = j0.0 * j0.0 + j1.0 * j1.0 - r[0] * w0.0 - r[1] * w1.0;
         let h22 = j0.1 * j0.1 + j1.1 * j1.1 - r[0] * w0.1 - r[1] * w1.1;
@@ -684,7 +693,11 @@ fn minimize(m: &[Vector4; 2], e: &[f64; 2], mut t1: f64, mut t2: f64) -> (f64, f
             }
         }
         if !moved {
-            let curvature = h11.abs().max(h22.abs()).max(h12.abs()).max(f64::MIN_POSITIVE);
+            let curvature = h11
+                .abs()
+                .max(h22.abs())
+                .max(h12.abs())
+                .max(f64::MIN_POSITIVE);
             let mut step = 1.0 / curvature;
             for _ in 0..30 {
                 let next = cost(t1 - step * g.0, t2 - step * g.1);
@@ -874,7 +887,16 @@ mod tests {
                 for j in 0..n {
                     let v = grid[i][j];
                     let mut minimum = true;
-                    for (di, dj) in [(1, 0), (n - 1, 0), (0, 1), (0, n - 1), (1, 1), (n - 1, n - 1), (1, n - 1), (n - 1, 1)] {
+                    for (di, dj) in [
+                        (1, 0),
+                        (n - 1, 0),
+                        (0, 1),
+                        (0, n - 1),
+                        (1, 1),
+                        (n - 1, n - 1),
+                        (1, n - 1),
+                        (n - 1, 1),
+                    ] {
                         if grid[(i + di) % n][(j + dj) % n] < v {
                             minimum = false;
                         }
@@ -924,16 +946,33 @@ mod tests {
             let (t1, t2) = (rng.gen_range(-PI..PI), rng.gen_range(-PI..PI));
             let d = instance.sides(t1, t2);
             let pairs = instance.solve(d);
-            let res: Vec<f64> = pairs.as_slice().iter().map(|&(a, b)| instance.residual(a, b, d)).collect();
+            let res: Vec<f64> = pairs
+                .as_slice()
+                .iter()
+                .map(|&(a, b)| instance.residual(a, b, d))
+                .collect();
             assert!(pairs.exact, "{:?} {res:?} gen {t1} {t2}", pairs.as_slice());
             for &(a, b) in pairs.as_slice() {
-                assert!(instance.residual(a, b, d) < 1e-12, "{}", instance.residual(a, b, d));
+                assert!(
+                    instance.residual(a, b, d) < 1e-12,
+                    "{}",
+                    instance.residual(a, b, d)
+                );
             }
-            let found = |x: f64, y: f64| pairs.as_slice().iter().any(|&(a, b)| same(a, x) && same(b, y));
+            let found = |x: f64, y: f64| {
+                pairs
+                    .as_slice()
+                    .iter()
+                    .any(|&(a, b)| same(a, x) && same(b, y))
+            };
             assert!(found(t1, t2), "generating pair missing");
             let brute = instance.brute_force_roots(d);
             for &(x, y) in &brute {
-                assert!(found(x, y), "root ({x}, {y}) missing from {:?}", pairs.as_slice());
+                assert!(
+                    found(x, y),
+                    "root ({x}, {y}) missing from {:?}",
+                    pairs.as_slice()
+                );
             }
             assert!(pairs.as_slice().len() <= brute.len().max(1) + 1);
             counts[pairs.as_slice().len()] += 1;
@@ -970,8 +1009,12 @@ mod tests {
                 }
             }
             let e = 1e-6;
-            let da = (instance.residual(a + e, b, d).powi(2) - instance.residual(a - e, b, d).powi(2)) / (2.0 * e);
-            let db = (instance.residual(a, b + e, d).powi(2) - instance.residual(a, b - e, d).powi(2)) / (2.0 * e);
+            let da = (instance.residual(a + e, b, d).powi(2)
+                - instance.residual(a - e, b, d).powi(2))
+                / (2.0 * e);
+            let db = (instance.residual(a, b + e, d).powi(2)
+                - instance.residual(a, b - e, d).powi(2))
+                / (2.0 * e);
             assert!(da.abs() < 1e-7 && db.abs() < 1e-7, "gradient {da} {db}");
         }
     }
@@ -984,7 +1027,11 @@ mod tests {
         assert_eq!(&roots[..n], &[-2.0, 0.5, 1.0, 3.0]);
         let double = [1.0, -2.0, 2.0, -2.0, 1.0];
         let (roots, n) = real_roots(&double);
-        assert!(n >= 1 && roots[..n].iter().all(|r| (r - 1.0).abs() < 1e-7), "{:?}", &roots[..n]);
+        assert!(
+            n >= 1 && roots[..n].iter().all(|r| (r - 1.0).abs() < 1e-7),
+            "{:?}",
+            &roots[..n]
+        );
         let none = [1.0, 0.0, 1.0, 0.0, 1.0];
         assert_eq!(real_roots(&none).1, 0);
     }
