@@ -242,7 +242,7 @@ fn explain_and_solve_a_three_parallel_arm_without_an_intersecting_pair() {
     ]);
     assert!(output.status.success(), "{}", stderr(&output));
     let text = stdout(&output);
-    assert!(text.contains("class: three_parallel_2_3_4 "), "{text}");
+    assert!(text.contains("class: three_parallel_2_3_4\n"), "{text}");
     assert!(text.contains("subproblem 6"), "{text}");
     let model = armkit::description::load(&file).unwrap();
     let q = [0.4, -1.1, 1.3, -0.6, 1.4, 0.2];

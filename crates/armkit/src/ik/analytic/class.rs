@@ -52,9 +52,9 @@ pub enum ArmClass {
         end: ChainEnd,
     },
     /// 6 rotation joints, axes 2, 3, 4 parallel (counted from `end`'s
-    /// opposite), axes 1 and 5 not parallel to them, and no intersecting
-    /// pair at the end (a UR-type arm with an offset wrist): subproblem 6,
-    /// up to 8 solutions in closed form.
+    /// opposite), axes 1 and 5 not parallel to them, axes 5 and 6 not
+    /// intersecting (else [`ArmClass::ThreeParallel`]; a UR-type arm with
+    /// an offset wrist): subproblem 6, up to 8 solutions in closed form.
     ThreeParallelOffset {
         /// The end the general axes 5, 6 are at (`Tip`: axes 2-3-4 parallel).
         end: ChainEnd,
@@ -125,7 +125,7 @@ impl ArmClass {
                 "three parallel axes and an intersecting pair (UR family): closed form, up to 8 solutions"
             }
             ArmClass::ThreeParallelOffset { .. } => {
-                "three parallel axes, the other three general (no intersecting pair): closed form by subproblem 6 (a quartic, roots polished to round-off), up to 8 solutions"
+                "three parallel axes, the two axes beyond them not intersecting (a UR with an offset wrist): closed form by subproblem 6 (a quartic, roots polished to round-off), up to 8 solutions"
             }
             ArmClass::SphericalShoulderElbowWrist => {
                 "7-DOF spherical shoulder, elbow, spherical wrist: closed form per elbow angle, up to 8 solutions"
