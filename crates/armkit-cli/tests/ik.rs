@@ -189,6 +189,89 @@ fn explain_prints_the_class() {
     }
 }
 
+/// A DH file of a UR5 whose wrist axes 5 and 6 do not meet (a5 = 0.04 m).
+const UR5_OFFSET_WRIST_DH: &str = r#"
+name = "ur5-offset-wrist"
+convention = "standard"
+[[links]]
+type = "R"
+d = 0.089459
+a = 0.0
+alpha = 1.5707963267948966
+[[links]]
+type = "R"
+d = 0.0
+a = -0.425
+alpha = 0.0
+[[links]]
+type = "R"
+d = 0.0
+a = -0.39225
+alpha = 0.0
+[[links]]
+type = "R"
+d = 0.10915
+a = 0.0
+alpha = 1.5707963267948966
+[[links]]
+type = "R"
+d = 0.09465
+a = 0.04
+alpha = -1.5707963267948966
+[[links]]
+type = "R"
+d = 0.0823
+a = 0.0
+alpha = 0.0
+"#;
+
+#[test]
+fn explain_and_solve_a_three_parallel_arm_without_an_intersecting_pair() {
+    let dir = std::env::temp_dir().join(format!("armkit-ik-offset-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("ur5-offset-wrist.toml");
+    std::fs::write(&file, UR5_OFFSET_WRIST_DH).unwrap();
+    let path = file.to_str().unwrap();
+    let output = armkit(&[
+        "ik",
+        "--robot-file",
+        path,
+        "--solver",
+        "analytic",
+        "--explain",
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let text = stdout(&output);
+    assert!(text.contains("class: three_parallel_2_3_4\n"), "{text}");
+    assert!(text.contains("subproblem 6"), "{text}");
+    let model = armkit::description::load(&file).unwrap();
+    let q = [0.4, -1.1, 1.3, -0.6, 1.4, 0.2];
+    let pose = *forward_kinematics(&model, &mut Data::new(&model), &q).unwrap();
+    let (r, p, y) = pose.rpy();
+    let t = pose.translation;
+    let pose = format!(
+        "{:.17e},{:.17e},{:.17e},{:.17e},{:.17e},{:.17e}",
+        t.x, t.y, t.z, r, p, y
+    );
+    let output = armkit(&[
+        "ik",
+        "--robot-file",
+        path,
+        "--pose",
+        &pose,
+        "--solver",
+        "analytic",
+        "--json",
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let json: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    assert_eq!(json["class"], "three_parallel_2_3_4");
+    let fits = json["solution_fits"].as_array().unwrap();
+    assert!(fits.len() >= 4, "{fits:?}");
+    assert!(fits.iter().all(|f| f["fit"] == "exact"), "{fits:?}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 #[test]
 fn analytic_json_lists_every_solution_with_the_class() {
     let q0 = [0.4, -1.1, 1.3, -0.6, 1.4, 0.2];

@@ -189,12 +189,49 @@ fn bench_analytic(c: &mut Criterion) {
     }
 }
 
+/// A fixed arm of the three-parallel class without an intersecting pair:
+/// axes 2-3-4 parallel (alpha 2 = alpha 3 = 0), the others skew (made-up
+/// lengths and twists, standard DH).
+fn three_parallel_offset_arm() -> Model {
+    use armkit::model::{DhConvention, DhLink};
+    let table = [
+        (0.31, 0.08, 1.1),
+        (0.12, 0.52, 0.0),
+        (-0.07, 0.44, 0.0),
+        (0.21, 0.06, -0.8),
+        (0.17, 0.05, 1.3),
+        (0.09, 0.0, 0.4),
+    ];
+    let links = table.map(|(d, a, alpha)| {
+        DhLink::revolute(d, a, alpha).with_limits(-std::f64::consts::PI, std::f64::consts::PI)
+    });
+    Model::from_dh("three-parallel-offset", DhConvention::Standard, &links).unwrap()
+}
+
+fn bench_three_parallel_offset(c: &mut Criterion) {
+    let model = three_parallel_offset_arm();
+    for (label, verification) in [
+        ("distinct", Verification::ForwardKinematics),
+        ("distinct_unchecked", Verification::Subproblems),
+    ] {
+        let options = AnalyticOptions {
+            representatives: Representatives::Nearest,
+            verification,
+            ..AnalyticOptions::default()
+        };
+        let solver = AnalyticSolver::new(&model, options).unwrap();
+        assert_eq!(solver.class().as_str(), "three_parallel_2_3_4");
+        bench_analytic_solver(c, &format!("three_parallel_offset/{label}"), &model, solver);
+    }
+}
+
 fn ik(c: &mut Criterion) {
     for name in ["ur5", "panda", "gantry9"] {
         bench_numeric(c, name);
     }
     bench_closed_form(c);
     bench_analytic(c);
+    bench_three_parallel_offset(c);
 }
 
 criterion_group!(benches, ik);

@@ -403,6 +403,20 @@ fn three_parallel_lines(rng: &mut ChaCha8Rng) -> Lines {
     ]
 }
 
+/// Lines of a random arm with axes 2-3-4 parallel and axes 1, 5, 6
+/// general: random points, so no consecutive pair intersects.
+fn three_parallel_offset_lines(rng: &mut ChaCha8Rng) -> Lines {
+    let k = unit(rng);
+    vec![
+        (point(rng), unit(rng), false),
+        (point(rng), k * sign(rng), false),
+        (point(rng) * 2.0, k * sign(rng), false),
+        (point(rng) * 2.0, k * sign(rng), false),
+        (point(rng), unit(rng), false),
+        (point(rng), unit(rng), false),
+    ]
+}
+
 fn random_arm_check(
     seed: u64,
     lines: impl Fn(&mut ChaCha8Rng) -> Lines,
@@ -515,6 +529,100 @@ fn random_general_position_spherical_wrist_arms() {
 fn random_three_parallel_arms() {
     random_arm_check(20, three_parallel_lines, false, "three_parallel_2_3_4");
     random_arm_check(21, three_parallel_lines, true, "three_parallel_3_4_5");
+}
+
+#[test]
+fn random_three_parallel_arms_without_an_intersecting_pair() {
+    for (seed, reverse, class) in [
+        (22, false, "three_parallel_2_3_4"),
+        (23, true, "three_parallel_3_4_5"),
+    ] {
+        // The class names are prefixes of the UR classes': check them whole.
+        let mut rng = common::rng(seed);
+        let lines = three_parallel_offset_lines(&mut rng);
+        let model = model_from_lines("offset", &lines, random_home(&mut rng));
+        let model = if reverse {
+            let mut reversed = lines.clone();
+            reversed.reverse();
+            model_from_lines("offset", &reversed, random_home(&mut rng))
+        } else {
+            model
+        };
+        assert_eq!(solver(&model).class().as_str(), class);
+        random_arm_check(seed, three_parallel_offset_lines, reverse, class);
+    }
+}
+
+/// The UR5's lines with axis 6 moved `offset` m along the common normal of
+/// axes 5 and 6, so that they no longer intersect.
+fn ur5_with_an_offset_wrist(offset: f64) -> Model {
+    let ur5 = armkit::robots::by_name("ur5").unwrap();
+    let structure = armkit::ik::analytic::structure::ArmStructure::of_model(&ur5).unwrap();
+    let mut lines: Lines = (0..6)
+        .map(|i| (structure.points[i], structure.axes[i], false))
+        .collect();
+    let normal = structure.axes[4].cross(&structure.axes[5]).normalize();
+    lines[5].0 += normal * offset;
+    model_from_lines("ur5-offset-wrist", &lines, structure.home)
+}
+
+#[test]
+fn a_ur5_with_an_offset_wrist_is_the_three_parallel_class_without_a_pair() {
+    let ur5 = armkit::robots::by_name("ur5").unwrap();
+    assert_eq!(
+        solver(&ur5).class().as_str(),
+        "three_parallel_2_3_4_intersecting_5_6"
+    );
+    let model = ur5_with_an_offset_wrist(0.04);
+    let mut s = solver(&model);
+    assert_eq!(
+        s.class(),
+        ArmClass::ThreeParallelOffset { end: ChainEnd::Tip }
+    );
+    let tally = check(&model, &mut s, POSES, 24, &no_parameter);
+    assert_all_recovered("ur5 offset wrist", &tally);
+    // Up to 8 solutions: more than 4 on average.
+    assert!(tally.solutions > 4 * POSES, "{} solutions", tally.solutions);
+    // Out of reach: least-squares answers, said so.
+    let far = Pose::from_translation(Vector3::new(100.0, 0.0, 0.5));
+    let solutions = s.solve(&far, &model.neutral_configuration()).unwrap();
+    assert!(!solutions.is_empty());
+    assert!(solutions
+        .iter()
+        .all(|s| s.fit == Fit::Approximate && s.position_error > 90.0));
+    // Bad input takes the same paths as every class.
+    let start = model.neutral_configuration();
+    let mut skewed = Pose::identity();
+    skewed.rotation[(0, 1)] = 0.3;
+    let error = s.solve(&skewed, &start).unwrap_err().to_string();
+    assert!(error.contains("not a proper rotation"), "{error}");
+    let nan = Pose::from_translation(Vector3::new(0.3, f64::NAN, 0.0));
+    let error = s.solve(&nan, &start).unwrap_err().to_string();
+    assert!(error.contains("non-finite"), "{error}");
+}
+
+/// The heavy version: 10 000 poses of the offset-wrist UR5 and 200 random
+/// arms of 100 poses at each end.
+#[test]
+#[ignore]
+fn three_parallel_without_a_pair_heavy() {
+    let model = ur5_with_an_offset_wrist(0.04);
+    let mut s = solver(&model);
+    let tally = check(&model, &mut s, 10 * POSES, 25, &no_parameter);
+    assert_all_recovered("ur5 offset wrist", &tally);
+    for (seed, reverse) in [(26, false), (27, true)] {
+        let mut rng = common::rng(seed);
+        for arm in 0..200 {
+            let mut lines = three_parallel_offset_lines(&mut rng);
+            if reverse {
+                lines.reverse();
+            }
+            let model = model_from_lines("offset", &lines, random_home(&mut rng));
+            let mut s = solver(&model);
+            let tally = check(&model, &mut s, POSES / 10, seed * 1000 + arm, &no_parameter);
+            assert_all_recovered(&format!("random arm {arm} ({})", s.class()), &tally);
+        }
+    }
 }
 
 #[test]

@@ -688,6 +688,37 @@ fn analytic_ik_solves_do_not_allocate() {
         }
         assert!(solutions > 0, "{name}");
     }
+    // The three-parallel class without an intersecting pair (subproblem 6).
+    use armkit::model::{DhConvention, DhLink};
+    let links = [
+        (0.31, 0.08, 1.1),
+        (0.12, 0.52, 0.0),
+        (-0.07, 0.44, 0.0),
+        (0.21, 0.06, -0.8),
+        (0.17, 0.05, 1.3),
+        (0.09, 0.0, 0.4),
+    ]
+    .map(|(d, a, alpha)| DhLink::revolute(d, a, alpha).with_limits(-3.0, 3.0));
+    let model = armkit::Model::from_dh("offset", DhConvention::Standard, &links).unwrap();
+    let mut solver = AnalyticSolver::new(&model, AnalyticOptions::default()).unwrap();
+    assert_eq!(solver.class().as_str(), "three_parallel_2_3_4");
+    let start = model.neutral_configuration();
+    let mut solutions = 0;
+    for (_, target) in &benchmark_targets(&model, 20, 5).unwrap() {
+        let before = allocations();
+        solutions += solver.solve(target, &start).unwrap().len();
+        assert_eq!(allocations() - before, 0, "three_parallel_2_3_4");
+    }
+    assert!(solutions > 0);
+    // Out of reach: the least-squares path.
+    let far = armkit::math::Pose::from_translation(armkit::math::Vector3::new(9.0, 0.0, 0.5));
+    let before = allocations();
+    assert!(!solver.solve(&far, &start).unwrap().is_empty());
+    assert_eq!(
+        allocations() - before,
+        0,
+        "three_parallel_2_3_4 out of reach"
+    );
 }
 
 #[test]

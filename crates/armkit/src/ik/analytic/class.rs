@@ -51,6 +51,14 @@ pub enum ArmClass {
         /// The end the intersecting pair is at (`Tip` for UR arms).
         end: ChainEnd,
     },
+    /// 6 rotation joints, axes 2, 3, 4 parallel (counted from `end`'s
+    /// opposite), axes 1 and 5 not parallel to them, axes 5 and 6 not
+    /// intersecting (else [`ArmClass::ThreeParallel`]; a UR-type arm with
+    /// an offset wrist): subproblem 6, up to 8 solutions in closed form.
+    ThreeParallelOffset {
+        /// The end the general axes 5, 6 are at (`Tip`: axes 2-3-4 parallel).
+        end: ChainEnd,
+    },
     /// 7 rotation joints, axes 1-2-3 meeting at the shoulder, 5-6-7 at the
     /// wrist and 3-4-5 at the elbow (KUKA LWR4, iiwa): up to 8 solutions per
     /// elbow (arm) angle.
@@ -88,6 +96,8 @@ impl ArmClass {
             },
             ArmClass::ThreeParallel { end: Tip } => "three_parallel_2_3_4_intersecting_5_6",
             ArmClass::ThreeParallel { end: Base } => "three_parallel_3_4_5_intersecting_1_2",
+            ArmClass::ThreeParallelOffset { end: Tip } => "three_parallel_2_3_4",
+            ArmClass::ThreeParallelOffset { end: Base } => "three_parallel_3_4_5",
             ArmClass::SphericalShoulderElbowWrist => "spherical_shoulder_elbow_wrist_7dof",
             ArmClass::OnePair => "one_pair_1d_search",
             ArmClass::General => "general_6r_2d_search",
@@ -114,6 +124,9 @@ impl ArmClass {
             ArmClass::ThreeParallel { .. } => {
                 "three parallel axes and an intersecting pair (UR family): closed form, up to 8 solutions"
             }
+            ArmClass::ThreeParallelOffset { .. } => {
+                "three parallel axes, the two axes beyond them not intersecting (a UR with an offset wrist): closed form by subproblem 6 (a quartic, roots polished to round-off), up to 8 solutions"
+            }
             ArmClass::SphericalShoulderElbowWrist => {
                 "7-DOF spherical shoulder, elbow, spherical wrist: closed form per elbow angle, up to 8 solutions"
             }
@@ -133,6 +146,7 @@ impl ArmClass {
             self,
             ArmClass::SphericalWrist { .. }
                 | ArmClass::ThreeParallel { .. }
+                | ArmClass::ThreeParallelOffset { .. }
                 | ArmClass::SphericalShoulderElbowWrist
         )
     }
@@ -160,6 +174,10 @@ pub(crate) enum Detected {
         end: ChainEnd,
         meet: Vector3<f64>,
     },
+    /// Three parallel without an intersecting end pair.
+    ThreeParallelOffset {
+        end: ChainEnd,
+    },
     /// 7-DOF SRS: shoulder, elbow, wrist points.
     ShoulderElbowWrist {
         shoulder: Vector3<f64>,
@@ -176,6 +194,7 @@ impl Detected {
                 end, positioning, ..
             } => ArmClass::SphericalWrist { end, positioning },
             Detected::ThreeParallel { end, .. } => ArmClass::ThreeParallel { end },
+            Detected::ThreeParallelOffset { end } => ArmClass::ThreeParallelOffset { end },
             Detected::ShoulderElbowWrist { .. } => ArmClass::SphericalShoulderElbowWrist,
             Detected::Unsolvable(class) => class,
         }
@@ -266,7 +285,7 @@ fn three_parallel(chain: &ArmStructure, end: ChainEnd) -> Option<Detected> {
     }
     match chain.relation(4, 5) {
         Relation::Intersecting(meet) => Some(Detected::ThreeParallel { end, meet }),
-        _ => None,
+        _ => Some(Detected::ThreeParallelOffset { end }),
     }
 }
 

@@ -13,6 +13,8 @@
 //!   joint (PUMA, Stanford, KUKA/ABB-type arms with a shoulder offset, the
 //!   Panda or iiwa with one joint fixed): up to 8 solutions;
 //! * axes 2-3-4 parallel with 5-6 intersecting (Universal Robots): up to 8;
+//! * axes 2-3-4 (or 3-4-5) parallel, the other three general (a UR-type
+//!   arm with an offset wrist): up to 8, by [`subproblem6`] (a quartic);
 //! * 7-DOF spherical shoulder, elbow, spherical wrist (iiwa, LWR4) at an
 //!   elbow angle ([`Parameter::ElbowAngle`]); any other 7-DOF arm with one
 //!   joint held ([`Parameter::FixedJoint`]) if what is left has a class.
@@ -53,9 +55,11 @@ mod chain;
 mod class;
 mod finish;
 mod parallel;
+mod parallel_offset;
 pub mod search;
 mod srs;
 pub mod structure;
+pub mod subproblem6;
 pub mod subproblems;
 mod wrist;
 
@@ -66,6 +70,7 @@ use self::chain::{Candidates, Chain};
 use self::class::{detect, Detected};
 use self::finish::Finisher;
 use self::parallel::ThreeParallel;
+use self::parallel_offset::ThreeParallelOffset;
 use self::srs::SrsChain;
 use self::structure::ArmStructure;
 use self::wrist::SphericalWrist;
@@ -133,6 +138,10 @@ enum Plan {
     },
     ThreeParallel {
         solver: ThreeParallel,
+        end: ChainEnd,
+    },
+    ThreeParallelOffset {
+        solver: ThreeParallelOffset,
         end: ChainEnd,
     },
     ShoulderElbowWrist(SrsChain),
@@ -308,6 +317,13 @@ impl AnalyticSolver {
                 }
             }
             Plan::ThreeParallel { solver, end } => {
+                reverse = *end == ChainEnd::Base;
+                solver.solve(&goal_of(goal, *end), &mut self.candidates);
+                if let Some(Parameter::FixedJoint { joint, value }) = self.parameter {
+                    fixed = Some((joint, value));
+                }
+            }
+            Plan::ThreeParallelOffset { solver, end } => {
                 reverse = *end == ChainEnd::Base;
                 solver.solve(&goal_of(goal, *end), &mut self.candidates);
                 if let Some(Parameter::FixedJoint { joint, value }) = self.parameter {
@@ -502,7 +518,9 @@ fn plan(
             Plan::ShoulderElbowWrist(SrsChain::new(&arm, shoulder, elbow, wrist)),
         )),
         (
-            Detected::SphericalWrist { .. } | Detected::ThreeParallel { .. },
+            Detected::SphericalWrist { .. }
+            | Detected::ThreeParallel { .. }
+            | Detected::ThreeParallelOffset { .. },
             Some(Parameter::ElbowAngle(_)),
         ) => Err(unsolvable(
             "; an elbow angle needs a spherical-shoulder-elbow-wrist 7-DOF arm",
@@ -529,6 +547,11 @@ fn plan(
             let chain = chain_of(&arm, end).ok_or_else(|| unsolvable(""))?;
             let solver = ThreeParallel::new(&chain, &meet);
             Ok((class, Plan::ThreeParallel { solver, end }))
+        }
+        (Detected::ThreeParallelOffset { end }, _) => {
+            let chain = chain_of(&arm, end).ok_or_else(|| unsolvable(""))?;
+            let solver = ThreeParallelOffset::new(&chain);
+            Ok((class, Plan::ThreeParallelOffset { solver, end }))
         }
         (Detected::Unsolvable(_), Some(Parameter::ElbowAngle(_))) => Err(unsolvable(
             "; an elbow angle needs a spherical-shoulder-elbow-wrist 7-DOF arm",

@@ -127,7 +127,7 @@ impl ThreeParallel {
 }
 
 /// A unit vector normal to the unit vector `k`.
-fn any_normal(k: &Vector3<f64>) -> Vector3<f64> {
+pub(crate) fn any_normal(k: &Vector3<f64>) -> Vector3<f64> {
     let seed = if k.x.abs() < 0.9 {
         Vector3::x()
     } else {
