@@ -1,8 +1,9 @@
-//! Fixed-size working forms: a 6-joint chain as lines, and a stack buffer
-//! of candidate solutions (nothing here allocates).
+//! Fixed-size working forms: a 6-joint chain as lines, a stack buffer of
+//! candidate solutions, and the lines' forward kinematics prepared for the
+//! solutions' check (nothing here allocates after set-up).
 
 use super::structure::{ArmStructure, Motion};
-use crate::math::{Pose, Vector3};
+use crate::math::{sin_cos, Matrix3, Pose, Vector3};
 
 /// Most candidate solutions one solve produces (8 for every class here;
 /// room for tangent duplicates).
@@ -90,5 +91,172 @@ impl Candidates {
 
     pub(crate) fn as_slice(&self) -> &[Candidate] {
         &self.items[..self.len]
+    }
+}
+
+/// Forward kinematics of an arm's product of exponentials (see
+/// [`super::structure`]), prepared for a fast, allocation-free evaluation:
+/// with `F_i` a frame on joint `i`'s line whose z axis is the joint axis,
+/// `E_i(t) = F_i Z(t) F_i^-1` (`Z` a turn about or a slide along z), so
+/// `T(q) = E_1(q_1) ... E_n(q_n) home = G_0 Z(q_1) G_1 Z(q_2) ... Z(q_n) G_n`
+/// with the fixed `G_0 = F_1`, `G_i = F_i^-1 F_(i+1)`, `G_n = F_n^-1 home`
+/// read once. A step costs one sine-cosine and four column combinations.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct LineKinematics {
+    dof: usize,
+    first: Frame,
+    motions: [Motion; MAX_JOINTS],
+    /// `G_i` as columns: rotation columns, then translation.
+    after: [[Vector3<f64>; 4]; MAX_JOINTS],
+}
+
+/// A rigid transform as its rotation's columns and its translation.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Frame {
+    x: Vector3<f64>,
+    y: Vector3<f64>,
+    z: Vector3<f64>,
+    p: Vector3<f64>,
+}
+
+impl Frame {
+    fn of(pose: &Pose) -> Frame {
+        let r = &pose.rotation;
+        Frame {
+            x: r.column(0).into(),
+            y: r.column(1).into(),
+            z: r.column(2).into(),
+            p: pose.translation,
+        }
+    }
+
+    fn pose(&self) -> Pose {
+        Pose::new(Matrix3::from_columns(&[self.x, self.y, self.z]), self.p)
+    }
+}
+
+impl LineKinematics {
+    /// The prepared product of `structure` (`None` beyond [`MAX_JOINTS`]
+    /// joints).
+    pub(crate) fn new(structure: &ArmStructure) -> Option<LineKinematics> {
+        let dof = structure.dof();
+        if dof == 0 || dof > MAX_JOINTS {
+            return None;
+        }
+        let frame = |i: usize| {
+            Pose::new(
+                crate::math::rotation_z_to(&structure.axes[i]),
+                structure.points[i],
+            )
+        };
+        let mut kinematics = LineKinematics {
+            dof,
+            first: Frame::of(&frame(0)),
+            motions: [Motion::Rotation; MAX_JOINTS],
+            after: [[Vector3::zeros(); 4]; MAX_JOINTS],
+        };
+        for i in 0..dof {
+            kinematics.motions[i] = structure.motions[i];
+            let next = if i + 1 < dof {
+                frame(i + 1)
+            } else {
+                structure.home
+            };
+            let g = Frame::of(&(frame(i).inverse() * next));
+            kinematics.after[i] = [g.x, g.y, g.z, g.p];
+        }
+        Some(kinematics)
+    }
+
+    /// Number of joints.
+    pub(crate) fn dof(&self) -> usize {
+        self.dof
+    }
+
+    /// `G_0 Z(q_1) G_1 ... Z(q_i) G_i` from the product up to joint `i - 1`
+    /// (`frame`): one step of the chain. With `frame = (X Y Z, p)`, joint
+    /// `i` turning by `t` and `G_i`'s columns `v = (v0, v1, v2)`, the new
+    /// columns are `X (c v0 - s v1) + Y (s v0 + c v1) + Z v2` (plus `p` for
+    /// the translation); a slide by `d` moves `p` by `d Z` instead.
+    #[inline]
+    fn step(&self, frame: &Frame, i: usize, value: f64) -> Frame {
+        let g = &self.after[i];
+        match self.motions[i] {
+            Motion::Rotation => {
+                let (s, c) = sin_cos(value);
+                let column = |v: &Vector3<f64>| {
+                    frame.x * (c * v.x - s * v.y)
+                        + frame.y * (s * v.x + c * v.y)
+                        + frame.z * v.z
+                };
+                Frame {
+                    x: column(&g[0]),
+                    y: column(&g[1]),
+                    z: column(&g[2]),
+                    p: frame.p + column(&g[3]),
+                }
+            }
+            Motion::Translation => {
+                let column = |v: &Vector3<f64>| frame.x * v.x + frame.y * v.y + frame.z * v.z;
+                Frame {
+                    x: column(&g[0]),
+                    y: column(&g[1]),
+                    z: column(&g[2]),
+                    p: frame.p + frame.z * value + column(&g[3]),
+                }
+            }
+        }
+    }
+}
+
+/// [`LineKinematics`] with the products of the last configuration kept, so
+/// that a configuration sharing its first joints with the previous one (the
+/// candidates of one solve come in such runs) starts from there.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct LineForwardKinematics {
+    kinematics: LineKinematics,
+    /// The last configuration and its partial products (`frames[i]` after
+    /// joint `i`); the first `valid` are current.
+    q: [f64; MAX_JOINTS],
+    frames: [Frame; MAX_JOINTS],
+    valid: usize,
+}
+
+impl LineForwardKinematics {
+    pub(crate) fn new(kinematics: LineKinematics) -> LineForwardKinematics {
+        LineForwardKinematics {
+            kinematics,
+            q: [0.0; MAX_JOINTS],
+            frames: [kinematics.first; MAX_JOINTS],
+            valid: 0,
+        }
+    }
+
+    /// Forgets the kept products.
+    pub(crate) fn reset(&mut self) {
+        self.valid = 0;
+    }
+
+    /// The end-effector pose at `q` (one value per joint, rad or m).
+    pub(crate) fn pose(&mut self, q: &[f64]) -> Pose {
+        let dof = self.kinematics.dof;
+        // Joints equal (bit for bit) to the last configuration's keep their
+        // products.
+        let mut start = 0;
+        while start < self.valid && q[start].to_bits() == self.q[start].to_bits() {
+            start += 1;
+        }
+        let mut frame = if start == 0 {
+            self.kinematics.first
+        } else {
+            self.frames[start - 1]
+        };
+        for i in start..dof {
+            frame = self.kinematics.step(&frame, i, q[i]);
+            self.frames[i] = frame;
+            self.q[i] = q[i];
+        }
+        self.valid = dof;
+        frame.pose()
     }
 }

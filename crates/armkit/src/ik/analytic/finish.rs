@@ -1,14 +1,17 @@
-//! From candidates to solutions: joint order restored, each candidate
-//! checked by the model's forward kinematics, duplicates merged, angles
-//! wrapped into the limits (every representative, or the nearest), sorted
-//! by distance to the caller's configuration.
+//! From candidates to solutions: joint order restored, duplicates merged,
+//! each candidate checked by forward kinematics, angles wrapped into the
+//! limits (every representative, or the nearest), sorted by distance to the
+//! caller's configuration.
 
-use super::chain::{Candidate, MAX_CANDIDATES, MAX_JOINTS};
+use super::chain::{
+    Candidate, LineForwardKinematics, LineKinematics, MAX_CANDIDATES, MAX_JOINTS,
+};
+use super::structure::ArmStructure;
 use super::{AnalyticOptions, Fit, RangeFilter, EXACT_TOLERANCE};
 use crate::error::Result;
 use crate::ik::pose_error::pose_error;
 use crate::kinematics::{forward_kinematics, Data};
-use crate::math::Pose;
+use crate::math::{Matrix3, Pose};
 use crate::model::{JointKind, Model};
 
 /// Which 2 pi multiples of a rotation joint's angle are returned.
@@ -25,9 +28,17 @@ pub enum Representatives {
 /// How a solution's fit is decided.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Verification {
-    /// By the model's forward kinematics: exact when within
-    /// [`EXACT_TOLERANCE`] (1e-10 m and rad), with both errors reported.
-    /// The default.
+    /// By forward kinematics of the returned joint values, independent of
+    /// the subproblems: exact when the pose is within [`EXACT_TOLERANCE`]
+    /// (1e-10 m and rad) of the target, with both errors reported. The
+    /// pose is the product of exponentials of the model's joint lines (read
+    /// at set-up from the model's forward kinematics at zero, prepared in
+    /// joint-local frames, and compared at set-up with the model's forward
+    /// kinematics on [`LINE_CHECK_CONFIGURATIONS`] configurations, to
+    /// [`LINE_CHECK_TOLERANCE`]); where they disagree, the model's own
+    /// forward kinematics. Position error `|p - p_target|` (m); orientation
+    /// error the angle of `R R_target'` (rad, from the Frobenius norm of
+    /// `R - R_target`, accurate near 0). The default.
     ForwardKinematics,
     /// By the subproblems alone: exact when every subproblem on the way had
     /// an exact solution (to their relative tolerance 1e-9); the errors are
@@ -50,6 +61,16 @@ pub const DUPLICATE_TOLERANCE: f64 = 1e-9;
 
 /// Most representatives of one joint angle kept per candidate.
 const MAX_REPRESENTATIVES: usize = 8;
+
+/// How many configurations the joint lines' forward kinematics is compared
+/// on with the model's at set-up (see [`Verification::ForwardKinematics`]).
+pub const LINE_CHECK_CONFIGURATIONS: usize = 6;
+
+/// Largest disagreement (m per metre of the arm's length scale, and rad)
+/// between the joint lines' and the model's forward kinematics at set-up
+/// for the lines to be used in the check (two orders below
+/// [`EXACT_TOLERANCE`]).
+pub const LINE_CHECK_TOLERANCE: f64 = 1e-12;
 
 /// One analytic solution.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -110,10 +131,109 @@ impl Range {
     }
 }
 
+/// How [`Verification::ForwardKinematics`] computes a candidate's pose.
+#[derive(Clone, Debug)]
+enum PoseCheck {
+    /// The joint lines' product of exponentials, prepared (agrees with the
+    /// model's forward kinematics, checked at set-up).
+    Lines(LineForwardKinematics),
+    /// The model's forward kinematics (the lines disagree with it, or the
+    /// model has no lines).
+    Model(Data),
+}
+
+impl PoseCheck {
+    fn of(model: &Model) -> PoseCheck {
+        match ArmStructure::of_model(model) {
+            Ok(structure) => match LineKinematics::new(&structure) {
+                Some(lines) if lines_agree(model, &structure, &lines) => {
+                    PoseCheck::Lines(LineForwardKinematics::new(lines))
+                }
+                _ => PoseCheck::Model(Data::new(model)),
+            },
+            Err(_) => PoseCheck::Model(Data::new(model)),
+        }
+    }
+
+    /// `(position error, orientation error)` of `q`'s pose from `target`.
+    fn errors(&mut self, model: &Model, target: &Pose, q: &[f64]) -> Result<(f64, f64)> {
+        match self {
+            PoseCheck::Lines(lines) => {
+                let pose = &lines.pose(q);
+                Ok((
+                    (pose.translation - target.translation).norm(),
+                    rotation_gap(&pose.rotation, &target.rotation),
+                ))
+            }
+            PoseCheck::Model(data) => {
+                let pose = forward_kinematics(model, data, q)?;
+                let e = pose_error(target, pose);
+                Ok((e.fixed_rows::<3>(0).norm(), e.fixed_rows::<3>(3).norm()))
+            }
+        }
+    }
+
+    fn reset(&mut self) {
+        if let PoseCheck::Lines(lines) = self {
+            lines.reset();
+        }
+    }
+}
+
+/// True when the prepared lines reproduce the model's forward kinematics
+/// on [`LINE_CHECK_CONFIGURATIONS`] fixed configurations (angles spread
+/// over (-pi, pi], slides over +-0.5 m) to [`LINE_CHECK_TOLERANCE`].
+fn lines_agree(model: &Model, structure: &ArmStructure, lines: &LineKinematics) -> bool {
+    let dof = model.dof();
+    if lines.dof() != dof {
+        return false;
+    }
+    let mut data = Data::new(model);
+    let mut check = LineForwardKinematics::new(*lines);
+    let mut q = [0.0; MAX_JOINTS];
+    for k in 0..LINE_CHECK_CONFIGURATIONS {
+        for (j, (value, joint)) in q.iter_mut().zip(model.joints()).enumerate() {
+            // A fixed spread of values in [-1, 1), different per joint and configuration.
+            let unit = (((k * 7 + j * 5 + 3) % 13) as f64) / 6.5 - 1.0;
+            *value = match joint.kind {
+                JointKind::Prismatic => 0.5 * unit,
+                _ => std::f64::consts::PI * unit + 0.1 * k as f64,
+            };
+        }
+        let Ok(expected) = forward_kinematics(model, &mut data, &q[..dof]) else {
+            return false;
+        };
+        let pose = &check.pose(&q[..dof]);
+        let position = (pose.translation - expected.translation).norm();
+        let orientation = rotation_gap(&pose.rotation, &expected.rotation);
+        if !(position <= LINE_CHECK_TOLERANCE * structure.scale
+            && orientation <= LINE_CHECK_TOLERANCE)
+        {
+            return false;
+        }
+    }
+    true
+}
+
+/// The angle (rad, in `[0, pi]`) of the rotation `a b'` taking `b` onto
+/// `a`, from `|a - b|_F = 2 sqrt(2) sin(angle / 2)` (accurate near 0,
+/// unlike the trace).
+fn rotation_gap(a: &Matrix3<f64>, b: &Matrix3<f64>) -> f64 {
+    let half_sine = ((a - b).norm() / (2.0 * std::f64::consts::SQRT_2)).min(1.0);
+    // asin(x) = x + x^3 / 6 + 3 x^5 / 40 + ...: the first two terms are
+    // exact to double precision below 1e-4.
+    let half_angle = if half_sine < 1e-4 {
+        half_sine + half_sine * half_sine * half_sine / 6.0
+    } else {
+        half_sine.asin()
+    };
+    2.0 * half_angle
+}
+
 /// The finishing stage's workspace, sized once for a model.
 #[derive(Clone, Debug)]
 pub(crate) struct Finisher {
-    data: Data,
+    check: PoseCheck,
     options: AnalyticOptions,
     ranges: [Range; MAX_JOINTS],
     solutions: Vec<AnalyticSolution>,
@@ -137,7 +257,7 @@ impl Finisher {
             *range = Range::of(model, j);
         }
         Finisher {
-            data: Data::new(model),
+            check: PoseCheck::of(model),
             options,
             ranges,
             solutions: Vec::with_capacity(capacity),
@@ -158,16 +278,18 @@ impl Finisher {
         current: &[f64],
     ) -> Result<&[AnalyticSolution]> {
         self.solutions.clear();
+        self.check.reset();
         let dof = model.dof();
+        let all_ranges = self.ranges;
+        let ranges = &all_ranges[..dof];
         let mut count = 0;
         for candidate in candidates {
             let mut q = model_order(candidate, dof, reverse, fixed);
-            for (value, range) in q.iter_mut().zip(&self.ranges).take(dof) {
+            for (value, range) in q.iter_mut().zip(ranges) {
                 if range.is_rotation() {
                     *value = wrap(*value);
                 }
             }
-            let ranges = &self.ranges[..dof];
             if self.accepted[..count]
                 .iter()
                 .any(|a| same_configuration(ranges, &a[..dof], &q[..dof]))
@@ -180,10 +302,8 @@ impl Finisher {
             }
             let (fit, position_error, orientation_error) = match self.options.verification {
                 Verification::ForwardKinematics => {
-                    let pose = forward_kinematics(model, &mut self.data, &q[..dof])?;
-                    let e = pose_error(target, pose);
-                    let position_error = e.fixed_rows::<3>(0).norm();
-                    let orientation_error = e.fixed_rows::<3>(3).norm();
+                    let (position_error, orientation_error) =
+                        self.check.errors(model, target, &q[..dof])?;
                     let exact =
                         position_error <= EXACT_TOLERANCE && orientation_error <= EXACT_TOLERANCE;
                     (fit_of(exact), position_error, orientation_error)
@@ -409,10 +529,11 @@ fn model_order(
 }
 
 /// True when two configurations (angles in (-pi, pi]) agree to
-/// [`DUPLICATE_TOLERANCE`], angles modulo 2 pi.
+/// [`DUPLICATE_TOLERANCE`], angles modulo 2 pi. Compared from the last
+/// joint: candidates of one solve share their first joints in runs.
 fn same_configuration(ranges: &[Range], a: &[f64], b: &[f64]) -> bool {
     use std::f64::consts::TAU;
-    a.iter().zip(b).zip(ranges).all(|((x, y), range)| {
+    a.iter().zip(b).zip(ranges).rev().all(|((x, y), range)| {
         let gap = (x - y).abs();
         gap <= DUPLICATE_TOLERANCE || (range.is_rotation() && gap >= TAU - DUPLICATE_TOLERANCE)
     })

@@ -60,7 +60,9 @@ pub mod subproblems;
 mod wrist;
 
 pub use class::{ArmClass, ChainEnd, Positioning};
-pub use finish::{AnalyticSolution, Representatives, Verification};
+pub use finish::{
+    AnalyticSolution, Representatives, Verification, LINE_CHECK_CONFIGURATIONS, LINE_CHECK_TOLERANCE,
+};
 
 use self::chain::{Candidates, Chain};
 use self::class::{detect, Detected};

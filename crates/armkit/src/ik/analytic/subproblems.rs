@@ -188,6 +188,36 @@ impl Turn {
     }
 }
 
+impl Turn {
+    /// The turn by `self.angle + other.angle` (sine and cosine by the
+    /// addition formulas, no trigonometry).
+    #[inline]
+    pub(crate) fn plus(&self, other: &Turn) -> Turn {
+        Turn {
+            angle: self.angle + other.angle,
+            sin: self.sin * other.cos + self.cos * other.sin,
+            cos: self.cos * other.cos - self.sin * other.sin,
+        }
+    }
+
+    /// The turn by `sign * angle` for `sign = +-1`.
+    #[inline]
+    pub(crate) fn times_sign(&self, sign: f64) -> Turn {
+        Turn {
+            angle: sign * self.angle,
+            sin: sign * self.sin,
+            cos: self.cos,
+        }
+    }
+
+    /// `R(k, t)' v = R(k, -t) v` (Rodrigues, `k` a unit axis) without
+    /// building the matrix: `cos t v - sin t k x v + (1 - cos t)(k . v) k`.
+    #[inline]
+    pub(crate) fn rotate_back(&self, k: &Vector3<f64>, v: &Vector3<f64>) -> Vector3<f64> {
+        v * self.cos - k.cross(v) * self.sin + k * ((1.0 - self.cos) * k.dot(v))
+    }
+}
+
 /// Up to two [`Turn`]s with a flag, as [`Angles`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Turns {
@@ -367,6 +397,51 @@ pub(crate) fn subproblem1_turn(
 ) -> (Turn, bool) {
     let (y, x, exact) = subproblem1_direction(k, p1, p2);
     (Turn::of_direction(y, x), exact)
+}
+
+/// Subproblem 1 with `k` and `p1` fixed (read once, at set-up), for many
+/// `p2`: `R(k, t) p1 = p2` (see [`subproblem1`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Dial {
+    k: Vector3<f64>,
+    p1: Vector3<f64>,
+    /// `k x p1`.
+    k_cross_p1: Vector3<f64>,
+    /// `k . p1`.
+    height: f64,
+    /// The distance of `p1` from the axis, and its length.
+    radius: f64,
+    length: f64,
+}
+
+impl Dial {
+    pub(crate) fn new(k: &Vector3<f64>, p1: &Vector3<f64>) -> Dial {
+        let height = k.dot(p1);
+        Dial {
+            k: *k,
+            p1: *p1,
+            k_cross_p1: k.cross(p1),
+            height,
+            radius: (p1.norm_squared() - height * height).max(0.0).sqrt(),
+            length: p1.norm(),
+        }
+    }
+
+    /// The angle (rad) turning `p1` onto `p2` (least squares when none
+    /// does), and whether it is exact, as [`subproblem1`].
+    #[inline]
+    pub(crate) fn solve(&self, p2: &Vector3<f64>) -> (f64, bool) {
+        let kp2 = self.k.dot(p2);
+        let x = self.p1.dot(p2) - self.height * kp2;
+        // k . (p1 x p2) = (k x p1) . p2.
+        let y = self.k_cross_p1.dot(p2);
+        let length2 = p2.norm_squared();
+        let n2 = (length2 - kp2 * kp2).max(0.0).sqrt();
+        let scale = self.length.max(length2.sqrt()).max(f64::MIN_POSITIVE);
+        let exact = (self.height - kp2).abs() <= RELATIVE_TOLERANCE * scale
+            && (self.radius - n2).abs() <= RELATIVE_TOLERANCE * scale;
+        (y.atan2(x), exact)
+    }
 }
 
 /// The rotation matrix `R(k, t)` from the turn's sine and cosine (Rodrigues).
