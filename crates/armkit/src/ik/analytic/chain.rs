@@ -3,7 +3,7 @@
 //! solutions' check (nothing here allocates after set-up).
 
 use super::structure::{ArmStructure, Motion};
-use crate::math::{sin_cos, Matrix3, Pose, Vector3};
+use crate::math::{sin_cos_slice, Matrix3, Pose, Vector3};
 
 /// Most candidate solutions one solve produces (8 for every class here;
 /// room for tangent duplicates).
@@ -72,11 +72,12 @@ impl Candidates {
         }
     }
 
-    /// Appends a candidate (the first `values.len()` joints); ignored when full.
+    /// Appends a candidate (the first `values.len()` joints; the rest keep
+    /// whatever they held); ignored when full.
+    #[inline]
     pub(crate) fn push(&mut self, values: &[f64], exact: bool) {
         if self.len < MAX_CANDIDATES {
             let item = &mut self.items[self.len];
-            item.q = [0.0; MAX_JOINTS];
             for (slot, v) in item.q.iter_mut().zip(values) {
                 *slot = *v;
             }
@@ -174,16 +175,16 @@ impl LineKinematics {
     }
 
     /// `G_0 Z(q_1) G_1 ... Z(q_i) G_i` from the product up to joint `i - 1`
-    /// (`frame`): one step of the chain. With `frame = (X Y Z, p)`, joint
+    /// (`frame`) and joint `i`'s value with its sine and cosine: one step
+    /// of the chain. With `frame = (X Y Z, p)`, joint
     /// `i` turning by `t` and `G_i`'s columns `v = (v0, v1, v2)`, the new
     /// columns are `X (c v0 - s v1) + Y (s v0 + c v1) + Z v2` (plus `p` for
     /// the translation); a slide by `d` moves `p` by `d Z` instead.
     #[inline]
-    fn step(&self, frame: &Frame, i: usize, value: f64) -> Frame {
+    fn step(&self, frame: &Frame, i: usize, value: f64, (s, c): (f64, f64)) -> Frame {
         let g = &self.after[i];
         match self.motions[i] {
             Motion::Rotation => {
-                let (s, c) = sin_cos(value);
                 let column = |v: &Vector3<f64>| {
                     frame.x * (c * v.x - s * v.y)
                         + frame.y * (s * v.x + c * v.y)
@@ -251,8 +252,12 @@ impl LineForwardKinematics {
         } else {
             self.frames[start - 1]
         };
+        // The trigonometry first, in one loop of independent calls (slides
+        // get a sine-cosine they do not use).
+        let mut sin_cos = [(0.0, 1.0); MAX_JOINTS];
+        sin_cos_slice(&q[start..dof], &mut sin_cos[start..dof]);
         for i in start..dof {
-            frame = self.kinematics.step(&frame, i, q[i]);
+            frame = self.kinematics.step(&frame, i, q[i], sin_cos[i]);
             self.frames[i] = frame;
             self.q[i] = q[i];
         }

@@ -97,37 +97,56 @@ impl AnalyticSolution {
     }
 }
 
-/// A joint's range as the finishing stage reads it, fixed at set-up.
+/// A joint's range as the finishing stage reads it, with the options,
+/// fixed at set-up: which representatives of a value it returns.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Range {
-    /// A sliding joint: kept when within `[lower, upper]`.
+    /// A sliding joint: the value, kept when within `[lower, upper]`.
     Slide { lower: f64, upper: f64 },
-    /// A rotation joint without finite limits: the representative nearest
-    /// the current value.
-    Unbounded,
-    /// A rotation joint with one finite limit.
-    HalfBounded { lower: f64, upper: f64 },
-    /// A rotation joint with both limits finite.
-    Bounded { lower: f64, upper: f64 },
+    /// A sliding joint, limits ignored: the value.
+    FreeSlide,
+    /// A rotation joint without finite limits (or limits ignored): the
+    /// representative nearest the current value.
+    Nearest,
+    /// A rotation joint with one finite limit, or both with
+    /// [`Representatives::Nearest`]: the representative inside nearest the
+    /// current value, if any.
+    NearestInside { lower: f64, upper: f64 },
+    /// A rotation joint with both limits finite: every representative inside.
+    Every { lower: f64, upper: f64 },
+    /// A rotation joint with limits within [-2 pi, 2 pi] spanning less
+    /// than 2 pi: at most one representative of an angle in (-pi, pi]
+    /// lies inside, among the angle and the angle +- 2 pi.
+    Narrow { lower: f64, upper: f64 },
 }
 
 impl Range {
-    fn of(model: &Model, j: usize) -> Range {
+    fn of(model: &Model, j: usize, options: &AnalyticOptions) -> Range {
+        use std::f64::consts::TAU;
         let joint = &model.joints()[j];
         let (lower, upper) = (joint.limits.lower, joint.limits.upper);
+        let ignore = options.limits == RangeFilter::IgnoreLimits;
         if joint.kind == JointKind::Prismatic {
-            Range::Slide { lower, upper }
-        } else if lower == f64::NEG_INFINITY && upper == f64::INFINITY {
-            Range::Unbounded
-        } else if joint.limits.is_bounded() {
-            Range::Bounded { lower, upper }
+            if ignore {
+                Range::FreeSlide
+            } else {
+                Range::Slide { lower, upper }
+            }
+        } else if ignore || (lower == f64::NEG_INFINITY && upper == f64::INFINITY) {
+            Range::Nearest
+        } else if !joint.limits.is_bounded() {
+            Range::NearestInside { lower, upper }
+        } else if upper - lower < TAU && lower >= -TAU && upper <= TAU {
+            Range::Narrow { lower, upper }
+        } else if options.representatives == Representatives::Nearest {
+            Range::NearestInside { lower, upper }
         } else {
-            Range::HalfBounded { lower, upper }
+            Range::Every { lower, upper }
         }
     }
 
     fn is_rotation(&self) -> bool {
-        !matches!(self, Range::Slide { .. })
+        !matches!(self, Range::Slide { .. } | Range::FreeSlide)
     }
 }
 
@@ -252,9 +271,9 @@ impl Finisher {
             .map(|j| representatives_bound(j.limits.lower, j.limits.upper))
             .product();
         let capacity = (MAX_CANDIDATES * per_candidate).min(1 << 16);
-        let mut ranges = [Range::Unbounded; MAX_JOINTS];
+        let mut ranges = [Range::Nearest; MAX_JOINTS];
         for (j, range) in ranges.iter_mut().enumerate().take(model.dof()) {
-            *range = Range::of(model, j);
+            *range = Range::of(model, j, &options);
         }
         Finisher {
             check: PoseCheck::of(model),
@@ -328,22 +347,32 @@ impl Finisher {
     fn expand(&mut self, solution: AnalyticSolution, current: &[f64]) {
         let dof = solution.dof;
         let mut counts = [0usize; MAX_JOINTS];
+        let mut combinations = 1;
         for j in 0..dof {
             counts[j] = representatives(
-                &self.options,
                 self.ranges[j],
                 solution.values[j],
                 current[j],
                 &mut self.choices[j],
             );
-            if counts[j] == 0 {
-                return;
+            combinations *= counts[j];
+        }
+        let mut s = solution;
+        if combinations == 1 {
+            s.distance2 = 0.0;
+            for j in 0..dof {
+                s.values[j] = self.choices[j][0];
+                s.distance2 += (s.values[j] - current[j]) * (s.values[j] - current[j]);
             }
+            self.solutions.push(s);
+            return;
+        }
+        if combinations == 0 {
+            return;
         }
         // Odometer over the per-joint choices.
         let mut index = [0usize; MAX_JOINTS];
         loop {
-            let mut s = solution;
             s.distance2 = 0.0;
             for j in 0..dof {
                 s.values[j] = self.choices[j][index[j]];
@@ -368,41 +397,47 @@ impl Finisher {
 
 /// The values of a joint with `range` to return for `value` (an angle in
 /// (-pi, pi] for a rotation joint); how many.
+#[inline]
 fn representatives(
-    options: &AnalyticOptions,
     range: Range,
     value: f64,
     current: f64,
     out: &mut [f64; MAX_REPRESENTATIVES],
 ) -> usize {
     use std::f64::consts::TAU;
-    let ignore = options.limits == RangeFilter::IgnoreLimits;
     let nearest = || value + TAU * round((current - value) / TAU);
     match range {
+        Range::Narrow { lower, upper } => {
+            // The only representative inside, if any (`value` in (-pi, pi]).
+            out[0] = if value < lower {
+                value + TAU
+            } else if value > upper {
+                value - TAU
+            } else {
+                value
+            };
+            usize::from(out[0] >= lower && out[0] <= upper)
+        }
         Range::Slide { lower, upper } => {
             out[0] = value;
-            usize::from(ignore || (value >= lower && value <= upper))
+            usize::from(value >= lower && value <= upper)
         }
-        Range::Unbounded => {
+        Range::FreeSlide => {
+            out[0] = value;
+            1
+        }
+        Range::Nearest => {
             out[0] = nearest();
             1
         }
-        _ if ignore => {
-            out[0] = nearest();
-            1
-        }
-        Range::HalfBounded { lower, upper } => nearest_inside(value, nearest(), lower, upper, out),
-        Range::Bounded { lower, upper }
-            if options.representatives == super::Representatives::Nearest =>
-        {
+        Range::NearestInside { lower, upper } => {
             nearest_inside(value, nearest(), lower, upper, out)
         }
-        Range::Bounded { lower, upper } => {
+        Range::Every { lower, upper } => {
             let first = ceil((lower - value) / TAU);
             let last = floor((upper - value) / TAU);
             let mut count = 0;
             let mut k = first;
-            // Every representative (`Nearest` was answered above).
             while k <= last && count < MAX_REPRESENTATIVES {
                 out[count] = value + TAU * k;
                 count += 1;
