@@ -101,39 +101,35 @@ impl Candidates {
 /// `E_i(t) = F_i Z(t) F_i^-1` (`Z` a turn about or a slide along z), so
 /// `T(q) = E_1(q_1) ... E_n(q_n) home = G_0 Z(q_1) G_1 Z(q_2) ... Z(q_n) G_n`
 /// with the fixed `G_0 = F_1`, `G_i = F_i^-1 F_(i+1)`, `G_n = F_n^-1 home`
-/// read once. A step costs one sine-cosine and four column combinations.
+/// read once. Transforms are kept as the three rows of `[R | p]`; a step
+/// costs one sine-cosine and three row-times-matrix products.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct LineKinematics {
     dof: usize,
-    first: Frame,
+    first: Rows,
     motions: [Motion; MAX_JOINTS],
-    /// `G_i` as columns: rotation columns, then translation.
-    after: [[Vector3<f64>; 4]; MAX_JOINTS],
+    /// `G_i` as rows of `[R | p]`.
+    after: [Rows; MAX_JOINTS],
 }
 
-/// A rigid transform as its rotation's columns and its translation.
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct Frame {
-    x: Vector3<f64>,
-    y: Vector3<f64>,
-    z: Vector3<f64>,
-    p: Vector3<f64>,
+/// A rigid transform as the three rows of `[R | p]` (3 x 4).
+type Rows = [[f64; 4]; 3];
+
+fn rows_of(pose: &Pose) -> Rows {
+    let (r, p) = (&pose.rotation, &pose.translation);
+    let mut rows = [[0.0; 4]; 3];
+    for (i, row) in rows.iter_mut().enumerate() {
+        *row = [r[(i, 0)], r[(i, 1)], r[(i, 2)], p[i]];
+    }
+    rows
 }
 
-impl Frame {
-    fn of(pose: &Pose) -> Frame {
-        let r = &pose.rotation;
-        Frame {
-            x: r.column(0).into(),
-            y: r.column(1).into(),
-            z: r.column(2).into(),
-            p: pose.translation,
-        }
-    }
-
-    fn pose(&self) -> Pose {
-        Pose::new(Matrix3::from_columns(&[self.x, self.y, self.z]), self.p)
-    }
+fn pose_of(rows: &Rows) -> Pose {
+    let [a, b, c] = rows;
+    Pose::new(
+        Matrix3::new(a[0], a[1], a[2], b[0], b[1], b[2], c[0], c[1], c[2]),
+        Vector3::new(a[3], b[3], c[3]),
+    )
 }
 
 impl LineKinematics {
@@ -152,9 +148,9 @@ impl LineKinematics {
         };
         let mut kinematics = LineKinematics {
             dof,
-            first: Frame::of(&frame(0)),
+            first: rows_of(&frame(0)),
             motions: [Motion::Rotation; MAX_JOINTS],
-            after: [[Vector3::zeros(); 4]; MAX_JOINTS],
+            after: [[[0.0; 4]; 3]; MAX_JOINTS],
         };
         for i in 0..dof {
             kinematics.motions[i] = structure.motions[i];
@@ -163,8 +159,7 @@ impl LineKinematics {
             } else {
                 structure.home
             };
-            let g = Frame::of(&(frame(i).inverse() * next));
-            kinematics.after[i] = [g.x, g.y, g.z, g.p];
+            kinematics.after[i] = rows_of(&(frame(i).inverse() * next));
         }
         Some(kinematics)
     }
@@ -175,38 +170,32 @@ impl LineKinematics {
     }
 
     /// `G_0 Z(q_1) G_1 ... Z(q_i) G_i` from the product up to joint `i - 1`
-    /// (`frame`) and joint `i`'s value with its sine and cosine: one step
-    /// of the chain. With `frame = (X Y Z, p)`, joint
-    /// `i` turning by `t` and `G_i`'s columns `v = (v0, v1, v2)`, the new
-    /// columns are `X (c v0 - s v1) + Y (s v0 + c v1) + Z v2` (plus `p` for
-    /// the translation); a slide by `d` moves `p` by `d Z` instead.
+    /// (`frame`) and joint `i`'s value with its sine and cosine: one step.
+    /// With `frame = [X Y Z | p]` and `G_i`'s rows `g0, g1, g2`, a turn by
+    /// `t` gives the rows `X_r a + Y_r b + Z_r g2 (+ p_r)` with
+    /// `a = cos t g0 - sin t g1`, `b = sin t g0 + cos t g1`; a slide by `d`
+    /// is the same with `t = 0` and `p` moved by `d Z`.
     #[inline]
-    fn step(&self, frame: &Frame, i: usize, value: f64, (s, c): (f64, f64)) -> Frame {
-        let g = &self.after[i];
-        match self.motions[i] {
-            Motion::Rotation => {
-                let column = |v: &Vector3<f64>| {
-                    frame.x * (c * v.x - s * v.y)
-                        + frame.y * (s * v.x + c * v.y)
-                        + frame.z * v.z
-                };
-                Frame {
-                    x: column(&g[0]),
-                    y: column(&g[1]),
-                    z: column(&g[2]),
-                    p: frame.p + column(&g[3]),
-                }
-            }
-            Motion::Translation => {
-                let column = |v: &Vector3<f64>| frame.x * v.x + frame.y * v.y + frame.z * v.z;
-                Frame {
-                    x: column(&g[0]),
-                    y: column(&g[1]),
-                    z: column(&g[2]),
-                    p: frame.p + frame.z * value + column(&g[3]),
-                }
-            }
+    fn step(&self, frame: &Rows, i: usize, value: f64, (s, c): (f64, f64)) -> Rows {
+        let [g0, g1, g2] = &self.after[i];
+        let (s, c, slide) = match self.motions[i] {
+            Motion::Rotation => (s, c, 0.0),
+            Motion::Translation => (0.0, 1.0, value),
+        };
+        let mut a = [0.0; 4];
+        let mut b = [0.0; 4];
+        for j in 0..4 {
+            a[j] = c * g0[j] - s * g1[j];
+            b[j] = s * g0[j] + c * g1[j];
         }
+        let mut out = [[0.0; 4]; 3];
+        for (row, f) in out.iter_mut().zip(frame) {
+            for j in 0..4 {
+                row[j] = f[0] * a[j] + f[1] * b[j] + f[2] * g2[j];
+            }
+            row[3] += f[3] + slide * f[2];
+        }
+        out
     }
 }
 
@@ -219,7 +208,7 @@ pub(crate) struct LineForwardKinematics {
     /// The last configuration and its partial products (`frames[i]` after
     /// joint `i`); the first `valid` are current.
     q: [f64; MAX_JOINTS],
-    frames: [Frame; MAX_JOINTS],
+    frames: [Rows; MAX_JOINTS],
     valid: usize,
 }
 
@@ -262,6 +251,6 @@ impl LineForwardKinematics {
             self.q[i] = q[i];
         }
         self.valid = dof;
-        frame.pose()
+        pose_of(&frame)
     }
 }

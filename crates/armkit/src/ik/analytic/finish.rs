@@ -359,11 +359,12 @@ impl Finisher {
         }
         let mut s = solution;
         if combinations == 1 {
-            s.distance2 = 0.0;
-            for j in 0..dof {
-                s.values[j] = self.choices[j][0];
-                s.distance2 += (s.values[j] - current[j]) * (s.values[j] - current[j]);
+            let mut distance2 = 0.0;
+            for ((value, choices), c) in s.values.iter_mut().zip(&self.choices).zip(current) {
+                *value = choices[0];
+                distance2 += (*value - c) * (*value - c);
             }
+            s.distance2 = distance2;
             self.solutions.push(s);
             return;
         }
@@ -536,6 +537,9 @@ fn model_order(
     reverse: bool,
     fixed: Option<(usize, f64)>,
 ) -> [f64; MAX_JOINTS] {
+    if !reverse && fixed.is_none() {
+        return candidate.q;
+    }
     let solved = if fixed.is_some() { dof - 1 } else { dof };
     let mut chain = [0.0; MAX_JOINTS];
     for (i, slot) in chain.iter_mut().take(solved).enumerate() {

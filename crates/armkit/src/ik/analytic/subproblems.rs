@@ -329,6 +329,13 @@ impl Sinusoid {
         let hk = h.dot(k);
         let a = h.dot(p) - hk * kp;
         let b = h.dot(&k.cross(p));
+        Sinusoid::of_coefficients(a, b, hk * kp, h.norm() * p.norm())
+    }
+
+    /// The sinusoid `a cos t + b sin t + offset` (`size` the scale of its
+    /// tolerances).
+    #[inline]
+    fn of_coefficients(a: f64, b: f64, offset: f64, size: f64) -> Sinusoid {
         let r = (a * a + b * b).sqrt();
         let phi = if r > 0.0 {
             Turn {
@@ -342,8 +349,8 @@ impl Sinusoid {
         Sinusoid {
             phi,
             r,
-            offset: hk * kp,
-            size: h.norm() * p.norm(),
+            offset,
+            size,
         }
     }
 
@@ -394,6 +401,42 @@ impl Sinusoid {
     }
 }
 
+/// The sinusoids of `h . R(k, t) p` with `h` and `k` fixed (read once), for
+/// many `p`: `A = (h - (h . k) k) . p`, `B = (h x k) . p`, offset
+/// `(h . k)(k . p)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct SinusoidFamily {
+    k: Vector3<f64>,
+    h_perp: Vector3<f64>,
+    h_cross_k: Vector3<f64>,
+    hk: f64,
+    h_norm: f64,
+}
+
+impl SinusoidFamily {
+    pub(crate) fn new(h: &Vector3<f64>, k: &Vector3<f64>) -> SinusoidFamily {
+        let hk = h.dot(k);
+        SinusoidFamily {
+            k: *k,
+            h_perp: h - k * hk,
+            h_cross_k: h.cross(k),
+            hk,
+            h_norm: h.norm(),
+        }
+    }
+
+    /// The sinusoid of `h . R(k, t) p` (as [`Sinusoid::new`]).
+    #[inline]
+    pub(crate) fn of(&self, p: &Vector3<f64>) -> Sinusoid {
+        Sinusoid::of_coefficients(
+            self.h_perp.dot(p),
+            self.h_cross_k.dot(p),
+            self.hk * self.k.dot(p),
+            self.h_norm * p.norm(),
+        )
+    }
+}
+
 /// Subproblem 3 with `k`, `p1`, `p2` fixed, for many distances `d`
 /// (see [`subproblem3`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -439,6 +482,12 @@ impl Spoke {
         }
     }
 
+    /// The parts `(par, perp, cross)`: `R(k, t) p = par + cos t perp + sin t cross`.
+    #[inline]
+    pub(crate) fn parts(&self) -> [Vector3<f64>; 3] {
+        [self.par, self.perp, self.cross]
+    }
+
     /// `R(k, t) p`.
     #[inline]
     pub(crate) fn turned(&self, t: &Turn) -> Vector3<f64> {
@@ -461,51 +510,6 @@ pub(crate) fn subproblem1_turn(
 ) -> (Turn, bool) {
     let (y, x, exact) = subproblem1_direction(k, p1, p2);
     (Turn::of_direction(y, x), exact)
-}
-
-/// Subproblem 1 with `k` and `p1` fixed (read once, at set-up), for many
-/// `p2`: `R(k, t) p1 = p2` (see [`subproblem1`]).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Dial {
-    k: Vector3<f64>,
-    p1: Vector3<f64>,
-    /// `k x p1`.
-    k_cross_p1: Vector3<f64>,
-    /// `k . p1`.
-    height: f64,
-    /// The distance of `p1` from the axis, and its length.
-    radius: f64,
-    length: f64,
-}
-
-impl Dial {
-    pub(crate) fn new(k: &Vector3<f64>, p1: &Vector3<f64>) -> Dial {
-        let height = k.dot(p1);
-        Dial {
-            k: *k,
-            p1: *p1,
-            k_cross_p1: k.cross(p1),
-            height,
-            radius: (p1.norm_squared() - height * height).max(0.0).sqrt(),
-            length: p1.norm(),
-        }
-    }
-
-    /// The angle (rad) turning `p1` onto `p2` (least squares when none
-    /// does), and whether it is exact, as [`subproblem1`].
-    #[inline]
-    pub(crate) fn solve(&self, p2: &Vector3<f64>) -> (f64, bool) {
-        let kp2 = self.k.dot(p2);
-        let x = self.p1.dot(p2) - self.height * kp2;
-        // k . (p1 x p2) = (k x p1) . p2.
-        let y = self.k_cross_p1.dot(p2);
-        let length2 = p2.norm_squared();
-        let n2 = (length2 - kp2 * kp2).max(0.0).sqrt();
-        let scale = self.length.max(length2.sqrt()).max(f64::MIN_POSITIVE);
-        let exact = (self.height - kp2).abs() <= RELATIVE_TOLERANCE * scale
-            && (self.radius - n2).abs() <= RELATIVE_TOLERANCE * scale;
-        (atan2(y, x), exact)
-    }
 }
 
 /// The rotation matrix `R(k, t)` from the turn's sine and cosine (Rodrigues).
