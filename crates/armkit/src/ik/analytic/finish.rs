@@ -12,6 +12,8 @@ use crate::error::Result;
 use crate::ik::pose_error::pose_error;
 use crate::kinematics::{forward_kinematics, Data};
 use crate::math::{Matrix3, Pose};
+#[cfg(test)]
+use crate::math::Vector3;
 use crate::model::{JointKind, Model};
 
 /// Which 2 pi multiples of a rotation joint's angle are returned.
@@ -235,18 +237,31 @@ fn lines_agree(model: &Model, structure: &ArmStructure, lines: &LineKinematics) 
 }
 
 /// The angle (rad, in `[0, pi]`) of the rotation `a b'` taking `b` onto
-/// `a`, from `|a - b|_F = 2 sqrt(2) sin(angle / 2)` (accurate near 0,
-/// unlike the trace).
+/// `a`, accurate over the whole range. Below 1 rad from
+/// `|a - b|_F = 2 sqrt(2) sin(angle / 2)` (no product; the inverse sine is
+/// well conditioned there, and an exact solution's tiny angle keeps every
+/// digit); otherwise `atan2` of the skew and symmetric parts of `a b'`
+/// (accurate near pi, where the inverse sine is not).
 fn rotation_gap(a: &Matrix3<f64>, b: &Matrix3<f64>) -> f64 {
-    let half_sine = ((a - b).norm() / (2.0 * std::f64::consts::SQRT_2)).min(1.0);
-    // asin(x) = x + x^3 / 6 + 3 x^5 / 40 + ...: the first two terms are
-    // exact to double precision below 1e-4.
-    let half_angle = if half_sine < 1e-4 {
-        half_sine + half_sine * half_sine * half_sine / 6.0
-    } else {
-        half_sine.asin()
-    };
-    2.0 * half_angle
+    let half_sine = (a - b).norm() / (2.0 * std::f64::consts::SQRT_2);
+    // sin(1/2): angles below 1 rad.
+    if half_sine < 0.479_425_538_604_203 {
+        // asin(x) = x + x^3 / 6 + 3 x^5 / 40 + ...: the first two terms are
+        // exact to double precision below 1e-4.
+        let half_angle = if half_sine < 1e-4 {
+            half_sine + half_sine * half_sine * half_sine / 6.0
+        } else {
+            half_sine.asin()
+        };
+        return 2.0 * half_angle;
+    }
+    let m = a * b.transpose();
+    let sine = 0.5
+        * ((m[(2, 1)] - m[(1, 2)]).powi(2)
+            + (m[(0, 2)] - m[(2, 0)]).powi(2)
+            + (m[(1, 0)] - m[(0, 1)]).powi(2))
+        .sqrt();
+    super::subproblems::atan2(sine, 0.5 * (m.trace() - 1.0))
 }
 
 /// The finishing stage's workspace, sized once for a model.
@@ -610,6 +625,110 @@ fn sort_by_distance(solutions: &mut [AnalyticSolution]) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    /// The lines' forward kinematics is used for every built-in arm it can
+    /// describe, and reproduces the model's on random configurations; the
+    /// others (more than 7 joints, couplings) fall back to the model's.
+    #[test]
+    fn line_kinematics_match_the_model_on_random_configurations() {
+        let mut rng = ChaCha8Rng::seed_from_u64(17);
+        let mut lines_used = 0;
+        for name in crate::robots::names() {
+            let model = crate::robots::by_name(name).unwrap();
+            let describable = model.dof() <= MAX_JOINTS && model.coupling().is_none();
+            let mut check = PoseCheck::of(&model);
+            let PoseCheck::Lines(_) = check else {
+                assert!(!describable, "{name}: lines not used");
+                continue;
+            };
+            assert!(describable, "{name}");
+            lines_used += 1;
+            let scale = ArmStructure::of_model(&model).unwrap().scale;
+            let mut data = Data::new(&model);
+            for _ in 0..300 {
+                let q: Vec<f64> = model
+                    .joints()
+                    .iter()
+                    .map(|j| match j.kind {
+                        JointKind::Prismatic => rng.gen_range(-1.0..1.0),
+                        _ => rng.gen_range(-7.0..7.0),
+                    })
+                    .collect();
+                let expected = *forward_kinematics(&model, &mut data, &q).unwrap();
+                let PoseCheck::Lines(lines) = &mut check else {
+                    unreachable!()
+                };
+                let pose = lines.pose(&q);
+                let position = (pose.translation - expected.translation).norm();
+                let orientation = crate::math::rotation_angle(
+                    &(pose.rotation * expected.rotation.transpose()),
+                );
+                assert!(position <= 1e-13 * scale, "{name}: {position:e} m");
+                assert!(orientation <= 1e-13, "{name}: {orientation:e} rad");
+            }
+        }
+        assert!(lines_used >= 5, "{lines_used}");
+    }
+
+    /// The set-up comparison rejects lines that do not describe the model.
+    #[test]
+    fn lines_that_disagree_with_the_model_are_rejected() {
+        let model = crate::robots::by_name("puma560").unwrap();
+        let mut structure = ArmStructure::of_model(&model).unwrap();
+        let good = LineKinematics::new(&structure).unwrap();
+        assert!(lines_agree(&model, &structure, &good));
+        structure.points[2].x += 1e-9;
+        let bad = LineKinematics::new(&structure).unwrap();
+        assert!(!lines_agree(&model, &structure, &bad));
+    }
+
+    /// The reported errors are those of the model's forward kinematics and
+    /// [`pose_error`] on targets off the solutions (orientation errors over
+    /// the whole range up to pi).
+    #[test]
+    fn reported_errors_match_the_model_forward_kinematics() {
+        let mut rng = ChaCha8Rng::seed_from_u64(18);
+        for name in ["puma560", "ur5", "stanford"] {
+            let model = crate::robots::by_name(name).unwrap();
+            let mut solver =
+                super::super::AnalyticSolver::new(&model, AnalyticOptions::default()).unwrap();
+            let mut data = Data::new(&model);
+            for (k, (q, target)) in crate::ik::benchmark_targets(&model, 100, 5)
+                .unwrap()
+                .into_iter()
+                .enumerate()
+            {
+                // Moved and turned by up to 0.3 m and (for the last ones) nearly pi.
+                let angle = if k < 90 { 0.5 * rng.gen::<f64>() } else { 3.14 };
+                let axis = nalgebra::Unit::new_normalize(Vector3::new(
+                    rng.gen_range(-1.0..1.0),
+                    rng.gen_range(-1.0..1.0),
+                    rng.gen_range(-1.0..1.0),
+                ));
+                let turn = nalgebra::Rotation3::from_axis_angle(&axis, angle).into_inner();
+                let shift = Vector3::new(rng.gen(), rng.gen(), rng.gen()) * 0.1;
+                let moved = Pose::new(turn * target.rotation, target.translation + shift);
+                for solution in solver.solve(&moved, &q).unwrap().to_vec() {
+                    let pose = forward_kinematics(&model, &mut data, solution.q()).unwrap();
+                    let e = pose_error(&moved, pose);
+                    let (position, orientation) =
+                        (e.fixed_rows::<3>(0).norm(), e.fixed_rows::<3>(3).norm());
+                    assert!(
+                        (solution.position_error - position).abs() <= 1e-12,
+                        "{name}: {} vs {position}",
+                        solution.position_error
+                    );
+                    assert!(
+                        (solution.orientation_error - orientation).abs() <= 1e-12,
+                        "{name}: {} vs {orientation}",
+                        solution.orientation_error
+                    );
+                }
+            }
+        }
+    }
 
     #[test]
     fn inline_rounding_matches_the_library() {
