@@ -122,8 +122,7 @@ impl SrsChain {
             for t4 in t4s.as_slice() {
                 let w4 = self.forearm.turned(t4);
                 let (t3, e3) = subproblem1_turn(&h[2], &w4, &forearm_2);
-                let back34 =
-                    |v: &Vector3<f64>| t4.rotate_back(&h[3], &t3.rotate_back(&h[2], v));
+                let back34 = |v: &Vector3<f64>| t4.rotate_back(&h[3], &t3.rotate_back(&h[2], v));
                 let exact = t4s.exact && circle_exact && pairs.exact && e3;
                 let prefix = [turn1.angle, turn2.angle, t3.angle, t4.angle];
                 self.orientation.solve_directions(

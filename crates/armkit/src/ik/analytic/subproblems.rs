@@ -171,10 +171,19 @@ pub(crate) fn atan2(y: f64, x: f64) -> f64 {
         1.628_582_011_536_578_236_23e-02,
     ];
     // atan(1/2) and atan(1), each as a head and a tail.
-    const ATAN_HALF: (f64, f64) = (4.636_476_090_008_060_935_15e-01, 2.269_877_745_296_168_709_24e-17);
-    const ATAN_ONE: (f64, f64) = (7.853_981_633_974_482_789_99e-01, 3.061_616_997_868_383_017_93e-17);
-    const HALF_PI: (f64, f64) = (1.570_796_326_794_896_558_00e+00, 6.123_233_995_736_766_035_87e-17);
-    const PI: (f64, f64) = (3.141_592_653_589_793_115_99e+00, 1.224_646_799_147_353_207_17e-16);
+    const ATAN_HALF: (f64, f64) = (
+        4.636_476_090_008_060_935_15e-01,
+        2.269_877_745_296_168_709_24e-17,
+    );
+    const ATAN_ONE: (f64, f64) = (
+        std::f64::consts::FRAC_PI_4,
+        3.061_616_997_868_383_017_93e-17,
+    );
+    const HALF_PI: (f64, f64) = (
+        std::f64::consts::FRAC_PI_2,
+        6.123_233_995_736_766_035_87e-17,
+    );
+    const PI: (f64, f64) = (std::f64::consts::PI, 1.224_646_799_147_353_207_17e-16);
     let (ax, ay) = (x.abs(), y.abs());
     if !(ax <= f64::MAX && ay <= f64::MAX) {
         return y.atan2(x);
@@ -659,7 +668,11 @@ mod tests {
             let (ours, platform) = (atan2(y, x), y.atan2(x));
             let ulp = f64::EPSILON * platform.abs().max(f64::MIN_POSITIVE);
             worst = worst.max((ours - platform).abs() / ulp);
-            assert_eq!(ours.is_sign_negative(), platform.is_sign_negative(), "{y} {x}");
+            assert_eq!(
+                ours.is_sign_negative(),
+                platform.is_sign_negative(),
+                "{y} {x}"
+            );
         };
         for _ in 0..200_000 {
             let angle = rng.gen_range(-std::f64::consts::PI..std::f64::consts::PI);

@@ -302,7 +302,11 @@ impl WristOrientation {
         let [par, perp, cross] = self.h6_by_5.parts();
         let g6_by_h4 = g6.cross(h4);
         let along = [par.dot(g6), perp.dot(g6), cross.dot(g6)];
-        let across = [par.dot(&g6_by_h4), perp.dot(&g6_by_h4), cross.dot(&g6_by_h4)];
+        let across = [
+            par.dot(&g6_by_h4),
+            perp.dot(&g6_by_h4),
+            cross.dot(&g6_by_h4),
+        ];
         let g6_length2 = g6.norm_squared();
         let g6_radius = (g6_length2 - height6 * height6).max(0.0).sqrt();
         let scale4 = self.h6_length2.max(g6_length2);
