@@ -325,10 +325,14 @@ impl Finisher {
                     *value = wrap(*value);
                 }
             }
-            if self.accepted[..count]
-                .iter()
-                .any(|a| same_configuration(ranges, &a[..dof], &q[..dof]))
-            {
+            let mut duplicate = false;
+            for a in &self.accepted[..count] {
+                if same_configuration(ranges, a, &q) {
+                    duplicate = true;
+                    break;
+                }
+            }
+            if duplicate {
                 continue;
             }
             if count < MAX_CANDIDATES {
@@ -586,12 +590,19 @@ fn model_order(
 /// True when two configurations (angles in (-pi, pi]) agree to
 /// [`DUPLICATE_TOLERANCE`], angles modulo 2 pi. Compared from the last
 /// joint: candidates of one solve share their first joints in runs.
+#[inline]
 fn same_configuration(ranges: &[Range], a: &[f64], b: &[f64]) -> bool {
     use std::f64::consts::TAU;
-    a.iter().zip(b).zip(ranges).rev().all(|((x, y), range)| {
-        let gap = (x - y).abs();
-        gap <= DUPLICATE_TOLERANCE || (range.is_rotation() && gap >= TAU - DUPLICATE_TOLERANCE)
-    })
+    let n = ranges.len().min(a.len()).min(b.len());
+    for j in (0..n).rev() {
+        let gap = (a[j] - b[j]).abs();
+        if !(gap <= DUPLICATE_TOLERANCE
+            || (ranges[j].is_rotation() && gap >= TAU - DUPLICATE_TOLERANCE))
+        {
+            return false;
+        }
+    }
+    true
 }
 
 /// Upper bound on the representatives of an angle within `[lower, upper]`.
