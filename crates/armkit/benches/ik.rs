@@ -140,6 +140,10 @@ fn bench_analytic(c: &mut Criterion) {
     }
     let solver = AnalyticSolver::new(&ur5, every).unwrap();
     bench_analytic_solver(c, "ur5/every_representative", &ur5, solver);
+    // The default options: every representative in the limits, FK-checked.
+    let puma = armkit::robots::by_name("puma560").unwrap();
+    let solver = AnalyticSolver::new(&puma, every).unwrap();
+    bench_analytic_solver(c, "puma560/every_representative", &puma, solver);
     // Fit from the subproblems' own flags, no FK check (IK-Geo's measure).
     let unchecked = AnalyticOptions {
         verification: Verification::Subproblems,
@@ -154,6 +158,14 @@ fn bench_analytic(c: &mut Criterion) {
     let solver =
         AnalyticSolver::with_parameter(&iiwa, nearest, Parameter::ElbowAngle(0.3)).unwrap();
     bench_analytic_solver(c, "iiwa14_ideal_elbow_angle/distinct", &iiwa, solver);
+    let solver =
+        AnalyticSolver::with_parameter(&iiwa, unchecked, Parameter::ElbowAngle(0.3)).unwrap();
+    bench_analytic_solver(
+        c,
+        "iiwa14_ideal_elbow_angle/distinct_unchecked",
+        &iiwa,
+        solver,
+    );
     let panda = armkit::robots::by_name("panda").unwrap();
     let held = Parameter::FixedJoint {
         joint: 6,

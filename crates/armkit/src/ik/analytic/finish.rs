@@ -1,14 +1,17 @@
-//! From candidates to solutions: joint order restored, each candidate
-//! checked by the model's forward kinematics, duplicates merged, angles
-//! wrapped into the limits (every representative, or the nearest), sorted
-//! by distance to the caller's configuration.
+//! From candidates to solutions: joint order restored, duplicates merged,
+//! each candidate checked by forward kinematics, angles wrapped into the
+//! limits (every representative, or the nearest), sorted by distance to the
+//! caller's configuration.
 
-use super::chain::{Candidate, MAX_CANDIDATES, MAX_JOINTS};
+use super::chain::{Candidate, LineForwardKinematics, LineKinematics, MAX_CANDIDATES, MAX_JOINTS};
+use super::structure::ArmStructure;
 use super::{AnalyticOptions, Fit, RangeFilter, EXACT_TOLERANCE};
 use crate::error::Result;
 use crate::ik::pose_error::pose_error;
 use crate::kinematics::{forward_kinematics, Data};
-use crate::math::Pose;
+#[cfg(test)]
+use crate::math::Vector3;
+use crate::math::{Matrix3, Pose};
 use crate::model::{JointKind, Model};
 
 /// Which 2 pi multiples of a rotation joint's angle are returned.
@@ -25,9 +28,17 @@ pub enum Representatives {
 /// How a solution's fit is decided.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Verification {
-    /// By the model's forward kinematics: exact when within
-    /// [`EXACT_TOLERANCE`] (1e-10 m and rad), with both errors reported.
-    /// The default.
+    /// By forward kinematics of the returned joint values, independent of
+    /// the subproblems: exact when the pose is within [`EXACT_TOLERANCE`]
+    /// (1e-10 m and rad) of the target, with both errors reported. The
+    /// pose is the product of exponentials of the model's joint lines (read
+    /// at set-up from the model's forward kinematics at zero, prepared in
+    /// joint-local frames, and compared at set-up with the model's forward
+    /// kinematics on [`LINE_CHECK_CONFIGURATIONS`] configurations, to
+    /// [`LINE_CHECK_TOLERANCE`]); where they disagree, the model's own
+    /// forward kinematics. Position error `|p - p_target|` (m); orientation
+    /// error the angle of `R R_target'` (rad, from the Frobenius norm of
+    /// `R - R_target`, accurate near 0). The default.
     ForwardKinematics,
     /// By the subproblems alone: exact when every subproblem on the way had
     /// an exact solution (to their relative tolerance 1e-9); the errors are
@@ -50,6 +61,16 @@ pub const DUPLICATE_TOLERANCE: f64 = 1e-9;
 
 /// Most representatives of one joint angle kept per candidate.
 const MAX_REPRESENTATIVES: usize = 8;
+
+/// How many configurations the joint lines' forward kinematics is compared
+/// on with the model's at set-up (see [`Verification::ForwardKinematics`]).
+pub const LINE_CHECK_CONFIGURATIONS: usize = 6;
+
+/// Largest disagreement (m per metre of the arm's length scale, and rad)
+/// between the joint lines' and the model's forward kinematics at set-up
+/// for the lines to be used in the check (two orders below
+/// [`EXACT_TOLERANCE`]).
+pub const LINE_CHECK_TOLERANCE: f64 = 1e-12;
 
 /// One analytic solution.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -76,44 +97,178 @@ impl AnalyticSolution {
     }
 }
 
-/// A joint's range as the finishing stage reads it, fixed at set-up.
+/// A joint's range as the finishing stage reads it, with the options,
+/// fixed at set-up: which representatives of a value it returns.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Range {
-    /// A sliding joint: kept when within `[lower, upper]`.
+    /// A sliding joint: the value, kept when within `[lower, upper]`.
     Slide { lower: f64, upper: f64 },
-    /// A rotation joint without finite limits: the representative nearest
-    /// the current value.
-    Unbounded,
-    /// A rotation joint with one finite limit.
-    HalfBounded { lower: f64, upper: f64 },
-    /// A rotation joint with both limits finite.
-    Bounded { lower: f64, upper: f64 },
+    /// A sliding joint, limits ignored: the value.
+    FreeSlide,
+    /// A rotation joint without finite limits (or limits ignored): the
+    /// representative nearest the current value.
+    Nearest,
+    /// A rotation joint with one finite limit, or both with
+    /// [`Representatives::Nearest`]: the representative inside nearest the
+    /// current value, if any.
+    NearestInside { lower: f64, upper: f64 },
+    /// A rotation joint with both limits finite: every representative inside.
+    Every { lower: f64, upper: f64 },
+    /// A rotation joint with limits within [-2 pi, 2 pi] spanning less
+    /// than 2 pi: at most one representative of an angle in (-pi, pi]
+    /// lies inside, among the angle and the angle +- 2 pi.
+    Narrow { lower: f64, upper: f64 },
 }
 
 impl Range {
-    fn of(model: &Model, j: usize) -> Range {
+    fn of(model: &Model, j: usize, options: &AnalyticOptions) -> Range {
+        use std::f64::consts::TAU;
         let joint = &model.joints()[j];
         let (lower, upper) = (joint.limits.lower, joint.limits.upper);
+        let ignore = options.limits == RangeFilter::IgnoreLimits;
         if joint.kind == JointKind::Prismatic {
-            Range::Slide { lower, upper }
-        } else if lower == f64::NEG_INFINITY && upper == f64::INFINITY {
-            Range::Unbounded
-        } else if joint.limits.is_bounded() {
-            Range::Bounded { lower, upper }
+            if ignore {
+                Range::FreeSlide
+            } else {
+                Range::Slide { lower, upper }
+            }
+        } else if ignore || (lower == f64::NEG_INFINITY && upper == f64::INFINITY) {
+            Range::Nearest
+        } else if !joint.limits.is_bounded() {
+            Range::NearestInside { lower, upper }
+        } else if upper - lower < TAU && lower >= -TAU && upper <= TAU {
+            Range::Narrow { lower, upper }
+        } else if options.representatives == Representatives::Nearest {
+            Range::NearestInside { lower, upper }
         } else {
-            Range::HalfBounded { lower, upper }
+            Range::Every { lower, upper }
         }
     }
 
     fn is_rotation(&self) -> bool {
-        !matches!(self, Range::Slide { .. })
+        !matches!(self, Range::Slide { .. } | Range::FreeSlide)
     }
+}
+
+/// How [`Verification::ForwardKinematics`] computes a candidate's pose.
+/// Built once per solver and read on every solve: the prepared lines are
+/// kept inline rather than boxed.
+#[allow(clippy::large_enum_variant)]
+#[derive(Clone, Debug)]
+enum PoseCheck {
+    /// The joint lines' product of exponentials, prepared (agrees with the
+    /// model's forward kinematics, checked at set-up).
+    Lines(LineForwardKinematics),
+    /// The model's forward kinematics (the lines disagree with it, or the
+    /// model has no lines).
+    Model(Data),
+}
+
+impl PoseCheck {
+    fn of(model: &Model) -> PoseCheck {
+        match ArmStructure::of_model(model) {
+            Ok(structure) => match LineKinematics::new(&structure) {
+                Some(lines) if lines_agree(model, &structure, &lines) => {
+                    PoseCheck::Lines(LineForwardKinematics::new(lines))
+                }
+                _ => PoseCheck::Model(Data::new(model)),
+            },
+            Err(_) => PoseCheck::Model(Data::new(model)),
+        }
+    }
+
+    /// `(position error, orientation error)` of `q`'s pose from `target`.
+    fn errors(&mut self, model: &Model, target: &Pose, q: &[f64]) -> Result<(f64, f64)> {
+        match self {
+            PoseCheck::Lines(lines) => {
+                let pose = &lines.pose(q);
+                Ok((
+                    (pose.translation - target.translation).norm(),
+                    rotation_gap(&pose.rotation, &target.rotation),
+                ))
+            }
+            PoseCheck::Model(data) => {
+                let pose = forward_kinematics(model, data, q)?;
+                let e = pose_error(target, pose);
+                Ok((e.fixed_rows::<3>(0).norm(), e.fixed_rows::<3>(3).norm()))
+            }
+        }
+    }
+
+    fn reset(&mut self) {
+        if let PoseCheck::Lines(lines) = self {
+            lines.reset();
+        }
+    }
+}
+
+/// True when the prepared lines reproduce the model's forward kinematics
+/// on [`LINE_CHECK_CONFIGURATIONS`] fixed configurations (angles spread
+/// over (-pi, pi], slides over +-0.5 m) to [`LINE_CHECK_TOLERANCE`].
+fn lines_agree(model: &Model, structure: &ArmStructure, lines: &LineKinematics) -> bool {
+    let dof = model.dof();
+    if lines.dof() != dof {
+        return false;
+    }
+    let mut data = Data::new(model);
+    let mut check = LineForwardKinematics::new(*lines);
+    let mut q = [0.0; MAX_JOINTS];
+    for k in 0..LINE_CHECK_CONFIGURATIONS {
+        for (j, (value, joint)) in q.iter_mut().zip(model.joints()).enumerate() {
+            // A fixed spread of values in [-1, 1), different per joint and configuration.
+            let unit = (((k * 7 + j * 5 + 3) % 13) as f64) / 6.5 - 1.0;
+            *value = match joint.kind {
+                JointKind::Prismatic => 0.5 * unit,
+                _ => std::f64::consts::PI * unit + 0.1 * k as f64,
+            };
+        }
+        let Ok(expected) = forward_kinematics(model, &mut data, &q[..dof]) else {
+            return false;
+        };
+        let pose = &check.pose(&q[..dof]);
+        let position = (pose.translation - expected.translation).norm();
+        let orientation = rotation_gap(&pose.rotation, &expected.rotation);
+        if !(position <= LINE_CHECK_TOLERANCE * structure.scale
+            && orientation <= LINE_CHECK_TOLERANCE)
+        {
+            return false;
+        }
+    }
+    true
+}
+
+/// The angle (rad, in `[0, pi]`) of the rotation `a b'` taking `b` onto
+/// `a`, accurate over the whole range. Below 1 rad from
+/// `|a - b|_F = 2 sqrt(2) sin(angle / 2)` (no product; the inverse sine is
+/// well conditioned there, and an exact solution's tiny angle keeps every
+/// digit); otherwise `atan2` of the skew and symmetric parts of `a b'`
+/// (accurate near pi, where the inverse sine is not).
+fn rotation_gap(a: &Matrix3<f64>, b: &Matrix3<f64>) -> f64 {
+    let half_sine = (a - b).norm() / (2.0 * std::f64::consts::SQRT_2);
+    // sin(1/2): angles below 1 rad.
+    if half_sine < 0.479_425_538_604_203 {
+        // asin(x) = x + x^3 / 6 + 3 x^5 / 40 + ...: the first two terms are
+        // exact to double precision below 1e-4.
+        let half_angle = if half_sine < 1e-4 {
+            half_sine + half_sine * half_sine * half_sine / 6.0
+        } else {
+            half_sine.asin()
+        };
+        return 2.0 * half_angle;
+    }
+    let m = a * b.transpose();
+    let sine = 0.5
+        * ((m[(2, 1)] - m[(1, 2)]).powi(2)
+            + (m[(0, 2)] - m[(2, 0)]).powi(2)
+            + (m[(1, 0)] - m[(0, 1)]).powi(2))
+        .sqrt();
+    super::subproblems::atan2(sine, 0.5 * (m.trace() - 1.0))
 }
 
 /// The finishing stage's workspace, sized once for a model.
 #[derive(Clone, Debug)]
 pub(crate) struct Finisher {
-    data: Data,
+    check: PoseCheck,
     options: AnalyticOptions,
     ranges: [Range; MAX_JOINTS],
     solutions: Vec<AnalyticSolution>,
@@ -132,12 +287,12 @@ impl Finisher {
             .map(|j| representatives_bound(j.limits.lower, j.limits.upper))
             .product();
         let capacity = (MAX_CANDIDATES * per_candidate).min(1 << 16);
-        let mut ranges = [Range::Unbounded; MAX_JOINTS];
+        let mut ranges = [Range::Nearest; MAX_JOINTS];
         for (j, range) in ranges.iter_mut().enumerate().take(model.dof()) {
-            *range = Range::of(model, j);
+            *range = Range::of(model, j, &options);
         }
         Finisher {
-            data: Data::new(model),
+            check: PoseCheck::of(model),
             options,
             ranges,
             solutions: Vec::with_capacity(capacity),
@@ -158,20 +313,26 @@ impl Finisher {
         current: &[f64],
     ) -> Result<&[AnalyticSolution]> {
         self.solutions.clear();
+        self.check.reset();
         let dof = model.dof();
+        let all_ranges = self.ranges;
+        let ranges = &all_ranges[..dof];
         let mut count = 0;
         for candidate in candidates {
             let mut q = model_order(candidate, dof, reverse, fixed);
-            for (value, range) in q.iter_mut().zip(&self.ranges).take(dof) {
+            for (value, range) in q.iter_mut().zip(ranges) {
                 if range.is_rotation() {
                     *value = wrap(*value);
                 }
             }
-            let ranges = &self.ranges[..dof];
-            if self.accepted[..count]
-                .iter()
-                .any(|a| same_configuration(ranges, &a[..dof], &q[..dof]))
-            {
+            let mut duplicate = false;
+            for a in &self.accepted[..count] {
+                if same_configuration(ranges, a, &q) {
+                    duplicate = true;
+                    break;
+                }
+            }
+            if duplicate {
                 continue;
             }
             if count < MAX_CANDIDATES {
@@ -180,10 +341,8 @@ impl Finisher {
             }
             let (fit, position_error, orientation_error) = match self.options.verification {
                 Verification::ForwardKinematics => {
-                    let pose = forward_kinematics(model, &mut self.data, &q[..dof])?;
-                    let e = pose_error(target, pose);
-                    let position_error = e.fixed_rows::<3>(0).norm();
-                    let orientation_error = e.fixed_rows::<3>(3).norm();
+                    let (position_error, orientation_error) =
+                        self.check.errors(model, target, &q[..dof])?;
                     let exact =
                         position_error <= EXACT_TOLERANCE && orientation_error <= EXACT_TOLERANCE;
                     (fit_of(exact), position_error, orientation_error)
@@ -208,22 +367,33 @@ impl Finisher {
     fn expand(&mut self, solution: AnalyticSolution, current: &[f64]) {
         let dof = solution.dof;
         let mut counts = [0usize; MAX_JOINTS];
+        let mut combinations = 1;
         for j in 0..dof {
             counts[j] = representatives(
-                &self.options,
                 self.ranges[j],
                 solution.values[j],
                 current[j],
                 &mut self.choices[j],
             );
-            if counts[j] == 0 {
-                return;
+            combinations *= counts[j];
+        }
+        let mut s = solution;
+        if combinations == 1 {
+            let mut distance2 = 0.0;
+            for ((value, choices), c) in s.values.iter_mut().zip(&self.choices).zip(current) {
+                *value = choices[0];
+                distance2 += (*value - c) * (*value - c);
             }
+            s.distance2 = distance2;
+            self.solutions.push(s);
+            return;
+        }
+        if combinations == 0 {
+            return;
         }
         // Odometer over the per-joint choices.
         let mut index = [0usize; MAX_JOINTS];
         loop {
-            let mut s = solution;
             s.distance2 = 0.0;
             for j in 0..dof {
                 s.values[j] = self.choices[j][index[j]];
@@ -248,41 +418,47 @@ impl Finisher {
 
 /// The values of a joint with `range` to return for `value` (an angle in
 /// (-pi, pi] for a rotation joint); how many.
+#[inline]
 fn representatives(
-    options: &AnalyticOptions,
     range: Range,
     value: f64,
     current: f64,
     out: &mut [f64; MAX_REPRESENTATIVES],
 ) -> usize {
     use std::f64::consts::TAU;
-    let ignore = options.limits == RangeFilter::IgnoreLimits;
     let nearest = || value + TAU * round((current - value) / TAU);
     match range {
+        Range::Narrow { lower, upper } => {
+            // The only representative inside, if any (`value` in (-pi, pi]).
+            out[0] = if value < lower {
+                value + TAU
+            } else if value > upper {
+                value - TAU
+            } else {
+                value
+            };
+            usize::from(out[0] >= lower && out[0] <= upper)
+        }
         Range::Slide { lower, upper } => {
             out[0] = value;
-            usize::from(ignore || (value >= lower && value <= upper))
+            usize::from(value >= lower && value <= upper)
         }
-        Range::Unbounded => {
+        Range::FreeSlide => {
+            out[0] = value;
+            1
+        }
+        Range::Nearest => {
             out[0] = nearest();
             1
         }
-        _ if ignore => {
-            out[0] = nearest();
-            1
-        }
-        Range::HalfBounded { lower, upper } => nearest_inside(value, nearest(), lower, upper, out),
-        Range::Bounded { lower, upper }
-            if options.representatives == super::Representatives::Nearest =>
-        {
+        Range::NearestInside { lower, upper } => {
             nearest_inside(value, nearest(), lower, upper, out)
         }
-        Range::Bounded { lower, upper } => {
+        Range::Every { lower, upper } => {
             let first = ceil((lower - value) / TAU);
             let last = floor((upper - value) / TAU);
             let mut count = 0;
             let mut k = first;
-            // Every representative (`Nearest` was answered above).
             while k <= last && count < MAX_REPRESENTATIVES {
                 out[count] = value + TAU * k;
                 count += 1;
@@ -381,6 +557,9 @@ fn model_order(
     reverse: bool,
     fixed: Option<(usize, f64)>,
 ) -> [f64; MAX_JOINTS] {
+    if !reverse && fixed.is_none() {
+        return candidate.q;
+    }
     let solved = if fixed.is_some() { dof - 1 } else { dof };
     let mut chain = [0.0; MAX_JOINTS];
     for (i, slot) in chain.iter_mut().take(solved).enumerate() {
@@ -409,13 +588,21 @@ fn model_order(
 }
 
 /// True when two configurations (angles in (-pi, pi]) agree to
-/// [`DUPLICATE_TOLERANCE`], angles modulo 2 pi.
+/// [`DUPLICATE_TOLERANCE`], angles modulo 2 pi. Compared from the last
+/// joint: candidates of one solve share their first joints in runs.
+#[inline]
 fn same_configuration(ranges: &[Range], a: &[f64], b: &[f64]) -> bool {
     use std::f64::consts::TAU;
-    a.iter().zip(b).zip(ranges).all(|((x, y), range)| {
-        let gap = (x - y).abs();
-        gap <= DUPLICATE_TOLERANCE || (range.is_rotation() && gap >= TAU - DUPLICATE_TOLERANCE)
-    })
+    let n = ranges.len().min(a.len()).min(b.len());
+    for j in (0..n).rev() {
+        let gap = (a[j] - b[j]).abs();
+        if !(gap <= DUPLICATE_TOLERANCE
+            || (ranges[j].is_rotation() && gap >= TAU - DUPLICATE_TOLERANCE))
+        {
+            return false;
+        }
+    }
+    true
 }
 
 /// Upper bound on the representatives of an angle within `[lower, upper]`.
@@ -450,6 +637,113 @@ fn sort_by_distance(solutions: &mut [AnalyticSolution]) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    /// The lines' forward kinematics is used for every built-in arm it can
+    /// describe, and reproduces the model's on random configurations; the
+    /// others (more than 7 joints, couplings) fall back to the model's.
+    #[test]
+    fn line_kinematics_match_the_model_on_random_configurations() {
+        let mut rng = ChaCha8Rng::seed_from_u64(17);
+        let mut lines_used = 0;
+        for name in crate::robots::names() {
+            let model = crate::robots::by_name(name).unwrap();
+            let describable = model.dof() <= MAX_JOINTS && model.coupling().is_none();
+            let mut check = PoseCheck::of(&model);
+            let PoseCheck::Lines(_) = check else {
+                assert!(!describable, "{name}: lines not used");
+                continue;
+            };
+            assert!(describable, "{name}");
+            lines_used += 1;
+            let scale = ArmStructure::of_model(&model).unwrap().scale;
+            let mut data = Data::new(&model);
+            for _ in 0..300 {
+                let q: Vec<f64> = model
+                    .joints()
+                    .iter()
+                    .map(|j| match j.kind {
+                        JointKind::Prismatic => rng.gen_range(-1.0..1.0),
+                        _ => rng.gen_range(-7.0..7.0),
+                    })
+                    .collect();
+                let expected = *forward_kinematics(&model, &mut data, &q).unwrap();
+                let PoseCheck::Lines(lines) = &mut check else {
+                    unreachable!()
+                };
+                let pose = lines.pose(&q);
+                let position = (pose.translation - expected.translation).norm();
+                let orientation =
+                    crate::math::rotation_angle(&(pose.rotation * expected.rotation.transpose()));
+                assert!(position <= 1e-13 * scale, "{name}: {position:e} m");
+                assert!(orientation <= 1e-13, "{name}: {orientation:e} rad");
+            }
+        }
+        assert!(lines_used >= 5, "{lines_used}");
+    }
+
+    /// The set-up comparison rejects lines that do not describe the model.
+    #[test]
+    fn lines_that_disagree_with_the_model_are_rejected() {
+        let model = crate::robots::by_name("puma560").unwrap();
+        let mut structure = ArmStructure::of_model(&model).unwrap();
+        let good = LineKinematics::new(&structure).unwrap();
+        assert!(lines_agree(&model, &structure, &good));
+        structure.points[2].x += 1e-9;
+        let bad = LineKinematics::new(&structure).unwrap();
+        assert!(!lines_agree(&model, &structure, &bad));
+    }
+
+    /// The reported errors are those of the model's forward kinematics and
+    /// [`pose_error`] on targets off the solutions (orientation errors over
+    /// the whole range up to pi).
+    #[test]
+    fn reported_errors_match_the_model_forward_kinematics() {
+        let mut rng = ChaCha8Rng::seed_from_u64(18);
+        for name in ["puma560", "ur5", "stanford"] {
+            let model = crate::robots::by_name(name).unwrap();
+            let mut solver =
+                super::super::AnalyticSolver::new(&model, AnalyticOptions::default()).unwrap();
+            let mut data = Data::new(&model);
+            for (k, (q, target)) in crate::ik::benchmark_targets(&model, 100, 5)
+                .unwrap()
+                .into_iter()
+                .enumerate()
+            {
+                // Moved and turned by up to 0.3 m and (for the last ones) nearly pi.
+                let angle = if k < 90 {
+                    0.5 * rng.gen::<f64>()
+                } else {
+                    std::f64::consts::PI - 0.002
+                };
+                let axis = nalgebra::Unit::new_normalize(Vector3::new(
+                    rng.gen_range(-1.0..1.0),
+                    rng.gen_range(-1.0..1.0),
+                    rng.gen_range(-1.0..1.0),
+                ));
+                let turn = nalgebra::Rotation3::from_axis_angle(&axis, angle).into_inner();
+                let shift = Vector3::new(rng.gen(), rng.gen(), rng.gen()) * 0.1;
+                let moved = Pose::new(turn * target.rotation, target.translation + shift);
+                for solution in solver.solve(&moved, &q).unwrap().to_vec() {
+                    let pose = forward_kinematics(&model, &mut data, solution.q()).unwrap();
+                    let e = pose_error(&moved, pose);
+                    let (position, orientation) =
+                        (e.fixed_rows::<3>(0).norm(), e.fixed_rows::<3>(3).norm());
+                    assert!(
+                        (solution.position_error - position).abs() <= 1e-12,
+                        "{name}: {} vs {position}",
+                        solution.position_error
+                    );
+                    assert!(
+                        (solution.orientation_error - orientation).abs() <= 1e-12,
+                        "{name}: {} vs {orientation}",
+                        solution.orientation_error
+                    );
+                }
+            }
+        }
+    }
 
     #[test]
     fn inline_rounding_matches_the_library() {

@@ -19,7 +19,10 @@
 //!   elbow angle ([`Parameter::ElbowAngle`]); any other 7-DOF arm with one
 //!   joint held ([`Parameter::FixedJoint`]) if what is left has a class.
 //!
-//! Each solution is checked by the model's forward kinematics and marked
+//! Each solution is checked by forward kinematics (the product of
+//! exponentials of the model's joint lines, compared with the model's own
+//! at set-up, or the model's where they differ: see
+//! [`Verification::ForwardKinematics`]) and marked
 //! [`Fit::Exact`] (within [`EXACT_TOLERANCE`] = 1e-10 m and rad) or
 //! [`Fit::Approximate`] (the least-squares answer of the subproblems, e.g. a
 //! pose out of reach, with its errors). Joint angles are then wrapped into
@@ -64,7 +67,10 @@ pub mod subproblems;
 mod wrist;
 
 pub use class::{ArmClass, ChainEnd, Positioning};
-pub use finish::{AnalyticSolution, Representatives, Verification};
+pub use finish::{
+    AnalyticSolution, Representatives, Verification, LINE_CHECK_CONFIGURATIONS,
+    LINE_CHECK_TOLERANCE,
+};
 
 use self::chain::{Candidates, Chain};
 use self::class::{detect, Detected};

@@ -8,11 +8,11 @@
 //! right-handed about S -> W. It is undefined when SW is parallel to `h1`
 //! (then any normal of SW serves as the reference).
 
-use super::chain::{Candidates, MAX_JOINTS};
+use super::chain::Candidates;
 use super::structure::ArmStructure;
-use super::subproblems::{rotation, rotation_of, subproblem1, subproblem2_turns, subproblem3};
+use super::subproblems::{rotation, subproblem1_turn, subproblem2_turns, Distance, Spoke};
 use super::wrist::WristOrientation;
-use crate::math::{Matrix3, Pose, Vector3};
+use crate::math::{Pose, Vector3};
 
 /// The geometry of an SRS arm in fixed-size form.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -22,6 +22,16 @@ pub(crate) struct SrsChain {
     elbow: Vector3<f64>,
     wrist: Vector3<f64>,
     home_inverse: Pose,
+    /// `home^-1` applied to `h7` and `h6` (the wrist's goal is read
+    /// through these two only).
+    h7_home: Vector3<f64>,
+    h6_home: Vector3<f64>,
+    /// Joint 4: `|R4 (w - e) - (s - e)| = |W - S|`; `w - e` turned by it.
+    joint4: Distance,
+    forearm: Spoke,
+    /// `|e - s|`, `|w - e|`.
+    upper: f64,
+    lower: f64,
     orientation: WristOrientation,
 }
 
@@ -36,12 +46,19 @@ impl SrsChain {
         for (slot, axis) in h.iter_mut().zip(&structure.axes) {
             *slot = *axis;
         }
+        let home_inverse = structure.home.inverse();
         SrsChain {
             h,
             shoulder,
             elbow,
             wrist,
-            home_inverse: structure.home.inverse(),
+            home_inverse,
+            h7_home: home_inverse.rotation * h[6],
+            h6_home: home_inverse.rotation * h[5],
+            joint4: Distance::new(&h[3], &(wrist - elbow), &(shoulder - elbow)),
+            forearm: Spoke::new(&h[3], &(wrist - elbow)),
+            upper: (elbow - shoulder).norm(),
+            lower: (wrist - elbow).norm(),
             orientation: WristOrientation::new(&h[4], &h[5], &h[6]),
         }
     }
@@ -79,12 +96,12 @@ impl SrsChain {
 
     /// Every solution at elbow angle `psi` (rad).
     pub(crate) fn solve(&self, target: &Pose, psi: f64, out: &mut Candidates) {
-        let (s, e, w, h) = (self.shoulder, self.elbow, self.wrist, &self.h);
-        let wrist_goal = target.transform_point(&self.home_inverse.transform_point(&w));
+        let (s, e, h) = (self.shoulder, self.elbow, &self.h);
+        let wrist_goal = target.transform_point(&self.home_inverse.transform_point(&self.wrist));
         let reach = (wrist_goal - s).norm();
-        let (upper, lower) = ((e - s).norm(), (w - e).norm());
-        // Joint 4 sets the shoulder-wrist distance (subproblem 3).
-        let t4s = subproblem3(&h[3], &(w - e), &(s - e), reach);
+        let (upper, lower) = (self.upper, self.lower);
+        // Joint 4 sets the shoulder-wrist distance (subproblem 3, prepared).
+        let t4s = self.joint4.solve(reach);
         // The elbow on its circle about SW.
         let (k, x, y) = self.frame(&wrist_goal);
         let along = (upper * upper - lower * lower + reach * reach) / (2.0 * reach);
@@ -92,26 +109,26 @@ impl SrsChain {
         let circle_exact = radius2 >= 0.0;
         let (sin, cos) = crate::math::sin_cos(psi);
         let elbow_goal = s + k * along + (x * cos + y * sin) * radius2.max(0.0).sqrt();
-        let wrist_rotation = target.rotation * self.home_inverse.rotation;
-        for &t4 in t4s.as_slice() {
-            let w4 = e + rotation(&h[3], t4) * (w - e);
-            // R1 R2 (E - S) = E_goal - S; axis 3 runs along S -> E.
-            let pairs = subproblem2_turns(&-h[0], &(elbow_goal - s), &h[1], &(e - s));
-            for (turn1, turn2) in pairs.as_slice() {
-                let r12 = rotation_of(&h[0], turn1) * rotation_of(&h[1], turn2);
-                let (t1, t2) = (turn1.angle, turn2.angle);
-                let (t3, e3) = subproblem1(
-                    &h[2],
-                    &(w4 - e),
-                    &(r12.transpose() * (wrist_goal - elbow_goal)),
-                );
-                let r04: Matrix3<f64> = r12 * rotation(&h[2], t3) * rotation(&h[3], t4);
+        // The wrist's goal (R1 R2 R3 R4)' T home^-1, read through h7 and h6.
+        let g7 = target.rotation * self.h7_home;
+        let g6 = target.rotation * self.h6_home;
+        // R1 R2 (E - S) = E_goal - S (independent of joint 4); axis 3 runs
+        // along S -> E.
+        let pairs = subproblem2_turns(&-h[0], &(elbow_goal - s), &h[1], &(e - s));
+        let forearm_goal = wrist_goal - elbow_goal;
+        for (turn1, turn2) in pairs.as_slice() {
+            let back = |v: &Vector3<f64>| turn2.rotate_back(&h[1], &turn1.rotate_back(&h[0], v));
+            let (forearm_2, g7_2, g6_2) = (back(&forearm_goal), back(&g7), back(&g6));
+            for t4 in t4s.as_slice() {
+                let w4 = self.forearm.turned(t4);
+                let (t3, e3) = subproblem1_turn(&h[2], &w4, &forearm_2);
+                let back34 = |v: &Vector3<f64>| t4.rotate_back(&h[3], &t3.rotate_back(&h[2], v));
                 let exact = t4s.exact && circle_exact && pairs.exact && e3;
-                let mut prefix = [0.0; MAX_JOINTS];
-                prefix[..4].copy_from_slice(&[t1, t2, t3, t4]);
-                self.orientation.solve(
-                    &(r04.transpose() * wrist_rotation),
-                    &prefix[..4],
+                let prefix = [turn1.angle, turn2.angle, t3.angle, t4.angle];
+                self.orientation.solve_directions(
+                    &back34(&g7_2),
+                    &back34(&g6_2),
+                    &prefix,
                     exact,
                     out,
                 );

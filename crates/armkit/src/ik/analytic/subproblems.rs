@@ -102,7 +102,7 @@ fn rotation_sc(k: &Vector3<f64>, s: f64, c: f64) -> Matrix3<f64> {
 /// is zero every angle is as good and 0 is returned.
 pub fn subproblem1(k: &Vector3<f64>, p1: &Vector3<f64>, p2: &Vector3<f64>) -> (f64, bool) {
     let (y, x, exact) = subproblem1_direction(k, p1, p2);
-    (y.atan2(x), exact)
+    (atan2(y, x), exact)
 }
 
 /// Subproblem 1's angle as a direction `(y, x)` (the angle is
@@ -117,9 +117,10 @@ fn subproblem1_direction(
     let kp2 = k.dot(p2);
     let x = p1.dot(p2) - kp1 * kp2;
     let y = k.dot(&p1.cross(p2));
-    let n1 = (p1.norm_squared() - kp1 * kp1).max(0.0).sqrt();
-    let n2 = (p2.norm_squared() - kp2 * kp2).max(0.0).sqrt();
-    let scale = p1.norm().max(p2.norm()).max(f64::MIN_POSITIVE);
+    let (length1, length2) = (p1.norm_squared(), p2.norm_squared());
+    let n1 = (length1 - kp1 * kp1).max(0.0).sqrt();
+    let n2 = (length2 - kp2 * kp2).max(0.0).sqrt();
+    let scale = length1.max(length2).sqrt().max(f64::MIN_POSITIVE);
     let exact = (kp1 - kp2).abs() <= RELATIVE_TOLERANCE * scale
         && (n1 - n2).abs() <= RELATIVE_TOLERANCE * scale;
     (y, x, exact)
@@ -142,6 +143,76 @@ pub fn subproblem4(h: &Vector3<f64>, k: &Vector3<f64>, p: &Vector3<f64>, d: f64)
 /// is the angle whose distance comes nearest.
 pub fn subproblem3(k: &Vector3<f64>, p1: &Vector3<f64>, p2: &Vector3<f64>, d: f64) -> Angles {
     Distance::new(k, p1, p2).solve(d).angles()
+}
+
+/// `atan2(y, x)` (rad, in `[-pi, pi]`) to about one unit in the last place,
+/// in a third of the platform routine's instructions (the subproblems take
+/// several per solve). `|y|` and `|x|` give `a = min / max` in `[0, 1]`;
+/// `atan(a)` by fdlibm's minimax kernel (the polynomial of FreeBSD's and
+/// musl's `atan`, public domain, Sun Microsystems 1993) after the shift
+/// `atan(a) = atan(c) + atan((a - c) / (1 + c a))` with `c` in `{0, 1/2, 1}`
+/// chosen without a branch on the data's octant; then the octant, the
+/// half plane and the sign of `y`. `(0, 0)` gives 0; non-finite input goes
+/// to the platform routine.
+#[allow(clippy::excessive_precision)]
+#[inline]
+pub(crate) fn atan2(y: f64, x: f64) -> f64 {
+    const AT: [f64; 11] = [
+        3.333_333_333_333_293_180_27e-01,
+        -1.999_999_999_987_648_324_76e-01,
+        1.428_571_427_250_346_637_11e-01,
+        -1.111_111_040_546_235_578_80e-01,
+        9.090_887_133_436_506_561_96e-02,
+        -7.691_876_205_044_829_994_95e-02,
+        6.661_073_137_387_531_206_69e-02,
+        -5.833_570_133_790_573_486_45e-02,
+        4.976_877_994_615_932_360_17e-02,
+        -3.653_157_274_421_691_552_70e-02,
+        1.628_582_011_536_578_236_23e-02,
+    ];
+    // atan(1/2) and atan(1), each as a head and a tail.
+    const ATAN_HALF: (f64, f64) = (
+        4.636_476_090_008_060_935_15e-01,
+        2.269_877_745_296_168_709_24e-17,
+    );
+    const ATAN_ONE: (f64, f64) = (
+        std::f64::consts::FRAC_PI_4,
+        3.061_616_997_868_383_017_93e-17,
+    );
+    const HALF_PI: (f64, f64) = (
+        std::f64::consts::FRAC_PI_2,
+        6.123_233_995_736_766_035_87e-17,
+    );
+    const PI: (f64, f64) = (std::f64::consts::PI, 1.224_646_799_147_353_207_17e-16);
+    let (ax, ay) = (x.abs(), y.abs());
+    if !(ax <= f64::MAX && ay <= f64::MAX) {
+        return y.atan2(x);
+    }
+    let (small, large) = if ay > ax { (ax, ay) } else { (ay, ax) };
+    if large == 0.0 {
+        return 0.0;
+    }
+    let a = small / large;
+    let (c, (head, tail)) = if a < 7.0 / 16.0 {
+        (0.0, (0.0, 0.0))
+    } else if a < 11.0 / 16.0 {
+        (0.5, ATAN_HALF)
+    } else {
+        (1.0, ATAN_ONE)
+    };
+    let t = (a - c) / (1.0 + c * a);
+    let z = t * t;
+    let w = z * z;
+    let s1 = z * (AT[0] + w * (AT[2] + w * (AT[4] + w * (AT[6] + w * (AT[8] + w * AT[10])))));
+    let s2 = w * (AT[1] + w * (AT[3] + w * (AT[5] + w * (AT[7] + w * AT[9]))));
+    let mut angle = head - ((t * (s1 + s2) - tail) - t);
+    if ay > ax {
+        angle = (HALF_PI.0 - angle) + HALF_PI.1;
+    }
+    if x < 0.0 {
+        angle = (PI.0 - angle) + PI.1;
+    }
+    angle.copysign(y)
 }
 
 /// An angle (rad) with its sine and cosine, so that the rotation by it is
@@ -177,14 +248,45 @@ impl Turn {
         // need for `hypot`'s slower scaling.
         let length = (x * x + y * y).sqrt();
         if length > 0.0 {
+            let inverse = 1.0 / length;
             Turn {
-                angle: y.atan2(x),
-                sin: y / length,
-                cos: x / length,
+                angle: atan2(y, x),
+                sin: y * inverse,
+                cos: x * inverse,
             }
         } else {
             Turn::ZERO
         }
+    }
+}
+
+impl Turn {
+    /// The turn by `self.angle + other.angle` (sine and cosine by the
+    /// addition formulas, no trigonometry).
+    #[inline]
+    pub(crate) fn plus(&self, other: &Turn) -> Turn {
+        Turn {
+            angle: self.angle + other.angle,
+            sin: self.sin * other.cos + self.cos * other.sin,
+            cos: self.cos * other.cos - self.sin * other.sin,
+        }
+    }
+
+    /// The turn by `sign * angle` for `sign = +-1`.
+    #[inline]
+    pub(crate) fn times_sign(&self, sign: f64) -> Turn {
+        Turn {
+            angle: sign * self.angle,
+            sin: sign * self.sin,
+            cos: self.cos,
+        }
+    }
+
+    /// `R(k, t)' v = R(k, -t) v` (Rodrigues, `k` a unit axis) without
+    /// building the matrix: `cos t v - sin t k x v + (1 - cos t)(k . v) k`.
+    #[inline]
+    pub(crate) fn rotate_back(&self, k: &Vector3<f64>, v: &Vector3<f64>) -> Vector3<f64> {
+        v * self.cos - k.cross(v) * self.sin + k * ((1.0 - self.cos) * k.dot(v))
     }
 }
 
@@ -236,10 +338,17 @@ impl Sinusoid {
         let hk = h.dot(k);
         let a = h.dot(p) - hk * kp;
         let b = h.dot(&k.cross(p));
+        Sinusoid::of_coefficients(a, b, hk * kp, h.norm() * p.norm())
+    }
+
+    /// The sinusoid `a cos t + b sin t + offset` (`size` the scale of its
+    /// tolerances).
+    #[inline]
+    fn of_coefficients(a: f64, b: f64, offset: f64, size: f64) -> Sinusoid {
         let r = (a * a + b * b).sqrt();
         let phi = if r > 0.0 {
             Turn {
-                angle: b.atan2(a),
+                angle: atan2(b, a),
                 sin: b / r,
                 cos: a / r,
             }
@@ -249,8 +358,8 @@ impl Sinusoid {
         Sinusoid {
             phi,
             r,
-            offset: hk * kp,
-            size: h.norm() * p.norm(),
+            offset,
+            size,
         }
     }
 
@@ -285,8 +394,9 @@ impl Sinusoid {
         }
         // t = phi +- spread with cos(spread) = ratio; (1 - ratio)(1 + ratio)
         // keeps sin(spread) accurate near ratio = +-1.
-        let spread = ratio.acos();
         let sine = ((1.0 - ratio) * (1.0 + ratio)).sqrt();
+        // acos(ratio), accurate near +-1 too.
+        let spread = atan2(sine, ratio);
         let turn = |sign: f64| Turn {
             angle: phi.angle + sign * spread,
             sin: phi.sin * ratio + sign * phi.cos * sine,
@@ -297,6 +407,42 @@ impl Sinusoid {
             count: 2,
             exact: true,
         }
+    }
+}
+
+/// The sinusoids of `h . R(k, t) p` with `h` and `k` fixed (read once), for
+/// many `p`: `A = (h - (h . k) k) . p`, `B = (h x k) . p`, offset
+/// `(h . k)(k . p)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct SinusoidFamily {
+    k: Vector3<f64>,
+    h_perp: Vector3<f64>,
+    h_cross_k: Vector3<f64>,
+    hk: f64,
+    h_norm: f64,
+}
+
+impl SinusoidFamily {
+    pub(crate) fn new(h: &Vector3<f64>, k: &Vector3<f64>) -> SinusoidFamily {
+        let hk = h.dot(k);
+        SinusoidFamily {
+            k: *k,
+            h_perp: h - k * hk,
+            h_cross_k: h.cross(k),
+            hk,
+            h_norm: h.norm(),
+        }
+    }
+
+    /// The sinusoid of `h . R(k, t) p` (as [`Sinusoid::new`]).
+    #[inline]
+    pub(crate) fn of(&self, p: &Vector3<f64>) -> Sinusoid {
+        Sinusoid::of_coefficients(
+            self.h_perp.dot(p),
+            self.h_cross_k.dot(p),
+            self.hk * self.k.dot(p),
+            self.h_norm * p.norm(),
+        )
     }
 }
 
@@ -343,6 +489,12 @@ impl Spoke {
             perp: p - par,
             cross: k.cross(p),
         }
+    }
+
+    /// The parts `(par, perp, cross)`: `R(k, t) p = par + cos t perp + sin t cross`.
+    #[inline]
+    pub(crate) fn parts(&self) -> [Vector3<f64>; 3] {
+        [self.par, self.perp, self.cross]
     }
 
     /// `R(k, t) p`.
@@ -506,6 +658,46 @@ mod tests {
         found
             .iter()
             .any(|f| crate::math::wrap_angle(f - t).abs() < 1e-8)
+    }
+
+    #[test]
+    fn atan2_matches_the_platform_to_two_ulp() {
+        let mut rng = ChaCha8Rng::seed_from_u64(11);
+        let mut worst: f64 = 0.0;
+        let mut check = |y: f64, x: f64| {
+            let (ours, platform) = (atan2(y, x), y.atan2(x));
+            let ulp = f64::EPSILON * platform.abs().max(f64::MIN_POSITIVE);
+            worst = worst.max((ours - platform).abs() / ulp);
+            assert_eq!(
+                ours.is_sign_negative(),
+                platform.is_sign_negative(),
+                "{y} {x}"
+            );
+        };
+        for _ in 0..200_000 {
+            let angle = rng.gen_range(-std::f64::consts::PI..std::f64::consts::PI);
+            let length = 10f64.powf(rng.gen_range(-6.0..3.0));
+            check(length * angle.sin(), length * angle.cos());
+        }
+        // The octant and interval boundaries, the axes and tiny angles.
+        for k in -800..=800 {
+            let angle = k as f64 * std::f64::consts::PI / 800.0;
+            for d in [0.0, 1e-15, -1e-12, 1e-9] {
+                let a = angle + d;
+                check(a.sin(), a.cos());
+            }
+        }
+        for r in [7.0 / 16.0, 11.0 / 16.0, 1.0, 1e-300, 1e-20, 1.0 - 1e-16] {
+            for (sy, sx) in [(1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0)] {
+                check(sy * r, sx * 1.0);
+                check(sy * 1.0, sx * r);
+            }
+        }
+        assert!(worst <= 2.0, "worst {worst} ulp");
+        assert_eq!(atan2(0.0, 0.0), 0.0);
+        assert_eq!(atan2(0.0, -1.0), std::f64::consts::PI);
+        assert!(atan2(f64::NAN, 1.0).is_nan());
+        assert_eq!(atan2(1.0, f64::INFINITY), 0.0);
     }
 
     #[test]

@@ -7,8 +7,8 @@
 use super::chain::{Candidates, Chain, MAX_JOINTS};
 use super::class::Positioning;
 use super::subproblems::{
-    rotation, rotation_of, subproblem1, subproblem1_turn, subproblem2, subproblem3, subproblem4,
-    Distance, Sinusoid, Spoke, Turn,
+    atan2, rotation, subproblem1, subproblem1_turn, subproblem2, subproblem3, subproblem4,
+    Distance, Sinusoid, SinusoidFamily, Spoke, Turn, RELATIVE_TOLERANCE,
 };
 use crate::math::{Matrix3, Pose, Vector3};
 
@@ -21,14 +21,19 @@ pub(crate) struct SphericalWrist {
     /// (zero configuration, chain as solved).
     wrist: Vector3<f64>,
     shoulder: Vector3<f64>,
-    /// `home^-1` applied to the wrist point, and its rotation.
+    /// `home^-1` applied to the wrist point, and to `h6` and `h5` (the
+    /// orientation enters the wrist's equations through these two only).
     wrist_home: Vector3<f64>,
-    rotation_home: Matrix3<f64>,
-    /// Parallel axes 2-3: `h2 . (w - c1)`, joint 3's distance equation and
-    /// the wrist point turned by joint 3.
+    h6_home: Vector3<f64>,
+    h5_home: Vector3<f64>,
+    /// Parallel axes 2-3: `h2 . (w - c1)`, joint 3's distance equation,
+    /// the wrist point turned by joint 3, and the sign of `h3` relative to
+    /// `h2` (joints 2 and 3 then turn about one direction by `t2 + s3 t3`).
     height: f64,
+    joint1: SinusoidFamily,
     joint3: Distance,
     arm3: Spoke,
+    s3: f64,
     /// Joints 4-6.
     orientation: WristOrientation,
 }
@@ -49,82 +54,82 @@ impl SphericalWrist {
             wrist: *wrist,
             shoulder: *shoulder,
             wrist_home: chain.home_inverse.transform_point(wrist),
-            rotation_home: chain.home_inverse.rotation,
+            h6_home: chain.home_inverse.rotation * h[5],
+            h5_home: chain.home_inverse.rotation * h[4],
             height: h[1].dot(&(wrist - c[0])),
+            joint1: SinusoidFamily::new(&h[1], &-h[0]),
             joint3: Distance::new(&h[2], &(wrist - c[2]), &(c[1] - c[2])),
             arm3: Spoke::new(&h[2], &(wrist - c[2])),
+            s3: h[1].dot(&h[2]).signum(),
             orientation: WristOrientation::new(&h[3], &h[4], &h[5]),
         }
     }
 
     /// Every solution for `target` (the chain's end-effector pose).
     pub(crate) fn solve(&self, target: &Pose, out: &mut Candidates) {
-        let chain = &self.chain;
-        // Joints 4-6 fix the wrist point: E1 E2 E3 w = T home^-1 w.
+        // Joints 4-6 fix the wrist point: E1 E2 E3 w = T home^-1 w; the
+        // wrist's goal R4 R5 R6 = (R1 R2 R3)' T home^-1 is needed only
+        // applied to h6 and h5.
         let goal = target.transform_point(&self.wrist_home);
-        let mut positions = [([Turn::of_angle(0.0); 3], false); 16];
-        let count = match self.positioning {
-            Positioning::ParallelSecondThird => self.parallel_second_third(&goal, &mut positions),
-            _ => {
-                let mut angles = [([0.0; 3], false); 16];
-                let count = position(
-                    chain,
-                    self.positioning,
-                    &self.wrist,
-                    &self.shoulder,
-                    &goal,
-                    &mut angles,
-                );
-                for (slot, (q, exact)) in positions.iter_mut().zip(&angles[..count]) {
-                    *slot = (q.map(Turn::of_angle), *exact);
+        let g6 = target.rotation * self.h6_home;
+        let g5 = target.rotation * self.h5_home;
+        if self.positioning == Positioning::ParallelSecondThird {
+            self.parallel_second_third(&goal, &g6, &g5, out);
+            return;
+        }
+        let mut angles = [([0.0; 3], false); 16];
+        let count = position(
+            &self.chain,
+            self.positioning,
+            &self.wrist,
+            &self.shoulder,
+            &goal,
+            &mut angles,
+        );
+        let (h, translation) = (&self.chain.h, &self.chain.translation);
+        for (q, exact) in &angles[..count] {
+            let (mut v6, mut v5) = (g6, g5);
+            for i in 0..3 {
+                if !translation[i] {
+                    let turn = Turn::of_angle(q[i]);
+                    v6 = turn.rotate_back(&h[i], &v6);
+                    v5 = turn.rotate_back(&h[i], &v5);
                 }
-                count
             }
-        };
-        let wrist_goal = target.rotation * self.rotation_home;
-        let h = &chain.h;
-        for (turns, exact) in &positions[..count] {
-            let rotation = |i: usize| {
-                if chain.translation[i] {
-                    Matrix3::identity()
-                } else {
-                    rotation_of(&h[i], &turns[i])
-                }
-            };
-            let r03 = rotation(0) * rotation(1) * rotation(2);
-            let q = turns.map(|t| t.angle);
-            self.orientation
-                .solve(&(r03.transpose() * wrist_goal), &q, *exact, out);
+            self.orientation.solve_directions(&v6, &v5, q, *exact, out);
         }
     }
 
     /// Axes 2 and 3 parallel (PUMA): rotations about axes parallel to h2
     /// keep the h2 component: h2 . R1' (W - c1) = h2 . (w - c1)
     /// (subproblem 4); the distance from axis 2's point fixes joint 3
-    /// (subproblem 3, prepared); joint 2 by subproblem 1.
+    /// (subproblem 3, prepared); joint 2 by subproblem 1. Joints 2 and 3
+    /// turn the wrist's directions by `t2 + s3 t3` about `h2`.
     fn parallel_second_third(
         &self,
         goal: &Vector3<f64>,
-        out: &mut [([Turn; 3], bool); 16],
-    ) -> usize {
+        g6: &Vector3<f64>,
+        g5: &Vector3<f64>,
+        out: &mut Candidates,
+    ) {
         let (c, h) = (&self.chain.c, &self.chain.h);
-        let mut count = 0;
         let to_goal = goal - c[0];
-        let t1s = Sinusoid::new(&h[1], &-h[0], &to_goal).solve(self.height);
+        let t1s = self.joint1.of(&to_goal).solve(self.height);
         for t1 in t1s.as_slice() {
-            let goal1 = c[0] + rotation_of(&h[0], t1).transpose() * to_goal;
-            let to_goal1 = goal1 - c[1];
+            let to_goal1 = t1.rotate_back(&h[0], &to_goal) + (c[0] - c[1]);
+            let (g6_1, g5_1) = (t1.rotate_back(&h[0], g6), t1.rotate_back(&h[0], g5));
             let t3s = self.joint3.solve(to_goal1.norm());
             for t3 in t3s.as_slice() {
-                let w3 = c[2] + self.arm3.turned(t3);
-                let (t2, e2) = subproblem1_turn(&h[1], &(w3 - c[1]), &to_goal1);
-                if count < out.len() {
-                    out[count] = ([*t1, t2, *t3], t1s.exact && t3s.exact && e2);
-                    count += 1;
-                }
+                let w3 = (c[2] - c[1]) + self.arm3.turned(t3);
+                let (t2, e2) = subproblem1_turn(&h[1], &w3, &to_goal1);
+                let t23 = t2.plus(&t3.times_sign(self.s3));
+                let v6 = t23.rotate_back(&h[1], &g6_1);
+                let v5 = t23.rotate_back(&h[1], &g5_1);
+                let exact = t1s.exact && t3s.exact && e2;
+                let q = [t1.angle, t2.angle, t3.angle];
+                self.orientation.solve_directions(&v6, &v5, &q, exact, out);
             }
         }
-        count
     }
 }
 
@@ -217,26 +222,57 @@ fn position(
 /// `h4 . R5 h6 = h4 . goal h6` (subproblem 4 for joint 5, prepared), then
 /// `R4 (R5 h6) = goal h6` (subproblem 1 for joint 4) and
 /// `R6 h5 = (R4 R5)' goal h5` (subproblem 1 for joint 6): one inverse
-/// cosine and four arctangents per wrist, no subproblem 2.
+/// cosine and four arctangents per wrist, no subproblem 2. Only `goal h6`
+/// and `goal h5` are read.
+///
+/// Both subproblems 1 are evaluated from dot products: with
+/// `p = R5 h6 = par + cos t5 perp + sin t5 cross` (split once), joint 4's
+/// `x = p . g6 - (h4 . p)(h4 . g6)` and `y = h4 . (p x g6) = p . (g6 x h4)`
+/// are sums of the three parts' dot products (taken once per goal); joint
+/// 6's `v = R5' R4' g5` enters only through `h6 . v = p . u`,
+/// `h5 . v = h5 . u` and `(h6 x h5) . v = p . (h5 x u)` with `u = R4' g5`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct WristOrientation {
     h: [Vector3<f64>; 3],
     joint5: Sinusoid,
-    /// `h6` turned by joint 5.
+    /// `h6` turned by joint 5, and `h4 .` its three parts.
     h6_by_5: Spoke,
+    h4_dot_parts: [f64; 3],
+    /// `|h6|^2`, `h6 . h5` and the distance of `h5` from axis 6.
+    h6_length2: f64,
+    h6_h5: f64,
+    h5_radius: f64,
+}
+
+/// Subproblem 1's exactness test (see [`super::subproblems::subproblem1`]):
+/// equal heights along the axis and equal distances from it, to the
+/// relative tolerance of the larger length (`scale2` its square).
+#[inline]
+fn same_circle(height1: f64, radius1: f64, height2: f64, radius2: f64, scale2: f64) -> bool {
+    let tolerance = RELATIVE_TOLERANCE * scale2.sqrt().max(f64::MIN_POSITIVE);
+    (height1 - height2).abs() <= tolerance && (radius1 - radius2).abs() <= tolerance
 }
 
 impl WristOrientation {
     pub(crate) fn new(h4: &Vector3<f64>, h5: &Vector3<f64>, h6: &Vector3<f64>) -> WristOrientation {
+        let h6_by_5 = Spoke::new(h5, h6);
+        let [par, perp, cross] = h6_by_5.parts();
+        let h6_h5 = h6.dot(h5);
         WristOrientation {
             h: [*h4, *h5, *h6],
             joint5: Sinusoid::new(h4, h5, h6),
-            h6_by_5: Spoke::new(h5, h6),
+            h6_by_5,
+            h4_dot_parts: [h4.dot(&par), h4.dot(&perp), h4.dot(&cross)],
+            h6_length2: h6.norm_squared(),
+            h6_h5,
+            h5_radius: (h5.norm_squared() - h6_h5 * h6_h5).max(0.0).sqrt(),
         }
     }
 
     /// Every `(t4, t5, t6)` with `R4 R5 R6 = goal`, appended to the joint
-    /// values `prefix`.
+    /// values `prefix` (for a solver holding the whole goal matrix; those
+    /// here pass the two directions to [`WristOrientation::solve_directions`]).
+    #[allow(dead_code)]
     pub(crate) fn solve(
         &self,
         goal: &Matrix3<f64>,
@@ -244,20 +280,64 @@ impl WristOrientation {
         exact: bool,
         out: &mut Candidates,
     ) {
-        let [h4, h5, h6] = &self.h;
-        let goal_h6 = goal * h6;
-        let goal_h5 = goal * h5;
-        let t5s = self.joint5.solve(h4.dot(&goal_h6));
+        let [_, h5, h6] = &self.h;
+        self.solve_directions(&(goal * h6), &(goal * h5), prefix, exact, out);
+    }
+
+    /// [`WristOrientation::solve`] from `goal h6` and `goal h5` alone.
+    #[inline]
+    pub(crate) fn solve_directions(
+        &self,
+        goal_h6: &Vector3<f64>,
+        goal_h5: &Vector3<f64>,
+        prefix: &[f64],
+        exact: bool,
+        out: &mut Candidates,
+    ) {
+        let [h4, h5, _] = &self.h;
+        let (g6, g5) = (goal_h6, goal_h5);
+        let height6 = h4.dot(g6);
+        let t5s = self.joint5.solve(height6);
+        // Joint 4's dot products, once per goal.
+        let [par, perp, cross] = self.h6_by_5.parts();
+        let g6_by_h4 = g6.cross(h4);
+        let along = [par.dot(g6), perp.dot(g6), cross.dot(g6)];
+        let across = [
+            par.dot(&g6_by_h4),
+            perp.dot(&g6_by_h4),
+            cross.dot(&g6_by_h4),
+        ];
+        let g6_length2 = g6.norm_squared();
+        let g6_radius = (g6_length2 - height6 * height6).max(0.0).sqrt();
+        let scale4 = self.h6_length2.max(g6_length2);
+        // Joint 6's: u = R4' g5 = cos t4 g5 - sin t4 h4 x g5 + (1 - cos t4)(h4 . g5) h4.
+        let h4_g5 = h4.cross(g5);
+        let h4_dot_g5 = h4.dot(g5);
+        let g5_length2 = g5.norm_squared();
+        let scale6 = h5.norm_squared().max(g5_length2);
         let n = prefix.len();
         let mut q = [0.0; MAX_JOINTS];
         q[..n].copy_from_slice(prefix);
+        let combine = |parts: &[f64; 3], t: &Turn| parts[0] + t.cos * parts[1] + t.sin * parts[2];
         for t5 in t5s.as_slice() {
-            let (t4, e4) = subproblem1_turn(h4, &self.h6_by_5.turned(t5), &goal_h6);
-            let r45 = rotation_of(h4, &t4) * rotation_of(h5, t5);
-            let (t6, e6) = subproblem1(h6, h5, &(r45.transpose() * goal_h5));
+            // Joint 4: R4 p = g6 with p = R5 h6.
+            let height_p = combine(&self.h4_dot_parts, t5);
+            let x = combine(&along, t5) - height_p * height6;
+            let y = combine(&across, t5);
+            let radius_p = (self.h6_length2 - height_p * height_p).max(0.0).sqrt();
+            let e4 = same_circle(height_p, radius_p, height6, g6_radius, scale4);
+            let t4 = Turn::of_direction(y, x);
+            // Joint 6: R6 h5 = v = R5' u.
+            let p = self.h6_by_5.turned(t5);
+            let u = g5 * t4.cos - h4_g5 * t4.sin + h4 * ((1.0 - t4.cos) * h4_dot_g5);
+            let height_v = p.dot(&u);
+            let x6 = h5.dot(&u) - self.h6_h5 * height_v;
+            let y6 = p.dot(&h5.cross(&u));
+            let radius_v = (g5_length2 - height_v * height_v).max(0.0).sqrt();
+            let e6 = same_circle(self.h6_h5, self.h5_radius, height_v, radius_v, scale6);
             q[n] = t4.angle;
             q[n + 1] = t5.angle;
-            q[n + 2] = t6;
+            q[n + 2] = atan2(y6, x6);
             out.push(&q[..n + 3], exact && t5s.exact && e4 && e6);
         }
     }
