@@ -129,8 +129,9 @@ pub struct DynamicsData {
     world_velocities: Vec<Motion>,
     /// ABA: velocity-product accelerations `v x S qd`, world frame.
     accelerations: Vec<Motion>,
+    /// RNEA: each body's force; CRBA: the columns `Ic_k S_k` being carried
+    /// inwards.
     forces: Vec<Force>,
-    composite: Vec<SpatialInertia>,
     /// ABA: `U_j = IA_j S_j`.
     u_columns: Vec<Vector6<f64>>,
     /// ABA: `D_j = S_j' U_j`.
@@ -209,7 +210,6 @@ impl DynamicsData {
             world_velocities: vec![Motion::ZERO; chain],
             accelerations: vec![Motion::ZERO; chain],
             forces: vec![Force::ZERO; chain],
-            composite: vec![SpatialInertia::ZERO; chain],
             u_columns: vec![Vector6::zeros(); chain],
             d_values: vec![0.0; chain],
             u_values: vec![0.0; chain],
