@@ -201,8 +201,7 @@ fn joint_space_inertia(data: &mut DynamicsData) {
 /// reads their `S_i` components; then `F_i = Ic_i S_i` joins them. The base
 /// level needs no frame-0 quantity but `S_0`'s products: with `s = X_1 S_0`
 /// (`S_0` seen from frame 1), `M[0][k] = s . F_k` and
-/// `M[0][0] = S_0' I_0 S_0 + s' Ic_1 s`. The lower triangle is computed
-/// (column `i` holds rows `k >= i`), then mirrored.
+/// `M[0][0] = S_0' I_0 S_0 + s' Ic_1 s`.
 fn composite_rigid_body(data: &mut DynamicsData, out: &mut DMatrix<f64>) {
     let n = data.local_inertias.len();
     if n == 0 {
@@ -219,30 +218,28 @@ fn composite_rigid_body(data: &mut DynamicsData, out: &mut DMatrix<f64>) {
     for i in (1..n - 1).rev() {
         let (transform, axis) = (&transforms[i + 1], axes[i]);
         composite = inertias[i] + composite.transformed(transform);
-        // Column i, rows i + 1..n.
-        let rows = &mut m[i * n + i + 1..(i + 1) * n];
-        for (column, row) in columns[i + 1..].iter_mut().zip(rows) {
-            *column = column.transformed(transform);
-            *row = axis.component(column);
+        for k in i + 1..n {
+            let column = columns[k].transformed(transform);
+            columns[k] = column;
+            let value = axis.component(&column);
+            m[k * n + i] = value;
+            m[i * n + k] = value;
         }
         columns[i] = axis.inertia_column(&composite);
         m[i * n + i] = axis.component(&columns[i]);
     }
     let base = axes[0].component(&axes[0].inertia_column(&inertias[0]));
-    if n > 1 {
-        let s = axes[0].in_child_frame(&transforms[1]);
-        for (column, row) in columns[1..].iter().zip(&mut m[1..n]) {
-            *row = s.dot(column);
-        }
-        m[0] = base + s.dot(&composite.apply(&s));
-    } else {
+    if n == 1 {
         m[0] = base;
+        return;
     }
+    let s = axes[0].in_child_frame(&transforms[1]);
     for k in 1..n {
-        for i in 0..k {
-            m[k * n + i] = m[i * n + k];
-        }
+        let value = s.dot(&columns[k]);
+        m[k * n] = value;
+        m[k] = value;
     }
+    m[0] = base + s.dot(&composite.apply(&s));
 }
 
 /// The lower Cholesky factor `L` of `data.mass_matrix` (`M = L L'`) into
