@@ -17,7 +17,10 @@
 //!   and composite inertias inwards (on the 3 x 3 blocks, see
 //!   [`spatial`]); the products with `S` pick one component. No world pose
 //!   is formed. The CRBA's `M[i][j]` (`i < j`) is the `S_i` component of
-//!   `Ic_j S_j` carried inwards from frame `j` to frame `i`.
+//!   `Ic_j S_j` carried inwards from frame `j` to frame `i`, in one pass from
+//!   the tip: each level carries the composite inertia and every column
+//!   beyond it through its one transform, and the base row is read in frame
+//!   1 against `S_0` seen from there, so no frame-0 composite is formed.
 //! * The ABA runs in the **world frame** (world poses from the same joint
 //!   transforms), where the articulated inertias of parent and child add
 //!   without a 6 x 6 transform: `S = (z, p x z)` or `(0, z)` there (`z` the
