@@ -231,6 +231,68 @@ fn mass_matrix_is_symmetric_positive_definite_with_rnea_columns() {
     }
 }
 
+/// A random arm whose joint `j` is prismatic where `prismatic(j)` says so.
+fn arm_of_kinds(seed: u64, dof: usize, prismatic: impl Fn(usize) -> bool) -> Model {
+    let mut r = rng(seed);
+    let mut builder = ModelBuilder::new(format!("kinds{seed}"));
+    for j in 0..dof {
+        builder = builder.joint(random_link(&mut r, |_| {
+            if prismatic(j) {
+                JointSpec::prismatic(format!("p{j}"), -0.5, 0.5)
+            } else {
+                JointSpec::revolute(format!("r{j}"), -3.0, 3.0)
+            }
+        }));
+    }
+    builder.build().unwrap()
+}
+
+/// The CRBA treats the tip, the middle levels and the base row differently
+/// (one pass from the tip, the base row from `S_0` seen in frame 1): chains of
+/// one to four joints, all prismatic, all revolute and alternating, against
+/// the RNEA's columns `M e_j = RNEA(q, 0, e_j)` without gravity, to 1e-12 of
+/// the largest entry.
+#[test]
+fn mass_matrix_of_short_and_prismatic_chains_equals_rnea_columns() {
+    let mut r = rng(1818);
+    let mut models = Vec::new();
+    for dof in 1..=4 {
+        models.push(arm_of_kinds(100 + dof as u64, dof, |_| false));
+        models.push(arm_of_kinds(200 + dof as u64, dof, |_| true));
+        models.push(arm_of_kinds(300 + dof as u64, dof, |j| j % 2 == 0));
+        models.push(arm_of_kinds(400 + dof as u64, dof, |j| j % 2 == 1));
+    }
+    models.push(arm_of_kinds(500, 8, |j| j % 3 == 1));
+    for model in models {
+        let n = model.dof();
+        let mut data = DynamicsData::new(&model).unwrap();
+        let mut no_gravity = DynamicsData::new(&model)
+            .unwrap()
+            .with_gravity(Vector3::zeros())
+            .unwrap();
+        for _ in 0..5 {
+            let q = random_configuration(&model, &mut r);
+            let m = mass_matrix(&model, &mut data, &q).unwrap().clone();
+            let scale = m.amax();
+            assert!(scale > 0.0, "{}: zero mass matrix", model.name());
+            for j in 0..n {
+                let mut e = vec![0.0; n];
+                e[j] = 1.0;
+                let column = rnea(&model, &mut no_gravity, &q, &vec![0.0; n], &e).unwrap();
+                for i in 0..n {
+                    assert!(
+                        (column[i] - m[(i, j)]).abs() <= 1e-12 * scale,
+                        "{} ({n} joints): M[{i}][{j}] = {} but RNEA gives {}",
+                        model.name(),
+                        m[(i, j)],
+                        column[i]
+                    );
+                }
+            }
+        }
+    }
+}
+
 #[test]
 fn aba_inverts_rnea_and_matches_m_inverse() {
     let mut r = rng(19);

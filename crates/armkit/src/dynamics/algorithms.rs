@@ -192,38 +192,54 @@ fn joint_space_inertia(data: &mut DynamicsData) {
 }
 
 /// The chain's mass matrix (chain joints x chain joints) into `out`, by the
-/// CRBA in body frames (Featherstone table 6.2).
+/// CRBA in body frames (Featherstone table 6.2), in one pass from the tip to
+/// the base.
+///
+/// At level `i` the composite inertia `Ic_i = I_i + X_{i+1}* Ic_{i+1}` and the
+/// columns `F_k = Ic_k S_k` of the bodies beyond (`k > i`) are carried
+/// together through the one transform `X_{i+1}` into frame `i`, where row `i`
+/// reads their `S_i` components; then `F_i = Ic_i S_i` joins them. The base
+/// level needs no frame-0 quantity but `S_0`'s products: with `s = X_1 S_0`
+/// (`S_0` seen from frame 1), `M[0][k] = s . F_k` and
+/// `M[0][0] = S_0' I_0 S_0 + s' Ic_1 s`.
 fn composite_rigid_body(data: &mut DynamicsData, out: &mut DMatrix<f64>) {
     let n = data.local_inertias.len();
     if n == 0 {
         return;
     }
-    // Ic_j = I_j + X_{j+1}* Ic_{j+1}, in frame j.
-    data.composite[n - 1] = data.local_inertias[n - 1];
-    for j in (0..n - 1).rev() {
-        data.composite[j] =
-            data.local_inertias[j] + data.composite[j + 1].transformed(&data.transforms[j + 1]);
-    }
-    // Column j: F = Ic_j S_j, then carried inwards joint by joint; row i
-    // reads its S_i component (the last step computes that component only).
-    // Column-major buffer, mirrored as it goes.
     let m = &mut out.as_mut_slice()[..n * n];
     let transforms = &data.transforms[..n];
     let axes = &data.joint_axes[..n];
-    for j in 0..n {
-        let mut force = axes[j].inertia_column(&data.composite[j]);
-        m[j * n + j] = axes[j].component(&force);
-        for i in (0..j).rev() {
-            let value = if i > 0 {
-                force = force.transformed(&transforms[i + 1]);
-                axes[i].component(&force)
-            } else {
-                axes[0].component_of_transformed(&force, &transforms[1])
-            };
-            m[j * n + i] = value;
-            m[i * n + j] = value;
+    let inertias = &data.local_inertias[..n];
+    let columns = &mut data.forces[..n];
+    let mut composite = inertias[n - 1];
+    columns[n - 1] = axes[n - 1].inertia_column(&composite);
+    m[n * n - 1] = axes[n - 1].component(&columns[n - 1]);
+    for i in (1..n - 1).rev() {
+        let (transform, axis) = (&transforms[i + 1], axes[i]);
+        composite = inertias[i] + composite.transformed(transform);
+        for k in i + 1..n {
+            let column = columns[k].transformed(transform);
+            columns[k] = column;
+            let value = axis.component(&column);
+            m[k * n + i] = value;
+            m[i * n + k] = value;
         }
+        columns[i] = axis.inertia_column(&composite);
+        m[i * n + i] = axis.component(&columns[i]);
     }
+    let base = axes[0].component(&axes[0].inertia_column(&inertias[0]));
+    if n == 1 {
+        m[0] = base;
+        return;
+    }
+    let s = axes[0].in_child_frame(&transforms[1]);
+    for k in 1..n {
+        let value = s.dot(&columns[k]);
+        m[k * n] = value;
+        m[k] = value;
+    }
+    m[0] = base + s.dot(&composite.apply(&s));
 }
 
 /// The lower Cholesky factor `L` of `data.mass_matrix` (`M = L L'`) into

@@ -17,7 +17,10 @@
 //!   and composite inertias inwards (on the 3 x 3 blocks, see
 //!   [`spatial`]); the products with `S` pick one component. No world pose
 //!   is formed. The CRBA's `M[i][j]` (`i < j`) is the `S_i` component of
-//!   `Ic_j S_j` carried inwards from frame `j` to frame `i`.
+//!   `Ic_j S_j` carried inwards from frame `j` to frame `i`, in one pass from
+//!   the tip: each level carries the composite inertia and every column
+//!   beyond it through its one transform, and the base row is read in frame
+//!   1 against `S_0` seen from there, so no frame-0 composite is formed.
 //! * The ABA runs in the **world frame** (world poses from the same joint
 //!   transforms), where the articulated inertias of parent and child add
 //!   without a 6 x 6 transform: `S = (z, p x z)` or `(0, z)` there (`z` the
@@ -129,8 +132,9 @@ pub struct DynamicsData {
     world_velocities: Vec<Motion>,
     /// ABA: velocity-product accelerations `v x S qd`, world frame.
     accelerations: Vec<Motion>,
+    /// RNEA: each body's force; CRBA: the columns `Ic_k S_k` being carried
+    /// inwards.
     forces: Vec<Force>,
-    composite: Vec<SpatialInertia>,
     /// ABA: `U_j = IA_j S_j`.
     u_columns: Vec<Vector6<f64>>,
     /// ABA: `D_j = S_j' U_j`.
@@ -209,7 +213,6 @@ impl DynamicsData {
             world_velocities: vec![Motion::ZERO; chain],
             accelerations: vec![Motion::ZERO; chain],
             forces: vec![Force::ZERO; chain],
-            composite: vec![SpatialInertia::ZERO; chain],
             u_columns: vec![Vector6::zeros(); chain],
             d_values: vec![0.0; chain],
             u_values: vec![0.0; chain],

@@ -53,22 +53,27 @@ impl JointAxis {
         }
     }
 
-    /// `S' (X* f)`: the generalized force on the joint of a force `f` given
-    /// in a frame placed at `placement` in the joint's frame (the last step
-    /// of carrying a force inwards, one component of
-    /// [`Force::transformed`]).
+    /// `X S`: the subspace seen from a frame placed at `placement` in the
+    /// joint's frame (a child body's frame): `(R' e_z, R' (e_z x p))` or
+    /// `(0, R' e_z)` ([`Motion::inverse_transformed`] of `S`), so that
+    /// `S' (X* f) = (X S) . f` for a force `f` given in that frame.
     #[inline(always)]
-    pub(crate) fn component_of_transformed(self, f: &Force, placement: &Pose) -> f64 {
+    pub(crate) fn in_child_frame(self, placement: &Pose) -> Motion {
         let r = &placement.rotation;
         let p = &placement.translation;
-        // Rows 0 and 1, or row 2, of R f; (p x R f)_z = p_x (R f)_y - p_y (R f)_x.
+        // R' e_z is R's last row.
+        let z = Vector3::new(r.m31, r.m32, r.m33);
         match self {
             JointAxis::Rotation => {
-                let fx = r.row(0).transpose().dot(&f.force);
-                let fy = r.row(1).transpose().dot(&f.force);
-                r.row(2).transpose().dot(&f.moment) + p.x * fy - p.y * fx
+                // R' (e_z x p) = R' (-p_y, p_x, 0).
+                let linear = Vector3::new(
+                    r.m21 * p.x - r.m11 * p.y,
+                    r.m22 * p.x - r.m12 * p.y,
+                    r.m23 * p.x - r.m13 * p.y,
+                );
+                Motion::new(z, linear)
             }
-            JointAxis::Translation => r.row(2).transpose().dot(&f.force),
+            JointAxis::Translation => Motion::new(Vector3::zeros(), z),
         }
     }
 
@@ -183,7 +188,9 @@ mod tests {
             let column = axis.inertia_column(&inertia).to_vector();
             assert!((column - inertia.apply(&s).to_vector()).amax() < 1e-15);
             let carried = s.dot(&f.transformed(&placement));
-            assert!((axis.component_of_transformed(&f, &placement) - carried).abs() < 1e-14);
+            assert!((axis.in_child_frame(&placement).dot(&f) - carried).abs() < 1e-14);
+            let inverse = s.inverse_transformed(&placement);
+            assert!(close(&axis.in_child_frame(&placement), &inverse));
             // The axis seen from the outer frame carries the same power.
             let outer = axis.in_frame(&placement);
             assert!((outer.dot(&f.transformed(&placement)) - s.dot(&f)).abs() < 1e-14);
