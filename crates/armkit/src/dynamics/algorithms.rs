@@ -144,14 +144,42 @@ pub fn mass_matrix<'d>(
     data: &'d mut DynamicsData,
     q: &[f64],
 ) -> Result<&'d DMatrix<f64>> {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma") {
+        // SAFETY: the function needs only the two features detected above.
+        unsafe { mass_matrix_avx2_fma(model, data, q) }?;
+        return Ok(&data.mass_matrix);
+    }
+    mass_matrix_kernel(model, data, q)?;
+    Ok(&data.mass_matrix)
+}
+
+/// [`mass_matrix`]'s work, inlined into both of its builds.
+#[inline(always)]
+fn mass_matrix_kernel(model: &Model, data: &mut DynamicsData, q: &[f64]) -> Result<()> {
     data.update_transforms(model, q)?;
     joint_space_inertia(data);
-    check_not_overflowed("mass matrix", data.mass_matrix.as_slice())?;
-    Ok(&data.mass_matrix)
+    check_not_overflowed("mass matrix", data.mass_matrix.as_slice())
+}
+
+/// [`mass_matrix_kernel`] compiled for AVX2 and FMA, which [`mass_matrix`]
+/// runs where the processor has them (detected at run time, once, then
+/// cached by the standard library). The three-operand vector instructions
+/// and fused multiply-adds take the CRBA from 3.3k to 2.8k instructions on
+/// the UR5, the margin its 2x-Pinocchio target needed (Pinocchio is built
+/// for the native processor); the results agree with the baseline build to
+/// rounding (a fused multiply-add rounds once). The RNEA and the ABA meet
+/// their targets without it and stay baseline, bit for bit the same on
+/// every processor.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+fn mass_matrix_avx2_fma(model: &Model, data: &mut DynamicsData, q: &[f64]) -> Result<()> {
+    mass_matrix_kernel(model, data, q)
 }
 
 /// The mass matrix at the joint transforms of `update_transforms` into
 /// `data.mass_matrix`: the CRBA, folded `M' H_c M` for a coupled model.
+#[inline(always)] // into `mass_matrix_avx2_fma`
 fn joint_space_inertia(data: &mut DynamicsData) {
     // Checked before `take` so that an uncoupled call moves nothing.
     let coupled = if data.coupled.is_some() {
@@ -202,6 +230,7 @@ fn joint_space_inertia(data: &mut DynamicsData) {
 /// level needs no frame-0 quantity but `S_0`'s products: with `s = X_1 S_0`
 /// (`S_0` seen from frame 1), `M[0][k] = s . F_k` and
 /// `M[0][0] = S_0' I_0 S_0 + s' Ic_1 s`.
+#[inline(always)] // into `mass_matrix_avx2_fma`
 fn composite_rigid_body(data: &mut DynamicsData, out: &mut DMatrix<f64>) {
     let n = data.local_inertias.len();
     if n == 0 {
@@ -446,4 +475,28 @@ fn coupled_forward_dynamics(
         ddq[i] = value / l[(i, i)];
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The processor-specific build of the CRBA (what `mass_matrix` runs
+    /// where AVX2 and FMA exist) and the baseline build agree to rounding.
+    #[test]
+    fn both_builds_of_the_mass_matrix_agree() {
+        // space6r: a built-in arm with mass properties.
+        let model = crate::robots::by_name("space6r").unwrap();
+        let mut fast = DynamicsData::new(&model).unwrap();
+        let mut baseline = DynamicsData::new(&model).unwrap();
+        for k in 0..50 {
+            let q: Vec<f64> = (0..6)
+                .map(|j| ((k * 6 + j) as f64 * 0.7).sin() * 3.0)
+                .collect();
+            let m = mass_matrix(&model, &mut fast, &q).unwrap().clone();
+            mass_matrix_kernel(&model, &mut baseline, &q).unwrap();
+            let scale = m.amax();
+            assert!((m - &baseline.mass_matrix).amax() <= 1e-14 * scale);
+        }
+    }
 }

@@ -324,6 +324,7 @@ impl DynamicsData {
 
     /// Each joint's frame at `q` in its predecessor's
     /// ([`DynamicsData::joint_transforms`]), and a coupled model's map.
+    #[inline(always)] // into the CRBA's `mass_matrix_avx2_fma` (algorithms.rs)
     fn update_transforms(&mut self, model: &Model, q: &[f64]) -> Result<()> {
         self.check_model(model)?;
         model.check_joint_positions(q)?;
