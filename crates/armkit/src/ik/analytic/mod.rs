@@ -52,20 +52,25 @@
 mod chain;
 mod class;
 mod finish;
+pub mod pair_search;
 mod parallel;
 pub mod search;
+pub mod search2d;
 mod srs;
 pub mod structure;
 pub mod subproblems;
+mod three_axes;
 mod wrist;
 
-pub use class::{ArmClass, ChainEnd, Positioning};
+pub use class::{ArmClass, ChainEnd, PairKind, Positioning};
 pub use finish::{AnalyticSolution, Representatives, Verification};
 
 use self::chain::{Candidates, Chain};
 use self::class::{detect, Detected};
 use self::finish::Finisher;
+use self::pair_search::PairSearch;
 use self::parallel::ThreeParallel;
+use self::search2d::GridSearch;
 use self::srs::SrsChain;
 use self::structure::ArmStructure;
 use self::wrist::SphericalWrist;
@@ -86,6 +91,36 @@ pub struct AnalyticOptions {
     pub limits: RangeFilter,
     /// How each solution's fit is decided.
     pub verification: Verification,
+    /// Which searches the solver may run.
+    pub search: SearchPolicy,
+}
+
+/// Which searches an [`AnalyticSolver`] may run (set-up decides the class).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum SearchPolicy {
+    /// Closed forms and 1-D searches (tens of microseconds); a general 6R
+    /// arm is refused. The default.
+    #[default]
+    UpToOneDimension,
+    /// Also the 2-D search of a general 6R arm ([`search2d`]: milliseconds,
+    /// may miss solutions).
+    TwoDimensions,
+}
+
+impl SearchPolicy {
+    /// A short snake-case name.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            SearchPolicy::UpToOneDimension => "up_to_one_dimension",
+            SearchPolicy::TwoDimensions => "two_dimensions",
+        }
+    }
+}
+
+impl std::fmt::Display for SearchPolicy {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
 }
 
 impl Default for AnalyticOptions {
@@ -94,6 +129,7 @@ impl Default for AnalyticOptions {
             representatives: Representatives::Every,
             limits: RangeFilter::WithinLimits,
             verification: Verification::ForwardKinematics,
+            search: SearchPolicy::UpToOneDimension,
         }
     }
 }
@@ -136,6 +172,11 @@ enum Plan {
         end: ChainEnd,
     },
     ShoulderElbowWrist(SrsChain),
+    OnePair {
+        solver: PairSearch,
+        end: ChainEnd,
+    },
+    TwoDimensional(GridSearch),
 }
 
 /// An analytic IK solver for one model (see the module docs).
@@ -196,9 +237,10 @@ impl AnalyticSolver {
         let structure = ArmStructure::of_model(model)?;
         if let Some(Parameter::FixedJoint { .. }) = parameter {
             // The value is checked here: an end joint's plan is built at 0.
-            plan(model, &structure, parameter)?;
+            plan(model, &structure, parameter, options.search)?;
         }
-        let (class, plan) = plan(model, &structure, reference(&structure, parameter))?;
+        let reference = reference(&structure, parameter);
+        let (class, plan) = plan(model, &structure, reference, options.search)?;
         Ok(AnalyticSolver {
             model: model.clone(),
             finisher: Finisher::new(model, options),
@@ -253,7 +295,12 @@ impl AnalyticSolver {
             Some(Parameter::FixedJoint { joint, .. }) => {
                 let parameter = Parameter::FixedJoint { joint, value };
                 if !held_at_end(&self.structure, joint) {
-                    let (class, plan) = plan(&self.model, &self.structure, Some(parameter))?;
+                    let (class, plan) = plan(
+                        &self.model,
+                        &self.structure,
+                        Some(parameter),
+                        self.options.search,
+                    )?;
                     self.class = class;
                     self.plan = plan;
                 }
@@ -321,6 +368,19 @@ impl AnalyticSolver {
                 };
                 srs.solve(goal, psi, &mut self.candidates);
             }
+            Plan::OnePair { solver, end } => {
+                reverse = *end == ChainEnd::Base;
+                solver.solve(&goal_of(goal, *end), &mut self.candidates);
+                if let Some(Parameter::FixedJoint { joint, value }) = self.parameter {
+                    fixed = Some((joint, value));
+                }
+            }
+            Plan::TwoDimensional(solver) => {
+                solver.solve(goal, &mut self.candidates);
+                if let Some(Parameter::FixedJoint { joint, value }) = self.parameter {
+                    fixed = Some((joint, value));
+                }
+            }
         }
         self.finisher.finish(
             &self.model,
@@ -384,7 +444,8 @@ pub fn joint_to_hold(model: &Model) -> Option<(usize, ArmClass)> {
         let mut class = None;
         for value in [0.0, 0.7, -1.9] {
             let parameter = Some(Parameter::FixedJoint { joint, value });
-            let (c, _) = plan(model, &structure, parameter).ok()?;
+            let search = SearchPolicy::UpToOneDimension;
+            let (c, _) = plan(model, &structure, parameter, search).ok()?;
             if class.is_some_and(|k| k != c) {
                 return None;
             }
@@ -398,7 +459,7 @@ pub fn joint_to_hold(model: &Model) -> Option<(usize, ArmClass)> {
             ArmClass::SphericalWrist {
                 positioning: Positioning::General,
                 ..
-            }
+            } | ArmClass::OnePair { .. }
         )
     };
     let classes: Vec<(usize, ArmClass)> = (0..7)
@@ -415,7 +476,7 @@ pub fn joint_to_hold(model: &Model) -> Option<(usize, ArmClass)> {
 /// The class of `model` and the lines it was read from (for `--explain`).
 pub fn explain(model: &Model, parameter: Option<Parameter>) -> Result<(ArmClass, ArmStructure)> {
     let structure = ArmStructure::of_model(model)?;
-    let class = match plan(model, &structure, parameter) {
+    let class = match plan(model, &structure, parameter, SearchPolicy::TwoDimensions) {
         Ok((class, _)) => class,
         Err(_) => detect(&reduced(&structure, parameter)).class(),
     };
@@ -452,6 +513,7 @@ fn plan(
     model: &Model,
     structure: &ArmStructure,
     parameter: Option<Parameter>,
+    search: SearchPolicy,
 ) -> Result<(ArmClass, Plan)> {
     if let Some(Parameter::FixedJoint { joint, value }) = parameter {
         if joint >= structure.dof() || !value.is_finite() {
@@ -502,7 +564,9 @@ fn plan(
             Plan::ShoulderElbowWrist(SrsChain::new(&arm, shoulder, elbow, wrist)),
         )),
         (
-            Detected::SphericalWrist { .. } | Detected::ThreeParallel { .. },
+            Detected::SphericalWrist { .. }
+            | Detected::ThreeParallel { .. }
+            | Detected::OnePair { .. },
             Some(Parameter::ElbowAngle(_)),
         ) => Err(unsolvable(
             "; an elbow angle needs a spherical-shoulder-elbow-wrist 7-DOF arm",
@@ -530,6 +594,20 @@ fn plan(
             let solver = ThreeParallel::new(&chain, &meet);
             Ok((class, Plan::ThreeParallel { solver, end }))
         }
+        (Detected::OnePair { end, layout, point, .. }, _) => {
+            let chain = chain_of(&arm, end).ok_or_else(|| unsolvable(""))?;
+            let solver = PairSearch::new(&chain, layout, &point);
+            Ok((class, Plan::OnePair { solver, end }))
+        }
+        (Detected::Unsolvable(ArmClass::General), Some(Parameter::FixedJoint { .. }) | None)
+            if search == SearchPolicy::TwoDimensions =>
+        {
+            let chain = chain_of(&arm, ChainEnd::Tip).ok_or_else(|| unsolvable(""))?;
+            Ok((class, Plan::TwoDimensional(GridSearch::new(&chain))))
+        }
+        (Detected::Unsolvable(ArmClass::General), None) => Err(unsolvable(
+            "; a general 6R arm needs the 2-D search: set AnalyticOptions::search = SearchPolicy::TwoDimensions (CLI: --search 2d)",
+        )),
         (Detected::Unsolvable(_), Some(Parameter::ElbowAngle(_))) => Err(unsolvable(
             "; an elbow angle needs a spherical-shoulder-elbow-wrist 7-DOF arm",
         )),
