@@ -852,7 +852,9 @@ fn pairs_without_a_1d_search_are_refused_by_name() {
         .unwrap_err()
         .to_string();
     assert!(error.contains("one_pair_intersecting_3_4"), "{error}");
-    middle = (0..6).map(|_| (point(&mut rng), unit(&mut rng), false)).collect();
+    middle = (0..6)
+        .map(|_| (point(&mut rng), unit(&mut rng), false))
+        .collect();
     middle[2].1 = middle[1].1;
     let model = model_from_lines("parallel", &middle, random_home(&mut rng));
     let error = AnalyticSolver::new(&model, AnalyticOptions::default())
@@ -865,7 +867,9 @@ fn pairs_without_a_1d_search_are_refused_by_name() {
 fn a_general_6r_arm_needs_the_2d_search_option() {
     use armkit::ik::analytic::SearchPolicy;
     let mut rng = common::rng(90);
-    let lines: Lines = (0..6).map(|_| (point(&mut rng), unit(&mut rng), false)).collect();
+    let lines: Lines = (0..6)
+        .map(|_| (point(&mut rng), unit(&mut rng), false))
+        .collect();
     let model = model_from_lines("general", &lines, random_home(&mut rng));
     let error = AnalyticSolver::new(&model, AnalyticOptions::default())
         .unwrap_err()
@@ -884,7 +888,9 @@ fn a_general_6r_arm_needs_the_2d_search_option() {
 }
 
 fn general_lines(rng: &mut ChaCha8Rng) -> Lines {
-    (0..6).map(|_| (point(rng) * 2.0, unit(rng), false)).collect()
+    (0..6)
+        .map(|_| (point(rng) * 2.0, unit(rng), false))
+        .collect()
 }
 
 fn two_dimensions() -> AnalyticOptions {
@@ -894,9 +900,10 @@ fn two_dimensions() -> AnalyticOptions {
     }
 }
 
-/// The recovery floor of the 2-D search, measured on these arms and seeds
-/// (see the test's output): it may miss solutions no grid point leads to.
-const GENERAL_FLOOR: f64 = 0.0;
+/// The recovery floor of the 2-D search: measured 30/30 poses in the quick
+/// test and 996/1000 (99.6 %) in the ignored one (10 arms, seed 96); it may
+/// miss solutions no grid point leads to.
+const GENERAL_FLOOR: f64 = 0.99;
 
 #[test]
 fn random_general_6r_arms_by_2d_search() {
@@ -928,19 +935,4 @@ fn many_random_general_6r_arms_by_2d_search() {
         two_dimensions(),
     );
     assert!(tally.recovered as f64 >= GENERAL_FLOOR * tally.poses as f64);
-}
-
-#[test]
-fn zz_debug_general() {
-    let mut rng = common::rng(95);
-    let lines = general_lines(&mut rng);
-    let model = model_from_lines("g", &lines, random_home(&mut rng));
-    let mut s = AnalyticSolver::new(&model, two_dimensions()).unwrap();
-    let mut data = Data::new(&model);
-    let q = common::random_configuration(&model, &mut rng);
-    let target = *forward_kinematics(&model, &mut data, &q).unwrap();
-    println!("q {q:?}");
-    for sol in s.solve(&target, &q).unwrap() {
-        println!("{:?} {:?} {:e} {:e}", sol.q(), sol.fit, sol.position_error, sol.orientation_error);
-    }
 }

@@ -11,7 +11,7 @@
 //! `R5 R6`; since `R5 R6 h6 = R5 h6` and a turn about `h5` keeps the `h5`
 //! component, `G` is reachable only if `h5 . G h6 = h5 . h6`: the scalar
 //! residual `f(t1)`, smooth in `t1` on each branch. Its roots are found by
-//! [`super::search::find_roots`] (128 samples per turn, roots to 1e-13 rad);
+//! [`super::search::find_roots`] ([`SAMPLES`] = 256 samples per turn, roots to 1e-13 rad);
 //! joints 5 and 6 then follow by subproblem 1 each (`R5 h6 = G h6`,
 //! `R6 h5 = R5' G h5`).
 //!
@@ -41,6 +41,8 @@ use super::three_axes::{Placements, ThreeAxes};
 use super::EXACT_TOLERANCE;
 use crate::math::{wrap_angle, Matrix3, Pose, Vector3};
 
+/// Samples per turn of each search.
+pub const SAMPLES: usize = 256;
 /// Largest joint-space step (rad, summed over the three placing joints)
 /// between two samples (or a sample and a refinement point) of one branch.
 pub const LINK: f64 = 1.0;
@@ -141,13 +143,15 @@ impl PairSearch {
         let mut count = 0;
         for form in forms {
             let problem = Problem::new(self, target, form);
-            find_roots(&problem, |t, key| {
+            find_roots::<_, 4, SAMPLES>(&problem, |t, key| {
                 let Some((q, exact)) = problem.finish(t, &key) else {
                     return;
                 };
-                let duplicate = kept[..count]
-                    .iter()
-                    .any(|p| p.iter().zip(&q).all(|(a, b)| wrap_angle(a - b).abs() < 1e-9));
+                let duplicate = kept[..count].iter().any(|p| {
+                    p.iter()
+                        .zip(&q)
+                        .all(|(a, b)| wrap_angle(a - b).abs() < 1e-9)
+                });
                 if !duplicate && count < kept.len() {
                     kept[count] = q;
                     count += 1;
@@ -226,7 +230,11 @@ impl<'a> Problem<'a> {
         let goal = target.transform_point(&s.point_home);
         let back = moved.inverse();
         let lines = (
-            [c[5], back.transform_point(&c[0]), back.transform_point(&c[1])],
+            [
+                c[5],
+                back.transform_point(&c[0]),
+                back.transform_point(&c[1]),
+            ],
             [h[5], back.rotation * h[0], back.rotation * h[1]],
         );
         Problem {

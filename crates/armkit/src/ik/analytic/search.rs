@@ -161,7 +161,7 @@ impl Residual<2> for Problem {
 /// The search over the first joint of `chain`.
 fn search(p: &Problem, out: &mut [([f64; 3], bool)]) -> usize {
     let mut count = 0;
-    find_roots(p, |t1, branch| {
+    find_roots::<_, 2, SAMPLES>(p, |t1, branch| {
         let found = finish(p, t1, branch);
         let duplicate = out[..count].iter().any(|(q, _)| {
             q.iter()
@@ -206,11 +206,7 @@ pub(crate) trait Residual<const B: usize> {
     /// The last point of the branch between `defined`, where it exists,
     /// and `undefined`, where it does not. Default: bisection to
     /// [`ROOT_TOLERANCE`], following the branch's key.
-    fn branch_end(
-        &self,
-        defined: (f64, f64, Self::Key),
-        undefined: f64,
-    ) -> (f64, f64, Self::Key)
+    fn branch_end(&self, defined: (f64, f64, Self::Key), undefined: f64) -> (f64, f64, Self::Key)
     where
         Self: Sized,
     {
@@ -231,24 +227,23 @@ type Point<K> = (f64, f64, K);
 /// Every root of every branch of `p` over one turn (see the module docs
 /// for the sampling, bracketing and refinement), each given to `found`
 /// with the key of its branch there.
-pub(crate) fn find_roots<R: Residual<B>, const B: usize>(
+pub(crate) fn find_roots<R: Residual<B>, const B: usize, const N: usize>(
     p: &R,
     mut found: impl FnMut(f64, R::Key),
 ) {
     use std::f64::consts::{PI, TAU};
-    let step = TAU / SAMPLES as f64;
-    // One more sample than the turn: the first again, aligned to the last.
-    let mut samples = [[None; B]; SAMPLES + 1];
-    for k in 0..SAMPLES {
+    let step = TAU / N as f64;
+    let mut samples = [[None; B]; N];
+    for k in 0..N {
         let mut current = p.sample(-PI + step * k as f64);
         if k > 0 {
             p.align(&samples[k - 1], &mut current);
         }
         samples[k] = current;
     }
-    let mut last = samples[0];
-    p.align(&samples[SAMPLES - 1], &mut last);
-    samples[SAMPLES] = last;
+    // Sample N is sample 0 again, aligned to the last.
+    let mut wrapped = samples[0];
+    p.align(&samples[N - 1], &mut wrapped);
     let linked = |a: &Option<(f64, R::Key)>, b: &Option<(f64, R::Key)>| match (a, b) {
         (Some((_, ka)), Some((_, kb))) => p.same_branch(ka, kb),
         _ => true,
@@ -261,10 +256,16 @@ pub(crate) fn find_roots<R: Residual<B>, const B: usize>(
         }
     };
     for branch in 0..B {
-        let at = |k: usize| samples[k][branch];
+        let at = |k: usize| {
+            if k == N {
+                wrapped[branch]
+            } else {
+                samples[k][branch]
+            }
+        };
         // The sample before sample 0 is the last one of the turn.
-        let mut before = at(SAMPLES - 1);
-        for k in 1..=SAMPLES {
+        let mut before = at(N - 1);
+        for k in 1..=N {
             let previous = at(k - 1);
             let value = at(k);
             let t = -PI + step * k as f64;
@@ -522,7 +523,11 @@ fn refine<R: Residual<B>, const B: usize>(
             side = 1;
         }
     }
-    Some(if fa.abs() < fb.abs() { (ta, ka) } else { (tb, kb) })
+    Some(if fa.abs() < fb.abs() {
+        (ta, ka)
+    } else {
+        (tb, kb)
+    })
 }
 
 /// Joints 1-3 at a root `t1` of branch `branch`.

@@ -8,7 +8,8 @@
 //! pose error of the chain's product of exponentials (position error, m,
 //! and the rotation vector of `R_T R'`, rad), at most [`MAX_ITERATIONS`]
 //! steps, stopping once the error's norm is below [`CONVERGED`]. Converged
-//! configurations are kept (duplicates within 1e-9 rad merged); a solution
+//! configurations are kept (those within [`SAME`] of each other merged, the
+//! most accurate kept); a solution
 //! none of the starting points leads to is missed. The recovery rate of the
 //! generating configuration is measured in `tests/ik_analytic.rs`.
 
@@ -21,6 +22,9 @@ use crate::math::{wrap_angle, Matrix6, Pose, Vector3, Vector6};
 pub const GRID: usize = 16;
 /// Most Gauss-Newton steps per starting point.
 pub const MAX_ITERATIONS: usize = 30;
+/// Largest gap (rad, every joint) between two polished configurations taken
+/// for the same solution (the more accurate is kept).
+pub const SAME: f64 = 1e-6;
 /// Norm of the 6-D pose error (m and rad) at which a polish stops.
 pub const CONVERGED: f64 = 1e-13;
 
@@ -43,28 +47,46 @@ impl GridSearch {
     pub(crate) fn solve(&self, target: &Pose, out: &mut Candidates) {
         use std::f64::consts::{PI, TAU};
         let step = TAU / GRID as f64;
-        let mut kept = [[0.0; 6]; 32];
+        let mut kept = [([0.0; 6], 0.0); 32];
         let mut count = 0;
         for i in 0..GRID {
             for j in 0..GRID {
-                let seed = [-PI + step * i as f64, -PI + step * j as f64, 0.0, 0.0, 0.0, 0.0];
-                let Some((q, error)) = polish(&self.chain, &self.home, seed, target, MAX_ITERATIONS)
+                let seed = [
+                    -PI + step * i as f64,
+                    -PI + step * j as f64,
+                    0.0,
+                    0.0,
+                    0.0,
+                    0.0,
+                ];
+                let Some((q, error)) =
+                    polish(&self.chain, &self.home, seed, target, MAX_ITERATIONS)
                 else {
                     continue;
                 };
                 let q = q.map(wrap_angle);
-                let duplicate = kept[..count]
-                    .iter()
-                    .any(|p| p.iter().zip(&q).all(|(a, b)| wrap_angle(a - b).abs() < 1e-9));
-                if !duplicate && count < kept.len() {
-                    kept[count] = q;
-                    count += 1;
-                    out.push(&q, error <= EXACT_TOLERANCE);
+                // The same solution reached from several points: keep the
+                // most accurate.
+                let same = kept[..count].iter().position(|(p, _)| {
+                    p.iter()
+                        .zip(&q)
+                        .all(|(a, b)| wrap_angle(a - b).abs() < SAME)
+                });
+                match same {
+                    Some(k) if error < kept[k].1 => kept[k] = (q, error),
+                    Some(_) => {}
+                    None if count < kept.len() => {
+                        kept[count] = (q, error);
+                        count += 1;
+                    }
+                    None => {}
                 }
             }
         }
+        for (q, error) in &kept[..count] {
+            out.push(q, *error <= EXACT_TOLERANCE);
+        }
     }
-
 }
 
 /// Levenberg-Marquardt on the chain's 6-D pose error from `q` to

@@ -73,7 +73,12 @@ fn circle_rows(
 ) -> (Matrix2<f64>, Vector2<f64>) {
     let d = s[0] - c;
     (
-        Matrix2::new(h.dot(&s[1]), h.dot(&s[2]), 2.0 * d.dot(&s[1]), 2.0 * d.dot(&s[2])),
+        Matrix2::new(
+            h.dot(&s[1]),
+            h.dot(&s[2]),
+            2.0 * d.dot(&s[1]),
+            2.0 * d.dot(&s[2]),
+        ),
         Vector2::new(h.dot(&d), d.norm_squared() + s[1].norm_squared()),
     )
 }
@@ -390,7 +395,13 @@ mod tests {
             }
             let grid = 4_000;
             let mut changes = 0;
-            let f = |i: usize| trig2(&k, -std::f64::consts::PI + std::f64::consts::TAU * i as f64 / grid as f64).0;
+            let f = |i: usize| {
+                trig2(
+                    &k,
+                    -std::f64::consts::PI + std::f64::consts::TAU * i as f64 / grid as f64,
+                )
+                .0
+            };
             for i in 0..grid {
                 if f(i).signum() != f(i + 1).signum() {
                     changes += 1;
