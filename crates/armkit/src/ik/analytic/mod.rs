@@ -15,7 +15,18 @@
 //! * axes 2-3-4 parallel with 5-6 intersecting (Universal Robots): up to 8;
 //! * 7-DOF spherical shoulder, elbow, spherical wrist (iiwa, LWR4) at an
 //!   elbow angle ([`Parameter::ElbowAngle`]); any other 7-DOF arm with one
-//!   joint held ([`Parameter::FixedJoint`]) if what is left has a class.
+//!   joint held ([`Parameter::FixedJoint`]) if what is left has a class;
+//! * 1-D searches: a spherical wrist behind three general axes ([`search`]);
+//!   6R arms of no closed-form class with an intersecting pair of
+//!   consecutive axes at 1-2, 2-3, 4-5 or 5-6 ([`pair_search`]: up to 16
+//!   solutions; the three joints that place the pair's point in closed form
+//!   by a quartic). A pair at 3-4 or parallel pairs only are refused with
+//!   the class named ([`PairKind`]);
+//! * on request ([`SearchPolicy::TwoDimensions`]), general 6R arms (no
+//!   intersecting or parallel consecutive axes) by a 2-D search
+//!   ([`search2d`]: a 16 x 16 grid over joints 1 and 2 polished by
+//!   Gauss-Newton; milliseconds, may miss solutions). By default they are
+//!   refused with an error naming the option.
 //!
 //! Each solution is checked by the model's forward kinematics and marked
 //! [`Fit::Exact`] (within [`EXACT_TOLERANCE`] = 1e-10 m and rad) or
@@ -28,9 +39,11 @@
 //! configuration. After [`AnalyticSolver::new`], a solve allocates nothing
 //! (unless the representatives outgrow the buffer sized at set-up for every
 //! joint's range, which only happens for [`Parameter::FixedJoint`] changes).
-//! One class searches: a spherical wrist behind three general positioning
-//! axes, by a 1-D search over joint 1 whose tolerances are in [`search`]
-//! (256 samples per turn, roots to 1e-13 rad); it may miss a double root.
+//! The search classes' tolerances are in [`search`] (128 samples per turn
+//! for the spherical wrist, 256 for the one-pair search, roots to 1e-13
+//! rad; a double root may be missed: >= 99.9 % of random poses recover the
+//! generating configuration) and [`search2d`]; a search's solution is
+//! exact only if forward kinematics confirms it to 1e-10.
 //!
 //! ```
 //! use armkit::ik::analytic::{AnalyticOptions, AnalyticSolver};

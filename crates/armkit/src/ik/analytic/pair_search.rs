@@ -6,12 +6,12 @@
 //! pair at 1-2 is solved on the reversed chain), `E1 E2 E3 E4 o = T home^-1 o
 //! = P`. For a trial `t1` of joint 1, joints 2-4 carry `o` onto
 //! `X(t1) = c1 + R1' (P - c1)`: three general axes placing a point, in
-//! closed form ([`super::three_axes`], up to 4 solutions, the branches).
+//! closed form (`three_axes`, up to 4 solutions, the branches).
 //! What is left of the orientation, `G = (R1 R2 R3 R4)' R_T R_home'`, must be
 //! `R5 R6`; since `R5 R6 h6 = R5 h6` and a turn about `h5` keeps the `h5`
 //! component, `G` is reachable only if `h5 . G h6 = h5 . h6`: the scalar
 //! residual `f(t1)`, smooth in `t1` on each branch. Its roots are found by
-//! [`super::search::find_roots`] ([`SAMPLES`] = 256 samples per turn, roots to 1e-13 rad);
+//! `search::find_roots` ([`SAMPLES`] = 256 samples per turn, roots to 1e-13 rad);
 //! joints 5 and 6 then follow by subproblem 1 each (`R5 h6 = G h6`,
 //! `R6 h5 = R5' G h5`).
 //!
@@ -34,7 +34,7 @@
 //! that miss by more than 1e-6 are dropped.
 
 use super::chain::{Candidates, Chain};
-use super::search::{find_roots, Residual};
+use super::search::{find_roots, EndCheck, Residual};
 use super::search2d::polish;
 use super::subproblems::{rotation, subproblem1, Spoke, Turn};
 use super::three_axes::{Placements, ThreeAxes};
@@ -64,26 +64,26 @@ pub(crate) enum PairLayout {
 
 /// One of the two searches of a layout.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Formulation {
+enum Searched {
     /// Joints 2-4 carry `o` onto `E1(t)^-1 P`.
-    FirstJoint,
+    First,
     /// Joints 1-3 carry `E4(t) o` onto `P`.
-    FourthJoint,
+    Fourth,
     /// Joints 1-3 carry `o` onto `T home^-1 E6(t)^-1 o`.
-    SixthJoint,
+    Sixth,
     /// Joint 6 and joints 1, 2 moved by `H` carry `H E3(t) o` onto `o`.
-    ThirdJoint,
+    Third,
 }
 
-impl Formulation {
+impl Searched {
     /// The searched joint, the placing joints (outermost first) and the
     /// pair (0-based).
     fn joints(self) -> (usize, [usize; 3], [usize; 2]) {
         match self {
-            Formulation::FirstJoint => (0, [1, 2, 3], [4, 5]),
-            Formulation::FourthJoint => (3, [0, 1, 2], [4, 5]),
-            Formulation::SixthJoint => (5, [0, 1, 2], [3, 4]),
-            Formulation::ThirdJoint => (2, [5, 0, 1], [3, 4]),
+            Searched::First => (0, [1, 2, 3], [4, 5]),
+            Searched::Fourth => (3, [0, 1, 2], [4, 5]),
+            Searched::Sixth => (5, [0, 1, 2], [3, 4]),
+            Searched::Third => (2, [5, 0, 1], [3, 4]),
         }
     }
 }
@@ -111,8 +111,8 @@ pub(crate) struct PairSearch {
 impl PairSearch {
     pub(crate) fn new(chain: &Chain, layout: PairLayout, point: &Vector3<f64>) -> PairSearch {
         let first = match layout {
-            PairLayout::LastTwo => Formulation::FirstJoint,
-            PairLayout::FourthFifth => Formulation::SixthJoint,
+            PairLayout::LastTwo => Searched::First,
+            PairLayout::FourthFifth => Searched::Sixth,
         };
         let (_, placing, pair) = first.joints();
         let second = match layout {
@@ -136,8 +136,8 @@ impl PairSearch {
     /// Every solution found for `target` (the chain's end-effector pose).
     pub(crate) fn solve(&self, target: &Pose, out: &mut Candidates) {
         let forms = match self.layout {
-            PairLayout::LastTwo => [Formulation::FirstJoint, Formulation::FourthJoint],
-            PairLayout::FourthFifth => [Formulation::SixthJoint, Formulation::ThirdJoint],
+            PairLayout::LastTwo => [Searched::First, Searched::Fourth],
+            PairLayout::FourthFifth => [Searched::Sixth, Searched::Third],
         };
         let mut kept: [[f64; 6]; 32] = [[0.0; 6]; 32];
         let mut count = 0;
@@ -172,7 +172,7 @@ fn turn(k: &Vector3<f64>, v: &Vector3<f64>, s: f64, c: f64) -> Vector3<f64> {
 /// shares.
 struct Problem<'a> {
     s: &'a PairSearch,
-    form: Formulation,
+    form: Searched,
     target: Pose,
     /// `R_T R_home'`.
     orientation: Matrix3<f64>,
@@ -224,7 +224,7 @@ fn keys(found: &Placements) -> impl Iterator<Item = Key> + '_ {
 }
 
 impl<'a> Problem<'a> {
-    fn new(s: &'a PairSearch, target: &Pose, form: Formulation) -> Problem<'a> {
+    fn new(s: &'a PairSearch, target: &Pose, form: Searched) -> Problem<'a> {
         let (c, h) = (&s.chain.c, &s.chain.h);
         let moved = *target * s.chain.home_inverse;
         let goal = target.transform_point(&s.point_home);
@@ -255,17 +255,17 @@ impl<'a> Problem<'a> {
     fn placements(&self, t: &Turn) -> Placements {
         let (c, h) = (&self.s.chain.c, &self.s.chain.h);
         match self.form {
-            Formulation::FirstJoint => self.s.placing.solve(&(c[0] + self.goal1.turned_back(t))),
-            Formulation::SixthJoint => self.s.placing.solve(
+            Searched::First => self.s.placing.solve(&(c[0] + self.goal1.turned_back(t))),
+            Searched::Sixth => self.s.placing.solve(
                 &self
                     .moved
                     .transform_point(&(c[5] + self.s.arm6.turned_back(t))),
             ),
-            Formulation::FourthJoint => {
+            Searched::Fourth => {
                 let w = c[3] + self.s.arm_second.turned(t);
                 ThreeAxes::new([c[0], c[1], c[2]], [h[0], h[1], h[2]], &w).solve(&self.goal)
             }
-            Formulation::ThirdJoint => {
+            Searched::Third => {
                 let w = self
                     .back
                     .transform_point(&(c[2] + self.s.arm_second.turned(t)));
@@ -379,6 +379,8 @@ impl<'a> Problem<'a> {
 
 impl Residual<4> for Problem<'_> {
     type Key = Key;
+
+    const ENDS: EndCheck = EndCheck::SignChangeOrDip;
 
     fn sample(&self, t: f64) -> [Option<(f64, Key)>; 4] {
         let found = self.placements(&Turn::of_angle(t));

@@ -1,5 +1,8 @@
-//! The one-dimensional search for three general positioning joints (no
-//! intersecting or parallel pair among them) in front of a spherical wrist.
+//! One-dimensional searches: the root finder `find_roots` of any scalar
+//! residual of one angle with branches (`Residual`), and its first use,
+//! three general positioning joints (no intersecting or parallel pair among
+//! them) in front of a spherical wrist (the one-pair classes in
+//! `pair_search` are the other).
 //!
 //! For a trial `t1`, the wrist goal seen before joint 1 is
 //! `X(t1) = c1 + R1' (W - c1)`. Joint 2 can carry a point `y` onto `X`
@@ -10,7 +13,8 @@
 //! the solutions (joint 2 then by subproblem 1).
 //!
 //! Search ([`SAMPLES`], [`ROOT_TOLERANCE`]): `f_b` is sampled on
-//! [`SAMPLES`] evenly spaced `t1` over one turn; every sign change between
+//! [`SAMPLES`] evenly spaced `t1` over one turn (the number is the
+//! caller's, a const parameter of `find_roots`); every sign change between
 //! neighbouring samples (or between a sample and the end of the branch,
 //! where subproblem 4's two solutions merge, found by bisection) is refined
 //! by the Illinois variant of regula falsi until the bracket is narrower
@@ -203,6 +207,9 @@ pub(crate) trait Residual<const B: usize> {
     ) {
     }
 
+    /// What is looked for between a sample and the end of its branch.
+    const ENDS: EndCheck = EndCheck::SignChange;
+
     /// The last point of the branch between `defined`, where it exists,
     /// and `undefined`, where it does not. Default: bisection to
     /// [`ROOT_TOLERANCE`], following the branch's key.
@@ -219,6 +226,19 @@ pub(crate) trait Residual<const B: usize> {
     fn same_branch(&self, _a: &Self::Key, _b: &Self::Key) -> bool {
         true
     }
+}
+
+/// What [`find_roots`] looks for between a sample and the end of its
+/// branch.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum EndCheck {
+    /// A sign change only (the residual is not expected to turn near an
+    /// end: the spherical-wrist search).
+    SignChange,
+    /// A sign change, or a dip through zero and back (a square-root end,
+    /// where two roots can sit between the last sample and the end: the
+    /// one-pair search).
+    SignChangeOrDip,
 }
 
 /// A point of a branch: angle, residual, key.
@@ -335,6 +355,9 @@ fn end_bracket<R: Residual<B>, const B: usize>(
 ) {
     if end.1 == 0.0 || end.1.signum() != sample.1.signum() {
         bracket(end, sample);
+        return;
+    }
+    if R::ENDS == EndCheck::SignChange {
         return;
     }
     let mut points = [end; 4];
