@@ -446,8 +446,9 @@ impl AnalyticSolver {
 
 /// The joint (0-based) of a 7-joint `model` to hold so that the other six
 /// form a class at any value of it (checked at 0, 0.7 and -1.9), with that
-/// class: the last such joint of a closed-form class, else the last of a
-/// search class; `None` if none (or not 7 joints).
+/// class: the last such joint of a closed-form class, else the last of the
+/// spherical wrist's search class, else the last of a one-pair search
+/// class; `None` if none (or not 7 joints).
 pub fn joint_to_hold(model: &Model) -> Option<(usize, ArmClass)> {
     if model.dof() != 7 {
         return None;
@@ -466,24 +467,21 @@ pub fn joint_to_hold(model: &Model) -> Option<(usize, ArmClass)> {
         }
         class
     };
-    let searches = |c: &ArmClass| {
-        matches!(
-            c,
-            ArmClass::SphericalWrist {
-                positioning: Positioning::General,
-                ..
-            } | ArmClass::OnePair { .. }
-        )
+    // Closed forms first, then the spherical wrist's search (tens of
+    // microseconds), then the one-pair search (milliseconds).
+    let cost = |c: &ArmClass| match c {
+        ArmClass::SphericalWrist {
+            positioning: Positioning::General,
+            ..
+        } => 1,
+        ArmClass::OnePair { .. } => 2,
+        _ => 0,
     };
     let classes: Vec<(usize, ArmClass)> = (0..7)
         .rev()
         .filter_map(|j| class_at(j).map(|c| (j, c)))
         .collect();
-    classes
-        .iter()
-        .find(|(_, c)| !searches(c))
-        .or_else(|| classes.first())
-        .copied()
+    (0..3).find_map(|rank| classes.iter().find(|(_, c)| cost(c) == rank).copied())
 }
 
 /// The class of `model` and the lines it was read from (for `--explain`).
