@@ -23,6 +23,10 @@ use super::subproblems::{subproblem1, Spoke, Turn};
 use crate::math::Vector3;
 use nalgebra::{Matrix2, Vector2};
 
+/// Relative determinant of `A` (arm-fixed) above which it is inverted;
+/// below, `B` is (its conditioning varies with the goal; a goal where both
+/// are singular gets no solutions).
+const WELL_CONDITIONED: f64 = 1e-2;
 /// Relative determinant below which a 2 x 2 system counts as singular.
 const SINGULAR: f64 = 1e-10;
 
@@ -41,8 +45,8 @@ pub(crate) struct ThreeAxes {
     a0: Vector2<f64>,
     /// Which side is inverted, fixed at set-up so that the polynomial's
     /// variable (and the sign of `f'`) is the same for every goal: `A`
-    /// (the polynomial in `t_a`) unless it is singular (axes `b` and `c`
-    /// parallel), then `B` (in `t_c`).
+    /// (the polynomial in `t_a`) unless it is poorly conditioned (axes `b`
+    /// and `c` nearly parallel), then `B` (in `t_c`).
     invert_a: bool,
 }
 
@@ -106,7 +110,7 @@ impl ThreeAxes {
             u,
             a,
             a0,
-            invert_a: conditioning(&a) > 1e-6,
+            invert_a: conditioning(&a) > WELL_CONDITIONED,
         }
     }
 
