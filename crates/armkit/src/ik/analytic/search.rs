@@ -148,17 +148,17 @@ pub(crate) fn position(
 /// The spherical-wrist search as a residual of joint 1 with two branches
 /// (subproblem 4's solutions for joint 3), each keyed by its index.
 impl Residual<2> for Problem {
-    type Key = usize;
+    type Key = u8;
 
     #[inline]
-    fn sample(&self, t: f64) -> [Option<(f64, usize)>; 2] {
+    fn sample(&self, t: f64) -> [Option<(f64, u8)>; 2] {
         let [a, b] = residuals(self, t);
         [a.map(|f| (f, 0)), b.map(|f| (f, 1))]
     }
 
     #[inline]
-    fn residual(&self, t: f64, branch: &usize) -> Option<(f64, usize)> {
-        residual(self, t, *branch).map(|f| (f, *branch))
+    fn residual(&self, t: f64, branch: &u8) -> Option<(f64, u8)> {
+        residual(self, t, usize::from(*branch)).map(|f| (f, *branch))
     }
 }
 
@@ -166,7 +166,7 @@ impl Residual<2> for Problem {
 fn search(p: &Problem, out: &mut [([f64; 3], bool)]) -> usize {
     let mut count = 0;
     find_roots::<_, 2, SAMPLES>(p, |t1, branch| {
-        let found = finish(p, t1, branch);
+        let found = finish(p, t1, usize::from(branch));
         let duplicate = out[..count].iter().any(|(q, _)| {
             q.iter()
                 .zip(&found.0)
@@ -309,7 +309,7 @@ pub(crate) fn find_roots<R: Residual<B>, const B: usize, const N: usize>(
             }
             // |f| has a local minimum at the previous sample without a sign
             // change: two roots may hide in the two intervals around it.
-            if let (Some((f0, _)), Some((f1, key)), Some((f2, _))) = (before, previous, value) {
+            if let (Some((f0, k0)), Some((f1, key)), Some((f2, k2))) = (before, previous, value) {
                 if linked(&before, &previous)
                     && linked(&previous, &value)
                     && f0.signum() == f1.signum()
@@ -319,18 +319,10 @@ pub(crate) fn find_roots<R: Residual<B>, const B: usize, const N: usize>(
                     && parabola_nears_zero(f0, f1, f2)
                 {
                     let (a, b) = (ta - step, t);
-                    if let Some((tm, fm, km)) = minimize(p, key, f1.signum(), a, b) {
-                        if fm.signum() != f1.signum() {
-                            for x in [a, b] {
-                                if let Some((fx, kx)) = p.residual(x, &km) {
-                                    let (lo, hi) = if x < tm {
-                                        ((x, fx, kx), (tm, fm, km))
-                                    } else {
-                                        ((tm, fm, km), (x, fx, kx))
-                                    };
-                                    bracket(lo, hi);
-                                }
-                            }
+                    if let Some(middle) = minimize(p, key, f1.signum(), a, b) {
+                        if middle.1.signum() != f1.signum() {
+                            bracket((a, f0, k0), middle);
+                            bracket(middle, (b, f2, k2));
                         }
                     }
                 }
