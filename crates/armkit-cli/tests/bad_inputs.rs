@@ -93,6 +93,11 @@ const FILES: &[(&str, &str)] = &[
         "{\"robot\": \"r\", \"dh\": {\"convention\": \"standard\"}}",
     ),
     ("empty.toml", ""),
+    // A general 6R arm: no intersecting or parallel consecutive axes.
+    (
+        "general-6r.toml",
+        "convention = \"standard\"\n[[links]]\ntype = \"R\"\nd = 0.3\na = 0.1\nalpha = 0.7\n[[links]]\ntype = \"R\"\nd = 0.05\na = 0.4\nalpha = -1.1\n[[links]]\ntype = \"R\"\nd = 0.1\na = 0.35\nalpha = 0.9\n[[links]]\ntype = \"R\"\nd = 0.25\na = 0.05\nalpha = -0.6\n[[links]]\ntype = \"R\"\nd = 0.02\na = 0.07\nalpha = 1.2\n[[links]]\ntype = \"R\"\nd = 0.1\na = 0.03\nalpha = 0.5\n",
+    ),
     // URDF files.
     ("not-xml.urdf", "hello"),
     ("not-robot.urdf", "<sdf version=\"1.6\"/>"),
@@ -502,6 +507,36 @@ const CASES: &[Case] = &[
             "analytic",
         ],
         1,
+    ),
+    case(
+        "ik",
+        "general 6R arm without --search 2d (the 2-D search is opt-in)",
+        &[
+            "ik",
+            "--robot-file",
+            "general-6r.toml",
+            "--pose",
+            "0.4,0.1,0.5,pi,0,0",
+            "--solver",
+            "analytic",
+        ],
+        1,
+    ),
+    case(
+        "ik",
+        "unknown --search value",
+        &[
+            "ik",
+            "--robot",
+            "ur5",
+            "--pose",
+            "0.4,0.1,0.5,pi,0,0",
+            "--solver",
+            "analytic",
+            "--search",
+            "3d",
+        ],
+        2,
     ),
     case(
         "ik",

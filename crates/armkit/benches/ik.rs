@@ -11,7 +11,7 @@
 use std::hint::black_box;
 
 use armkit::ik::analytic::{
-    AnalyticOptions, AnalyticSolver, Parameter, Representatives, Verification,
+    AnalyticOptions, AnalyticSolver, Parameter, Representatives, SearchPolicy, Verification,
 };
 use armkit::ik::closed_form::{arm4_solutions, SphericalWristSolver};
 use armkit::ik::AutoSolver;
@@ -104,6 +104,49 @@ fn ideal_iiwa14() -> Model {
     })
 }
 
+/// Lines (point, axis) at zero configuration of an arm whose axes 5 and 6
+/// meet and whose other consecutive axes are skew.
+const ONE_PAIR: [([f64; 3], [f64; 3]); 6] = [
+    ([0.0, 0.0, 0.0], [0.0, 0.0, 1.0]),
+    ([0.1, 0.05, 0.4], [0.3, 0.9, 0.3]),
+    ([0.5, -0.1, 0.6], [-0.2, 0.8, 0.55]),
+    ([0.8, 0.1, 0.55], [0.9, 0.2, -0.4]),
+    ([1.0, 0.0, 0.5], [0.1, 0.95, 0.3]),
+    ([1.0, 0.0, 0.5], [0.85, -0.2, 0.5]),
+];
+
+/// Lines of a general 6R arm (no consecutive axes meet or are parallel).
+const GENERAL: [([f64; 3], [f64; 3]); 6] = [
+    ([0.0, 0.0, 0.0], [0.0, 0.0, 1.0]),
+    ([0.1, 0.05, 0.4], [0.3, 0.9, 0.3]),
+    ([0.5, -0.1, 0.6], [-0.2, 0.8, 0.55]),
+    ([0.8, 0.1, 0.55], [0.9, 0.2, -0.4]),
+    ([1.0, 0.0, 0.5], [0.1, 0.95, 0.3]),
+    ([1.1, 0.1, 0.45], [0.85, -0.2, 0.5]),
+];
+
+/// A model from lines at zero configuration, revolute joints in [-pi, pi].
+fn lines_model(name: &str, lines: &[([f64; 3], [f64; 3]); 6]) -> Model {
+    use armkit::math::{Pose, Vector3};
+    use armkit::model::{JointSpec, ModelBuilder};
+    use std::f64::consts::PI;
+    let mut builder = ModelBuilder::new(name);
+    let mut previous = Vector3::zeros();
+    for (i, (c, h)) in lines.iter().enumerate() {
+        let c = Vector3::from(*c);
+        builder = builder.joint(
+            JointSpec::revolute(format!("q{}", i + 1), -PI, PI)
+                .with_origin(Pose::from_translation(c - previous))
+                .with_axis(Vector3::from(*h).normalize()),
+        );
+        previous = c;
+    }
+    builder
+        .fixed(Pose::from_translation(Vector3::new(0.15, 0.0, 0.0)))
+        .build()
+        .unwrap()
+}
+
 fn bench_analytic_solver(
     c: &mut Criterion,
     label: &str,
@@ -186,6 +229,18 @@ fn bench_analytic(c: &mut Criterion) {
         &iiwa_urdf,
         solver,
     );
+    // A one-pair arm (axes 5-6 meet, the rest general: 1-D search) and a
+    // general 6R arm (2-D search, on request).
+    let pair = lines_model("one_pair", &ONE_PAIR);
+    let solver = AnalyticSolver::new(&pair, nearest).unwrap();
+    bench_analytic_solver(c, "one_pair_5_6_1d_search/distinct", &pair, solver);
+    let general = lines_model("general", &GENERAL);
+    let two = AnalyticOptions {
+        search: SearchPolicy::TwoDimensions,
+        ..nearest
+    };
+    let solver = AnalyticSolver::new(&general, two).unwrap();
+    bench_analytic_solver(c, "general_6r_2d_search/distinct", &general, solver);
     for name in ["ur5", "panda"] {
         let model = armkit::robots::by_name(name).unwrap();
         let targets = benchmark_targets(&model, 64, 42).unwrap();

@@ -772,3 +772,55 @@ fn dynamics_workspace_moving_between_models_does_not_allocate() {
         "dynamics with a workspace moving between models"
     );
 }
+
+#[test]
+fn analytic_ik_searches_do_not_allocate() {
+    use armkit::ik::analytic::{AnalyticOptions, AnalyticSolver, SearchPolicy};
+    use armkit::math::{Pose, Vector3};
+    use armkit::model::{JointSpec, ModelBuilder};
+    use std::f64::consts::PI;
+    // Axes 5-6 meet (the one-pair 1-D search); moved apart, a general 6R
+    // arm (the 2-D search).
+    let lines = |last: [f64; 3]| {
+        [
+            ([0.0, 0.0, 0.0], [0.0, 0.0, 1.0]),
+            ([0.1, 0.05, 0.4], [0.3, 0.9, 0.3]),
+            ([0.5, -0.1, 0.6], [-0.2, 0.8, 0.55]),
+            ([0.8, 0.1, 0.55], [0.9, 0.2, -0.4]),
+            ([1.0, 0.0, 0.5], [0.1, 0.95, 0.3]),
+            (last, [0.85, -0.2, 0.5]),
+        ]
+    };
+    let options = AnalyticOptions {
+        search: SearchPolicy::TwoDimensions,
+        ..AnalyticOptions::default()
+    };
+    for (name, last) in [("one_pair", [1.0, 0.0, 0.5]), ("general", [1.1, 0.1, 0.45])] {
+        let mut builder = ModelBuilder::new(name);
+        let mut previous = Vector3::zeros();
+        for (i, (c, h)) in lines(last).iter().enumerate() {
+            let c = Vector3::from(*c);
+            builder = builder.joint(
+                JointSpec::revolute(format!("q{}", i + 1), -PI, PI)
+                    .with_origin(Pose::from_translation(c - previous))
+                    .with_axis(Vector3::from(*h).normalize()),
+            );
+            previous = c;
+        }
+        let model = builder
+            .fixed(Pose::from_translation(Vector3::new(0.15, 0.0, 0.0)))
+            .build()
+            .unwrap();
+        let mut solver = AnalyticSolver::new(&model, options).unwrap();
+        let targets = benchmark_targets(&model, 5, 3).unwrap();
+        let start = model.neutral_configuration();
+        let mut solutions = 0;
+        for (_, target) in &targets {
+            let before = allocations();
+            solutions += solver.solve(target, &start).unwrap().len();
+            let after = allocations();
+            assert_eq!(after - before, 0, "{name}: {} allocations", after - before);
+        }
+        assert!(solutions > 0, "{name}");
+    }
+}

@@ -114,6 +114,33 @@ pub struct RedundancyArgs {
     /// held joint's range) and list the solutions of all of them.
     #[arg(long, value_name = "N")]
     pub sweep: Option<usize>,
+    /// The searches the analytic solver may run: `1d` (closed forms and
+    /// 1-D searches, tens of microseconds to milliseconds) or `2d` (also a
+    /// general 6R arm's 2-D search: milliseconds, may miss solutions).
+    #[arg(long, value_enum, default_value_t = SearchArg::OneD)]
+    pub search: SearchArg,
+}
+
+/// `--search` values.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
+pub enum SearchArg {
+    /// Closed forms and 1-D searches (default).
+    #[default]
+    #[value(name = "1d")]
+    OneD,
+    /// Also the general 6R arm's 2-D search.
+    #[value(name = "2d")]
+    TwoD,
+}
+
+impl SearchArg {
+    /// The library's policy.
+    pub fn policy(self) -> armkit::ik::analytic::SearchPolicy {
+        match self {
+            SearchArg::OneD => armkit::ik::analytic::SearchPolicy::UpToOneDimension,
+            SearchArg::TwoD => armkit::ik::analytic::SearchPolicy::TwoDimensions,
+        }
+    }
 }
 
 /// Inverse kinematics of one pose: every solution for the analytic solver,

@@ -33,7 +33,10 @@ impl Route {
         redundancy: &RedundancyArgs,
         start: &[f64],
     ) -> CliResult<Route> {
-        let options = AnalyticOptions::default();
+        let options = AnalyticOptions {
+            search: redundancy.search.policy(),
+            ..AnalyticOptions::default()
+        };
         if model.dof() != 7 {
             if redundancy.fixed_joint.is_some()
                 || redundancy.parameter.is_some()

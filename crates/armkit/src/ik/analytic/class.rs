@@ -1,7 +1,17 @@
 //! The classes of arms, and their detection from an [`ArmStructure`].
 
+use super::pair_search::PairLayout;
 use super::structure::{ArmStructure, Motion, Relation};
 use crate::math::Vector3;
+
+/// How the special pair of consecutive axes of a one-pair arm lies.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum PairKind {
+    /// The two axes meet in one point.
+    Intersecting,
+    /// The two axes are parallel.
+    Parallel,
+}
 
 /// Which end of the chain a structural feature is at.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -63,11 +73,20 @@ pub enum ArmClass {
     /// wrist and 3-4-5 at the elbow (KUKA LWR4, iiwa): up to 8 solutions per
     /// elbow (arm) angle.
     SphericalShoulderElbowWrist,
-    /// 6 rotation joints with only a pair of intersecting or parallel
-    /// consecutive axes (a 1-D search class); not solved analytically here.
-    OnePair,
-    /// 6 joints without any intersecting or parallel consecutive axes (a
-    /// 2-D search class); not solved analytically here.
+    /// 6 rotation joints whose special consecutive axes (intersecting or
+    /// parallel) fit no closed-form class. Solved by a 1-D search when
+    /// axes `first`, `first + 1` (1-based, model order) intersect and
+    /// `first` is 1, 2, 4 or 5 (see `pair_search`); refused otherwise
+    /// (an intersecting pair 3-4, parallel pairs only).
+    OnePair {
+        /// The pair's first joint, 1-based.
+        first: u8,
+        /// Intersecting or parallel.
+        kind: PairKind,
+    },
+    /// 6 rotation joints without any intersecting or parallel consecutive
+    /// axes: a 2-D search, only with `SearchPolicy::TwoDimensions` (see
+    /// `search2d`).
     General,
     /// Another number of joints, or prismatic joints where no class allows
     /// them.
@@ -99,7 +118,18 @@ impl ArmClass {
             ArmClass::ThreeParallelOffset { end: Tip } => "three_parallel_2_3_4",
             ArmClass::ThreeParallelOffset { end: Base } => "three_parallel_3_4_5",
             ArmClass::SphericalShoulderElbowWrist => "spherical_shoulder_elbow_wrist_7dof",
-            ArmClass::OnePair => "one_pair_1d_search",
+            ArmClass::OnePair { first, kind } => match (kind, first) {
+                (PairKind::Intersecting, 1) => "one_pair_intersecting_1_2_1d_search",
+                (PairKind::Intersecting, 2) => "one_pair_intersecting_2_3_1d_search",
+                (PairKind::Intersecting, 3) => "one_pair_intersecting_3_4",
+                (PairKind::Intersecting, 4) => "one_pair_intersecting_4_5_1d_search",
+                (PairKind::Intersecting, _) => "one_pair_intersecting_5_6_1d_search",
+                (PairKind::Parallel, 1) => "one_pair_parallel_1_2",
+                (PairKind::Parallel, 2) => "one_pair_parallel_2_3",
+                (PairKind::Parallel, 3) => "one_pair_parallel_3_4",
+                (PairKind::Parallel, 4) => "one_pair_parallel_4_5",
+                (PairKind::Parallel, _) => "one_pair_parallel_5_6",
+            },
             ArmClass::General => "general_6r_2d_search",
             ArmClass::Other => "other",
         }
@@ -130,17 +160,39 @@ impl ArmClass {
             ArmClass::SphericalShoulderElbowWrist => {
                 "7-DOF spherical shoulder, elbow, spherical wrist: closed form per elbow angle, up to 8 solutions"
             }
-            ArmClass::OnePair => {
-                "only one intersecting or parallel pair of consecutive axes: needs a 1-D search (not implemented; use the numeric solver)"
+            ArmClass::OnePair {
+                kind: PairKind::Intersecting,
+                first: 1 | 5,
+            } => {
+                "one intersecting pair of consecutive axes at an end, no closed-form class: 1-D search over the joint at the other end (128 samples per turn, the three joints between in closed form by a quartic, roots to 1e-13 rad), up to 16 solutions"
+            }
+            ArmClass::OnePair {
+                kind: PairKind::Intersecting,
+                first: 2 | 4,
+            } => {
+                "one intersecting pair of consecutive axes next to an end joint, no closed-form class: 1-D search over that end joint (128 samples per turn, the other three joints in closed form by a quartic, roots to 1e-13 rad), up to 16 solutions"
+            }
+            ArmClass::OnePair {
+                kind: PairKind::Intersecting,
+                ..
+            } => {
+                "intersecting axes 3 and 4 only: needs a 1-D search with moving lines, not implemented here (use the numeric solver)"
+            }
+            ArmClass::OnePair {
+                kind: PairKind::Parallel,
+                ..
+            } => {
+                "parallel consecutive axes only (no intersecting pair, no closed-form class): needs a 1-D search not implemented here (use the numeric solver)"
             }
             ArmClass::General => {
-                "no intersecting or parallel consecutive axes: general 6R, needs a 2-D search (not implemented; use the numeric solver)"
+                "no intersecting or parallel consecutive axes: general 6R, a 2-D search (a 16 x 16 grid over joints 1 and 2, each point polished by damped Gauss-Newton; milliseconds, may miss solutions): only with the search option `two_dimensions` (CLI: --search 2d)"
             }
             ArmClass::Other => "not a 6-joint arm of a known class: numeric solver only",
         }
     }
 
-    /// True when the analytic solver handles this class.
+    /// True when the analytic solver handles this class (a general 6R only
+    /// with the two-dimensional search option).
     pub fn is_solvable(&self) -> bool {
         matches!(
             self,
@@ -148,6 +200,10 @@ impl ArmClass {
                 | ArmClass::ThreeParallel { .. }
                 | ArmClass::ThreeParallelOffset { .. }
                 | ArmClass::SphericalShoulderElbowWrist
+                | ArmClass::OnePair {
+                    kind: PairKind::Intersecting,
+                    first: 1 | 2 | 4 | 5,
+                }
         )
     }
 }
@@ -184,6 +240,14 @@ pub(crate) enum Detected {
         elbow: Vector3<f64>,
         wrist: Vector3<f64>,
     },
+    /// One intersecting pair, solved by a 1-D search (`point` where the
+    /// pair meets, chain as solved).
+    OnePair {
+        class: ArmClass,
+        end: ChainEnd,
+        layout: PairLayout,
+        point: Vector3<f64>,
+    },
     Unsolvable(ArmClass),
 }
 
@@ -196,7 +260,7 @@ impl Detected {
             Detected::ThreeParallel { end, .. } => ArmClass::ThreeParallel { end },
             Detected::ThreeParallelOffset { end } => ArmClass::ThreeParallelOffset { end },
             Detected::ShoulderElbowWrist { .. } => ArmClass::SphericalShoulderElbowWrist,
-            Detected::Unsolvable(class) => class,
+            Detected::OnePair { class, .. } | Detected::Unsolvable(class) => class,
         }
     }
 }
@@ -223,13 +287,48 @@ pub(crate) fn detect(structure: &ArmStructure) -> Detected {
     if structure.motions.contains(&Motion::Translation) {
         return Detected::Unsolvable(ArmClass::Other);
     }
-    let special = (0..5)
-        .filter(|&i| !matches!(structure.relation(i, i + 1), Relation::Skew(_)))
-        .count();
-    Detected::Unsolvable(if special == 0 {
-        ArmClass::General
-    } else {
-        ArmClass::OnePair
+    one_pair(structure, &reversed)
+}
+
+/// A 6R arm of no closed-form class: an intersecting pair the 1-D search
+/// handles (preferring 5-6, 1-2, 4-5, 2-3), else the first special pair
+/// (refused), else general.
+fn one_pair(structure: &ArmStructure, reversed: &ArmStructure) -> Detected {
+    use PairLayout::*;
+    let cases = [
+        (5, ChainEnd::Tip, LastTwo, structure),
+        (1, ChainEnd::Base, LastTwo, reversed),
+        (4, ChainEnd::Tip, FourthFifth, structure),
+        (2, ChainEnd::Base, FourthFifth, reversed),
+    ];
+    for (first, end, layout, chain) in cases {
+        let i = match layout {
+            LastTwo => 4,
+            FourthFifth => 3,
+        };
+        if let Relation::Intersecting(point) = chain.relation(i, i + 1) {
+            return Detected::OnePair {
+                class: ArmClass::OnePair {
+                    first,
+                    kind: PairKind::Intersecting,
+                },
+                end,
+                layout,
+                point,
+            };
+        }
+    }
+    let special = (0..5).find_map(|i| match structure.relation(i, i + 1) {
+        Relation::Skew(_) => None,
+        Relation::Parallel => Some((i, PairKind::Parallel)),
+        Relation::Intersecting(_) => Some((i, PairKind::Intersecting)),
+    });
+    Detected::Unsolvable(match special {
+        None => ArmClass::General,
+        Some((i, kind)) => ArmClass::OnePair {
+            first: i as u8 + 1,
+            kind,
+        },
     })
 }
 

@@ -17,7 +17,18 @@
 //!   arm with an offset wrist): up to 8, by [`subproblem6`] (a quartic);
 //! * 7-DOF spherical shoulder, elbow, spherical wrist (iiwa, LWR4) at an
 //!   elbow angle ([`Parameter::ElbowAngle`]); any other 7-DOF arm with one
-//!   joint held ([`Parameter::FixedJoint`]) if what is left has a class.
+//!   joint held ([`Parameter::FixedJoint`]) if what is left has a class;
+//! * 1-D searches: a spherical wrist behind three general axes ([`search`]);
+//!   6R arms of no closed-form class with an intersecting pair of
+//!   consecutive axes at 1-2, 2-3, 4-5 or 5-6 ([`pair_search`]: up to 16
+//!   solutions; the three joints that place the pair's point in closed form
+//!   by a quartic). A pair at 3-4 or parallel pairs only are refused with
+//!   the class named ([`PairKind`]);
+//! * on request ([`SearchPolicy::TwoDimensions`]), general 6R arms (no
+//!   intersecting or parallel consecutive axes) by a 2-D search
+//!   ([`search2d`]: a 16 x 16 grid over joints 1 and 2 polished by
+//!   Gauss-Newton; milliseconds, may miss solutions). By default they are
+//!   refused with an error naming the option.
 //!
 //! Each solution is checked by forward kinematics (the product of
 //! exponentials of the model's joint lines, compared with the model's own
@@ -33,9 +44,11 @@
 //! configuration. After [`AnalyticSolver::new`], a solve allocates nothing
 //! (unless the representatives outgrow the buffer sized at set-up for every
 //! joint's range, which only happens for [`Parameter::FixedJoint`] changes).
-//! One class searches: a spherical wrist behind three general positioning
-//! axes, by a 1-D search over joint 1 whose tolerances are in [`search`]
-//! (256 samples per turn, roots to 1e-13 rad); it may miss a double root.
+//! The search classes' tolerances are in [`search`] (128 samples per turn
+//! for the spherical wrist, 256 for the one-pair search, roots to 1e-13
+//! rad; a double root may be missed: >= 99.9 % of random poses recover the
+//! generating configuration) and [`search2d`]; a search's solution is
+//! exact only if forward kinematics confirms it to 1e-10.
 //!
 //! ```
 //! use armkit::ik::analytic::{AnalyticOptions, AnalyticSolver};
@@ -57,16 +70,19 @@
 mod chain;
 mod class;
 mod finish;
+pub mod pair_search;
 mod parallel;
 mod parallel_offset;
 pub mod search;
+pub mod search2d;
 mod srs;
 pub mod structure;
 pub mod subproblem6;
 pub mod subproblems;
+mod three_axes;
 mod wrist;
 
-pub use class::{ArmClass, ChainEnd, Positioning};
+pub use class::{ArmClass, ChainEnd, PairKind, Positioning};
 pub use finish::{
     AnalyticSolution, Representatives, Verification, LINE_CHECK_CONFIGURATIONS,
     LINE_CHECK_TOLERANCE,
@@ -75,8 +91,10 @@ pub use finish::{
 use self::chain::{Candidates, Chain};
 use self::class::{detect, Detected};
 use self::finish::Finisher;
+use self::pair_search::PairSearch;
 use self::parallel::ThreeParallel;
 use self::parallel_offset::ThreeParallelOffset;
+use self::search2d::GridSearch;
 use self::srs::SrsChain;
 use self::structure::ArmStructure;
 use self::wrist::SphericalWrist;
@@ -97,6 +115,36 @@ pub struct AnalyticOptions {
     pub limits: RangeFilter,
     /// How each solution's fit is decided.
     pub verification: Verification,
+    /// Which searches the solver may run.
+    pub search: SearchPolicy,
+}
+
+/// Which searches an [`AnalyticSolver`] may run (set-up decides the class).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum SearchPolicy {
+    /// Closed forms and 1-D searches (tens of microseconds); a general 6R
+    /// arm is refused. The default.
+    #[default]
+    UpToOneDimension,
+    /// Also the 2-D search of a general 6R arm ([`search2d`]: milliseconds,
+    /// may miss solutions).
+    TwoDimensions,
+}
+
+impl SearchPolicy {
+    /// A short snake-case name.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            SearchPolicy::UpToOneDimension => "up_to_one_dimension",
+            SearchPolicy::TwoDimensions => "two_dimensions",
+        }
+    }
+}
+
+impl std::fmt::Display for SearchPolicy {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
 }
 
 impl Default for AnalyticOptions {
@@ -105,6 +153,7 @@ impl Default for AnalyticOptions {
             representatives: Representatives::Every,
             limits: RangeFilter::WithinLimits,
             verification: Verification::ForwardKinematics,
+            search: SearchPolicy::UpToOneDimension,
         }
     }
 }
@@ -151,6 +200,11 @@ enum Plan {
         end: ChainEnd,
     },
     ShoulderElbowWrist(SrsChain),
+    OnePair {
+        solver: PairSearch,
+        end: ChainEnd,
+    },
+    TwoDimensional(GridSearch),
 }
 
 /// An analytic IK solver for one model (see the module docs).
@@ -211,9 +265,10 @@ impl AnalyticSolver {
         let structure = ArmStructure::of_model(model)?;
         if let Some(Parameter::FixedJoint { .. }) = parameter {
             // The value is checked here: an end joint's plan is built at 0.
-            plan(model, &structure, parameter)?;
+            plan(model, &structure, parameter, options.search)?;
         }
-        let (class, plan) = plan(model, &structure, reference(&structure, parameter))?;
+        let reference = reference(&structure, parameter);
+        let (class, plan) = plan(model, &structure, reference, options.search)?;
         Ok(AnalyticSolver {
             model: model.clone(),
             finisher: Finisher::new(model, options),
@@ -268,7 +323,12 @@ impl AnalyticSolver {
             Some(Parameter::FixedJoint { joint, .. }) => {
                 let parameter = Parameter::FixedJoint { joint, value };
                 if !held_at_end(&self.structure, joint) {
-                    let (class, plan) = plan(&self.model, &self.structure, Some(parameter))?;
+                    let (class, plan) = plan(
+                        &self.model,
+                        &self.structure,
+                        Some(parameter),
+                        self.options.search,
+                    )?;
                     self.class = class;
                     self.plan = plan;
                 }
@@ -343,6 +403,19 @@ impl AnalyticSolver {
                 };
                 srs.solve(goal, psi, &mut self.candidates);
             }
+            Plan::OnePair { solver, end } => {
+                reverse = *end == ChainEnd::Base;
+                solver.solve(&goal_of(goal, *end), &mut self.candidates);
+                if let Some(Parameter::FixedJoint { joint, value }) = self.parameter {
+                    fixed = Some((joint, value));
+                }
+            }
+            Plan::TwoDimensional(solver) => {
+                solver.solve(goal, &mut self.candidates);
+                if let Some(Parameter::FixedJoint { joint, value }) = self.parameter {
+                    fixed = Some((joint, value));
+                }
+            }
         }
         self.finisher.finish(
             &self.model,
@@ -395,8 +468,9 @@ impl AnalyticSolver {
 
 /// The joint (0-based) of a 7-joint `model` to hold so that the other six
 /// form a class at any value of it (checked at 0, 0.7 and -1.9), with that
-/// class: the last such joint of a closed-form class, else the last of a
-/// search class; `None` if none (or not 7 joints).
+/// class: the last such joint of a closed-form class, else the last of the
+/// spherical wrist's search class, else the last of a one-pair search
+/// class; `None` if none (or not 7 joints).
 pub fn joint_to_hold(model: &Model) -> Option<(usize, ArmClass)> {
     if model.dof() != 7 {
         return None;
@@ -406,7 +480,8 @@ pub fn joint_to_hold(model: &Model) -> Option<(usize, ArmClass)> {
         let mut class = None;
         for value in [0.0, 0.7, -1.9] {
             let parameter = Some(Parameter::FixedJoint { joint, value });
-            let (c, _) = plan(model, &structure, parameter).ok()?;
+            let search = SearchPolicy::UpToOneDimension;
+            let (c, _) = plan(model, &structure, parameter, search).ok()?;
             if class.is_some_and(|k| k != c) {
                 return None;
             }
@@ -414,30 +489,27 @@ pub fn joint_to_hold(model: &Model) -> Option<(usize, ArmClass)> {
         }
         class
     };
-    let searches = |c: &ArmClass| {
-        matches!(
-            c,
-            ArmClass::SphericalWrist {
-                positioning: Positioning::General,
-                ..
-            }
-        )
+    // Closed forms first, then the spherical wrist's search (tens of
+    // microseconds), then the one-pair search (milliseconds).
+    let cost = |c: &ArmClass| match c {
+        ArmClass::SphericalWrist {
+            positioning: Positioning::General,
+            ..
+        } => 1,
+        ArmClass::OnePair { .. } => 2,
+        _ => 0,
     };
     let classes: Vec<(usize, ArmClass)> = (0..7)
         .rev()
         .filter_map(|j| class_at(j).map(|c| (j, c)))
         .collect();
-    classes
-        .iter()
-        .find(|(_, c)| !searches(c))
-        .or_else(|| classes.first())
-        .copied()
+    (0..3).find_map(|rank| classes.iter().find(|(_, c)| cost(c) == rank).copied())
 }
 
 /// The class of `model` and the lines it was read from (for `--explain`).
 pub fn explain(model: &Model, parameter: Option<Parameter>) -> Result<(ArmClass, ArmStructure)> {
     let structure = ArmStructure::of_model(model)?;
-    let class = match plan(model, &structure, parameter) {
+    let class = match plan(model, &structure, parameter, SearchPolicy::TwoDimensions) {
         Ok((class, _)) => class,
         Err(_) => detect(&reduced(&structure, parameter)).class(),
     };
@@ -474,6 +546,7 @@ fn plan(
     model: &Model,
     structure: &ArmStructure,
     parameter: Option<Parameter>,
+    search: SearchPolicy,
 ) -> Result<(ArmClass, Plan)> {
     if let Some(Parameter::FixedJoint { joint, value }) = parameter {
         if joint >= structure.dof() || !value.is_finite() {
@@ -526,7 +599,8 @@ fn plan(
         (
             Detected::SphericalWrist { .. }
             | Detected::ThreeParallel { .. }
-            | Detected::ThreeParallelOffset { .. },
+            | Detected::ThreeParallelOffset { .. }
+            | Detected::OnePair { .. },
             Some(Parameter::ElbowAngle(_)),
         ) => Err(unsolvable(
             "; an elbow angle needs a spherical-shoulder-elbow-wrist 7-DOF arm",
@@ -559,6 +633,20 @@ fn plan(
             let solver = ThreeParallelOffset::new(&chain);
             Ok((class, Plan::ThreeParallelOffset { solver, end }))
         }
+        (Detected::OnePair { end, layout, point, .. }, _) => {
+            let chain = chain_of(&arm, end).ok_or_else(|| unsolvable(""))?;
+            let solver = PairSearch::new(&chain, layout, &point);
+            Ok((class, Plan::OnePair { solver, end }))
+        }
+        (Detected::Unsolvable(ArmClass::General), Some(Parameter::FixedJoint { .. }) | None)
+            if search == SearchPolicy::TwoDimensions =>
+        {
+            let chain = chain_of(&arm, ChainEnd::Tip).ok_or_else(|| unsolvable(""))?;
+            Ok((class, Plan::TwoDimensional(GridSearch::new(&chain))))
+        }
+        (Detected::Unsolvable(ArmClass::General), None) => Err(unsolvable(
+            "; a general 6R arm needs the 2-D search: set AnalyticOptions::search = SearchPolicy::TwoDimensions (CLI: --search 2d)",
+        )),
         (Detected::Unsolvable(_), Some(Parameter::ElbowAngle(_))) => Err(unsolvable(
             "; an elbow angle needs a spherical-shoulder-elbow-wrist 7-DOF arm",
         )),

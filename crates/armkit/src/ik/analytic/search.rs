@@ -1,5 +1,8 @@
-//! The one-dimensional search for three general positioning joints (no
-//! intersecting or parallel pair among them) in front of a spherical wrist.
+//! One-dimensional searches: the root finder `find_roots` of any scalar
+//! residual of one angle with branches (`Residual`), and its first use,
+//! three general positioning joints (no intersecting or parallel pair among
+//! them) in front of a spherical wrist (the one-pair classes in
+//! `pair_search` are the other).
 //!
 //! For a trial `t1`, the wrist goal seen before joint 1 is
 //! `X(t1) = c1 + R1' (W - c1)`. Joint 2 can carry a point `y` onto `X`
@@ -10,7 +13,8 @@
 //! the solutions (joint 2 then by subproblem 1).
 //!
 //! Search ([`SAMPLES`], [`ROOT_TOLERANCE`]): `f_b` is sampled on
-//! [`SAMPLES`] evenly spaced `t1` over one turn; every sign change between
+//! [`SAMPLES`] evenly spaced `t1` over one turn (the number is the
+//! caller's, a const parameter of `find_roots`); every sign change between
 //! neighbouring samples (or between a sample and the end of the branch,
 //! where subproblem 4's two solutions merge, found by bisection) is refined
 //! by the Illinois variant of regula falsi until the bracket is narrower
@@ -141,12 +145,28 @@ pub(crate) fn position(
     count
 }
 
+/// The spherical-wrist search as a residual of joint 1 with two branches
+/// (subproblem 4's solutions for joint 3), each keyed by its index.
+impl Residual<2> for Problem {
+    type Key = u8;
+
+    #[inline]
+    fn sample(&self, t: f64) -> [Option<(f64, u8)>; 2] {
+        let [a, b] = residuals(self, t);
+        [a.map(|f| (f, 0)), b.map(|f| (f, 1))]
+    }
+
+    #[inline]
+    fn residual(&self, t: f64, branch: &u8) -> Option<(f64, u8)> {
+        residual(self, t, usize::from(*branch)).map(|f| (f, *branch))
+    }
+}
+
 /// The search over the first joint of `chain`.
 fn search(p: &Problem, out: &mut [([f64; 3], bool)]) -> usize {
-    use std::f64::consts::{PI, TAU};
     let mut count = 0;
-    let mut push = |t1: f64, branch: usize, out: &mut [([f64; 3], bool)]| {
-        let found = finish(p, t1, branch);
+    find_roots::<_, 2, SAMPLES>(p, |t1, branch| {
+        let found = finish(p, t1, usize::from(branch));
         let duplicate = out[..count].iter().any(|(q, _)| {
             q.iter()
                 .zip(&found.0)
@@ -156,67 +176,222 @@ fn search(p: &Problem, out: &mut [([f64; 3], bool)]) -> usize {
             out[count] = found;
             count += 1;
         }
-    };
-    let step = TAU / SAMPLES as f64;
-    let mut samples = [[None; SAMPLES]; 2];
-    let [first, second] = &mut samples;
-    for (k, (a, b)) in first.iter_mut().zip(second.iter_mut()).enumerate() {
-        [*a, *b] = residuals(p, -PI + step * k as f64);
+    });
+    count
+}
+
+/// A scalar residual `f_b(t)` of one angle `t` (rad) on up to `B` branches
+/// `b`: what [`find_roots`] searches. A branch is named by a key read at a
+/// sample (its index, or where the branch was, for branches without a
+/// fixed order) and followed from there: each evaluation returns the key
+/// of the branch where it was evaluated, used for the next, nearby one.
+pub(crate) trait Residual<const B: usize> {
+    /// What names a branch.
+    type Key: Copy;
+
+    /// Every branch's residual at `t` with its key (`None` where a branch
+    /// does not exist).
+    fn sample(&self, t: f64) -> [Option<(f64, Self::Key)>; B];
+
+    /// The residual at `t` of the branch named `key` (read near `t`) and
+    /// its key at `t`, if the branch exists there.
+    fn residual(&self, t: f64, key: &Self::Key) -> Option<(f64, Self::Key)>;
+
+    /// Reorders `current`'s branches so that each continues the branch of
+    /// the same index in `previous` (the sample before). Default: branches
+    /// keep their order.
+    fn align(
+        &self,
+        _previous: &[Option<(f64, Self::Key)>; B],
+        _current: &mut [Option<(f64, Self::Key)>; B],
+    ) {
     }
-    for (branch, row) in samples.iter().enumerate() {
-        let at = |k: usize| row[k % SAMPLES];
-        let mut before = at(SAMPLES - 1);
-        let mut previous = at(0);
-        for k in 1..=SAMPLES {
+
+    /// What is looked for between a sample and the end of its branch.
+    const ENDS: EndCheck = EndCheck::SignChange;
+
+    /// The last point of the branch between `defined`, where it exists,
+    /// and `undefined`, where it does not. Default: bisection to
+    /// [`ROOT_TOLERANCE`], following the branch's key.
+    fn branch_end(&self, defined: (f64, f64, Self::Key), undefined: f64) -> (f64, f64, Self::Key)
+    where
+        Self: Sized,
+    {
+        bisect_end(self, defined, undefined)
+    }
+
+    /// True when the keys of two neighbouring samples name the same branch
+    /// (default: always, for branches of a fixed order). When not, each is
+    /// treated as a branch ending between the samples.
+    fn same_branch(&self, _a: &Self::Key, _b: &Self::Key) -> bool {
+        true
+    }
+}
+
+/// What [`find_roots`] looks for between a sample and the end of its
+/// branch.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum EndCheck {
+    /// A sign change only (the residual is not expected to turn near an
+    /// end: the spherical-wrist search).
+    SignChange,
+    /// A sign change, or a dip through zero and back (a square-root end,
+    /// where two roots can sit between the last sample and the end: the
+    /// one-pair search).
+    SignChangeOrDip,
+}
+
+/// A point of a branch: angle, residual, key.
+type Point<K> = (f64, f64, K);
+
+/// Every root of every branch of `p` over one turn (see the module docs
+/// for the sampling, bracketing and refinement), each given to `found`
+/// with the key of its branch there.
+pub(crate) fn find_roots<R: Residual<B>, const B: usize, const N: usize>(
+    p: &R,
+    mut found: impl FnMut(f64, R::Key),
+) {
+    use std::f64::consts::{PI, TAU};
+    let step = TAU / N as f64;
+    let mut samples = [[None; B]; N];
+    for k in 0..N {
+        let mut current = p.sample(-PI + step * k as f64);
+        if k > 0 {
+            p.align(&samples[k - 1], &mut current);
+        }
+        samples[k] = current;
+    }
+    // Sample N is sample 0 again, aligned to the last.
+    let mut wrapped = samples[0];
+    p.align(&samples[N - 1], &mut wrapped);
+    let linked = |a: &Option<(f64, R::Key)>, b: &Option<(f64, R::Key)>| match (a, b) {
+        (Some((_, ka)), Some((_, kb))) => p.same_branch(ka, kb),
+        _ => true,
+    };
+    let mut bracket = |lo: Point<R::Key>, hi: Point<R::Key>| {
+        if lo.1 == 0.0 || lo.1.signum() != hi.1.signum() {
+            if let Some((root, key)) = refine(p, lo, hi) {
+                found(root, key);
+            }
+        }
+    };
+    for branch in 0..B {
+        let at = |k: usize| {
+            if k == N {
+                wrapped[branch]
+            } else {
+                samples[k][branch]
+            }
+        };
+        // The sample before sample 0 is the last one of the turn.
+        let mut before = at(N - 1);
+        for k in 1..=N {
+            let previous = at(k - 1);
+            let value = at(k);
             let t = -PI + step * k as f64;
             let ta = t - step;
-            let value = at(k);
-            let bracket = match (previous, value) {
-                (Some(fa), Some(fb)) => Some(((ta, fa), (t, fb))),
-                // The branch ends between the samples (its two solutions of
-                // subproblem 4 merge): the root may lie before the end.
-                (Some(fa), None) => Some(((ta, fa), branch_end(p, branch, ta, t))),
-                (None, Some(fb)) => Some((branch_end(p, branch, t, ta), (t, fb))),
-                (None, None) => None,
-            };
-            if let Some(((ta, fa), (tb, fb))) = bracket {
-                if fa == 0.0 || fa.signum() != fb.signum() {
-                    if let Some(t1) = refine(p, branch, (ta, fa), (tb, fb)) {
-                        push(t1, branch, out);
+            match (previous, value) {
+                (Some((fa, ka)), Some((fb, kb))) if p.same_branch(&ka, &kb) => {
+                    bracket((ta, fa, ka), (t, fb, kb));
+                }
+                // The branch ends between the samples (e.g. two solutions of
+                // a subproblem merge): a root may lie before the end.
+                (a, b) => {
+                    if let Some((fa, ka)) = a {
+                        let end = p.branch_end((ta, fa, ka), t);
+                        end_bracket(p, (ta, fa, ka), end, &mut bracket);
+                    }
+                    if let Some((fb, kb)) = b {
+                        let end = p.branch_end((t, fb, kb), ta);
+                        end_bracket(p, end, (t, fb, kb), &mut bracket);
                     }
                 }
             }
             // |f| has a local minimum at the previous sample without a sign
             // change: two roots may hide in the two intervals around it.
-            if let (Some(f0), Some(f1), Some(f2)) = (before, previous, value) {
-                if f0.signum() == f1.signum()
+            if let (Some((f0, k0)), Some((f1, key)), Some((f2, k2))) = (before, previous, value) {
+                if linked(&before, &previous)
+                    && linked(&previous, &value)
+                    && f0.signum() == f1.signum()
                     && f1.signum() == f2.signum()
                     && f1.abs() < f0.abs()
                     && f1.abs() < f2.abs()
                     && parabola_nears_zero(f0, f1, f2)
                 {
                     let (a, b) = (ta - step, t);
-                    if let Some((tm, fm)) = minimize(p, branch, a, b) {
-                        if fm.signum() != f1.signum() {
-                            for (x, fx) in [(a, f0), (b, f2)] {
-                                let (lo, hi) = if x < tm {
-                                    ((x, fx), (tm, fm))
-                                } else {
-                                    ((tm, fm), (x, fx))
-                                };
-                                if let Some(t1) = refine(p, branch, lo, hi) {
-                                    push(t1, branch, out);
-                                }
-                            }
+                    if let Some(middle) = minimize(p, key, f1.signum(), a, b) {
+                        if middle.1.signum() != f1.signum() {
+                            bracket((a, f0, k0), middle);
+                            bracket(middle, (b, f2, k2));
                         }
                     }
                 }
             }
             before = previous;
-            previous = value;
         }
     }
-    count
+}
+
+/// A branch's piece between a sample and the branch's end: a sign change
+/// is refined; without one the residual may still dip through zero and
+/// back (two roots near a fold, where it has a square-root end), so it is
+/// also read at 1/16 and 1/4 of the way from the end (square roots of the
+/// distance evenly spaced); a sign change there is refined, and an inner
+/// value smaller in magnitude than both ends is minimized (golden section)
+/// for one.
+fn end_bracket<R: Residual<B>, const B: usize>(
+    p: &R,
+    end: Point<R::Key>,
+    sample: Point<R::Key>,
+    bracket: &mut impl FnMut(Point<R::Key>, Point<R::Key>),
+) {
+    if end.1 == 0.0 || end.1.signum() != sample.1.signum() {
+        bracket(end, sample);
+        return;
+    }
+    if R::ENDS == EndCheck::SignChange {
+        return;
+    }
+    let mut points = [end; 4];
+    let mut n = 1;
+    let mut key = end.2;
+    for fraction in [0.0625, 0.25] {
+        let t = end.0 + (sample.0 - end.0) * fraction;
+        let Some((f, k)) = p.residual(t, &key) else {
+            break;
+        };
+        key = k;
+        points[n] = (t, f, k);
+        n += 1;
+    }
+    points[n] = sample;
+    n += 1;
+    let points = &points[..n];
+    for pair in points.windows(2) {
+        if pair[0].1.signum() != pair[1].1.signum() {
+            bracket(pair[0], pair[1]);
+        }
+    }
+    if points.iter().any(|x| x.1.signum() != end.1.signum()) {
+        return;
+    }
+    // No sign change seen: an inner dip may hide two roots.
+    for k in 1..n - 1 {
+        let (before, x, after) = (points[k - 1], points[k], points[k + 1]);
+        if x.1.abs() < before.1.abs() && x.1.abs() < after.1.abs() {
+            let (a, b) = if before.0 < after.0 {
+                (before.0, after.0)
+            } else {
+                (after.0, before.0)
+            };
+            if let Some(middle) = minimize(p, x.2, x.1.signum(), a, b) {
+                if middle.1.signum() != x.1.signum() {
+                    bracket(before, middle);
+                    bracket(middle, after);
+                }
+            }
+        }
+    }
 }
 
 /// True when the parabola through three equally spaced samples of the
@@ -233,28 +408,42 @@ fn parabola_nears_zero(f0: f64, f1: f64, f2: f64) -> bool {
     vertex < 0.25 * g1
 }
 
-/// Golden-section search for the minimum of `|f|` of branch `branch` on
-/// `[a, b]`, stopping early when `f` changes sign; `None` if the branch
-/// ends inside.
-fn minimize(p: &Problem, branch: usize, mut a: f64, mut b: f64) -> Option<(f64, f64)> {
+/// Golden-section search for the minimum of `|f|` of the branch `key` on
+/// `[a, b]` (where `f` has the sign `reference` at both ends), stopping
+/// early where `f` has the other sign; `None` if the branch ends inside.
+fn minimize<R: Residual<B>, const B: usize>(
+    p: &R,
+    mut key: R::Key,
+    reference: f64,
+    mut a: f64,
+    mut b: f64,
+) -> Option<Point<R::Key>> {
     const RATIO: f64 = 0.618_033_988_749_894_9;
-    let f = |t: f64| residual(p, t, branch);
-    let reference = f(0.5 * (a + b))?.signum();
+    let mut f = |t: f64| -> Option<(f64, R::Key)> {
+        let (value, next) = p.residual(t, &key)?;
+        key = next;
+        Some((value, next))
+    };
+    let middle = 0.5 * (a + b);
+    let (fm, km) = f(middle)?;
+    if fm.signum() != reference {
+        return Some((middle, fm, km));
+    }
     let mut x1 = b - RATIO * (b - a);
     let mut x2 = a + RATIO * (b - a);
     let mut f1 = f(x1)?;
     let mut f2 = f(x2)?;
     for _ in 0..60 {
-        if f1.signum() != reference {
-            return Some((x1, f1));
+        if f1.0.signum() != reference {
+            return Some((x1, f1.0, f1.1));
         }
-        if f2.signum() != reference {
-            return Some((x2, f2));
+        if f2.0.signum() != reference {
+            return Some((x2, f2.0, f2.1));
         }
         if (b - a).abs() < ROOT_TOLERANCE {
             break;
         }
-        if f1.abs() < f2.abs() {
+        if f1.0.abs() < f2.0.abs() {
             b = x2;
             x2 = x1;
             f2 = f1;
@@ -268,40 +457,50 @@ fn minimize(p: &Problem, branch: usize, mut a: f64, mut b: f64) -> Option<(f64, 
             f2 = f(x2)?;
         }
     }
-    Some(if f1.abs() < f2.abs() {
-        (x1, f1)
+    Some(if f1.0.abs() < f2.0.abs() {
+        (x1, f1.0, f1.1)
     } else {
-        (x2, f2)
+        (x2, f2.0, f2.1)
     })
 }
 
-/// The last point (and residual) of branch `branch` between `defined`,
-/// where it exists, and `undefined`, where it does not (bisection to
-/// [`ROOT_TOLERANCE`]).
-fn branch_end(p: &Problem, branch: usize, defined: f64, undefined: f64) -> (f64, f64) {
-    let (mut a, mut b) = (defined, undefined);
-    let mut fa = residual(p, a, branch).unwrap_or(0.0);
+/// The last point of the branch between `defined`, where it exists, and
+/// `undefined`, where it does not (bisection to [`ROOT_TOLERANCE`],
+/// following the branch's key).
+fn bisect_end<R: Residual<B>, const B: usize>(
+    p: &R,
+    defined: Point<R::Key>,
+    undefined: f64,
+) -> Point<R::Key> {
+    let (mut a, mut fa, mut key) = defined;
+    let mut b = undefined;
     for _ in 0..60 {
         if (b - a).abs() < ROOT_TOLERANCE {
             break;
         }
         let m = 0.5 * (a + b);
-        match residual(p, m, branch) {
-            Some(f) => {
+        match p.residual(m, &key) {
+            Some((f, next)) => {
                 a = m;
                 fa = f;
+                key = next;
             }
             None => b = m,
         }
     }
-    (a, fa)
+    (a, fa, key)
 }
 
-/// Illinois regula falsi on a bracket `[a, b]` with `f(a) f(b) <= 0`.
-fn refine(p: &Problem, branch: usize, a: (f64, f64), b: (f64, f64)) -> Option<f64> {
-    let ((mut ta, mut fa), (mut tb, mut fb)) = (a, b);
+/// Illinois regula falsi on a bracket with `f(a) f(b) <= 0`, each trial
+/// evaluated on the branch as read at the nearer end; the root and its key.
+fn refine<R: Residual<B>, const B: usize>(
+    p: &R,
+    a: Point<R::Key>,
+    b: Point<R::Key>,
+) -> Option<(f64, R::Key)> {
+    let ((mut ta, mut fa, mut ka), (mut tb, mut fb, mut kb)) = (a, b);
     if fa == 0.0 {
-        return Some(ta);
+        return Some((ta, ka));
     }
     let mut side = 0i8;
     for _ in 0..MAX_STEPS {
@@ -312,13 +511,19 @@ fn refine(p: &Problem, branch: usize, a: (f64, f64), b: (f64, f64)) -> Option<f6
         if !(t > ta.min(tb) && t < ta.max(tb)) {
             t = 0.5 * (ta + tb);
         }
-        let f = residual(p, t, branch)?;
+        let near = if (t - ta).abs() <= (t - tb).abs() {
+            &ka
+        } else {
+            &kb
+        };
+        let (f, k) = p.residual(t, near)?;
         if f == 0.0 {
-            return Some(t);
+            return Some((t, k));
         }
         if f.signum() == fb.signum() {
             tb = t;
             fb = f;
+            kb = k;
             if side == -1 {
                 fa *= 0.5;
             }
@@ -326,13 +531,18 @@ fn refine(p: &Problem, branch: usize, a: (f64, f64), b: (f64, f64)) -> Option<f6
         } else {
             ta = t;
             fa = f;
+            ka = k;
             if side == 1 {
                 fb *= 0.5;
             }
             side = 1;
         }
     }
-    Some(if fa.abs() < fb.abs() { ta } else { tb })
+    Some(if fa.abs() < fb.abs() {
+        (ta, ka)
+    } else {
+        (tb, kb)
+    })
 }
 
 /// Joints 1-3 at a root `t1` of branch `branch`.

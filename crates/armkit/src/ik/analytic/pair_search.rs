@@ -1,0 +1,475 @@
+//! 6R arms whose only special pair is two intersecting axes: a 1-D search
+//! over one joint, the rest in closed form.
+//!
+//! Two axes `i`, `i + 1` meeting at `o` leave `o` where it is:
+//! `E_i E_{i+1} o = o`. With the pair last (axes 5-6, chain as solved; a
+//! pair at 1-2 is solved on the reversed chain), `E1 E2 E3 E4 o = T home^-1 o
+//! = P`. For a trial `t1` of joint 1, joints 2-4 carry `o` onto
+//! `X(t1) = c1 + R1' (P - c1)`: three general axes placing a point, in
+//! closed form (`three_axes`, up to 4 solutions, the branches).
+//! What is left of the orientation, `G = (R1 R2 R3 R4)' R_T R_home'`, must be
+//! `R5 R6`; since `R5 R6 h6 = R5 h6` and a turn about `h5` keeps the `h5`
+//! component, `G` is reachable only if `h5 . G h6 = h5 . h6`: the scalar
+//! residual `f(t1)`, smooth in `t1` on each branch. Its roots are found by
+//! `search::find_roots` ([`SAMPLES`] = 256 samples per turn, roots to 1e-13 rad);
+//! joints 5 and 6 then follow by subproblem 1 each (`R5 h6 = G h6`,
+//! `R6 h5 = R5' G h5`).
+//!
+//! Where two solutions of the placing step merge as `t1` moves (a fold),
+//! the residual has a square-root end and roots close to it are easily
+//! missed; so each arm is searched twice, over two joints whose folds lie
+//! elsewhere, and the roots merged (duplicates within 1e-9 rad dropped):
+//! over joint 1 as above and over joint 4 (joints 1-3 carry `E4(t4) o` onto
+//! `P`). With the pair at 4-5 (or 2-3, reversed): over joint 6 (joints 1-3
+//! carry `o` onto `T home^-1 E6(t6)^-1 o`) and over joint 3 (with
+//! `H = home T^-1`, the lines of joint 6 and of joints 1, 2 moved by `H`
+//! carry `H E3(t3) o` onto `o`); the residual is `h4 . G h5 - h4 . h5`.
+//!
+//! The branches (solutions of the placing step) have no natural order: each
+//! sample's are matched to the previous sample's by the nearest joint angles
+//! within [`LINK`] and the same sign of the placing polynomial's slope (two
+//! merging solutions have opposite signs), and every evaluation follows the
+//! branch from the nearest point already evaluated. Each root is checked by
+//! the chain's forward kinematics: exact when within 1e-10 m and rad; roots
+//! that miss by more than 1e-6 are dropped.
+
+use super::chain::{Candidates, Chain};
+use super::search::{find_roots, EndCheck, Residual};
+use super::search2d::polish;
+use super::subproblems::{rotation, subproblem1, Spoke, Turn};
+use super::three_axes::{Placements, ThreeAxes};
+use super::EXACT_TOLERANCE;
+use crate::math::{wrap_angle, Matrix3, Pose, Vector3};
+
+/// Samples per turn of each search.
+pub const SAMPLES: usize = 256;
+/// Largest joint-space step (rad, summed over the three placing joints)
+/// between two samples (or a sample and a refinement point) of one branch.
+pub const LINK: f64 = 1.0;
+/// Width (rad) to which the end of a branch (a fold) is located.
+pub const END_TOLERANCE: f64 = 1e-9;
+/// Largest pose error (m and rad) of a root kept as a candidate.
+const KEEP: f64 = 1e-6;
+/// Pose error (m and rad) above which a root is polished by Gauss-Newton.
+const POLISHED: f64 = 1e-12;
+
+/// Where the intersecting pair is, along the chain as solved.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub(crate) enum PairLayout {
+    /// Axes 5-6 meet: searches over joints 1 and 4.
+    LastTwo,
+    /// Axes 4-5 meet: searches over joints 6 and 3.
+    FourthFifth,
+}
+
+/// One of the two searches of a layout.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Searched {
+    /// Joints 2-4 carry `o` onto `E1(t)^-1 P`.
+    First,
+    /// Joints 1-3 carry `E4(t) o` onto `P`.
+    Fourth,
+    /// Joints 1-3 carry `o` onto `T home^-1 E6(t)^-1 o`.
+    Sixth,
+    /// Joint 6 and joints 1, 2 moved by `H` carry `H E3(t) o` onto `o`.
+    Third,
+}
+
+impl Searched {
+    /// The searched joint, the placing joints (outermost first) and the
+    /// pair (0-based).
+    fn joints(self) -> (usize, [usize; 3], [usize; 2]) {
+        match self {
+            Searched::First => (0, [1, 2, 3], [4, 5]),
+            Searched::Fourth => (3, [0, 1, 2], [4, 5]),
+            Searched::Sixth => (5, [0, 1, 2], [3, 4]),
+            Searched::Third => (2, [5, 0, 1], [3, 4]),
+        }
+    }
+}
+
+/// The arm-fixed quantities of a one-pair search, read once.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct PairSearch {
+    chain: Chain,
+    layout: PairLayout,
+    home: Pose,
+    /// The pair's meeting point, zero configuration.
+    point: Vector3<f64>,
+    /// `home^-1 o`.
+    point_home: Vector3<f64>,
+    /// `o - c6` turned about `h6` (joint 6 searched) or `o - c` of the
+    /// joint searched second (4 or 3) turned about its axis.
+    arm6: Spoke,
+    arm_second: Spoke,
+    /// The placing joints of the first search, prepared (point `o`).
+    placing: ThreeAxes,
+    /// `h_i . h_{i+1}` of the pair.
+    pair_cosine: f64,
+}
+
+impl PairSearch {
+    pub(crate) fn new(chain: &Chain, layout: PairLayout, point: &Vector3<f64>) -> PairSearch {
+        let first = match layout {
+            PairLayout::LastTwo => Searched::First,
+            PairLayout::FourthFifth => Searched::Sixth,
+        };
+        let (_, placing, pair) = first.joints();
+        let second = match layout {
+            PairLayout::LastTwo => 3,
+            PairLayout::FourthFifth => 2,
+        };
+        let (c, h) = (&chain.c, &chain.h);
+        PairSearch {
+            chain: *chain,
+            layout,
+            home: chain.home_inverse.inverse(),
+            point: *point,
+            point_home: chain.home_inverse.transform_point(point),
+            arm6: Spoke::new(&h[5], &(point - c[5])),
+            arm_second: Spoke::new(&h[second], &(point - c[second])),
+            placing: ThreeAxes::new(placing.map(|i| c[i]), placing.map(|i| h[i]), point),
+            pair_cosine: h[pair[0]].dot(&h[pair[1]]),
+        }
+    }
+
+    /// Every solution found for `target` (the chain's end-effector pose).
+    pub(crate) fn solve(&self, target: &Pose, out: &mut Candidates) {
+        let forms = match self.layout {
+            PairLayout::LastTwo => [Searched::First, Searched::Fourth],
+            PairLayout::FourthFifth => [Searched::Sixth, Searched::Third],
+        };
+        let mut kept: [[f64; 6]; 32] = [[0.0; 6]; 32];
+        let mut count = 0;
+        for form in forms {
+            let problem = Problem::new(self, target, form);
+            find_roots::<_, 4, SAMPLES>(&problem, |t, key| {
+                let Some((q, exact)) = problem.finish(t, &key) else {
+                    return;
+                };
+                let duplicate = kept[..count].iter().any(|p| {
+                    p.iter()
+                        .zip(&q)
+                        .all(|(a, b)| wrap_angle(a - b).abs() < 1e-9)
+                });
+                if !duplicate && count < kept.len() {
+                    kept[count] = q;
+                    count += 1;
+                    out.push(&q, exact);
+                }
+            });
+        }
+    }
+}
+
+/// Turns `v` about the unit axis `k` by the angle of `(s, c)` (Rodrigues).
+#[inline]
+fn turn(k: &Vector3<f64>, v: &Vector3<f64>, s: f64, c: f64) -> Vector3<f64> {
+    v * c + k.cross(v) * s + k * (k.dot(v) * (1.0 - c))
+}
+
+/// One search of one solve: the target read into what every evaluation
+/// shares.
+struct Problem<'a> {
+    s: &'a PairSearch,
+    form: Searched,
+    target: Pose,
+    /// `R_T R_home'`.
+    orientation: Matrix3<f64>,
+    /// `T home^-1`.
+    moved: Pose,
+    /// `P = T home^-1 o`.
+    goal: Vector3<f64>,
+    /// `P - c1` turned about `h1` (joint 1 searched).
+    goal1: Spoke,
+    /// Joint 3 searched: the placing lines (joint 6, joints 1 and 2 moved
+    /// by `H = (T home^-1)^-1`) and `H`.
+    lines: ([Vector3<f64>; 3], [Vector3<f64>; 3]),
+    back: Pose,
+}
+
+/// The three placing joints' angles and the sign of the placing
+/// polynomial's slope at their root, naming a branch.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Key {
+    angles: [f64; 3],
+    rising: bool,
+    /// The slope itself.
+    slope: f64,
+}
+
+/// Joint-space gap between two placements (infinite across a slope sign:
+/// never the same branch).
+fn gap(a: &Key, b: &Key) -> f64 {
+    if a.rising != b.rising {
+        return f64::INFINITY;
+    }
+    a.angles
+        .iter()
+        .zip(&b.angles)
+        .map(|(x, y)| wrap_angle(x - y).abs())
+        .sum()
+}
+
+fn keys(found: &Placements) -> impl Iterator<Item = Key> + '_ {
+    found
+        .as_slice()
+        .iter()
+        .zip(&found.slope)
+        .map(|(angles, slope)| Key {
+            angles: *angles,
+            rising: *slope > 0.0,
+            slope: *slope,
+        })
+}
+
+impl<'a> Problem<'a> {
+    fn new(s: &'a PairSearch, target: &Pose, form: Searched) -> Problem<'a> {
+        let (c, h) = (&s.chain.c, &s.chain.h);
+        let moved = *target * s.chain.home_inverse;
+        let goal = target.transform_point(&s.point_home);
+        let back = moved.inverse();
+        let lines = (
+            [
+                c[5],
+                back.transform_point(&c[0]),
+                back.transform_point(&c[1]),
+            ],
+            [h[5], back.rotation * h[0], back.rotation * h[1]],
+        );
+        Problem {
+            s,
+            form,
+            target: *target,
+            orientation: moved.rotation,
+            moved,
+            goal,
+            goal1: Spoke::new(&h[0], &(goal - c[0])),
+            lines,
+            back,
+        }
+    }
+
+    /// The placing step's solutions at the searched joint's value `t`.
+    #[inline]
+    fn placements(&self, t: &Turn) -> Placements {
+        let (c, h) = (&self.s.chain.c, &self.s.chain.h);
+        match self.form {
+            Searched::First => self.s.placing.solve(&(c[0] + self.goal1.turned_back(t))),
+            Searched::Sixth => self.s.placing.solve(
+                &self
+                    .moved
+                    .transform_point(&(c[5] + self.s.arm6.turned_back(t))),
+            ),
+            Searched::Fourth => {
+                let w = c[3] + self.s.arm_second.turned(t);
+                ThreeAxes::new([c[0], c[1], c[2]], [h[0], h[1], h[2]], &w).solve(&self.goal)
+            }
+            Searched::Third => {
+                let w = self
+                    .back
+                    .transform_point(&(c[2] + self.s.arm_second.turned(t)));
+                ThreeAxes::new(self.lines.0, self.lines.1, &w).solve(&self.s.point)
+            }
+        }
+    }
+
+    /// The joint values at `t` with placing angles `a` (the pair's at 0).
+    fn configuration(&self, t: f64, a: &[f64; 3]) -> [f64; 6] {
+        let (searched, placing, _) = self.form.joints();
+        let mut q = [0.0; 6];
+        q[searched] = t;
+        for (k, angle) in placing.iter().zip(a) {
+            q[*k] = *angle;
+        }
+        q
+    }
+
+    /// The residual `h_i . G h_j - h_i . h_j` of configuration `q` (the
+    /// pair's values unused): `(R_before h_i) . (R_T R_home' R_after' h_j)`.
+    #[inline]
+    fn residual_of(&self, q: &[f64; 6]) -> f64 {
+        let (_, _, [i, j]) = self.form.joints();
+        let h = &self.s.chain.h;
+        let mut hi = h[i];
+        for k in (0..i).rev() {
+            let (s, c) = q[k].sin_cos();
+            hi = turn(&h[k], &hi, s, c);
+        }
+        let mut hj = h[j];
+        for k in j + 1..6 {
+            let (s, c) = q[k].sin_cos();
+            hj = turn(&h[k], &hj, -s, c);
+        }
+        hi.dot(&(self.orientation * hj)) - self.s.pair_cosine
+    }
+
+    /// The placement nearest `key` at `t`, within [`LINK`].
+    fn nearest(&self, t: &Turn, key: &Key) -> Option<Key> {
+        let found = self.placements(t);
+        let mut best: Option<(f64, Key)> = None;
+        for a in keys(&found) {
+            let d = gap(&a, key);
+            if d < LINK && best.is_none_or(|(e, _)| d < e) {
+                best = Some((d, a));
+            }
+        }
+        best.map(|(_, a)| a)
+    }
+
+    /// The joint values (chain order) at a root `t` of the branch `key`,
+    /// and whether the chain's forward kinematics reproduces the target to
+    /// [`EXACT_TOLERANCE`]; `None` if it misses by more than [`KEEP`].
+    fn finish(&self, t: f64, key: &Key) -> Option<([f64; 6], bool)> {
+        let a = self.nearest(&Turn::of_angle(t), key)?.angles;
+        let (_, _, [i, j]) = self.form.joints();
+        let h = &self.s.chain.h;
+        let mut q = self.configuration(t, &a);
+        // G = R_before' (R_T R_home') R_after'.
+        let mut before = Matrix3::<f64>::identity();
+        for k in 0..i {
+            before *= rotation(&h[k], q[k]);
+        }
+        let mut after = Matrix3::<f64>::identity();
+        for k in j + 1..6 {
+            after *= rotation(&h[k], q[k]);
+        }
+        let g = before.transpose() * self.orientation * after.transpose();
+        let (ti, _) = subproblem1(&h[i], &h[j], &(g * h[j]));
+        let (tj, _) = subproblem1(&h[j], &h[i], &(rotation(&h[i], ti).transpose() * g * h[i]));
+        q[i] = ti;
+        q[j] = tj;
+        let error = self.error(&q);
+        if error > KEEP {
+            return None;
+        }
+        if error > POLISHED {
+            // Near a fold the placing step loses digits: a few Gauss-Newton
+            // steps on the 6-D pose error restore them.
+            let polished = polish(&self.s.chain, &self.s.home, q, &self.target, 3);
+            if let Some((p, _)) = polished {
+                if self.error(&p) < error {
+                    q = p.map(wrap_angle);
+                }
+            }
+        }
+        Some((q, self.error(&q) <= EXACT_TOLERANCE))
+    }
+
+    /// The largest of the position (m) and rotation-matrix (Frobenius)
+    /// errors of the chain's forward kinematics at `q`.
+    fn error(&self, q: &[f64; 6]) -> f64 {
+        let pose = self.forward_kinematics(q);
+        let position = (pose.translation - self.target.translation).norm();
+        let orientation = (pose.rotation - self.target.rotation).norm();
+        position.max(orientation)
+    }
+
+    /// `E1(q1) ... E6(q6) home` of the chain.
+    fn forward_kinematics(&self, q: &[f64; 6]) -> Pose {
+        let (c, h) = (&self.s.chain.c, &self.s.chain.h);
+        let mut pose = Pose::identity();
+        for k in 0..6 {
+            let r = rotation(&h[k], q[k]);
+            pose = pose * Pose::new(r, c[k] - r * c[k]);
+        }
+        pose * self.s.home
+    }
+}
+
+impl Residual<4> for Problem<'_> {
+    type Key = Key;
+
+    const ENDS: EndCheck = EndCheck::SignChangeOrDip;
+
+    fn sample(&self, t: f64) -> [Option<(f64, Key)>; 4] {
+        let found = self.placements(&Turn::of_angle(t));
+        let mut out = [None; 4];
+        for (slot, a) in out.iter_mut().zip(keys(&found)) {
+            *slot = Some((self.residual_of(&self.configuration(t, &a.angles)), a));
+        }
+        out
+    }
+
+    fn residual(&self, t: f64, key: &Key) -> Option<(f64, Key)> {
+        let a = self.nearest(&Turn::of_angle(t), key)?;
+        Some((self.residual_of(&self.configuration(t, &a.angles)), a))
+    }
+
+    fn align(&self, previous: &[Option<(f64, Key)>; 4], current: &mut [Option<(f64, Key)>; 4]) {
+        let mut result = [None; 4];
+        let mut used = [false; 4];
+        for (slot, before) in result.iter_mut().zip(previous) {
+            let Some((_, key)) = before else { continue };
+            let mut best: Option<(f64, usize)> = None;
+            for (j, now) in current.iter().enumerate() {
+                if let (false, Some((_, k))) = (used[j], now) {
+                    let d = gap(key, k);
+                    if d < LINK && best.is_none_or(|(e, _)| d < e) {
+                        best = Some((d, j));
+                    }
+                }
+            }
+            if let Some((_, j)) = best {
+                *slot = current[j];
+                used[j] = true;
+            }
+        }
+        // New branches: into slots empty before, then any free slot.
+        for j in 0..4 {
+            if used[j] || current[j].is_none() {
+                continue;
+            }
+            let free = (0..4)
+                .find(|&i| result[i].is_none() && previous[i].is_none())
+                .or_else(|| (0..4).find(|&i| result[i].is_none()));
+            if let Some(i) = free {
+                result[i] = current[j];
+            }
+        }
+        *current = result;
+    }
+
+    fn same_branch(&self, a: &Key, b: &Key) -> bool {
+        gap(a, b) < LINK
+    }
+
+    /// The end of a branch is where two placements merge: the squared
+    /// slope of the placing polynomial at the root falls linearly to zero
+    /// there. Each step goes 99 % of the way from the last point of the
+    /// branch to that extrapolated zero (a bisection when the
+    /// extrapolation fails), until the gap is below [`END_TOLERANCE`].
+    fn branch_end(&self, defined: (f64, f64, Key), undefined: f64) -> (f64, f64, Key) {
+        let (mut a, mut fa, mut ka) = defined;
+        let mut b = undefined;
+        let mut previous: Option<(f64, f64)> = None;
+        for _ in 0..60 {
+            if (b - a).abs() < END_TOLERANCE {
+                break;
+            }
+            let g = ka.slope * ka.slope;
+            let mut t = 0.5 * (a + b);
+            if let Some((t0, g0)) = previous {
+                if g0 != g {
+                    let zero = a - g * (a - t0) / (g - g0);
+                    if (zero - a) * (b - a) > 0.0 && (zero - a).abs() < (b - a).abs() {
+                        t = a + 0.99 * (zero - a);
+                        if (t - a).abs() < 0.25 * END_TOLERANCE {
+                            t = a + (b - a).signum() * 0.25 * END_TOLERANCE;
+                        }
+                    }
+                }
+            }
+            match self.residual(t, &ka) {
+                Some((f, k)) => {
+                    previous = Some((a, g));
+                    a = t;
+                    fa = f;
+                    ka = k;
+                }
+                None => b = t,
+            }
+        }
+        (a, fa, ka)
+    }
+}

@@ -1,0 +1,178 @@
+//! General 6R arms (no intersecting or parallel consecutive axes): a 2-D
+//! search, offered only on request (`SearchPolicy::TwoDimensions`) since it
+//! takes milliseconds and may miss solutions.
+//!
+//! A [`GRID`] x [`GRID`] grid over joints 1 and 2 (evenly spaced over one
+//! turn each, the other four joints at 0) gives the starting points; each is
+//! polished by damped Gauss-Newton (Levenberg-Marquardt) on the full 6-D
+//! pose error of the chain's product of exponentials (position error, m,
+//! and the rotation vector of `R_T R'`, rad), at most [`MAX_ITERATIONS`]
+//! steps, stopping once the error's norm is below [`CONVERGED`]. Converged
+//! configurations are kept (those within [`SAME`] of each other merged, the
+//! most accurate kept); a solution
+//! none of the starting points leads to is missed. The recovery rate of the
+//! generating configuration is measured in `tests/ik_analytic.rs`.
+
+use super::chain::{Candidates, Chain};
+use super::subproblems::rotation;
+use super::EXACT_TOLERANCE;
+use crate::math::{wrap_angle, Matrix6, Pose, Vector3, Vector6};
+
+/// Grid points per joint (joints 1 and 2).
+pub const GRID: usize = 16;
+/// Most Gauss-Newton steps per starting point.
+pub const MAX_ITERATIONS: usize = 30;
+/// Largest gap (rad, every joint) between two polished configurations taken
+/// for the same solution (the more accurate is kept).
+pub const SAME: f64 = 1e-6;
+/// Norm of the 6-D pose error (m and rad) at which a polish stops.
+pub const CONVERGED: f64 = 1e-13;
+
+/// The chain of a general 6R arm, read once.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct GridSearch {
+    chain: Chain,
+    home: Pose,
+}
+
+impl GridSearch {
+    pub(crate) fn new(chain: &Chain) -> GridSearch {
+        GridSearch {
+            chain: *chain,
+            home: chain.home_inverse.inverse(),
+        }
+    }
+
+    /// Every solution found for `target` (the chain's end-effector pose).
+    pub(crate) fn solve(&self, target: &Pose, out: &mut Candidates) {
+        use std::f64::consts::{PI, TAU};
+        let step = TAU / GRID as f64;
+        let mut kept = [([0.0; 6], 0.0); 32];
+        let mut count = 0;
+        for i in 0..GRID {
+            for j in 0..GRID {
+                let seed = [
+                    -PI + step * i as f64,
+                    -PI + step * j as f64,
+                    0.0,
+                    0.0,
+                    0.0,
+                    0.0,
+                ];
+                let Some((q, error)) =
+                    polish(&self.chain, &self.home, seed, target, MAX_ITERATIONS)
+                else {
+                    continue;
+                };
+                let q = q.map(wrap_angle);
+                // The same solution reached from several points: keep the
+                // most accurate.
+                let same = kept[..count].iter().position(|(p, _)| {
+                    p.iter()
+                        .zip(&q)
+                        .all(|(a, b)| wrap_angle(a - b).abs() < SAME)
+                });
+                match same {
+                    Some(k) if error < kept[k].1 => kept[k] = (q, error),
+                    Some(_) => {}
+                    None if count < kept.len() => {
+                        kept[count] = (q, error);
+                        count += 1;
+                    }
+                    None => {}
+                }
+            }
+        }
+        for (q, error) in &kept[..count] {
+            out.push(q, *error <= EXACT_TOLERANCE);
+        }
+    }
+}
+
+/// Levenberg-Marquardt on the chain's 6-D pose error from `q` to
+/// `target` (at most `iterations` steps, stopping below [`CONVERGED`]); the
+/// configuration and its error norm if it ends within 1e-8 (a candidate;
+/// exact only within 1e-10).
+pub(crate) fn polish(
+    chain: &Chain,
+    home: &Pose,
+    mut q: [f64; 6],
+    target: &Pose,
+    iterations: usize,
+) -> Option<([f64; 6], f64)> {
+    let (mut error, mut jacobian) = error_and_jacobian(chain, home, &q, target);
+    let mut norm = error.norm();
+    let mut damping = 1e-6;
+    for _ in 0..iterations {
+        if norm <= CONVERGED {
+            break;
+        }
+        let normal = jacobian.transpose() * jacobian + Matrix6::identity() * damping;
+        let step = normal.cholesky()?.solve(&(jacobian.transpose() * error));
+        let mut trial = q;
+        for (value, delta) in trial.iter_mut().zip(step.iter()) {
+            *value += delta;
+        }
+        let (e, j) = error_and_jacobian(chain, home, &trial, target);
+        let n = e.norm();
+        if n < norm {
+            (q, error, jacobian, norm) = (trial, e, j, n);
+            damping = (damping * 0.1).max(1e-12);
+        } else {
+            damping *= 10.0;
+            if damping > 1e3 {
+                return None;
+            }
+        }
+    }
+    (norm <= 1e-8).then_some((q, norm))
+}
+
+/// The 6-D error `[p_T - p; w]` at `q` (`w` the vector of the skew part of
+/// `R_T R'`, `sin` of the angle times the axis: accurate for small errors,
+/// where an arccosine loses half the digits) and its Jacobian (world
+/// frame, `d error / d q = -J`, returned as `J`).
+fn error_and_jacobian(
+    chain: &Chain,
+    home: &Pose,
+    q: &[f64; 6],
+    target: &Pose,
+) -> (Vector6<f64>, Matrix6<f64>) {
+    {
+        let (c, h) = (&chain.c, &chain.h);
+        let mut pose = Pose::identity();
+        let mut axes = [Vector3::zeros(); 6];
+        let mut points = [Vector3::zeros(); 6];
+        for k in 0..6 {
+            axes[k] = pose.rotation * h[k];
+            points[k] = pose.transform_point(&c[k]);
+            let r = rotation(&h[k], q[k]);
+            pose = pose * Pose::new(r, c[k] - r * c[k]);
+        }
+        let pose = pose * *home;
+        let r = target.rotation * pose.rotation.transpose();
+        let rotation_error = Vector3::new(
+            0.5 * (r[(2, 1)] - r[(1, 2)]),
+            0.5 * (r[(0, 2)] - r[(2, 0)]),
+            0.5 * (r[(1, 0)] - r[(0, 1)]),
+        );
+        let position_error = target.translation - pose.translation;
+        let error = Vector6::new(
+            position_error.x,
+            position_error.y,
+            position_error.z,
+            rotation_error.x,
+            rotation_error.y,
+            rotation_error.z,
+        );
+        let mut jacobian = Matrix6::zeros();
+        for k in 0..6 {
+            let linear = axes[k].cross(&(pose.translation - points[k]));
+            for r in 0..3 {
+                jacobian[(r, k)] = linear[r];
+                jacobian[(r + 3, k)] = axes[k][r];
+            }
+        }
+        (error, jacobian)
+    }
+}

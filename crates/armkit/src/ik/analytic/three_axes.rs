@@ -1,0 +1,455 @@
+//! Three rotation axes (general lines) carrying a point onto a goal, in
+//! closed form: `E_a(t_a) E_b(t_b) E_c(t_c) w = X` (the positioning step of
+//! the one-pair search classes; IK-Geo calls a problem of this kind its
+//! subproblem 5; derived here from the circles, not ported).
+//!
+//! Joint `b` carries `u = E_c w` onto `v = E_a^-1 X` only if both lie at
+//! the same height along `h_b` and at the same distance from `c_b`:
+//!
+//! * `h_b . (u - c_b) = h_b . (v - c_b)`,
+//! * `|u - c_b|^2 = |v - c_b|^2`.
+//!
+//! A point turning on a circle, `u = u0 + u1 cos t_c + u2 sin t_c`, has both
+//! quantities affine in `x_c = (cos t_c, sin t_c)` (`u1 . u2 = 0`,
+//! `|u1| = |u2|`), and so has `v` in `x_a`: `A x_c = B x_a + e`, with `A`
+//! fixed by the arm. With the better conditioned of `A` and `B` inverted,
+//! `x_c = P x_a + m` (or the other way round), and `|x_c| = 1` leaves one
+//! trigonometric polynomial of degree 2 in one angle,
+//! `f(t) = k0 + k1 cos t + k2 sin t + k3 cos 2t + k4 sin 2t = 0`: a quartic
+//! in `tan(t / 2)` ([`trig2_roots`]), up to 4 solutions. Joint `b` follows
+//! by subproblem 1.
+
+use super::subproblems::{subproblem1, Spoke, Turn};
+use crate::math::Vector3;
+use nalgebra::{Matrix2, Vector2};
+
+/// Relative determinant of `A` (arm-fixed) above which it is inverted;
+/// below, `B` is (its conditioning varies with the goal; a goal where both
+/// are singular gets no solutions).
+const WELL_CONDITIONED: f64 = 1e-2;
+/// Relative determinant below which a 2 x 2 system counts as singular.
+const SINGULAR: f64 = 1e-10;
+
+/// Three lines `(c, h)` (points and unit directions, in the order applied
+/// to the goal: `a` outermost) and the point `w` they carry, read once.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct ThreeAxes {
+    c: [Vector3<f64>; 3],
+    h: [Vector3<f64>; 3],
+    /// `w - c_c` turned about `h_c`.
+    arm_c: Spoke,
+    /// `u0 = c_c + par`, `u1 = perp`, `u2 = h_c x (w - c_c)`.
+    u: [Vector3<f64>; 3],
+    /// `A` and the constant side of `u`: `[h_b . (u0 - c_b), |u0 - c_b|^2 + |u1|^2]`.
+    a: Matrix2<f64>,
+    a0: Vector2<f64>,
+    /// Which side is inverted, fixed at set-up so that the polynomial's
+    /// variable (and the sign of `f'`) is the same for every goal: `A`
+    /// (the polynomial in `t_a`) unless it is poorly conditioned (axes `b`
+    /// and `c` nearly parallel), then `B` (in `t_c`).
+    invert_a: bool,
+}
+
+/// Up to four solutions `[t_a, t_b, t_c]`, rad, each with the sign of
+/// `f'` at its root (two solutions that merge as the goal moves have
+/// opposite signs; along a continuous family of solutions it stays: what
+/// keeps the one-pair search on one branch near such a merge).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Placements {
+    pub items: [[f64; 3]; 4],
+    /// `f'` at each root (its square vanishes linearly where two merge).
+    pub slope: [f64; 4],
+    pub count: usize,
+}
+
+impl Placements {
+    pub(crate) fn as_slice(&self) -> &[[f64; 3]] {
+        &self.items[..self.count]
+    }
+}
+
+/// The rows `[h . s1, h . s2]` and `[2 (s0 - c) . s1, 2 (s0 - c) . s2]` of a
+/// circle `s0 + s1 cos + s2 sin` and its constant side.
+fn circle_rows(
+    h: &Vector3<f64>,
+    c: &Vector3<f64>,
+    s: &[Vector3<f64>; 3],
+) -> (Matrix2<f64>, Vector2<f64>) {
+    let d = s[0] - c;
+    (
+        Matrix2::new(
+            h.dot(&s[1]),
+            h.dot(&s[2]),
+            2.0 * d.dot(&s[1]),
+            2.0 * d.dot(&s[2]),
+        ),
+        Vector2::new(h.dot(&d), d.norm_squared() + s[1].norm_squared()),
+    )
+}
+
+/// `|det M|` relative to the product of its row norms (1 for orthogonal rows).
+fn conditioning(m: &Matrix2<f64>) -> f64 {
+    let rows = (m[(0, 0)].hypot(m[(0, 1)])) * (m[(1, 0)].hypot(m[(1, 1)]));
+    if rows > 0.0 {
+        m.determinant().abs() / rows
+    } else {
+        0.0
+    }
+}
+
+impl ThreeAxes {
+    pub(crate) fn new(c: [Vector3<f64>; 3], h: [Vector3<f64>; 3], w: &Vector3<f64>) -> ThreeAxes {
+        let arm_c = Spoke::new(&h[2], &(w - c[2]));
+        let par = h[2] * h[2].dot(&(w - c[2]));
+        let u = [c[2] + par, (w - c[2]) - par, h[2].cross(&(w - c[2]))];
+        let (a, a0) = circle_rows(&h[1], &c[1], &u);
+        ThreeAxes {
+            c,
+            h,
+            arm_c,
+            u,
+            a,
+            a0,
+            invert_a: conditioning(&a) > WELL_CONDITIONED,
+        }
+    }
+
+    /// Every `[t_a, t_b, t_c]` carrying `w` onto `goal` exactly (none when
+    /// out of reach, or for a degenerate pair of circles).
+    pub(crate) fn solve(&self, goal: &Vector3<f64>) -> Placements {
+        let (c, h) = (&self.c, &self.h);
+        let mut out = Placements {
+            items: [[0.0; 3]; 4],
+            slope: [0.0; 4],
+            count: 0,
+        };
+        // v(t_a) = c_a + R(h_a, -t_a)(X - c_a) = v0 + v1 cos t_a + v2 sin t_a.
+        let to_goal = goal - c[0];
+        let par = h[0] * h[0].dot(&to_goal);
+        let v = [c[0] + par, to_goal - par, -h[0].cross(&to_goal)];
+        let (b, b0) = circle_rows(&h[1], &c[1], &v);
+        let e = b0 - self.a0;
+        // A x_c = B x_a + e.
+        let mut roots = [0.0; 4];
+        if self.invert_a {
+            let Some(inverse) = self.a.try_inverse() else {
+                return out;
+            };
+            let (p, m) = (inverse * b, inverse * e);
+            let k = circle_poly(&p, &m);
+            let n = trig2_roots(&k, &mut roots);
+            for &ta in &roots[..n] {
+                let xc = p * Vector2::new(ta.cos(), ta.sin()) + m;
+                let slope = trig2(&k, ta).1;
+                self.push(ta, xc.y.atan2(xc.x), slope, &v, &mut out);
+            }
+        } else if conditioning(&b) > SINGULAR {
+            let Some(inverse) = b.try_inverse() else {
+                return out;
+            };
+            let (p, m) = (inverse * self.a, -(inverse * e));
+            let k = circle_poly(&p, &m);
+            let n = trig2_roots(&k, &mut roots);
+            for &tc in &roots[..n] {
+                let xa = p * Vector2::new(tc.cos(), tc.sin()) + m;
+                let slope = trig2(&k, tc).1;
+                self.push(xa.y.atan2(xa.x), tc, slope, &v, &mut out);
+            }
+        }
+        out
+    }
+
+    /// Completes a solution with joint `b` (subproblem 1).
+    fn push(&self, ta: f64, tc: f64, slope: f64, v: &[Vector3<f64>; 3], out: &mut Placements) {
+        let (c, h) = (&self.c, &self.h);
+        let u = c[2] + self.arm_c.turned(&Turn::of_angle(tc));
+        let (s, co) = ta.sin_cos();
+        let va = v[0] + v[1] * co + v[2] * s;
+        let (tb, _) = subproblem1(&h[1], &(u - c[1]), &(va - c[1]));
+        if out.count < 4 {
+            out.items[out.count] = [ta, tb, tc];
+            out.slope[out.count] = slope;
+            out.count += 1;
+        }
+    }
+}
+
+/// The coefficients `k` of `|P x + m|^2 - 1` for `x = (cos t, sin t)`.
+fn circle_poly(p: &Matrix2<f64>, m: &Vector2<f64>) -> [f64; 5] {
+    let s = p.transpose() * p;
+    let g = p.transpose() * m;
+    [
+        0.5 * (s[(0, 0)] + s[(1, 1)]) + m.norm_squared() - 1.0,
+        2.0 * g.x,
+        2.0 * g.y,
+        0.5 * (s[(0, 0)] - s[(1, 1)]),
+        s[(0, 1)],
+    ]
+}
+
+/// `f(t) = k0 + k1 cos t + k2 sin t + k3 cos 2t + k4 sin 2t` and `f'(t)`.
+#[inline]
+fn trig2(k: &[f64; 5], t: f64) -> (f64, f64) {
+    let (s, c) = t.sin_cos();
+    let (s2, c2) = (2.0 * s * c, c * c - s * s);
+    (
+        k[0] + k[1] * c + k[2] * s + k[3] * c2 + k[4] * s2,
+        -k[1] * s + k[2] * c - 2.0 * k[3] * s2 + 2.0 * k[4] * c2,
+    )
+}
+
+/// The real roots `t` (rad) of the trigonometric polynomial `k` of degree
+/// 2 (see [`trig2`]), written to `out`; how many (0 to 4). The angle is
+/// shifted by a quarter turn multiple `phi` so that `t = phi + pi` (where
+/// `tan(t / 2)` is infinite) is where `|f|` is largest of the four; the
+/// quartic in `u = tan((t - phi) / 2)` is solved by Ferrari's method and
+/// each root polished by two Newton steps on `f` itself.
+pub(crate) fn trig2_roots(k: &[f64; 5], out: &mut [f64; 4]) -> usize {
+    use std::f64::consts::FRAC_PI_2;
+    // f at pi, -pi/2, 0, pi/2: the quartic's leading coefficient for
+    // phi = 0, pi/2, pi, -pi/2.
+    let at = [
+        k[0] - k[1] + k[3],
+        k[0] - k[2] - k[3],
+        k[0] + k[1] + k[3],
+        k[0] + k[2] - k[3],
+    ];
+    let mut best = 0;
+    for i in 1..4 {
+        if at[i].abs() > at[best].abs() {
+            best = i;
+        }
+    }
+    if at[best] == 0.0 {
+        return 0;
+    }
+    // Coefficients in tau = t - phi.
+    let (k1, k2, k3, k4) = match best {
+        0 => (k[1], k[2], k[3], k[4]),
+        1 => (k[2], -k[1], -k[3], -k[4]),
+        2 => (-k[1], -k[2], k[3], k[4]),
+        _ => (-k[2], k[1], -k[3], -k[4]),
+    };
+    let phi = FRAC_PI_2 * [0.0, 1.0, 2.0, -1.0][best];
+    let shifted = [k[0], k1, k2, k3, k4];
+    let lead = k[0] - k1 + k3;
+    let quartic = [
+        (2.0 * k2 - 4.0 * k4) / lead,
+        (2.0 * k[0] - 6.0 * k3) / lead,
+        (2.0 * k2 + 4.0 * k4) / lead,
+        (k[0] + k1 + k3) / lead,
+    ];
+    let mut u = [0.0; 4];
+    let n = quartic_real_roots(&quartic, &mut u);
+    let mut count = 0;
+    for &x in &u[..n] {
+        let mut tau = 2.0 * x.atan();
+        for _ in 0..2 {
+            let (f, df) = trig2(&shifted, tau);
+            if df != 0.0 {
+                tau -= f / df;
+            }
+        }
+        let t = crate::math::wrap_angle(tau + phi);
+        if !out[..count]
+            .iter()
+            .any(|r| crate::math::wrap_angle(r - t).abs() < 1e-12)
+        {
+            out[count] = t;
+            count += 1;
+        }
+    }
+    count
+}
+
+/// The real roots of `u^4 + b u^3 + c u^2 + d u + e` (Ferrari), written to
+/// `out`; how many. Near-double roots (a quadratic's discriminant within
+/// round-off below zero) count once.
+fn quartic_real_roots(coefficients: &[f64; 4], out: &mut [f64; 4]) -> usize {
+    let [b, c, d, e] = *coefficients;
+    // u = y - b/4: y^4 + p y^2 + q y + r.
+    let b2 = b * b;
+    let p = c - 0.375 * b2;
+    let q = d - 0.5 * b * c + 0.125 * b2 * b;
+    let r = e - 0.25 * b * d + 0.0625 * b2 * c - 3.0 / 256.0 * b2 * b2;
+    let shift = -0.25 * b;
+    let scale = 1.0 + p.abs() + q.abs().sqrt() + r.abs().sqrt();
+    let mut count = 0;
+    let mut quadratic = |s1: f64, s0: f64, out: &mut [f64; 4]| {
+        // y^2 + s1 y + s0 = 0.
+        let discriminant = s1 * s1 - 4.0 * s0;
+        if discriminant < -1e-12 * scale * scale {
+            return;
+        }
+        let root = discriminant.max(0.0).sqrt();
+        let ys = [-0.5 * (s1 + root), -0.5 * (s1 - root)];
+        let n = if root == 0.0 { 1 } else { 2 };
+        for y in &ys[..n] {
+            if count < 4 {
+                out[count] = y + shift;
+                count += 1;
+            }
+        }
+    };
+    if q.abs() <= 1e-14 * scale * scale * scale {
+        // Biquadratic: z = y^2, z^2 + p z + r = 0.
+        let discriminant = p * p - 4.0 * r;
+        if discriminant < -1e-12 * scale * scale {
+            return 0;
+        }
+        let root = discriminant.max(0.0).sqrt();
+        for z in [-0.5 * (p + root), -0.5 * (p - root)] {
+            if z >= 0.0 {
+                let y = z.sqrt();
+                quadratic(0.0, -y * y, out);
+            }
+        }
+        return count;
+    }
+    // (y^2 + p/2 + m)^2 = 2m (y - q / (4m))^2 for a root m > 0 of
+    // 8 m^3 + 8 p m^2 + (2 p^2 - 8 r) m - q^2 = 0.
+    let m = resolvent_root(p, r, q);
+    let s = (2.0 * m).sqrt();
+    let t = q / (2.0 * s);
+    quadratic(-s, 0.5 * p + m + t, out);
+    quadratic(s, 0.5 * p + m - t, out);
+    count
+}
+
+/// The largest real root of `m^3 + p m^2 + (p^2/4 - r) m - q^2/8` (positive
+/// since the cubic is `-q^2/8 < 0` at 0), polished by Newton steps.
+fn resolvent_root(p: f64, r: f64, q: f64) -> f64 {
+    let (a2, a1, a0) = (p, 0.25 * p * p - r, -0.125 * q * q);
+    // m = z - a2/3: z^3 + pp z + qq = 0.
+    let pp = a1 - a2 * a2 / 3.0;
+    let qq = 2.0 * a2 * a2 * a2 / 27.0 - a2 * a1 / 3.0 + a0;
+    let discriminant = 0.25 * qq * qq + pp * pp * pp / 27.0;
+    let z = if discriminant > 0.0 {
+        let root = discriminant.sqrt();
+        (-0.5 * qq + root).cbrt() + (-0.5 * qq - root).cbrt()
+    } else {
+        let radius = (-pp / 3.0).max(0.0).sqrt();
+        let argument = if radius > 0.0 {
+            (-0.5 * qq / (radius * radius * radius)).clamp(-1.0, 1.0)
+        } else {
+            0.0
+        };
+        2.0 * radius * (argument.acos() / 3.0).cos()
+    };
+    let mut m = z - a2 / 3.0;
+    for _ in 0..3 {
+        let f = ((m + a2) * m + a1) * m + a0;
+        let df = (3.0 * m + 2.0 * a2) * m + a1;
+        if df != 0.0 {
+            let next = m - f / df;
+            if next.is_finite() {
+                m = next;
+            }
+        }
+    }
+    m.max(f64::MIN_POSITIVE)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ik::analytic::subproblems::rotation;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    fn unit(rng: &mut ChaCha8Rng) -> Vector3<f64> {
+        loop {
+            let v = Vector3::new(
+                rng.gen_range(-1.0..1.0),
+                rng.gen_range(-1.0..1.0),
+                rng.gen_range(-1.0..1.0),
+            );
+            if v.norm() > 0.2 && v.norm() < 1.0 {
+                return v.normalize();
+            }
+        }
+    }
+
+    fn point(rng: &mut ChaCha8Rng) -> Vector3<f64> {
+        Vector3::new(
+            rng.gen_range(-0.5..0.5),
+            rng.gen_range(-0.5..0.5),
+            rng.gen_range(-0.5..0.5),
+        )
+    }
+
+    #[test]
+    fn trig2_roots_are_roots_and_complete() {
+        let mut rng = ChaCha8Rng::seed_from_u64(7);
+        let mut found = 0;
+        for _ in 0..500 {
+            // f with known roots: build from two random roots' constraints
+            // by sampling coefficients, then count sign changes on a fine grid.
+            let k = [
+                rng.gen_range(-1.0..1.0),
+                rng.gen_range(-1.0..1.0),
+                rng.gen_range(-1.0..1.0),
+                rng.gen_range(-1.0..1.0),
+                rng.gen_range(-1.0..1.0),
+            ];
+            let mut roots = [0.0; 4];
+            let n = trig2_roots(&k, &mut roots);
+            for &t in &roots[..n] {
+                assert!(trig2(&k, t).0.abs() < 1e-12, "{k:?} {t}");
+            }
+            let grid = 4_000;
+            let mut changes = 0;
+            let f = |i: usize| {
+                trig2(
+                    &k,
+                    -std::f64::consts::PI + std::f64::consts::TAU * i as f64 / grid as f64,
+                )
+                .0
+            };
+            for i in 0..grid {
+                if f(i).signum() != f(i + 1).signum() {
+                    changes += 1;
+                }
+            }
+            assert!(n >= changes, "{k:?}: {n} roots, {changes} sign changes");
+            found += n;
+        }
+        assert!(found > 500);
+    }
+
+    #[test]
+    fn three_axes_recover_the_generating_angles() {
+        let mut rng = ChaCha8Rng::seed_from_u64(8);
+        for _ in 0..2000 {
+            let c = [point(&mut rng), point(&mut rng), point(&mut rng)];
+            let h = [unit(&mut rng), unit(&mut rng), unit(&mut rng)];
+            let w = point(&mut rng) * 2.0;
+            let t: [f64; 3] = [
+                rng.gen_range(-3.0..3.0),
+                rng.gen_range(-3.0..3.0),
+                rng.gen_range(-3.0..3.0),
+            ];
+            let apply = |t: &[f64; 3]| {
+                let mut x = w;
+                for i in (0..3).rev() {
+                    x = c[i] + rotation(&h[i], t[i]) * (x - c[i]);
+                }
+                x
+            };
+            let goal = apply(&t);
+            let solver = ThreeAxes::new(c, h, &w);
+            let found = solver.solve(&goal);
+            for s in found.as_slice() {
+                assert!((apply(s) - goal).norm() < 1e-9, "{s:?}");
+            }
+            assert!(
+                found.as_slice().iter().any(|s| s
+                    .iter()
+                    .zip(&t)
+                    .all(|(a, b)| crate::math::wrap_angle(a - b).abs() < 1e-7)),
+                "{t:?} not in {:?}",
+                found.as_slice()
+            );
+        }
+    }
+}
