@@ -1044,3 +1044,23 @@ fn many_random_general_6r_arms_by_2d_search() {
     );
     assert!(tally.recovered as f64 >= GENERAL_FLOOR * tally.poses as f64);
 }
+
+#[test]
+fn auto_takes_the_numeric_route_on_one_pair_arms() {
+    // The one-pair search is slower than a numeric solve: the automatic
+    // route leaves it to the analytic solver's explicit callers.
+    use armkit::ik::{AutoSolver, IkOptions, IkRoute};
+    let mut rng = common::rng(77);
+    let model = model_from_lines(
+        "pair56",
+        &one_pair_lines(&mut rng, 4),
+        random_home(&mut rng),
+    );
+    assert!(solver(&model).class().as_str().starts_with("one_pair"));
+    let mut auto = AutoSolver::new(&model, IkOptions::default()).unwrap();
+    assert_eq!(auto.class(), None);
+    let mut data = Data::new(&model);
+    let target = *forward_kinematics(&model, &mut data, &[0.3, -0.4, 0.5, 0.2, -0.6, 0.1]).unwrap();
+    let solved = auto.solve(&target, &model.neutral_configuration()).unwrap();
+    assert_eq!(solved.route, IkRoute::Numeric);
+}

@@ -10,7 +10,7 @@ use super::subproblems::{
     atan2, rotation, subproblem1, subproblem1_turn, subproblem2, subproblem3, subproblem4,
     Distance, Sinusoid, SinusoidFamily, Spoke, Turn, RELATIVE_TOLERANCE,
 };
-use crate::math::{Matrix3, Pose, Vector3};
+use crate::math::{Pose, Vector3};
 
 /// The arm-fixed quantities of a spherical-wrist chain, read once.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -269,22 +269,9 @@ impl WristOrientation {
         }
     }
 
-    /// Every `(t4, t5, t6)` with `R4 R5 R6 = goal`, appended to the joint
-    /// values `prefix` (for a solver holding the whole goal matrix; those
-    /// here pass the two directions to [`WristOrientation::solve_directions`]).
-    #[allow(dead_code)]
-    pub(crate) fn solve(
-        &self,
-        goal: &Matrix3<f64>,
-        prefix: &[f64],
-        exact: bool,
-        out: &mut Candidates,
-    ) {
-        let [_, h5, h6] = &self.h;
-        self.solve_directions(&(goal * h6), &(goal * h5), prefix, exact, out);
-    }
-
-    /// [`WristOrientation::solve`] from `goal h6` and `goal h5` alone.
+    /// Every `(t4, t5, t6)` with `R4 R5 R6 = goal`, from `goal h6` and
+    /// `goal h5` alone (the rest of the goal matrix adds nothing), appended
+    /// to the joint values `prefix`.
     #[inline]
     pub(crate) fn solve_directions(
         &self,
