@@ -24,7 +24,7 @@
 //!   circle a trigonometric polynomial of degree 2,
 //!   `f(phi) = A cos 2phi + B sin 2phi + C cos phi + S sin phi + E`.
 //!
-//! `f`'s zeros (at most 4, found by [`super::trig2`]: a quartic in
+//! `f`'s zeros (at most 4, found by the crate's `trig2` module: a quartic in
 //! `tan(phi / 2)` with its real roots isolated exactly, double roots
 //! included) are the solutions. Each
 //! `phi` gives `t1`, `t2` read off

@@ -116,10 +116,9 @@ impl Trig2 {
         ]
     }
 
-    /// The sum of the magnitudes of `f`'s terms' amplitudes, `|c0| +
-    /// hypot(c1, s1) + hypot(c2, s2)` (a bound on `|f|`).
+    /// The sum of the magnitudes of `f`'s coefficients (a bound on `|f|`).
     fn terms(&self) -> f64 {
-        self.c0.abs() + self.c1.hypot(self.s1) + self.c2.hypot(self.s2)
+        self.c0.abs() + self.c1.abs() + self.s1.abs() + self.c2.abs() + self.s2.abs()
     }
 
     /// The quartic about the sample (of 8) of largest `|f|`.
