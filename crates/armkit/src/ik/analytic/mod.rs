@@ -80,6 +80,7 @@ pub mod structure;
 pub mod subproblem6;
 pub mod subproblems;
 mod three_axes;
+mod trig2;
 mod wrist;
 
 pub use class::{ArmClass, ChainEnd, PairKind, Positioning};

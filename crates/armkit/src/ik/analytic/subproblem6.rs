@@ -24,16 +24,10 @@
 //!   circle a trigonometric polynomial of degree 2,
 //!   `f(phi) = A cos 2phi + B sin 2phi + C cos phi + S sin phi + E`.
 //!
-//! `f`'s zeros (at most 4) are the solutions. With `phi = phi0 + 2 atan u`,
-//! `(1 + u^2)^2 f` is a quartic in `u` whose leading coefficient is
-//! `f(phi0 + pi)`; `phi0` is chosen so that this is the largest `|f|` of 8
-//! samples (no root near `u = infinity`). The quartic's real roots are
-//! isolated exactly by the real roots of its derivative (recursively, down
-//! to a line): on each monotone interval with a sign change a safeguarded
-//! Newton-bisection converges to the last bit; a critical point where the
-//! quartic is within [`TANGENT_TOLERANCE`] of zero (of the size of its
-//! terms) without a sign change beside it counts as a (double) root. Each
-//! `phi` is then polished by Newton on `f` itself, and `t1`, `t2` read off
+//! `f`'s zeros (at most 4, found by the crate's `trig2` module: a quartic in
+//! `tan(phi / 2)` with its real roots isolated exactly, double roots
+//! included) are the solutions. Each
+//! `phi` gives `t1`, `t2` read off
 //! `x1`, `x2` (normalized).
 //!
 //! Least squares: when no solution exists (`|x0|^2 > 2`, or `f` keeps its
@@ -61,14 +55,10 @@
 //! ```
 
 use super::subproblems::{Turn, RELATIVE_TOLERANCE};
+use super::trig2::Trig2;
 use crate::math::Vector3;
 
-/// Size (relative to the sum of its terms' magnitudes) below which the
-/// quartic at one of its critical points counts as zero: a double root.
-/// Near-double roots whose quartic value is above it but which have no
-/// sign change are not solutions; their answers are at most this far from
-/// the equations (forward kinematics then decides).
-pub const TANGENT_TOLERANCE: f64 = 1e-13;
+pub use super::trig2::TANGENT_TOLERANCE;
 
 /// The term `h . R(k, t) p` as `cos t * cos_part + sin t * sin_part +
 /// constant` (Rodrigues: `cos_part = h . p - (h . k)(k . p)`,
@@ -202,276 +192,6 @@ fn split(a: &Vector4, b: &Vector4) -> f64 {
     a[0] * b[0] + a[1] * b[1] - a[2] * b[2] - a[3] * b[3]
 }
 
-/// A trigonometric polynomial of degree 2:
-/// `c2 cos 2phi + s2 sin 2phi + c1 cos phi + s1 sin phi + c0`.
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct Trig2 {
-    c2: f64,
-    s2: f64,
-    c1: f64,
-    s1: f64,
-    c0: f64,
-}
-
-impl Trig2 {
-    /// `f` at the angle of sine `s` and cosine `c`.
-    fn at_direction(&self, s: f64, c: f64) -> f64 {
-        let (s2, c2) = (2.0 * s * c, c * c - s * s);
-        self.c2 * c2 + self.s2 * s2 + self.c1 * c + self.s1 * s + self.c0
-    }
-
-    /// `f` and `df / dphi` at the angle of sine `s` and cosine `c`.
-    fn value_and_slope(&self, s: f64, c: f64) -> (f64, f64) {
-        let (s2, c2) = (2.0 * s * c, c * c - s * s);
-        (
-            self.c2 * c2 + self.s2 * s2 + self.c1 * c + self.s1 * s + self.c0,
-            2.0 * (self.s2 * c2 - self.c2 * s2) + self.s1 * c - self.c1 * s,
-        )
-    }
-
-    /// The same polynomial in `psi = phi - shift`.
-    fn shifted(&self, shift: f64) -> Trig2 {
-        let (s, c) = shift.sin_cos();
-        let (s2, c2) = (2.0 * s * c, c * c - s * s);
-        // cos(psi + shift) = cos psi c - sin psi s, sin(psi + shift) = sin psi c + cos psi s.
-        Trig2 {
-            c2: self.c2 * c2 + self.s2 * s2,
-            s2: self.s2 * c2 - self.c2 * s2,
-            c1: self.c1 * c + self.s1 * s,
-            s1: self.s1 * c - self.c1 * s,
-            c0: self.c0,
-        }
-    }
-
-    /// `(1 + u^2)^2 f(2 atan u)`, coefficients by ascending power.
-    fn quartic(&self) -> [f64; 5] {
-        [
-            self.c2 + self.c1 + self.c0,
-            4.0 * self.s2 + 2.0 * self.s1,
-            -6.0 * self.c2 + 2.0 * self.c0,
-            -4.0 * self.s2 + 2.0 * self.s1,
-            self.c2 - self.c1 + self.c0,
-        ]
-    }
-
-    /// Newton on `f` (at most 3 steps), kept while it lowers `|f|`;
-    /// returns the angle with its sine and cosine.
-    fn polish(&self, phi: f64) -> (f64, f64, f64) {
-        let (s, c) = phi.sin_cos();
-        let mut best = (phi, s, c);
-        let (mut value, mut slope) = self.value_and_slope(s, c);
-        for _ in 0..3 {
-            if slope == 0.0 || value == 0.0 {
-                break;
-            }
-            let next = best.0 - value / slope;
-            let (s, c) = next.sin_cos();
-            let (next_value, next_slope) = self.value_and_slope(s, c);
-            if next_value.abs() >= value.abs() {
-                break;
-            }
-            best = (next, s, c);
-            value = next_value;
-            slope = next_slope;
-        }
-        best
-    }
-}
-
-/// Most real roots [`real_roots`] returns (a quartic's 4, with room for
-/// tangent points beside them).
-const MAX_ROOTS: usize = 4;
-
-/// Real roots (ascending) of `sum p[i] u^i`, `p.len() - 1 <= 4` its degree
-/// with `p[last] != 0`: see the module docs.
-fn real_roots(p: &[f64]) -> ([f64; MAX_ROOTS], usize) {
-    roots_to(p, FULL_PRECISION)
-}
-
-/// Relative bracket width at which [`real_roots`] stops: a few ulps.
-const FULL_PRECISION: f64 = 4.0 * f64::EPSILON;
-/// Relative bracket width for the derivatives' roots, which only split the
-/// line into monotone pieces (an error `delta` there changes the
-/// polynomial's value at a critical point by `O(delta^2)`).
-const CRITICAL_PRECISION: f64 = 1e-10;
-
-/// [`real_roots`] with the brackets closed to `precision` (relative).
-fn roots_to(p: &[f64], precision: f64) -> ([f64; MAX_ROOTS], usize) {
-    let mut roots = [0.0; MAX_ROOTS];
-    let n = p.len() - 1;
-    if n == 0 {
-        return (roots, 0);
-    }
-    if n == 1 {
-        roots[0] = -p[0] / p[1];
-        return (roots, 1);
-    }
-    if n == 2 {
-        return quadratic_roots(p);
-    }
-    let mut derivative = [0.0; 4];
-    for i in 0..n {
-        derivative[i] = (i + 1) as f64 * p[i + 1];
-    }
-    let (critical, m) = roots_to(&derivative[..n], CRITICAL_PRECISION);
-    let bound = root_bound(p);
-    let mut points = [0.0; MAX_ROOTS + 2];
-    points[0] = -bound;
-    for (slot, c) in points[1..].iter_mut().zip(&critical[..m]) {
-        *slot = c.max(-bound).min(bound);
-    }
-    points[m + 1] = bound;
-    let points = &points[..m + 2];
-    let mut count = 0;
-    let mut push = |root: f64, count: &mut usize| {
-        if *count < MAX_ROOTS {
-            roots[*count] = root;
-            *count += 1;
-        }
-    };
-    let mut changed = [false; MAX_ROOTS + 1];
-    for i in 0..m + 1 {
-        let (a, b) = (points[i], points[i + 1]);
-        let (fa, fb) = (evaluate(p, a), evaluate(p, b));
-        if fa == 0.0 && i > 0 {
-            continue; // pushed as the previous interval's end
-        }
-        if fa == 0.0 {
-            push(a, &mut count);
-            changed[i] = true;
-        } else if fb == 0.0 || (fa < 0.0) != (fb < 0.0) {
-            let start = 0.5 * (a + b);
-            push(
-                bracketed_root(p, a, b, fa, fb, start, precision),
-                &mut count,
-            );
-            changed[i] = true;
-        }
-    }
-    // Tangent points: a critical point where p vanishes to round-off
-    // without a sign change beside it.
-    for j in 0..m {
-        let c = points[j + 1];
-        if !changed[j] && !changed[j + 1] && evaluate(p, c).abs() <= TANGENT_TOLERANCE * size(p, c)
-        {
-            push(c, &mut count);
-        }
-    }
-    roots[..count].sort_unstable_by(f64::total_cmp);
-    (roots, count)
-}
-
-/// Real roots of `p[0] + p[1] u + p[2] u^2` (`p[2] != 0`), ascending, by
-/// the cancellation-free formula; a double root when the discriminant is
-/// negative within [`TANGENT_TOLERANCE`] of its terms.
-fn quadratic_roots(p: &[f64]) -> ([f64; MAX_ROOTS], usize) {
-    let mut roots = [0.0; MAX_ROOTS];
-    let (c, b, a) = (p[0], p[1], p[2]);
-    let discriminant = b * b - 4.0 * a * c;
-    let terms = b * b + (4.0 * a * c).abs();
-    if discriminant < 0.0 {
-        if discriminant >= -TANGENT_TOLERANCE * terms {
-            roots[0] = -b / (2.0 * a);
-            return (roots, 1);
-        }
-        return (roots, 0);
-    }
-    let q = -0.5 * (b + b.signum() * discriminant.sqrt());
-    if q == 0.0 {
-        return (roots, 1); // b = c = 0: the double root 0
-    }
-    let (r1, r2) = (q / a, c / q);
-    roots[0] = r1.min(r2);
-    roots[1] = r1.max(r2);
-    (roots, 2)
-}
-
-/// Fujiwara's bound, a little widened: every root has `|u| < 2 max_i
-/// |p[n - i] / p[n]|^(1 / i)` (the last term halved first).
-fn root_bound(p: &[f64]) -> f64 {
-    let n = p.len() - 1;
-    let mut bound = 0.0_f64;
-    for i in 1..=n {
-        let mut ratio = (p[n - i] / p[n]).abs();
-        if i == n {
-            ratio *= 0.5;
-        }
-        let term = match i {
-            1 => ratio,
-            2 => ratio.sqrt(),
-            4 => ratio.sqrt().sqrt(),
-            _ => ratio.cbrt(),
-        };
-        bound = bound.max(term);
-    }
-    2.0 * bound * (1.0 + 1e-12) + f64::MIN_POSITIVE
-}
-
-fn evaluate(p: &[f64], u: f64) -> f64 {
-    p.iter().rev().fold(0.0, |acc, c| acc * u + c)
-}
-
-fn evaluate_slope(p: &[f64], u: f64) -> f64 {
-    let mut acc = 0.0;
-    for i in (1..p.len()).rev() {
-        acc = acc * u + i as f64 * p[i];
-    }
-    acc
-}
-
-/// The sum of the terms' magnitudes at `u`.
-fn size(p: &[f64], u: f64) -> f64 {
-    p.iter().rev().fold(0.0, |acc, c| acc * u.abs() + c.abs())
-}
-
-/// The root of `p` in `[a, b]` (monotone there, `fa`, `fb` of opposite
-/// signs or `fb = 0`): Newton from `start`, falling back to bisection whenever a step
-/// leaves the bracket, until the bracket or the step is `precision` wide
-/// (relative to `max(1, |u|)`: `u = tan(psi / 2)`, so that is the
-/// precision of `psi` near 0 too).
-fn bracketed_root(
-    p: &[f64],
-    mut a: f64,
-    mut b: f64,
-    fa: f64,
-    fb: f64,
-    start: f64,
-    precision: f64,
-) -> f64 {
-    if fb == 0.0 {
-        return b;
-    }
-    let rising = fa < 0.0;
-    let mut u = start;
-    for _ in 0..200 {
-        let value = evaluate(p, u);
-        if value == 0.0 {
-            return u;
-        }
-        if (value < 0.0) == rising {
-            a = u;
-        } else {
-            b = u;
-        }
-        let slope = evaluate_slope(p, u);
-        let newton = u - value / slope;
-        let size = u.abs().max(1.0);
-        if slope != 0.0 && (newton - u).abs() <= precision * size {
-            // Converged: the last step is within the precision.
-            return newton.max(a).min(b);
-        }
-        u = if slope != 0.0 && newton > a && newton < b {
-            newton
-        } else {
-            0.5 * (a + b)
-        };
-        if b - a <= precision * size {
-            break;
-        }
-    }
-    u
-}
-
 impl Sinusoids {
     /// The rows of `M` (see the module docs) and `e = d - constants`.
     fn linear(&self, d: [f64; 2]) -> ([Vector4; 2], [f64; 2]) {
@@ -512,36 +232,9 @@ impl Sinusoids {
         let rho2 = 2.0 - dot4(&space.x0, &space.x0);
         let rho = rho2.max(0.0).sqrt();
         let f = space.difference(rho);
-        // Sample f; the quartic in u is taken about the sample of largest |f|.
-        let mut far = 0.0;
-        let mut far_value = 0.0_f64;
-        let h = std::f64::consts::FRAC_1_SQRT_2;
-        let directions = [
-            (0.0, 1.0),
-            (h, h),
-            (1.0, 0.0),
-            (h, -h),
-            (0.0, -1.0),
-            (-h, -h),
-            (-1.0, 0.0),
-            (-h, h),
-        ];
-        for (i, (s, c)) in directions.into_iter().enumerate() {
-            let phi = i as f64 * std::f64::consts::FRAC_PI_4;
-            let v = f.at_direction(s, c);
-            if v.abs() > far_value.abs() {
-                far = phi;
-                far_value = v;
-            }
-        }
-        let shift = far - std::f64::consts::PI;
-        let shifted = f.shifted(shift);
-        let quartic = shifted.quartic();
-        if rho2 >= -RELATIVE_TOLERANCE && far_value != 0.0 {
-            let (roots, count) = real_roots(&quartic);
-            for u in &roots[..count] {
-                let (_, s, c) = f.polish(shift + 2.0 * u.atan());
-                let pair = self.pair_at(&space.point(rho, s, c), &m, &e, scale);
+        if rho2 >= -RELATIVE_TOLERANCE {
+            for root in f.roots().as_slice() {
+                let pair = self.pair_at(&space.point(rho, root.sin, root.cos), &m, &e, scale);
                 out.push(pair);
             }
         }
@@ -553,9 +246,9 @@ impl Sinusoids {
         let mut starts = [space.x0; 4];
         let mut n = 1;
         if rho > 0.0 {
-            let (critical, count) = real_roots(&derivative_of(&quartic));
-            for u in &critical[..count.min(3)] {
-                let (s, c) = (shift + 2.0 * u.atan()).sin_cos();
+            let (critical, count) = f.quartic_critical_angles();
+            for phi in &critical[..count] {
+                let (s, c) = phi.sin_cos();
                 starts[n] = space.point(rho, s, c);
                 n += 1;
             }
@@ -625,10 +318,6 @@ fn least_squares(
         second,
         exact: r <= RELATIVE_TOLERANCE * scale,
     }
-}
-
-fn derivative_of(p: &[f64; 5]) -> [f64; 4] {
-    [p[1], 2.0 * p[2], 3.0 * p[3], 4.0 * p[4]]
 }
 
 /// `M x - e` at `x = (cos t1, sin t1, cos t2, sin t2)`.
@@ -1017,22 +706,5 @@ mod tests {
                 / (2.0 * e);
             assert!(da.abs() < 1e-7 && db.abs() < 1e-7, "gradient {da} {db}");
         }
-    }
-
-    #[test]
-    fn real_roots_of_polynomials_with_known_roots() {
-        // (u - 1)(u + 2)(u - 0.5)(u - 3) and a double root (u - 1)^2 (u^2 + 1).
-        let p = [-3.0, 8.5, -4.0, -2.5, 1.0];
-        let (roots, n) = real_roots(&p);
-        assert_eq!(&roots[..n], &[-2.0, 0.5, 1.0, 3.0]);
-        let double = [1.0, -2.0, 2.0, -2.0, 1.0];
-        let (roots, n) = real_roots(&double);
-        assert!(
-            n >= 1 && roots[..n].iter().all(|r| (r - 1.0).abs() < 1e-7),
-            "{:?}",
-            &roots[..n]
-        );
-        let none = [1.0, 0.0, 1.0, 0.0, 1.0];
-        assert_eq!(real_roots(&none).1, 0);
     }
 }

@@ -16,10 +16,11 @@
 //! `x_c = P x_a + m` (or the other way round), and `|x_c| = 1` leaves one
 //! trigonometric polynomial of degree 2 in one angle,
 //! `f(t) = k0 + k1 cos t + k2 sin t + k3 cos 2t + k4 sin 2t = 0`: a quartic
-//! in `tan(t / 2)` ([`trig2_roots`]), up to 4 solutions. Joint `b` follows
+//! in `tan(t / 2)` (module `trig2`), up to 4 solutions. Joint `b` follows
 //! by subproblem 1.
 
 use super::subproblems::{subproblem1, Spoke, Turn};
+use super::trig2::Trig2;
 use crate::math::Vector3;
 use nalgebra::{Matrix2, Vector2};
 
@@ -130,18 +131,16 @@ impl ThreeAxes {
         let (b, b0) = circle_rows(&h[1], &c[1], &v);
         let e = b0 - self.a0;
         // A x_c = B x_a + e.
-        let mut roots = [0.0; 4];
         if self.invert_a {
             let Some(inverse) = self.a.try_inverse() else {
                 return out;
             };
             let (p, m) = (inverse * b, inverse * e);
             let k = circle_poly(&p, &m);
-            let n = trig2_roots(&k, &mut roots);
-            for &ta in &roots[..n] {
-                let xc = p * Vector2::new(ta.cos(), ta.sin()) + m;
-                let slope = trig2(&k, ta).1;
-                self.push(ta, xc.y.atan2(xc.x), slope, &v, &mut out);
+            for ta in k.roots().as_slice() {
+                let xc = p * Vector2::new(ta.cos, ta.sin) + m;
+                let slope = k.value_and_slope(ta.sin, ta.cos).1;
+                self.push(ta.angle, xc.y.atan2(xc.x), slope, &v, &mut out);
             }
         } else if conditioning(&b) > SINGULAR {
             let Some(inverse) = b.try_inverse() else {
@@ -149,11 +148,10 @@ impl ThreeAxes {
             };
             let (p, m) = (inverse * self.a, -(inverse * e));
             let k = circle_poly(&p, &m);
-            let n = trig2_roots(&k, &mut roots);
-            for &tc in &roots[..n] {
-                let xa = p * Vector2::new(tc.cos(), tc.sin()) + m;
-                let slope = trig2(&k, tc).1;
-                self.push(xa.y.atan2(xa.x), tc, slope, &v, &mut out);
+            for tc in k.roots().as_slice() {
+                let xa = p * Vector2::new(tc.cos, tc.sin) + m;
+                let slope = k.value_and_slope(tc.sin, tc.cos).1;
+                self.push(xa.y.atan2(xa.x), tc.angle, slope, &v, &mut out);
             }
         }
         out
@@ -174,180 +172,17 @@ impl ThreeAxes {
     }
 }
 
-/// The coefficients `k` of `|P x + m|^2 - 1` for `x = (cos t, sin t)`.
-fn circle_poly(p: &Matrix2<f64>, m: &Vector2<f64>) -> [f64; 5] {
+/// `|P x + m|^2 - 1` for `x = (cos t, sin t)`.
+fn circle_poly(p: &Matrix2<f64>, m: &Vector2<f64>) -> Trig2 {
     let s = p.transpose() * p;
     let g = p.transpose() * m;
-    [
-        0.5 * (s[(0, 0)] + s[(1, 1)]) + m.norm_squared() - 1.0,
-        2.0 * g.x,
-        2.0 * g.y,
-        0.5 * (s[(0, 0)] - s[(1, 1)]),
-        s[(0, 1)],
-    ]
-}
-
-/// `f(t) = k0 + k1 cos t + k2 sin t + k3 cos 2t + k4 sin 2t` and `f'(t)`.
-#[inline]
-fn trig2(k: &[f64; 5], t: f64) -> (f64, f64) {
-    let (s, c) = t.sin_cos();
-    let (s2, c2) = (2.0 * s * c, c * c - s * s);
-    (
-        k[0] + k[1] * c + k[2] * s + k[3] * c2 + k[4] * s2,
-        -k[1] * s + k[2] * c - 2.0 * k[3] * s2 + 2.0 * k[4] * c2,
-    )
-}
-
-/// The real roots `t` (rad) of the trigonometric polynomial `k` of degree
-/// 2 (see [`trig2`]), written to `out`; how many (0 to 4). The angle is
-/// shifted by a quarter turn multiple `phi` so that `t = phi + pi` (where
-/// `tan(t / 2)` is infinite) is where `|f|` is largest of the four; the
-/// quartic in `u = tan((t - phi) / 2)` is solved by Ferrari's method and
-/// each root polished by two Newton steps on `f` itself.
-pub(crate) fn trig2_roots(k: &[f64; 5], out: &mut [f64; 4]) -> usize {
-    use std::f64::consts::FRAC_PI_2;
-    // f at pi, -pi/2, 0, pi/2: the quartic's leading coefficient for
-    // phi = 0, pi/2, pi, -pi/2.
-    let at = [
-        k[0] - k[1] + k[3],
-        k[0] - k[2] - k[3],
-        k[0] + k[1] + k[3],
-        k[0] + k[2] - k[3],
-    ];
-    let mut best = 0;
-    for i in 1..4 {
-        if at[i].abs() > at[best].abs() {
-            best = i;
-        }
+    Trig2 {
+        c0: 0.5 * (s[(0, 0)] + s[(1, 1)]) + m.norm_squared() - 1.0,
+        c1: 2.0 * g.x,
+        s1: 2.0 * g.y,
+        c2: 0.5 * (s[(0, 0)] - s[(1, 1)]),
+        s2: s[(0, 1)],
     }
-    if at[best] == 0.0 {
-        return 0;
-    }
-    // Coefficients in tau = t - phi.
-    let (k1, k2, k3, k4) = match best {
-        0 => (k[1], k[2], k[3], k[4]),
-        1 => (k[2], -k[1], -k[3], -k[4]),
-        2 => (-k[1], -k[2], k[3], k[4]),
-        _ => (-k[2], k[1], -k[3], -k[4]),
-    };
-    let phi = FRAC_PI_2 * [0.0, 1.0, 2.0, -1.0][best];
-    let shifted = [k[0], k1, k2, k3, k4];
-    let lead = k[0] - k1 + k3;
-    let quartic = [
-        (2.0 * k2 - 4.0 * k4) / lead,
-        (2.0 * k[0] - 6.0 * k3) / lead,
-        (2.0 * k2 + 4.0 * k4) / lead,
-        (k[0] + k1 + k3) / lead,
-    ];
-    let mut u = [0.0; 4];
-    let n = quartic_real_roots(&quartic, &mut u);
-    let mut count = 0;
-    for &x in &u[..n] {
-        let mut tau = 2.0 * x.atan();
-        for _ in 0..2 {
-            let (f, df) = trig2(&shifted, tau);
-            if df != 0.0 {
-                tau -= f / df;
-            }
-        }
-        let t = crate::math::wrap_angle(tau + phi);
-        if !out[..count]
-            .iter()
-            .any(|r| crate::math::wrap_angle(r - t).abs() < 1e-12)
-        {
-            out[count] = t;
-            count += 1;
-        }
-    }
-    count
-}
-
-/// The real roots of `u^4 + b u^3 + c u^2 + d u + e` (Ferrari), written to
-/// `out`; how many. Near-double roots (a quadratic's discriminant within
-/// round-off below zero) count once.
-fn quartic_real_roots(coefficients: &[f64; 4], out: &mut [f64; 4]) -> usize {
-    let [b, c, d, e] = *coefficients;
-    // u = y - b/4: y^4 + p y^2 + q y + r.
-    let b2 = b * b;
-    let p = c - 0.375 * b2;
-    let q = d - 0.5 * b * c + 0.125 * b2 * b;
-    let r = e - 0.25 * b * d + 0.0625 * b2 * c - 3.0 / 256.0 * b2 * b2;
-    let shift = -0.25 * b;
-    let scale = 1.0 + p.abs() + q.abs().sqrt() + r.abs().sqrt();
-    let mut count = 0;
-    let mut quadratic = |s1: f64, s0: f64, out: &mut [f64; 4]| {
-        // y^2 + s1 y + s0 = 0.
-        let discriminant = s1 * s1 - 4.0 * s0;
-        if discriminant < -1e-12 * scale * scale {
-            return;
-        }
-        let root = discriminant.max(0.0).sqrt();
-        let ys = [-0.5 * (s1 + root), -0.5 * (s1 - root)];
-        let n = if root == 0.0 { 1 } else { 2 };
-        for y in &ys[..n] {
-            if count < 4 {
-                out[count] = y + shift;
-                count += 1;
-            }
-        }
-    };
-    if q.abs() <= 1e-14 * scale * scale * scale {
-        // Biquadratic: z = y^2, z^2 + p z + r = 0.
-        let discriminant = p * p - 4.0 * r;
-        if discriminant < -1e-12 * scale * scale {
-            return 0;
-        }
-        let root = discriminant.max(0.0).sqrt();
-        for z in [-0.5 * (p + root), -0.5 * (p - root)] {
-            if z >= 0.0 {
-                let y = z.sqrt();
-                quadratic(0.0, -y * y, out);
-            }
-        }
-        return count;
-    }
-    // (y^2 + p/2 + m)^2 = 2m (y - q / (4m))^2 for a root m > 0 of
-    // 8 m^3 + 8 p m^2 + (2 p^2 - 8 r) m - q^2 = 0.
-    let m = resolvent_root(p, r, q);
-    let s = (2.0 * m).sqrt();
-    let t = q / (2.0 * s);
-    quadratic(-s, 0.5 * p + m + t, out);
-    quadratic(s, 0.5 * p + m - t, out);
-    count
-}
-
-/// The largest real root of `m^3 + p m^2 + (p^2/4 - r) m - q^2/8` (positive
-/// since the cubic is `-q^2/8 < 0` at 0), polished by Newton steps.
-fn resolvent_root(p: f64, r: f64, q: f64) -> f64 {
-    let (a2, a1, a0) = (p, 0.25 * p * p - r, -0.125 * q * q);
-    // m = z - a2/3: z^3 + pp z + qq = 0.
-    let pp = a1 - a2 * a2 / 3.0;
-    let qq = 2.0 * a2 * a2 * a2 / 27.0 - a2 * a1 / 3.0 + a0;
-    let discriminant = 0.25 * qq * qq + pp * pp * pp / 27.0;
-    let z = if discriminant > 0.0 {
-        let root = discriminant.sqrt();
-        (-0.5 * qq + root).cbrt() + (-0.5 * qq - root).cbrt()
-    } else {
-        let radius = (-pp / 3.0).max(0.0).sqrt();
-        let argument = if radius > 0.0 {
-            (-0.5 * qq / (radius * radius * radius)).clamp(-1.0, 1.0)
-        } else {
-            0.0
-        };
-        2.0 * radius * (argument.acos() / 3.0).cos()
-    };
-    let mut m = z - a2 / 3.0;
-    for _ in 0..3 {
-        let f = ((m + a2) * m + a1) * m + a0;
-        let df = (3.0 * m + 2.0 * a2) * m + a1;
-        if df != 0.0 {
-            let next = m - f / df;
-            if next.is_finite() {
-                m = next;
-            }
-        }
-    }
-    m.max(f64::MIN_POSITIVE)
 }
 
 #[cfg(test)]
@@ -376,45 +211,6 @@ mod tests {
             rng.gen_range(-0.5..0.5),
             rng.gen_range(-0.5..0.5),
         )
-    }
-
-    #[test]
-    fn trig2_roots_are_roots_and_complete() {
-        let mut rng = ChaCha8Rng::seed_from_u64(7);
-        let mut found = 0;
-        for _ in 0..500 {
-            // f with known roots: build from two random roots' constraints
-            // by sampling coefficients, then count sign changes on a fine grid.
-            let k = [
-                rng.gen_range(-1.0..1.0),
-                rng.gen_range(-1.0..1.0),
-                rng.gen_range(-1.0..1.0),
-                rng.gen_range(-1.0..1.0),
-                rng.gen_range(-1.0..1.0),
-            ];
-            let mut roots = [0.0; 4];
-            let n = trig2_roots(&k, &mut roots);
-            for &t in &roots[..n] {
-                assert!(trig2(&k, t).0.abs() < 1e-12, "{k:?} {t}");
-            }
-            let grid = 4_000;
-            let mut changes = 0;
-            let f = |i: usize| {
-                trig2(
-                    &k,
-                    -std::f64::consts::PI + std::f64::consts::TAU * i as f64 / grid as f64,
-                )
-                .0
-            };
-            for i in 0..grid {
-                if f(i).signum() != f(i + 1).signum() {
-                    changes += 1;
-                }
-            }
-            assert!(n >= changes, "{k:?}: {n} roots, {changes} sign changes");
-            found += n;
-        }
-        assert!(found > 500);
     }
 
     #[test]
