@@ -156,6 +156,7 @@ mod ellipsoid;
 mod gap;
 mod method_law;
 mod plant;
+mod region;
 mod region_plan;
 mod scenario;
 
