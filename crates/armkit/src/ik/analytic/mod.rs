@@ -79,6 +79,8 @@ mod srs;
 pub mod structure;
 pub mod subproblem6;
 pub mod subproblems;
+#[cfg(test)]
+mod test_random;
 mod three_axes;
 mod trig2;
 mod wrist;

@@ -501,27 +501,11 @@ impl Solutions {
 #[cfg(test)]
 mod tests {
     use super::super::subproblems::rotation;
+    use super::super::test_random::{unit, vector};
     use super::*;
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
     use std::f64::consts::PI;
-
-    fn unit(rng: &mut ChaCha8Rng) -> Vector3<f64> {
-        loop {
-            let v = Vector3::new(
-                rng.gen_range(-1.0..1.0),
-                rng.gen_range(-1.0..1.0),
-                rng.gen_range(-1.0..1.0),
-            );
-            if v.norm() > 0.1 && v.norm() < 1.0 {
-                return v.normalize();
-            }
-        }
-    }
-
-    fn vector(rng: &mut ChaCha8Rng) -> Vector3<f64> {
-        unit(rng) * rng.gen_range(0.1..2.0)
-    }
 
     struct Instance {
         h: [Vector3<f64>; 4],

@@ -628,26 +628,10 @@ pub(crate) fn subproblem2_turns(
 
 #[cfg(test)]
 mod tests {
+    use super::super::test_random::{unit, vector};
     use super::*;
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
-
-    fn random_unit(rng: &mut ChaCha8Rng) -> Vector3<f64> {
-        loop {
-            let v = Vector3::new(
-                rng.gen_range(-1.0..1.0),
-                rng.gen_range(-1.0..1.0),
-                rng.gen_range(-1.0..1.0),
-            );
-            if v.norm() > 0.1 && v.norm() < 1.0 {
-                return v.normalize();
-            }
-        }
-    }
-
-    fn random_vector(rng: &mut ChaCha8Rng) -> Vector3<f64> {
-        random_unit(rng) * rng.gen_range(0.1..2.0)
-    }
 
     fn random_angle(rng: &mut ChaCha8Rng) -> f64 {
         rng.gen_range(-std::f64::consts::PI..std::f64::consts::PI)
@@ -704,7 +688,7 @@ mod tests {
     fn rotation_matches_nalgebra() {
         let mut rng = ChaCha8Rng::seed_from_u64(1);
         for _ in 0..100 {
-            let k = random_unit(&mut rng);
+            let k = unit(&mut rng);
             let t = random_angle(&mut rng);
             let expected =
                 nalgebra::Rotation3::from_axis_angle(&nalgebra::Unit::new_unchecked(k), t);
@@ -716,8 +700,8 @@ mod tests {
     fn subproblem1_recovers_the_rotation() {
         let mut rng = ChaCha8Rng::seed_from_u64(2);
         for _ in 0..1000 {
-            let k = random_unit(&mut rng);
-            let p1 = random_vector(&mut rng);
+            let k = unit(&mut rng);
+            let p1 = vector(&mut rng);
             let t = random_angle(&mut rng);
             let (found, exact) = subproblem1(&k, &p1, &(rotation(&k, t) * p1));
             assert!(exact);
@@ -739,9 +723,9 @@ mod tests {
     fn subproblem2_finds_the_generating_pair() {
         let mut rng = ChaCha8Rng::seed_from_u64(3);
         for _ in 0..1000 {
-            let k1 = random_unit(&mut rng);
-            let k2 = random_unit(&mut rng);
-            let p1 = random_vector(&mut rng);
+            let k1 = unit(&mut rng);
+            let k2 = unit(&mut rng);
+            let p1 = vector(&mut rng);
             let (t1, t2) = (random_angle(&mut rng), random_angle(&mut rng));
             // p2 such that R(k1, t1) p1 = R(k2, t2) p2.
             let p2 = rotation(&k2, -t2) * rotation(&k1, t1) * p1;
@@ -775,9 +759,9 @@ mod tests {
     fn subproblem3_finds_the_generating_angle() {
         let mut rng = ChaCha8Rng::seed_from_u64(4);
         for _ in 0..1000 {
-            let k = random_unit(&mut rng);
-            let p1 = random_vector(&mut rng);
-            let p2 = random_vector(&mut rng);
+            let k = unit(&mut rng);
+            let p1 = vector(&mut rng);
+            let p2 = vector(&mut rng);
             let t = random_angle(&mut rng);
             let d = (rotation(&k, t) * p1 - p2).norm();
             let angles = subproblem3(&k, &p1, &p2, d);
@@ -806,9 +790,9 @@ mod tests {
     fn subproblem4_finds_the_generating_angle() {
         let mut rng = ChaCha8Rng::seed_from_u64(5);
         for _ in 0..1000 {
-            let h = random_unit(&mut rng);
-            let k = random_unit(&mut rng);
-            let p = random_vector(&mut rng);
+            let h = unit(&mut rng);
+            let k = unit(&mut rng);
+            let p = vector(&mut rng);
             let t = random_angle(&mut rng);
             let d = h.dot(&(rotation(&k, t) * p));
             let angles = subproblem4(&h, &k, &p, d);

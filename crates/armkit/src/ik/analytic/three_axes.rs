@@ -189,29 +189,9 @@ fn circle_poly(p: &Matrix2<f64>, m: &Vector2<f64>) -> Trig2 {
 mod tests {
     use super::*;
     use crate::ik::analytic::subproblems::rotation;
+    use crate::ik::analytic::test_random::{point, unit};
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
-
-    fn unit(rng: &mut ChaCha8Rng) -> Vector3<f64> {
-        loop {
-            let v = Vector3::new(
-                rng.gen_range(-1.0..1.0),
-                rng.gen_range(-1.0..1.0),
-                rng.gen_range(-1.0..1.0),
-            );
-            if v.norm() > 0.2 && v.norm() < 1.0 {
-                return v.normalize();
-            }
-        }
-    }
-
-    fn point(rng: &mut ChaCha8Rng) -> Vector3<f64> {
-        Vector3::new(
-            rng.gen_range(-0.5..0.5),
-            rng.gen_range(-0.5..0.5),
-            rng.gen_range(-0.5..0.5),
-        )
-    }
 
     #[test]
     fn three_axes_recover_the_generating_angles() {
