@@ -23,27 +23,17 @@
 //! [`ThreeParallelOffset::new`]; a solve allocates nothing.
 
 use super::chain::{Candidates, Chain};
+use super::parallel::ParallelGroup;
 use super::subproblem6::{Sinusoids, Wave};
-use super::subproblems::{rotation_of, subproblem1_turn, Distance, Spoke};
+use super::subproblems::{rotation_of, Spoke};
 use crate::math::{Matrix3, Pose, Vector3};
 
 /// The arm-fixed quantities of a three-parallel chain without an
 /// intersecting end pair (chain order).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct ThreeParallelOffset {
-    /// `-h1` (joint 1 enters as `R1' = R(-h1, t1)`), axes 5, 6 and the
-    /// common direction `k = h2` of axes 2-4.
+    /// `-h1` (joint 1 enters as `R1' = R(-h1, t1)`).
     minus_h1: Vector3<f64>,
-    h5: Vector3<f64>,
-    h6: Vector3<f64>,
-    k: Vector3<f64>,
-    /// Signs of axes 3 and 4 relative to `h2`.
-    s3: f64,
-    s4: f64,
-    /// Points on axes 1, 2, 3.
-    c1: Vector3<f64>,
-    c2: Vector3<f64>,
-    c3: Vector3<f64>,
     /// `home^-1 c6` and `home^-1`'s rotation.
     c6_home: Vector3<f64>,
     rotation_home: Matrix3<f64>,
@@ -55,15 +45,8 @@ pub(crate) struct ThreeParallelOffset {
     arm5: Spoke,
     /// `c5 - c4`: with `arm5`, where `c6` is before joints 2-4, from `c4`.
     c5_c4: Vector3<f64>,
-    /// Joint 3: `|R3 (c4 - c3) - (c2 - c3)| = d`.
-    joint3: Distance,
-    /// `c4 - c3` turned by joint 3.
-    elbow: Spoke,
-    /// `R5' k` as joint 5 turns.
-    k_by_5: Spoke,
-    /// A unit normal of `k` (reads the sum of joints 2-4 off `R234`).
-    normal: Vector3<f64>,
-    normal_cross: Vector3<f64>,
+    /// Joints 2-4 and 6 once joints 1 and 5 are known.
+    group: ParallelGroup,
 }
 
 impl ThreeParallelOffset {
@@ -71,41 +54,28 @@ impl ThreeParallelOffset {
     pub(crate) fn new(chain: &Chain) -> ThreeParallelOffset {
         let (c, h) = (&chain.c, &chain.h);
         let k = h[1];
-        let normal = super::parallel::any_normal(&k);
         let arm = c[5] - c[4];
         ThreeParallelOffset {
             minus_h1: -h[0],
-            h5: h[4],
-            h6: h[5],
-            k,
-            s3: k.dot(&h[2]).signum(),
-            s4: k.dot(&h[3]).signum(),
-            c1: c[0],
-            c2: c[1],
-            c3: c[2],
             c6_home: chain.home_inverse.transform_point(&c[5]),
             rotation_home: chain.home_inverse.rotation,
             waves5: [Wave::new(&k, &h[4], &arm), Wave::new(&k, &h[4], &h[5])],
             height: k.dot(&(c[0] - c[4])),
             arm5: Spoke::new(&h[4], &arm),
             c5_c4: c[4] - c[3],
-            joint3: Distance::new(&h[2], &(c[3] - c[2]), &(c[1] - c[2])),
-            elbow: Spoke::new(&h[2], &(c[3] - c[2])),
-            k_by_5: Spoke::new(&h[4], &k),
-            normal,
-            normal_cross: k.cross(&normal),
+            group: ParallelGroup::new(chain),
         }
     }
 
     /// Every solution for `target` (the chain's end-effector pose).
     pub(crate) fn solve(&self, target: &Pose, out: &mut Candidates) {
-        let k = &self.k;
+        let group = &self.group;
         // Where c6 goes, and R1 R234 R5 R6.
         let p = target.transform_point(&self.c6_home);
         let rd = target.rotation * self.rotation_home;
-        let rd_h6 = rd * self.h6;
-        let p1 = p - self.c1;
-        let minus_k = -k;
+        let rd_h6 = rd * group.h6;
+        let p1 = p - group.c1;
+        let minus_k = -group.k;
         // Subproblem 6 in (t1, t5).
         let system = Sinusoids {
             first: [
@@ -119,33 +89,10 @@ impl ThreeParallelOffset {
             let (t1, t5) = (&pair.first, &pair.second);
             // R1 = R(h1, t1) = R(-h1, t1)'.
             let r1 = rotation_of(&self.minus_h1, t1).transpose();
-            // R6 (Rd' R1 k) = R5' k  (subproblem 1).
-            let rdt_r1_k = rd.transpose() * (r1 * k);
-            let (t6, e6) = subproblem1_turn(&self.h6, &rdt_r1_k, &self.k_by_5.turned_back(t5));
-            let r1t_rd = r1.transpose() * rd;
-            let r234 = r1t_rd
-                * rotation_of(&self.h6, &t6).transpose()
-                * rotation_of(&self.h5, t5).transpose();
-            // R234 = rotation about k by t2 + s3 t3 + s4 t4.
-            let turned = r234 * self.normal;
-            let t234 = turned
-                .dot(&self.normal_cross)
-                .atan2(turned.dot(&self.normal));
-            // The planar 3R: c2 + R2 (c3 - c2 + R3 (c4 - c3)) = E1^-1 P - R234 (E5 c6 - c4).
-            let goal = self.c1 + r1.transpose() * p1;
-            let c6_from_c4 = self.c5_c4 + self.arm5.turned(t5);
-            let to_goal = goal - r234 * c6_from_c4 - self.c2;
-            let t3s = self.joint3.solve(to_goal.norm());
-            for t3 in t3s.as_slice() {
-                let x3 = self.c3 + self.elbow.turned(t3);
-                let (t2, e2) = subproblem1_turn(k, &(x3 - self.c2), &to_goal);
-                let t4 = self.s4 * (t234 - t2.angle - self.s3 * t3.angle);
-                let exact = pair.exact && t3s.exact && e6 && e2;
-                out.push(
-                    &[t1.angle, t2.angle, t3.angle, t4, t5.angle, t6.angle],
-                    exact,
-                );
-            }
+            let joint1 = group.after_joint1(t1.angle, &r1, &rd, &p1);
+            // c6 from c4 before joints 2-4: c5 - c4 + R5 (c6 - c5).
+            let c4_to_c6 = self.c5_c4 + self.arm5.turned(t5);
+            group.finish(&joint1, t5, &c4_to_c6, pair.exact, out);
         }
     }
 }
