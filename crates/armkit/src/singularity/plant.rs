@@ -31,6 +31,20 @@ pub(crate) struct KnotSolve {
     pub orientation_error: f64,
 }
 
+impl KnotSolve {
+    /// No solve yet, at `q`: unconverged, infinite errors (any iterate is
+    /// better).
+    fn not_started(q: &[f64]) -> KnotSolve {
+        KnotSolve {
+            q: q.to_vec(),
+            converged: false,
+            iterations: 0,
+            position_error: f64::INFINITY,
+            orientation_error: f64::INFINITY,
+        }
+    }
+}
+
 /// Iterations of the reachability check's solves.
 const REACH_ITERATIONS: usize = 200;
 /// Position (m) and orientation (rad) tolerance of the reachability check
@@ -336,13 +350,7 @@ impl<'m> Plant<'m> {
         let mut fixed = vec![false; n];
         let mut free_jacobian = Matrix6xX::zeros(n);
         let tolerance = self.ik_tolerance;
-        let mut best = KnotSolve {
-            q: q.clone(),
-            converged: false,
-            iterations: 0,
-            position_error: f64::INFINITY,
-            orientation_error: f64::INFINITY,
-        };
+        let mut best = KnotSolve::not_started(&q);
         self.evaluate(&q)?;
         let mut error = pose_error(target, &self.pose);
         let mut best_norm = f64::INFINITY;
@@ -427,13 +435,7 @@ impl<'m> Plant<'m> {
         };
         let mut q = start.to_vec();
         let mut trial = start.to_vec();
-        let mut best = KnotSolve {
-            q: q.clone(),
-            converged: false,
-            iterations: 0,
-            position_error: f64::INFINITY,
-            orientation_error: f64::INFINITY,
-        };
+        let mut best = KnotSolve::not_started(&q);
         let mut step = std::mem::take(&mut self.step);
         let mut damping_scale = 1.0;
         let outcome = (|| -> Result<()> {
