@@ -479,6 +479,27 @@ fn bench_ik_prints_the_table() {
     ]);
     assert_eq!(output.status.code(), Some(1));
     assert!(stderr(&output).contains("no analytic solver"));
+    // The redundancy options reach the analytic solver: the Panda with its
+    // first joint held solves (a held end joint only moves the target).
+    let output = armkit(&[
+        "bench-ik",
+        "--robot",
+        "panda",
+        "--targets",
+        "20",
+        "--solver",
+        "analytic",
+        "--fixed-joint",
+        "1",
+        "--search",
+        "2d",
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    assert!(
+        stdout(&output).contains("| panda | analytic |"),
+        "{}",
+        stdout(&output)
+    );
     let output = armkit(&[
         "bench-ik",
         "--robot",

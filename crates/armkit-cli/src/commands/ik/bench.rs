@@ -34,6 +34,10 @@ pub struct BenchIkArgs {
     pub target_seed: u64,
     #[command(flatten)]
     pub tolerances: ToleranceArgs,
+    /// The analytic solver's redundancy parameter and searches (as in
+    /// `armkit ik`; `--sweep` is not taken here).
+    #[command(flatten)]
+    pub redundancy: RedundancyArgs,
     /// Print JSON.
     #[arg(long)]
     pub json: bool,
@@ -67,9 +71,31 @@ impl BenchRow {
     }
 }
 
+/// The analytic solver's options are refused where they would be ignored:
+/// `--sweep` (the benchmark times one parameter value) and any of them
+/// without `--solver analytic`.
+fn check_redundancy_args(args: &BenchIkArgs) -> CliResult<()> {
+    let r = &args.redundancy;
+    if r.sweep.is_some() {
+        return Err(CliError(
+            "--sweep: not taken by bench-ik (it times one parameter value; use --parameter)".into(),
+        ));
+    }
+    let given = r.fixed_joint.is_some()
+        || r.parameter.is_some()
+        || r.search != RedundancyArgs::default().search;
+    if given && !args.solver.contains(&SolverArg::Analytic) {
+        return Err(CliError(
+            "--fixed-joint / --parameter / --search: only with --solver analytic".into(),
+        ));
+    }
+    Ok(())
+}
+
 /// Runs `armkit bench-ik`.
 pub fn run_bench(args: &BenchIkArgs) -> CliResult<Outcome> {
     let model = args.robot.load()?;
+    check_redundancy_args(args)?;
     let targets = benchmark_targets(&model, args.targets, args.target_seed)?;
     let start = model.neutral_configuration();
     let mut rows = Vec::new();
@@ -80,6 +106,7 @@ pub fn run_bench(args: &BenchIkArgs) -> CliResult<Outcome> {
             &start,
             *solver,
             &args.tolerances,
+            &args.redundancy,
         )?);
     }
     if args.json {
@@ -145,6 +172,7 @@ fn bench_solver(
     start: &[f64],
     solver: SolverArg,
     tolerances: &ToleranceArgs,
+    redundancy: &RedundancyArgs,
 ) -> CliResult<BenchRow> {
     let options = tolerances.options(solver.method())?;
     let mut numeric = IkSolver::new(model, options)?;
@@ -153,7 +181,7 @@ fn bench_solver(
         _ => None,
     };
     let mut analytic = match solver {
-        SolverArg::Analytic => Some(Route::new(model, &RedundancyArgs::default(), start)?),
+        SolverArg::Analytic => Some(Route::new(model, redundancy, start)?),
         _ => None,
     };
     let progress = ProgressBar::new(targets.len() as u64);
