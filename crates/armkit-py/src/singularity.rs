@@ -7,7 +7,7 @@ use armkit::kinematics::{jacobian, Data, JacobianFrame};
 use armkit::singularity::{
     classify as library_classify, jacobian_determinant, line_through as library_line_through,
     AvoidanceOptions, ClassifyOptions, DetectionOptions, LineTask, Manipulator, Method,
-    PathTracker,
+    PathTracker, RegionPlan,
 };
 use armkit::study::FITTED_DETERMINANT_THRESHOLD;
 use armkit::tracking::TrackingOptions;
@@ -55,39 +55,65 @@ pub fn classify<'py>(
     Ok(out)
 }
 
-/// The tracking method named in Python.
-fn tracking_method(name: &str, k: usize) -> armkit::Result<Method> {
+/// The tracking method named in Python; `max_rate` (rad/s) is the clamped
+/// DLS's joint speed limit.
+fn tracking_method(name: &str, k: usize, max_rate: f64) -> armkit::Result<Method> {
     match name {
         "plain" => Ok(Method::Plain),
         "avoidance" => Ok(Method::Avoidance { k }),
         "dls" => Ok(Method::DampedLeastSquares(NakamuraDamping::default())),
+        "dls_clamped" => Ok(Method::ClampedDampedLeastSquares {
+            damping: NakamuraDamping::default(),
+            max_rate,
+        }),
         "sri" => Ok(Method::SingularityRobust(ChiaveriniFilter::default())),
         other => Err(armkit::Error::invalid_argument(
             "method",
-            format!("expected \"plain\", \"avoidance\", \"dls\" or \"sri\", got \"{other}\""),
+            format!(
+                "expected \"plain\", \"avoidance\", \"dls\", \"dls_clamped\" or \"sri\", got \"{other}\""
+            ),
         )),
     }
+}
+
+/// The region plan named in Python.
+fn region_plan_named(name: &str) -> armkit::Result<RegionPlan> {
+    [RegionPlan::Joint, RegionPlan::Greedy]
+        .into_iter()
+        .find(|plan| plan.as_str() == name)
+        .ok_or_else(|| {
+            armkit::Error::invalid_argument(
+                "region_plan",
+                format!("expected \"joint\" or \"greedy\", got \"{name}\""),
+            )
+        })
 }
 
 /// A straight pose line whose midpoint is the pose at `through` (rad or m)
 /// and whose direction is the end-effector motion of the joint displacement
 /// `joint_direction` there (seed 004's path construction: a `through` with
-/// `q5 = 0` crosses a wrist singularity at mid-path). Returns `(q_start,
+/// `q5 = 0` crosses a wrist singularity at mid-path).
+/// `miss`: the line moved off that pose by `miss` along the motion the
+/// Jacobian cannot make there (the left singular vector of its smallest
+/// singular value, m and rad together; 0 passes through it): the near-miss
+/// lines of the study's sweep. Returns `(q_start,
 /// T_goal)`: the start configuration (on the branch of `through`) and the
 /// end pose ((4, 4), world frame, m).
 #[pyfunction]
+#[pyo3(signature = (robot, through, joint_direction, miss=0.0))]
 #[allow(clippy::type_complexity)]
 pub fn line_through<'py>(
     py: Python<'py>,
     robot: &Robot,
     through: &Bound<'py, PyAny>,
     joint_direction: &Bound<'py, PyAny>,
+    miss: f64,
 ) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray2<f64>>)> {
     let dof = robot.model.dof();
     let through = vector_argument(through, "through", dof)?;
     let direction = vector_argument(joint_direction, "joint_direction", dof)?;
     let manipulator = Manipulator::FixedBase(&robot.model);
-    let line = library_line_through(&manipulator, &through, &direction, 0.0).or_raise()?;
+    let line = library_line_through(&manipulator, &through, &direction, miss).or_raise()?;
     let goal = new_array(py, Dim([4, 4]), |out| {
         write_pose(&line.goal, out);
         Ok(())
@@ -99,8 +125,12 @@ pub fn line_through<'py>(
 /// world frame, m) in `duration` s (trapezoidal speed, `acceleration_time`
 /// s of ramp; seed 004: 20 s and 4 s), every `dt` s, at the velocity level
 /// with `method`: `"plain"` (J^-1), `"avoidance"` (seed 004: NR knots every
-/// `k`-th pose of the singular region, joined by a C2 cubic), `"dls"` or
-/// `"sri"`. The region is entered when |det J| < `determinant_threshold`
+/// `k`-th pose of the singular region, joined by a C2 cubic), `"dls"`,
+/// `"dls_clamped"` (DLS with its rates scaled so that none exceeds
+/// `max_rate` rad/s: the damped baseline at the arm's speed limit) or
+/// `"sri"`. `region_plan`: how the avoidance chooses a region's knots when
+/// the arm cannot reach them exactly, `"joint"` (all knots together, the
+/// default) or `"greedy"` (knot by knot). The region is entered when |det J| < `determinant_threshold`
 /// (m^3 for a 6R arm) or a plain joint step exceeds `joint_step_threshold`
 /// (rad). Without `determinant_threshold`, seed 004's rule sets it: the
 /// largest |det J| where the plain run of this line jumps (the fitted
@@ -111,7 +141,7 @@ pub fn line_through<'py>(
 /// `max_orientation_error`, `final_position_error`,
 /// `time_in_singular_region`, `ik_solves`).
 #[pyfunction]
-#[pyo3(signature = (robot, q_start, T_goal, method="avoidance", k=5, duration=20.0, acceleration_time=4.0, dt=0.01, determinant_threshold=None, joint_step_threshold=0.005))]
+#[pyo3(signature = (robot, q_start, T_goal, method="avoidance", k=5, duration=20.0, acceleration_time=4.0, dt=0.01, determinant_threshold=None, joint_step_threshold=0.005, max_rate=0.5, region_plan="joint"))]
 #[allow(non_snake_case, clippy::too_many_arguments)]
 pub fn track_line<'py>(
     py: Python<'py>,
@@ -125,12 +155,15 @@ pub fn track_line<'py>(
     dt: f64,
     determinant_threshold: Option<f64>,
     joint_step_threshold: f64,
+    max_rate: f64,
+    region_plan: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
     let model = &robot.model;
     let dof = model.dof();
     let start = vector_argument(q_start, "q_start", dof)?;
     let goal = pose_argument(T_goal, "T_goal")?;
-    let method = tracking_method(method, k).or_raise()?;
+    let method = tracking_method(method, k, max_rate).or_raise()?;
+    let region_plan = region_plan_named(region_plan).or_raise()?;
     let task = LineTask {
         start,
         goal,
@@ -146,6 +179,7 @@ pub fn track_line<'py>(
             determinant_threshold,
             joint_step_threshold,
         },
+        region_plan,
         ..AvoidanceOptions::default()
     };
     let tracker = |threshold| {

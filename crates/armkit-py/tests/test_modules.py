@@ -227,3 +227,25 @@ def test_seed_004_avoidance_crosses_the_wrist_singularity_slowly():
     given = singularity.track_line(arm, q_start, goal, method="avoidance", determinant_threshold=0.004)
     assert (given["threshold_rule"], given["determinant_threshold"]) == ("given", 0.004)
     assert given["time_in_singular_region"] > avoid["time_in_singular_region"]
+
+
+def test_near_miss_lines_joint_region_plan_and_clamped_dls():
+    # A line missing the singular pose by 3 mm (the study's sweep): the
+    # region's knots cannot all be reached; planning them together errs no
+    # more than knot by knot, and the clamped DLS keeps the speed limit.
+    arm = armkit.Robot.builtin("space6r")
+    through, direction = [0.4, 1.2, -0.5, 0.6, 0.0, -0.3], [0.5, -0.3, 0.4, 0.0, 0.8, 0.0]
+    on_line, _ = singularity.line_through(arm, through, direction)
+    q_start, goal = singularity.line_through(arm, through, direction, miss=0.003)
+    assert np.abs(q_start - on_line).max() > 1e-6  # the line moved
+    joint = singularity.track_line(arm, q_start, goal, region_plan="joint")
+    greedy = singularity.track_line(arm, q_start, goal, region_plan="greedy")
+    assert joint["max_position_error"] <= greedy["max_position_error"] + 1e-12
+    assert joint["max_position_error"] < greedy["max_position_error"]  # the sweep: 2.7 vs 5.0 mm
+    clamped = singularity.track_line(arm, q_start, goal, method="dls_clamped", max_rate=0.5)
+    dls = singularity.track_line(arm, q_start, goal, method="dls")
+    assert dls["peak_joint_rate"] > 0.5 >= clamped["peak_joint_rate"] - 1e-12
+    with pytest.raises(ValueError, match="region_plan"):
+        singularity.track_line(arm, q_start, goal, region_plan="together")
+    with pytest.raises(ValueError, match="max_rate"):
+        singularity.track_line(arm, q_start, goal, method="dls_clamped", max_rate=0.0)

@@ -15,19 +15,24 @@ def classify(robot: Robot, q: npt.ArrayLike, tolerance: float = 1e-6) -> Dict[st
     ``determinant`` (6-DOF robots, else None) at ``q``."""
 
 def line_through(
-    robot: Robot, through: npt.ArrayLike, joint_direction: npt.ArrayLike
+    robot: Robot, through: npt.ArrayLike, joint_direction: npt.ArrayLike, miss: float = 0.0
 ) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
     """(q_start, T_goal): a pose line whose midpoint is FK(through) and whose
-    direction is the motion of ``joint_direction`` there (seed 004's path)."""
+    direction is the motion of ``joint_direction`` there (seed 004's path);
+    ``miss`` moves it off that pose along the motion the Jacobian cannot make
+    there (m and rad together; the study's near-miss lines)."""
 
 def track_line(
     robot: Robot, q_start: npt.ArrayLike, T_goal: npt.ArrayLike,
-    method: Literal["plain", "avoidance", "dls", "sri"] = "avoidance", k: int = 5,
+    method: Literal["plain", "avoidance", "dls", "dls_clamped", "sri"] = "avoidance", k: int = 5,
     duration: float = 20.0, acceleration_time: float = 4.0, dt: float = 0.01,
     determinant_threshold: Optional[float] = None, joint_step_threshold: float = 0.005,
+    max_rate: float = 0.5, region_plan: Literal["joint", "greedy"] = "joint",
 ) -> Dict[str, Any]:
     """Tracks the pose line from FK(q_start) to T_goal (trapezoidal speed)
-    every ``dt`` s with ``method``; arrays ``time``, ``q``, ``joint_rates``
+    every ``dt`` s with ``method`` (``"dls_clamped"``: DLS with its rates
+    scaled to at most ``max_rate`` rad/s; ``region_plan``: the avoidance's
+    knots of a region all together, ``"joint"``, or one by one, ``"greedy"``); arrays ``time``, ``q``, ``joint_rates``
     (samples, dof), ``position_error`` (m), ``orientation_error`` (rad),
     ``determinant``, ``in_region``; summary ``status``, ``peak_joint_rate``
     (rad/s), ``max_position_error``, ``max_orientation_error``,
