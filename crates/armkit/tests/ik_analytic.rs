@@ -1023,6 +1023,84 @@ fn many_random_parallel_pair_arms_by_1d_search() {
 }
 
 #[test]
+fn parallel_pair_detection_takes_only_its_class() {
+    let mut rng = common::rng(320);
+    let class_of = |lines: &Lines, rng: &mut ChaCha8Rng| {
+        let model = model_from_lines("arm", lines, random_home(rng));
+        match AnalyticSolver::new(&model, AnalyticOptions::default()) {
+            Ok(s) => s.class().as_str().to_string(),
+            Err(e) => format!("refused: {e}"),
+        }
+    };
+    for _ in 0..5 {
+        // Each position, built as such.
+        for (first, class) in [
+            (1, "one_pair_parallel_2_3_1d_search"),
+            (2, "one_pair_parallel_3_4_1d_search"),
+            (3, "one_pair_parallel_4_5_1d_search"),
+        ] {
+            let lines = parallel_pair_lines(&mut rng, first);
+            assert_eq!(class_of(&lines, &mut rng), class);
+        }
+        // Parallel 1-2 or 5-6 only: refused by name.
+        for (first, class) in [(0, "one_pair_parallel_1_2"), (4, "one_pair_parallel_5_6")] {
+            let lines = parallel_pair_lines(&mut rng, first);
+            let found = class_of(&lines, &mut rng);
+            assert!(
+                found.starts_with("refused") && found.contains(class),
+                "{found}"
+            );
+        }
+        // An intersecting pair the one-pair search handles wins.
+        let mut lines = parallel_pair_lines(&mut rng, 1);
+        lines[5].0 = lines[4].0;
+        assert_eq!(
+            class_of(&lines, &mut rng),
+            "one_pair_intersecting_5_6_1d_search"
+        );
+        // Three parallel axes (2-3-4) are the closed-form class.
+        let mut lines = parallel_pair_lines(&mut rng, 1);
+        lines[3].1 = lines[2].1;
+        assert_eq!(class_of(&lines, &mut rng), "three_parallel_2_3_4");
+        // Axes 1-2-3 parallel: the pair 2-3 has a parallel neighbour, 1-2
+        // is refused.
+        let mut lines = parallel_pair_lines(&mut rng, 1);
+        lines[0].1 = lines[1].1;
+        let found = class_of(&lines, &mut rng);
+        assert!(found.contains("one_pair_parallel_1_2"), "{found}");
+        // The pair on one line (a degenerate arm): refused as no class.
+        let mut lines = parallel_pair_lines(&mut rng, 1);
+        lines[2].0 = lines[1].0 + lines[1].1 * 0.3;
+        let found = class_of(&lines, &mut rng);
+        assert!(found.contains("class other"), "{found}");
+        // A spherical wrist with parallel 2-3 stays closed form.
+        let lines = spherical_wrist_lines(&mut rng, Positioning::ParallelSecondThird);
+        assert_eq!(class_of(&lines, &mut rng), "spherical_wrist_parallel_2_3");
+    }
+}
+
+#[test]
+fn auto_takes_the_numeric_route_on_parallel_pair_arms() {
+    use armkit::ik::{AutoSolver, IkOptions, IkRoute};
+    let mut rng = common::rng(330);
+    let model = model_from_lines(
+        "parallel23",
+        &parallel_pair_lines(&mut rng, 1),
+        random_home(&mut rng),
+    );
+    assert_eq!(
+        solver(&model).class().as_str(),
+        "one_pair_parallel_2_3_1d_search"
+    );
+    let mut auto = AutoSolver::new(&model, IkOptions::default()).unwrap();
+    assert_eq!(auto.class(), None);
+    let mut data = Data::new(&model);
+    let target = *forward_kinematics(&model, &mut data, &[0.3, -0.4, 0.5, 0.2, -0.6, 0.1]).unwrap();
+    let solved = auto.solve(&target, &model.neutral_configuration()).unwrap();
+    assert_eq!(solved.route, IkRoute::Numeric);
+}
+
+#[test]
 fn pairs_without_a_1d_search_are_refused_by_name() {
     let mut rng = common::rng(80);
     // Intersecting 3-4 only, then parallel 2-3 only.
