@@ -422,8 +422,7 @@ impl<'a> Problem<'a> {
         let system = self.system(&v);
         let pairs = system.exact_solutions([0.0, v.d]);
         let mut out = [None, None, None, None];
-        let mut n = 0;
-        for pair in pairs.as_slice() {
+        for (slot, pair) in out.iter_mut().zip(pairs.as_slice()) {
             let (a, b) = (&pair.first, &pair.second);
             let determinant = wave_slope(&system.first[0], a) * wave_slope(&system.second[1], b)
                 - wave_slope(&system.second[0], b) * wave_slope(&system.first[1], a);
@@ -432,8 +431,7 @@ impl<'a> Problem<'a> {
                 rising: determinant > 0.0,
                 determinant,
             };
-            out[n] = Some((key, self.point(&v, a, b)));
-            n += 1;
+            *slot = Some((key, self.point(&v, a, b)));
         }
         out
     }
