@@ -183,15 +183,21 @@ impl ArmClass {
             }
             ArmClass::OnePair {
                 kind: PairKind::Parallel,
-                first: 2 | 4,
+                first: 2,
             } => {
-                "two parallel consecutive axes next to an end joint's neighbour, no intersecting pair, no closed-form class: 1-D search over the joint beside the tail (256 samples per turn, the pair's neighbours by subproblem 6, the pair and the tail by subproblems 1; roots to 1e-13 rad), up to 16 solutions"
+                "parallel axes 2 and 3, no intersecting pair, no closed-form class: 1-D search over joint 5 and again over joint 4, merged (512 samples per turn each; joints 1 and 4, or 1 and 5, by subproblem 6, the pair and joint 6 by subproblem 1; roots to 1e-13 rad), up to 16 solutions"
             }
             ArmClass::OnePair {
                 kind: PairKind::Parallel,
                 first: 3,
             } => {
-                "parallel axes 3 and 4, no intersecting pair, no closed-form class: 1-D search over joint 1 (256 samples per turn, joints 2 and 5 by subproblem 6, the pair and joint 6 by subproblems 1; roots to 1e-13 rad), up to 16 solutions"
+                "parallel axes 3 and 4, no intersecting pair, no closed-form class: 1-D search over joint 1 and again over joint 2, merged (512 samples per turn each; joints 2 and 5, or 1 and 5, by subproblem 6, the pair and joint 6 by subproblem 1; roots to 1e-13 rad), up to 16 solutions"
+            }
+            ArmClass::OnePair {
+                kind: PairKind::Parallel,
+                first: 4,
+            } => {
+                "parallel axes 4 and 5, no intersecting pair, no closed-form class: 1-D search on the reversed chain over joint 2 and again over joint 3, merged (512 samples per turn each; joints 6 and 3, or 6 and 2, by subproblem 6, the pair and joint 1 by subproblem 1; roots to 1e-13 rad), up to 16 solutions"
             }
             ArmClass::OnePair {
                 kind: PairKind::Parallel,

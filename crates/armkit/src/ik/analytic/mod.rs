@@ -48,7 +48,8 @@
 //! (unless the representatives outgrow the buffer sized at set-up for every
 //! joint's range, which only happens for [`Parameter::FixedJoint`] changes).
 //! The search classes' tolerances are in [`search`] (128 samples per turn
-//! for the spherical wrist, 256 for the one-pair search, roots to 1e-13
+//! for the spherical wrist, 256 for the one-pair search, 512 in
+//! [`parallel_pair`], roots to 1e-13
 //! rad; a double root may be missed: >= 99.9 % of random poses recover the
 //! generating configuration) and [`search2d`]; a search's solution is
 //! exact only if forward kinematics confirms it to 1e-10.
