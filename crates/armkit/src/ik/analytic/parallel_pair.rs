@@ -652,3 +652,56 @@ impl Residual<4> for Problem<'_> {
         (a, fa, ka)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ik::analytic::structure::{ArmStructure, Motion};
+    use crate::ik::analytic::test_random::{point, unit};
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    /// The derivation, form by form: at the generating value of the
+    /// searched joint, subproblem 6 has the generating `(q_l, q_r)` among
+    /// its solutions, and on that branch the residual vanishes and every
+    /// joint is read back.
+    #[test]
+    fn each_form_reads_back_the_generating_configuration() {
+        let mut rng = ChaCha8Rng::seed_from_u64(17);
+        for layout in [ParallelLayout::SecondThird, ParallelLayout::ThirdFourth] {
+            for _ in 0..50 {
+                let p = layout.first();
+                let points: Vec<_> = (0..6).map(|_| point(&mut rng) * 2.0).collect();
+                let mut axes: Vec<_> = (0..6).map(|_| unit(&mut rng)).collect();
+                axes[p + 1] = -axes[p];
+                let home = Pose::new(
+                    crate::math::Rotation3::from_euler_angles(0.3, -0.2, 1.1).into_inner(),
+                    point(&mut rng),
+                );
+                let s = ArmStructure::from_lines(points, axes, vec![Motion::Rotation; 6], home);
+                let search = ParallelPairSearch::new(&Chain::of(&s).unwrap(), layout);
+                assert_eq!(search.searches, 2);
+                let q: [f64; 6] = std::array::from_fn(|_| rng.gen_range(-3.1..3.1));
+                let target = s.forward_kinematics(&q);
+                for form in search.forms {
+                    let problem = Problem::new(&search, &target, form);
+                    let branch =
+                        problem
+                            .branches(q[form.k])
+                            .into_iter()
+                            .flatten()
+                            .find(|(key, _)| {
+                                wrap_angle(key.angles[0] - q[form.l]).abs() < 1e-8
+                                    && wrap_angle(key.angles[1] - q[form.r]).abs() < 1e-8
+                            });
+                    let (_, at) = branch.unwrap_or_else(|| panic!("{form:?}: no branch"));
+                    assert!(problem.residual_of(&at).abs() < 1e-9, "{form:?}");
+                    let read = problem.configuration(q[form.k], &at);
+                    for (a, b) in read.iter().zip(&q) {
+                        assert!(wrap_angle(a - b).abs() < 1e-8, "{form:?}: {read:?} {q:?}");
+                    }
+                }
+            }
+        }
+    }
+}
