@@ -272,6 +272,99 @@ fn explain_and_solve_a_three_parallel_arm_without_an_intersecting_pair() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// A DH file of a 6R arm whose axes 2 and 3 are parallel (alpha 2 = 0)
+/// and whose other consecutive axes are skew (every a non-zero).
+const PARALLEL_PAIR_DH: &str = r#"
+name = "parallel-pair"
+convention = "standard"
+[[links]]
+type = "R"
+d = 0.3
+a = 0.1
+alpha = 1.2
+[[links]]
+type = "R"
+d = 0.05
+a = 0.4
+alpha = 0.0
+[[links]]
+type = "R"
+d = 0.02
+a = 0.05
+alpha = 1.5707963267948966
+[[links]]
+type = "R"
+d = 0.35
+a = 0.03
+alpha = -1.3
+[[links]]
+type = "R"
+d = 0.02
+a = 0.04
+alpha = 1.1
+[[links]]
+type = "R"
+d = 0.1
+a = 0.0
+alpha = 0.0
+"#;
+
+#[test]
+fn explain_and_solve_a_parallel_pair_arm_by_1d_search() {
+    let dir = std::env::temp_dir().join(format!("armkit-ik-parallel-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("parallel-pair.toml");
+    std::fs::write(&file, PARALLEL_PAIR_DH).unwrap();
+    let path = file.to_str().unwrap();
+    let output = armkit(&["ik", "--robot-file", path, "--explain"]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let text = stdout(&output);
+    assert!(
+        text.contains("class: one_pair_parallel_2_3_1d_search\n"),
+        "{text}"
+    );
+    assert!(text.contains("subproblem 6"), "{text}");
+    let model = armkit::description::load(&file).unwrap();
+    let q = [0.4, -1.1, 1.3, -0.6, 1.4, 0.2];
+    let pose = *forward_kinematics(&model, &mut Data::new(&model), &q).unwrap();
+    let (r, p, y) = pose.rpy();
+    let t = pose.translation;
+    let pose = format!(
+        "{:.17e},{:.17e},{:.17e},{:.17e},{:.17e},{:.17e}",
+        t.x, t.y, t.z, r, p, y
+    );
+    let output = armkit(&[
+        "ik",
+        "--robot-file",
+        path,
+        "--pose",
+        &pose,
+        "--solver",
+        "analytic",
+        "--start",
+        "0.4,-1.1,1.3,-0.6,1.4,0.2",
+        "--json",
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let json: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    assert_eq!(json["class"], "one_pair_parallel_2_3_1d_search");
+    let fits = json["solution_fits"].as_array().unwrap();
+    assert!(!fits.is_empty());
+    assert!(fits.iter().all(|f| f["fit"] == "exact"), "{fits:?}");
+    // Nearest the start first: the generating configuration.
+    let first: Vec<f64> = json["solutions"][0]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    assert!(
+        first.iter().zip(&q).all(|(a, b)| (a - b).abs() < 1e-9),
+        "{first:?}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 #[test]
 fn analytic_json_lists_every_solution_with_the_class() {
     let q0 = [0.4, -1.1, 1.3, -0.6, 1.4, 0.2];

@@ -115,6 +115,17 @@ const ONE_PAIR: [([f64; 3], [f64; 3]); 6] = [
     ([1.0, 0.0, 0.5], [0.85, -0.2, 0.5]),
 ];
 
+/// Lines of an arm whose axes 2 and 3 are parallel (both along y) and whose
+/// other consecutive axes are skew (the parallel-pair 1-D search class).
+const PARALLEL_PAIR: [([f64; 3], [f64; 3]); 6] = [
+    ([0.0, 0.0, 0.0], [0.0, 0.0, 1.0]),
+    ([0.1, 0.05, 0.4], [0.0, 1.0, 0.0]),
+    ([0.5, -0.1, 0.6], [0.0, 1.0, 0.0]),
+    ([0.8, 0.1, 0.55], [0.9, 0.2, -0.4]),
+    ([1.0, 0.0, 0.5], [0.1, 0.95, 0.3]),
+    ([1.1, 0.1, 0.45], [0.85, -0.2, 0.5]),
+];
+
 /// Lines of a general 6R arm (no consecutive axes meet or are parallel).
 const GENERAL: [([f64; 3], [f64; 3]); 6] = [
     ([0.0, 0.0, 0.0], [0.0, 0.0, 1.0]),
@@ -234,6 +245,11 @@ fn bench_analytic(c: &mut Criterion) {
     let pair = lines_model("one_pair", &ONE_PAIR);
     let solver = AnalyticSolver::new(&pair, nearest).unwrap();
     bench_analytic_solver(c, "one_pair_5_6_1d_search/distinct", &pair, solver);
+    // Axes 2-3 parallel, the rest general: the parallel-pair 1-D search.
+    let parallel = lines_model("parallel_pair", &PARALLEL_PAIR);
+    let solver = AnalyticSolver::new(&parallel, nearest).unwrap();
+    assert_eq!(solver.class().as_str(), "one_pair_parallel_2_3_1d_search");
+    bench_analytic_solver(c, "parallel_pair_2_3_1d_search/distinct", &parallel, solver);
     let general = lines_model("general", &GENERAL);
     let two = AnalyticOptions {
         search: SearchPolicy::TwoDimensions,

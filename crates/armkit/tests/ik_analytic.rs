@@ -950,6 +950,156 @@ fn random_one_pair_arms_by_1d_search() {
     assert_search_recovered("one-pair arms", &total);
 }
 
+/// Lines of a random 6R arm whose only special pair is axes `first`,
+/// `first + 1` (0-based) parallel (same or opposite direction, two distinct
+/// lines).
+fn parallel_pair_lines(rng: &mut ChaCha8Rng, first: usize) -> Lines {
+    let mut lines: Lines = (0..6)
+        .map(|_| (point(rng) * 2.0, unit(rng), false))
+        .collect();
+    lines[first + 1].1 = lines[first].1 * sign(rng);
+    lines
+}
+
+/// The parallel-pair cases: pair (0-based first joint), lines reversed,
+/// the class. Pairs 2-3 and 4-5 are built both ways (4-5 is solved on the
+/// reversed chain).
+const PARALLEL_CASES: [(usize, bool, &str); 5] = [
+    (1, false, "one_pair_parallel_2_3_1d_search"),
+    (3, false, "one_pair_parallel_4_5_1d_search"),
+    (1, true, "one_pair_parallel_4_5_1d_search"),
+    (3, true, "one_pair_parallel_2_3_1d_search"),
+    (2, false, "one_pair_parallel_3_4_1d_search"),
+];
+
+/// Every case of [`PARALLEL_CASES`] on `arms` arms x `poses` poses; the
+/// recovery over all.
+fn parallel_pair_tally(seed: u64, arms: u64, poses: usize) -> Tally {
+    let mut total = Tally {
+        poses: 0,
+        recovered: 0,
+        worst_error: 0.0,
+        solutions: 0,
+    };
+    for (i, (first, reverse, class)) in PARALLEL_CASES.into_iter().enumerate() {
+        let lines = move |rng: &mut ChaCha8Rng| {
+            let mut lines = parallel_pair_lines(rng, first);
+            if reverse {
+                lines.reverse();
+            }
+            lines
+        };
+        let tally = random_search_arms(
+            seed + i as u64,
+            arms,
+            poses,
+            &lines,
+            class,
+            AnalyticOptions::default(),
+        );
+        total.poses += tally.poses;
+        total.recovered += tally.recovered;
+        total.solutions += tally.solutions;
+        total.worst_error = total.worst_error.max(tally.worst_error);
+    }
+    println!(
+        "parallel-pair arms: generating configuration on {}/{} poses, worst FK error {:.1e}",
+        total.recovered, total.poses, total.worst_error
+    );
+    total
+}
+
+#[test]
+fn random_parallel_pair_arms_by_1d_search() {
+    let tally = parallel_pair_tally(300, 10, 20);
+    assert_search_recovered("parallel-pair arms", &tally);
+}
+
+#[test]
+#[ignore = "slow: cargo test --release --test ik_analytic -- --ignored --nocapture"]
+fn many_random_parallel_pair_arms_by_1d_search() {
+    let tally = parallel_pair_tally(310, 40, 100);
+    assert_search_recovered("parallel-pair arms", &tally);
+}
+
+#[test]
+fn parallel_pair_detection_takes_only_its_class() {
+    let mut rng = common::rng(320);
+    let class_of = |lines: &Lines, rng: &mut ChaCha8Rng| {
+        let model = model_from_lines("arm", lines, random_home(rng));
+        match AnalyticSolver::new(&model, AnalyticOptions::default()) {
+            Ok(s) => s.class().as_str().to_string(),
+            Err(e) => format!("refused: {e}"),
+        }
+    };
+    for _ in 0..5 {
+        // Each position, built as such.
+        for (first, class) in [
+            (1, "one_pair_parallel_2_3_1d_search"),
+            (2, "one_pair_parallel_3_4_1d_search"),
+            (3, "one_pair_parallel_4_5_1d_search"),
+        ] {
+            let lines = parallel_pair_lines(&mut rng, first);
+            assert_eq!(class_of(&lines, &mut rng), class);
+        }
+        // Parallel 1-2 or 5-6 only: refused by name.
+        for (first, class) in [(0, "one_pair_parallel_1_2"), (4, "one_pair_parallel_5_6")] {
+            let lines = parallel_pair_lines(&mut rng, first);
+            let found = class_of(&lines, &mut rng);
+            assert!(
+                found.starts_with("refused") && found.contains(class),
+                "{found}"
+            );
+        }
+        // An intersecting pair the one-pair search handles wins.
+        let mut lines = parallel_pair_lines(&mut rng, 1);
+        lines[5].0 = lines[4].0;
+        assert_eq!(
+            class_of(&lines, &mut rng),
+            "one_pair_intersecting_5_6_1d_search"
+        );
+        // Three parallel axes (2-3-4) are the closed-form class.
+        let mut lines = parallel_pair_lines(&mut rng, 1);
+        lines[3].1 = lines[2].1;
+        assert_eq!(class_of(&lines, &mut rng), "three_parallel_2_3_4");
+        // Axes 1-2-3 parallel: the pair 2-3 has a parallel neighbour, 1-2
+        // is refused.
+        let mut lines = parallel_pair_lines(&mut rng, 1);
+        lines[0].1 = lines[1].1;
+        let found = class_of(&lines, &mut rng);
+        assert!(found.contains("one_pair_parallel_1_2"), "{found}");
+        // The pair on one line (a degenerate arm): refused as no class.
+        let mut lines = parallel_pair_lines(&mut rng, 1);
+        lines[2].0 = lines[1].0 + lines[1].1 * 0.3;
+        let found = class_of(&lines, &mut rng);
+        assert!(found.contains("class other"), "{found}");
+        // A spherical wrist with parallel 2-3 stays closed form.
+        let lines = spherical_wrist_lines(&mut rng, Positioning::ParallelSecondThird);
+        assert_eq!(class_of(&lines, &mut rng), "spherical_wrist_parallel_2_3");
+    }
+}
+
+#[test]
+fn auto_takes_the_numeric_route_on_parallel_pair_arms() {
+    use armkit::ik::{AutoSolver, IkOptions, IkRoute};
+    let mut rng = common::rng(330);
+    let model = model_from_lines(
+        "parallel23",
+        &parallel_pair_lines(&mut rng, 1),
+        random_home(&mut rng),
+    );
+    assert_eq!(
+        solver(&model).class().as_str(),
+        "one_pair_parallel_2_3_1d_search"
+    );
+    let mut auto = AutoSolver::new(&model, IkOptions::default()).unwrap();
+    assert_eq!(auto.class(), None);
+    let mut data = Data::new(&model);
+    let target = *forward_kinematics(&model, &mut data, &[0.3, -0.4, 0.5, 0.2, -0.6, 0.1]).unwrap();
+    let solved = auto.solve(&target, &model.neutral_configuration()).unwrap();
+    assert_eq!(solved.route, IkRoute::Numeric);
+}
+
 #[test]
 fn pairs_without_a_1d_search_are_refused_by_name() {
     let mut rng = common::rng(80);
@@ -963,12 +1113,12 @@ fn pairs_without_a_1d_search_are_refused_by_name() {
     middle = (0..6)
         .map(|_| (point(&mut rng), unit(&mut rng), false))
         .collect();
-    middle[2].1 = middle[1].1;
+    middle[1].1 = middle[0].1;
     let model = model_from_lines("parallel", &middle, random_home(&mut rng));
     let error = AnalyticSolver::new(&model, AnalyticOptions::default())
         .unwrap_err()
         .to_string();
-    assert!(error.contains("one_pair_parallel_2_3"), "{error}");
+    assert!(error.contains("one_pair_parallel_1_2"), "{error}");
 }
 
 #[test]

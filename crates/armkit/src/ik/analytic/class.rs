@@ -1,7 +1,8 @@
 //! The classes of arms, and their detection from an [`ArmStructure`].
 
 use super::pair_search::PairLayout;
-use super::structure::{ArmStructure, Motion, Relation};
+use super::parallel_pair::ParallelLayout;
+use super::structure::{ArmStructure, Motion, Relation, GEOMETRY_TOLERANCE};
 use crate::math::Vector3;
 
 /// How the special pair of consecutive axes of a one-pair arm lies.
@@ -76,8 +77,10 @@ pub enum ArmClass {
     /// 6 rotation joints whose special consecutive axes (intersecting or
     /// parallel) fit no closed-form class. Solved by a 1-D search when
     /// axes `first`, `first + 1` (1-based, model order) intersect and
-    /// `first` is 1, 2, 4 or 5 (see `pair_search`); refused otherwise
-    /// (an intersecting pair 3-4, parallel pairs only).
+    /// `first` is 1, 2, 4 or 5 (see `pair_search`), or are parallel (two
+    /// distinct lines, neither neighbour parallel to them) and `first` is
+    /// 2, 3 or 4 (see `parallel_pair`); refused otherwise (an intersecting
+    /// pair 3-4, a parallel pair 1-2 or 5-6 only).
     OnePair {
         /// The pair's first joint, 1-based.
         first: u8,
@@ -125,9 +128,9 @@ impl ArmClass {
                 (PairKind::Intersecting, 4) => "one_pair_intersecting_4_5_1d_search",
                 (PairKind::Intersecting, _) => "one_pair_intersecting_5_6_1d_search",
                 (PairKind::Parallel, 1) => "one_pair_parallel_1_2",
-                (PairKind::Parallel, 2) => "one_pair_parallel_2_3",
-                (PairKind::Parallel, 3) => "one_pair_parallel_3_4",
-                (PairKind::Parallel, 4) => "one_pair_parallel_4_5",
+                (PairKind::Parallel, 2) => "one_pair_parallel_2_3_1d_search",
+                (PairKind::Parallel, 3) => "one_pair_parallel_3_4_1d_search",
+                (PairKind::Parallel, 4) => "one_pair_parallel_4_5_1d_search",
                 (PairKind::Parallel, _) => "one_pair_parallel_5_6",
             },
             ArmClass::General => "general_6r_2d_search",
@@ -180,9 +183,27 @@ impl ArmClass {
             }
             ArmClass::OnePair {
                 kind: PairKind::Parallel,
+                first: 2,
+            } => {
+                "parallel axes 2 and 3, no intersecting pair, no closed-form class: 1-D search over joint 5 and again over joint 4, merged (512 samples per turn each; joints 1 and 4, or 1 and 5, by subproblem 6, the pair and joint 6 by subproblem 1; roots to 1e-13 rad), up to 16 solutions"
+            }
+            ArmClass::OnePair {
+                kind: PairKind::Parallel,
+                first: 3,
+            } => {
+                "parallel axes 3 and 4, no intersecting pair, no closed-form class: 1-D search over joint 1 and again over joint 2, merged (512 samples per turn each; joints 2 and 5, or 1 and 5, by subproblem 6, the pair and joint 6 by subproblem 1; roots to 1e-13 rad), up to 16 solutions"
+            }
+            ArmClass::OnePair {
+                kind: PairKind::Parallel,
+                first: 4,
+            } => {
+                "parallel axes 4 and 5, no intersecting pair, no closed-form class: 1-D search on the reversed chain over joint 2 and again over joint 3, merged (512 samples per turn each; joints 6 and 3, or 6 and 2, by subproblem 6, the pair and joint 1 by subproblem 1; roots to 1e-13 rad), up to 16 solutions"
+            }
+            ArmClass::OnePair {
+                kind: PairKind::Parallel,
                 ..
             } => {
-                "parallel consecutive axes only (no intersecting pair, no closed-form class): needs a 1-D search not implemented here (use the numeric solver)"
+                "parallel axes 1-2 or 5-6 only (no intersecting pair, no closed-form class): the two joints beside the pair stay coupled, a 1-D search is not implemented here (use the numeric solver)"
             }
             ArmClass::General => {
                 "no intersecting or parallel consecutive axes: general 6R, a 2-D search (a 16 x 16 grid over joints 1 and 2, each point polished by damped Gauss-Newton; milliseconds, may miss solutions): only with the search option `two_dimensions` (CLI: --search 2d)"
@@ -203,6 +224,10 @@ impl ArmClass {
                 | ArmClass::OnePair {
                     kind: PairKind::Intersecting,
                     first: 1 | 2 | 4 | 5,
+                }
+                | ArmClass::OnePair {
+                    kind: PairKind::Parallel,
+                    first: 2..=4,
                 }
         )
     }
@@ -248,6 +273,12 @@ pub(crate) enum Detected {
         layout: PairLayout,
         point: Vector3<f64>,
     },
+    /// One parallel pair, solved by a 1-D search (chain as solved).
+    ParallelPair {
+        class: ArmClass,
+        end: ChainEnd,
+        layout: ParallelLayout,
+    },
     Unsolvable(ArmClass),
 }
 
@@ -260,7 +291,9 @@ impl Detected {
             Detected::ThreeParallel { end, .. } => ArmClass::ThreeParallel { end },
             Detected::ThreeParallelOffset { end } => ArmClass::ThreeParallelOffset { end },
             Detected::ShoulderElbowWrist { .. } => ArmClass::SphericalShoulderElbowWrist,
-            Detected::OnePair { class, .. } | Detected::Unsolvable(class) => class,
+            Detected::OnePair { class, .. }
+            | Detected::ParallelPair { class, .. }
+            | Detected::Unsolvable(class) => class,
         }
     }
 }
@@ -318,18 +351,61 @@ fn one_pair(structure: &ArmStructure, reversed: &ArmStructure) -> Detected {
             };
         }
     }
-    let special = (0..5).find_map(|i| match structure.relation(i, i + 1) {
+    let parallel_cases = [
+        (2, ChainEnd::Tip, ParallelLayout::SecondThird, structure),
+        (4, ChainEnd::Base, ParallelLayout::SecondThird, reversed),
+        (3, ChainEnd::Tip, ParallelLayout::ThirdFourth, structure),
+    ];
+    for (first, end, layout, chain) in parallel_cases {
+        let p = match layout {
+            ParallelLayout::SecondThird => 1,
+            ParallelLayout::ThirdFourth => 2,
+        };
+        if lone_parallel_pair(chain, p) {
+            return Detected::ParallelPair {
+                class: ArmClass::OnePair {
+                    first,
+                    kind: PairKind::Parallel,
+                },
+                end,
+                layout,
+            };
+        }
+    }
+    let special = (0..5).filter_map(|i| match structure.relation(i, i + 1) {
         Relation::Skew(_) => None,
         Relation::Parallel => Some((i, PairKind::Parallel)),
         Relation::Intersecting(_) => Some((i, PairKind::Intersecting)),
     });
-    Detected::Unsolvable(match special {
-        None => ArmClass::General,
-        Some((i, kind)) => ArmClass::OnePair {
+    let mut any = false;
+    for (i, kind) in special {
+        any = true;
+        let class = ArmClass::OnePair {
             first: i as u8 + 1,
             kind,
-        },
+        };
+        if !class.is_solvable() {
+            return Detected::Unsolvable(class);
+        }
+    }
+    // Special pairs only of solvable kinds that the searches refused (a
+    // parallel pair on one line, or with a parallel neighbour).
+    Detected::Unsolvable(if any {
+        ArmClass::Other
+    } else {
+        ArmClass::General
     })
+}
+
+/// True when axes `p`, `p + 1` (0-based) of `chain` are parallel, on two
+/// distinct lines, and neither neighbour (`p - 1`, `p + 2`) is parallel to
+/// them: what the parallel-pair search needs (its subproblem 6 turns the
+/// neighbours, so a neighbour along the pair would leave it degenerate).
+fn lone_parallel_pair(chain: &ArmStructure, p: usize) -> bool {
+    chain.relation(p, p + 1) == Relation::Parallel
+        && chain.relation(p - 1, p) != Relation::Parallel
+        && chain.relation(p + 1, p + 2) != Relation::Parallel
+        && chain.distance_to_axis(p + 1, &chain.points[p]) > GEOMETRY_TOLERANCE * chain.scale
 }
 
 fn rotational(chain: &ArmStructure, joints: std::ops::Range<usize>) -> bool {

@@ -22,8 +22,11 @@
 //!   6R arms of no closed-form class with an intersecting pair of
 //!   consecutive axes at 1-2, 2-3, 4-5 or 5-6 ([`pair_search`]: up to 16
 //!   solutions; the three joints that place the pair's point in closed form
-//!   by a quartic). A pair at 3-4 or parallel pairs only are refused with
-//!   the class named ([`PairKind`]);
+//!   by a quartic); 6R arms whose only special structure is two parallel
+//!   consecutive axes at 2-3, 3-4 or 4-5 ([`parallel_pair`]: up to 16
+//!   solutions; the pair's two neighbours by subproblem 6). An
+//!   intersecting pair at 3-4 or a parallel pair at 1-2 or 5-6 only are
+//!   refused with the class named ([`PairKind`]);
 //! * on request ([`SearchPolicy::TwoDimensions`]), general 6R arms (no
 //!   intersecting or parallel consecutive axes) by a 2-D search
 //!   ([`search2d`]: a 16 x 16 grid over joints 1 and 2 polished by
@@ -45,7 +48,8 @@
 //! (unless the representatives outgrow the buffer sized at set-up for every
 //! joint's range, which only happens for [`Parameter::FixedJoint`] changes).
 //! The search classes' tolerances are in [`search`] (128 samples per turn
-//! for the spherical wrist, 256 for the one-pair search, roots to 1e-13
+//! for the spherical wrist, 256 for the one-pair search, 512 in
+//! [`parallel_pair`], roots to 1e-13
 //! rad; a double root may be missed: >= 99.9 % of random poses recover the
 //! generating configuration) and [`search2d`]; a search's solution is
 //! exact only if forward kinematics confirms it to 1e-10.
@@ -73,6 +77,7 @@ mod finish;
 pub mod pair_search;
 mod parallel;
 mod parallel_offset;
+pub mod parallel_pair;
 pub mod search;
 pub mod search2d;
 mod srs;
@@ -97,6 +102,7 @@ use self::finish::Finisher;
 use self::pair_search::PairSearch;
 use self::parallel::ThreeParallel;
 use self::parallel_offset::ThreeParallelOffset;
+use self::parallel_pair::ParallelPairSearch;
 use self::search2d::GridSearch;
 use self::srs::SrsChain;
 use self::structure::ArmStructure;
@@ -205,6 +211,10 @@ enum Plan {
     ShoulderElbowWrist(SrsChain),
     OnePair {
         solver: PairSearch,
+        end: ChainEnd,
+    },
+    ParallelPair {
+        solver: ParallelPairSearch,
         end: ChainEnd,
     },
     TwoDimensional(GridSearch),
@@ -413,6 +423,13 @@ impl AnalyticSolver {
                     fixed = Some((joint, value));
                 }
             }
+            Plan::ParallelPair { solver, end } => {
+                reverse = *end == ChainEnd::Base;
+                solver.solve(&goal_of(goal, *end), &mut self.candidates);
+                if let Some(Parameter::FixedJoint { joint, value }) = self.parameter {
+                    fixed = Some((joint, value));
+                }
+            }
             Plan::TwoDimensional(solver) => {
                 solver.solve(goal, &mut self.candidates);
                 if let Some(Parameter::FixedJoint { joint, value }) = self.parameter {
@@ -603,7 +620,8 @@ fn plan(
             Detected::SphericalWrist { .. }
             | Detected::ThreeParallel { .. }
             | Detected::ThreeParallelOffset { .. }
-            | Detected::OnePair { .. },
+            | Detected::OnePair { .. }
+            | Detected::ParallelPair { .. },
             Some(Parameter::ElbowAngle(_)),
         ) => Err(unsolvable(
             "; an elbow angle needs a spherical-shoulder-elbow-wrist 7-DOF arm",
@@ -640,6 +658,11 @@ fn plan(
             let chain = chain_of(&arm, end).ok_or_else(|| unsolvable(""))?;
             let solver = PairSearch::new(&chain, layout, &point);
             Ok((class, Plan::OnePair { solver, end }))
+        }
+        (Detected::ParallelPair { end, layout, .. }, _) => {
+            let chain = chain_of(&arm, end).ok_or_else(|| unsolvable(""))?;
+            let solver = ParallelPairSearch::new(&chain, layout);
+            Ok((class, Plan::ParallelPair { solver, end }))
         }
         (Detected::Unsolvable(ArmClass::General), Some(Parameter::FixedJoint { .. }) | None)
             if search == SearchPolicy::TwoDimensions =>

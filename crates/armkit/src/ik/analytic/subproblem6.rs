@@ -207,6 +207,43 @@ impl Sinusoids {
         ([row(0), row(1)], [e(0), e(1)])
     }
 
+    /// The exact solutions only (none when the system has no solution or
+    /// is rank-deficient: no least-squares pair), for callers that discard
+    /// inexact pairs anyway (the parallel-pair search samples it hundreds
+    /// of times per solve).
+    pub(crate) fn exact_solutions(&self, d: [f64; 2]) -> TurnPairs {
+        let (m, e) = self.linear(d);
+        let scale = dot4(&m[0], &m[0])
+            .sqrt()
+            .max(dot4(&m[1], &m[1]).sqrt())
+            .max(e[0].abs())
+            .max(e[1].abs())
+            .max(f64::MIN_POSITIVE);
+        let mut out = TurnPairs {
+            items: [TurnPair {
+                first: Turn::of_direction(0.0, 1.0),
+                second: Turn::of_direction(0.0, 1.0),
+                exact: false,
+            }; 4],
+            count: 0,
+        };
+        let Some(space) = Solutions::of(&m, &e) else {
+            return out;
+        };
+        let rho2 = 2.0 - dot4(&space.x0, &space.x0);
+        if rho2 < -RELATIVE_TOLERANCE {
+            return out;
+        }
+        let rho = rho2.max(0.0).sqrt();
+        for root in space.difference(rho).roots().as_slice() {
+            let pair = self.pair_at(&space.point(rho, root.sin, root.cos), &m, &e, scale);
+            if pair.exact {
+                out.push(pair);
+            }
+        }
+        out
+    }
+
     /// Every solution, or the least-squares pair (see the module docs).
     pub(crate) fn solve(&self, d: [f64; 2]) -> TurnPairs {
         let (m, e) = self.linear(d);

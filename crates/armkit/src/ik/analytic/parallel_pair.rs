@@ -1,0 +1,707 @@
+//! 6R arms whose only special structure is two consecutive parallel axes:
+//! a 1-D search over one joint, the rest in closed form (IK-Geo's
+//! "two parallel axes" case; derived here from the geometry, not ported).
+//!
+//! Chain as solved (`T home^-1 = E1 ... E6`), the pair at joints `p`,
+//! `p + 1` with common direction `h` (`h_{p+1} = s h`, `s = +-1`), its
+//! neighbours `l = p - 1` and `r = p + 2`, joint 6 the tail, and the one
+//! joint left, `k`, searched: with the pair at 2-3 `k = 5`; with the pair
+//! at 3-4 `k = 1`; a pair at 4-5 is the 2-3 case of the reversed chain.
+//! (Pairs at 1-2 and 5-6 leave two joints beside the pair coupled in both
+//! equations below: refused with the class named.)
+//!
+//! The pair turns about parallel lines: `R_p R_{p+1} = R(h, th)` with
+//! `th = q_p + s q_{p+1}`, and `E_p E_{p+1}` keeps the `h` component of
+//! every point. With `Rb`, `Eb` the joints before the pair and `Ra`, `Ea`
+//! those after it (not the tail), `R_O = R_T R_home'`, `X = T home^-1 c6`
+//! (`c6` on the tail's axis, which `E6` leaves in place):
+//!
+//! * orientation, `h' Rb' R_O h6 = h' Ra h6` (`h' R(h, th) = h'`,
+//!   `R6 h6 = h6`);
+//! * position, `h . (Eb^-1 X) = h . (Ea c6)`.
+//!
+//! At a trial value `t` of joint `k`, each side holds one unknown joint
+//! turning one fixed vector, `g . R(h_j, q_j) v` (`g` is `h`, or `h` turned
+//! by joint `k` when `k` lies between the pair and `j`): both equations are
+//! `wave_l(q_l) + wave_r(q_r) = d`, subproblem 6 ([`super::subproblem6`],
+//! its exact solutions only: up to 4 `(q_l, q_r)`, the branches). Then `th` follows by
+//! subproblem 1 (`R(h, th) Ra h6 = Rb' R_O h6`) and the pair must carry
+//! `y = Ea c6` onto `x = Eb^-1 X`:
+//! `x = c_p + R_p (c_{p+1} - c_p) + R(h, th) (y - c_{p+1})`, i.e.
+//! `w = x - c_p - R(h, th)(y - c_{p+1}) = R_p L`, `L = c_{p+1} - c_p`. The
+//! `h` components agree by the position equation; the lengths across `h`
+//! must too: the residual `f(t) = |w_perp| - |L_perp|` (m), smooth on each
+//! branch. Its roots are found by `search::find_roots` ([`SAMPLES`] = 512
+//! per turn, roots to 1e-13 rad); `q_p` by subproblem 1 (`R_p L = w`),
+//! `q_{p+1} = s (th - q_p)`, the tail by subproblem 1 on
+//! `R6 = Ra' R(h, -th) Rb' R_O`.
+//!
+//! Two searches per solve, merged (duplicates within 1e-9 rad dropped):
+//! the one above, and the one over the other joint on `k`'s side (joint 4
+//! for the pair at 2-3, subproblem 6 on joints 1 and 5; joint 2 for the
+//! pair at 3-4, subproblem 6 on joints 1 and 5), skipped when one of those
+//! is parallel to the pair. A branch that lives only between two samples (a
+//! small loop of solutions) or two roots closer than a sample step are
+//! where a search misses; the second search sees them at other values of
+//! its joint. On 4 000 poses of 40 random arms (20 per layout) the union
+//! missed none at 512 samples per turn (3 at 384, 5 at 256; one search
+//! alone at 512 missed 15).
+//!
+//! Branches are keyed by the subproblem-6 angles and the sign of the
+//! Jacobian determinant of its two equations (two solutions that merge as
+//! `t` moves have opposite signs), matched sample to sample within
+//! [`LINK`]. Each root is checked by the chain's forward kinematics: exact
+//! when within 1e-10 m and rad (a root missing by more than 1e-12 is first
+//! polished by a few Gauss-Newton steps); roots missing by more than 1e-6
+//! are dropped.
+//!
+//! ```
+//! use armkit::ik::analytic::{AnalyticOptions, AnalyticSolver};
+//! use armkit::ik::closed_form::Fit;
+//! use armkit::kinematics::{forward_kinematics, Data};
+//! use armkit::math::{Pose, Vector3};
+//! use armkit::model::{JointSpec, ModelBuilder};
+//! // Axes 2 and 3 parallel (both along y), every other consecutive pair skew.
+//! let lines = [
+//!     ([0.0, 0.0, 0.0], [0.0, 0.0, 1.0]),
+//!     ([0.1, 0.05, 0.4], [0.0, 1.0, 0.0]),
+//!     ([0.5, -0.1, 0.6], [0.0, 1.0, 0.0]),
+//!     ([0.8, 0.1, 0.55], [0.9, 0.2, -0.4]),
+//!     ([1.0, 0.0, 0.5], [0.1, 0.95, 0.3]),
+//!     ([1.1, 0.1, 0.45], [0.85, -0.2, 0.5]),
+//! ];
+//! let mut builder = ModelBuilder::new("parallel23");
+//! let mut previous = Vector3::zeros();
+//! for (i, (c, h)) in lines.iter().enumerate() {
+//!     let c = Vector3::from(*c);
+//!     builder = builder.joint(
+//!         JointSpec::revolute(format!("q{}", i + 1), -3.2, 3.2)
+//!             .with_origin(Pose::from_translation(c - previous))
+//!             .with_axis(Vector3::from(*h).normalize()),
+//!     );
+//!     previous = c;
+//! }
+//! let model = builder.build().unwrap();
+//! let mut solver = AnalyticSolver::new(&model, AnalyticOptions::default()).unwrap();
+//! assert_eq!(solver.class().as_str(), "one_pair_parallel_2_3_1d_search");
+//! let q = [0.3, -0.4, 0.5, 0.2, -0.6, 0.1];
+//! let target = *forward_kinematics(&model, &mut Data::new(&model), &q).unwrap();
+//! let solutions = solver.solve(&target, &q).unwrap();
+//! assert!(solutions.iter().all(|s| s.fit == Fit::Exact));
+//! assert!(solutions[0].q().iter().zip(&q).all(|(a, b)| (a - b).abs() < 1e-9));
+//! ```
+
+use super::chain::{Candidates, Chain};
+use super::search::{find_roots, EndCheck, Residual};
+use super::search2d::polish;
+use super::structure::GEOMETRY_TOLERANCE;
+use super::subproblem6::{Sinusoids, Wave};
+use super::subproblems::{rotation, subproblem1, subproblem1_turn, Turn};
+use super::EXACT_TOLERANCE;
+use crate::math::{wrap_angle, Matrix3, Pose, Vector3};
+
+/// Samples per turn of the search.
+pub const SAMPLES: usize = 512;
+/// Largest joint-space step (rad, summed over the two subproblem-6 joints)
+/// between two samples (or a sample and a refinement point) of one branch.
+pub const LINK: f64 = 1.0;
+/// Width (rad) to which the end of a branch (a fold) is located.
+pub const END_TOLERANCE: f64 = 1e-9;
+/// Largest pose error (m and rad) of a root kept as a candidate.
+const KEEP: f64 = 1e-6;
+/// Pose error (m and rad) above which a root is polished by Gauss-Newton.
+const POLISHED: f64 = 1e-12;
+
+/// Where the parallel pair is, along the chain as solved.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub(crate) enum ParallelLayout {
+    /// Axes 2-3 parallel: searches over joints 5 and 4.
+    SecondThird,
+    /// Axes 3-4 parallel: searches over joints 1 and 2.
+    ThirdFourth,
+}
+
+impl ParallelLayout {
+    /// The pair's first joint (0-based).
+    pub(crate) fn first(self) -> usize {
+        match self {
+            ParallelLayout::SecondThird => 1,
+            ParallelLayout::ThirdFourth => 2,
+        }
+    }
+
+    /// The layout's searches: the first always, the second when its
+    /// subproblem-6 joints are not parallel to the pair (`h` the pair's
+    /// direction).
+    fn forms(self, h: &[Vector3<f64>; 6]) -> ([Form; 2], usize) {
+        let form = |k, l, r, side| Form { k, l, r, side };
+        let (first, second) = match self {
+            ParallelLayout::SecondThird => (
+                form(4, 0, 3, Known::RightOuter),
+                form(3, 0, 4, Known::RightInner),
+            ),
+            ParallelLayout::ThirdFourth => (
+                form(0, 1, 4, Known::LeftOuter),
+                form(1, 0, 4, Known::LeftInner),
+            ),
+        };
+        let axis = h[self.first()];
+        let usable = |f: &Form| {
+            axis.cross(&h[f.l]).norm() > GEOMETRY_TOLERANCE
+                && axis.cross(&h[f.r]).norm() > GEOMETRY_TOLERANCE
+        };
+        ([first, second], if usable(&second) { 2 } else { 1 })
+    }
+}
+
+/// Where the searched joint `k` sits: before the pair (left) or after it
+/// (right, the tail excluded), between the pair and the subproblem-6 joint
+/// of its side (inner) or beyond it (outer).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Known {
+    LeftInner,
+    LeftOuter,
+    RightInner,
+    RightOuter,
+}
+
+/// One search: the searched joint `k`, the subproblem-6 joints `l`
+/// (before the pair) and `r` (after it), 0-based.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Form {
+    k: usize,
+    l: usize,
+    r: usize,
+    side: Known,
+}
+
+/// The arm-fixed quantities of a parallel-pair search, read once.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct ParallelPairSearch {
+    chain: Chain,
+    /// The pair's first joint `p` (0-based).
+    p: usize,
+    forms: [Form; 2],
+    searches: usize,
+    home: Pose,
+    /// `h_p` and `s = h_p . h_{p+1}` (+-1).
+    h: Vector3<f64>,
+    sign: f64,
+    /// `L = c_{p+1} - c_p` and `|L_perp|`.
+    link: Vector3<f64>,
+    link_length: f64,
+    /// A unit vector normal to `h6` (reads the tail's angle).
+    tail_normal: Vector3<f64>,
+}
+
+impl ParallelPairSearch {
+    pub(crate) fn new(chain: &Chain, layout: ParallelLayout) -> ParallelPairSearch {
+        let p = layout.first();
+        let (c, h) = (&chain.c, &chain.h);
+        let link = c[p + 1] - c[p];
+        let axis = h[p];
+        let tail = h[5];
+        let helper = if tail.x.abs() < 0.9 {
+            Vector3::x()
+        } else {
+            Vector3::y()
+        };
+        let (forms, searches) = layout.forms(h);
+        ParallelPairSearch {
+            chain: *chain,
+            p,
+            forms,
+            searches,
+            home: chain.home_inverse.inverse(),
+            h: axis,
+            sign: axis.dot(&h[p + 1]).signum(),
+            link,
+            link_length: (link - axis * axis.dot(&link)).norm(),
+            tail_normal: tail.cross(&helper).normalize(),
+        }
+    }
+
+    /// Every solution found for `target` (the chain's end-effector pose).
+    pub(crate) fn solve(&self, target: &Pose, out: &mut Candidates) {
+        let mut kept: [[f64; 6]; 32] = [[0.0; 6]; 32];
+        let mut count = 0;
+        for form in &self.forms[..self.searches] {
+            let problem = Problem::new(self, target, *form);
+            find_roots::<_, 4, SAMPLES>(&problem, |t, key| {
+                let Some((q, exact)) = problem.finish(t, &key) else {
+                    return;
+                };
+                let duplicate = kept[..count].iter().any(|p| {
+                    p.iter()
+                        .zip(&q)
+                        .all(|(a, b)| wrap_angle(a - b).abs() < 1e-9)
+                });
+                if !duplicate && count < kept.len() {
+                    kept[count] = q;
+                    count += 1;
+                    out.push(&q, exact);
+                }
+            });
+        }
+    }
+}
+
+/// `R(k, t) v` for the turn `t` (Rodrigues, `k` a unit axis).
+#[inline]
+fn turned(k: &Vector3<f64>, v: &Vector3<f64>, t: &Turn) -> Vector3<f64> {
+    v * t.cos + k.cross(v) * t.sin + k * ((1.0 - t.cos) * k.dot(v))
+}
+
+/// `E(t) y = c + R(k, t)(y - c)`, the joint's motion.
+#[inline]
+fn moved(c: &Vector3<f64>, k: &Vector3<f64>, y: &Vector3<f64>, t: &Turn) -> Vector3<f64> {
+    c + turned(k, &(y - c), t)
+}
+
+/// `E(t)^-1 y = c + R(k, t)' (y - c)`.
+#[inline]
+fn moved_back(c: &Vector3<f64>, k: &Vector3<f64>, y: &Vector3<f64>, t: &Turn) -> Vector3<f64> {
+    c + t.rotate_back(k, &(y - c))
+}
+
+/// The wave `-w` (a term moved to the other side).
+#[inline]
+fn negated(w: Wave) -> Wave {
+    Wave {
+        cos_part: -w.cos_part,
+        sin_part: -w.sin_part,
+        constant: -w.constant,
+    }
+}
+
+/// `d/dt` of a wave at the turn `t`.
+#[inline]
+fn wave_slope(w: &Wave, t: &Turn) -> f64 {
+    w.sin_part * t.cos - w.cos_part * t.sin
+}
+
+/// One search of one solve: the target read into what every evaluation
+/// shares.
+struct Problem<'a> {
+    s: &'a ParallelPairSearch,
+    form: Form,
+    target: Pose,
+    /// `R_O = R_T R_home'`.
+    orientation: Matrix3<f64>,
+    /// `R_O h6`.
+    tail_goal: Vector3<f64>,
+    /// `X = T home^-1 c6`.
+    goal: Vector3<f64>,
+}
+
+/// A branch: the subproblem-6 angles `(q_l, q_r)` and the sign of its
+/// Jacobian determinant.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Key {
+    angles: [f64; 2],
+    rising: bool,
+    /// The determinant itself.
+    determinant: f64,
+}
+
+/// Joint-space gap between two branches' points (infinite across a
+/// determinant sign: never the same branch).
+fn gap(a: &Key, b: &Key) -> f64 {
+    if a.rising != b.rising {
+        return f64::INFINITY;
+    }
+    wrap_angle(a.angles[0] - b.angles[0]).abs() + wrap_angle(a.angles[1] - b.angles[1]).abs()
+}
+
+/// What subproblem 6 turns at a trial `t` (see the module docs): the
+/// left side is `g_l . R(h_l, q_l)' v` (`v` = `left[0]` for the
+/// orientation, `left[1] - c_l` for the position), the right side
+/// `g_r . R(h_r, q_r) u` likewise, `k` the searched joint's turn.
+struct Sides {
+    k: Turn,
+    g: [Vector3<f64>; 2],
+    left: [Vector3<f64>; 2],
+    right: [Vector3<f64>; 2],
+    /// The position equation's right-hand side.
+    d: f64,
+}
+
+/// What the residual and the finish read at `t` on one branch.
+struct Point {
+    /// `q_l`, `q_r` as turns.
+    left: Turn,
+    right: Turn,
+    /// `th` of the pair.
+    pair: Turn,
+    /// `w` (see the module docs).
+    w: Vector3<f64>,
+}
+
+impl<'a> Problem<'a> {
+    fn new(s: &'a ParallelPairSearch, target: &Pose, form: Form) -> Problem<'a> {
+        let (c, h) = (&s.chain.c, &s.chain.h);
+        let moved = *target * s.chain.home_inverse;
+        Problem {
+            s,
+            form,
+            target: *target,
+            orientation: moved.rotation,
+            tail_goal: moved.rotation * h[5],
+            goal: moved.transform_point(&c[5]),
+        }
+    }
+
+    /// The two sides at `t`. The known joint `k` turns the pair's `h`
+    /// (inner: `g = R_k h` before the pair, `R_k' h` after it, with the
+    /// constant `h . c_k - g . c_k` of `h . E_k^-1 y` or `h . E_k y`) or
+    /// the vectors (outer: `R_k' R_O h6`, `E_k^-1 X` before, `R_k h6`,
+    /// `E_k c6` after).
+    #[inline]
+    fn sides(&self, t: f64) -> Sides {
+        let Form { k, l, r, side } = self.form;
+        let (c, h) = (&self.s.chain.c, &self.s.chain.h);
+        let axis = self.s.h;
+        let turn = Turn::of_angle(t);
+        let mut g = [axis, axis];
+        let mut offsets = [0.0, 0.0];
+        let mut left = [self.tail_goal, self.goal];
+        let mut right = [h[5], c[5]];
+        match side {
+            Known::LeftInner => {
+                g[0] = turned(&h[k], &axis, &turn);
+                offsets[0] = (axis - g[0]).dot(&c[k]);
+            }
+            Known::LeftOuter => {
+                left = [
+                    turn.rotate_back(&h[k], &self.tail_goal),
+                    moved_back(&c[k], &h[k], &self.goal, &turn),
+                ];
+            }
+            Known::RightInner => {
+                g[1] = turn.rotate_back(&h[k], &axis);
+                offsets[1] = (axis - g[1]).dot(&c[k]);
+            }
+            Known::RightOuter => {
+                right = [
+                    turned(&h[k], &h[5], &turn),
+                    moved(&c[k], &h[k], &c[5], &turn),
+                ];
+            }
+        }
+        let d = g[1].dot(&c[r]) + offsets[1] - g[0].dot(&c[l]) - offsets[0];
+        Sides {
+            k: turn,
+            g,
+            left,
+            right,
+            d,
+        }
+    }
+
+    /// Subproblem 6 of the two sides: `q_l` first, `q_r` second.
+    #[inline]
+    fn system(&self, v: &Sides) -> Sinusoids {
+        let Form { l, r, .. } = self.form;
+        let (c, h) = (&self.s.chain.c, &self.s.chain.h);
+        let (back, forth) = (-h[l], h[r]);
+        Sinusoids {
+            first: [
+                Wave::new(&v.g[0], &back, &v.left[0]),
+                Wave::new(&v.g[0], &back, &(v.left[1] - c[l])),
+            ],
+            second: [
+                negated(Wave::new(&v.g[1], &forth, &v.right[0])),
+                negated(Wave::new(&v.g[1], &forth, &(v.right[1] - c[r]))),
+            ],
+        }
+    }
+
+    /// The branches at `t`: their keys and points.
+    fn branches(&self, t: f64) -> [Option<(Key, Point)>; 4] {
+        let v = self.sides(t);
+        let system = self.system(&v);
+        let pairs = system.exact_solutions([0.0, v.d]);
+        let mut out = [None, None, None, None];
+        for (slot, pair) in out.iter_mut().zip(pairs.as_slice()) {
+            let (a, b) = (&pair.first, &pair.second);
+            let determinant = wave_slope(&system.first[0], a) * wave_slope(&system.second[1], b)
+                - wave_slope(&system.second[0], b) * wave_slope(&system.first[1], a);
+            let key = Key {
+                angles: [a.angle, b.angle],
+                rising: determinant > 0.0,
+                determinant,
+            };
+            *slot = Some((key, self.point(&v, a, b)));
+        }
+        out
+    }
+
+    /// The pair's angle `th` and `w` at `q_l`, `q_r` (see the module docs):
+    /// `Rb' R_O h6`, `x = Eb^-1 X` from the left side, `Ra h6`,
+    /// `y = Ea c6` from the right, the known joint applied where inner.
+    #[inline]
+    fn point(&self, v: &Sides, left: &Turn, right: &Turn) -> Point {
+        let Form { k, l, r, side } = self.form;
+        let p = self.s.p;
+        let (c, h) = (&self.s.chain.c, &self.s.chain.h);
+        let axis = &self.s.h;
+        let mut before = left.rotate_back(&h[l], &v.left[0]);
+        let mut x = moved_back(&c[l], &h[l], &v.left[1], left);
+        let mut after = turned(&h[r], &v.right[0], right);
+        let mut y = moved(&c[r], &h[r], &v.right[1], right);
+        match side {
+            Known::LeftInner => {
+                before = v.k.rotate_back(&h[k], &before);
+                x = moved_back(&c[k], &h[k], &x, &v.k);
+            }
+            Known::RightInner => {
+                after = turned(&h[k], &after, &v.k);
+                y = moved(&c[k], &h[k], &y, &v.k);
+            }
+            Known::LeftOuter | Known::RightOuter => {}
+        }
+        let (pair, _) = subproblem1_turn(axis, &after, &before);
+        let w = x - c[p] - turned(axis, &(y - c[p + 1]), &pair);
+        Point {
+            left: *left,
+            right: *right,
+            pair,
+            w,
+        }
+    }
+
+    /// `|w_perp| - |L_perp|`.
+    #[inline]
+    fn residual_of(&self, point: &Point) -> f64 {
+        let axis = &self.s.h;
+        let w = &point.w;
+        (w - axis * axis.dot(w)).norm() - self.s.link_length
+    }
+
+    /// The branch nearest `key` at `t`, within [`LINK`].
+    fn nearest(&self, t: f64, key: &Key) -> Option<(Key, Point)> {
+        let mut best: Option<(f64, Key, Point)> = None;
+        for (k, point) in self.branches(t).into_iter().flatten() {
+            let d = gap(&k, key);
+            if d < LINK && best.as_ref().is_none_or(|(e, _, _)| d < *e) {
+                best = Some((d, k, point));
+            }
+        }
+        best.map(|(_, k, point)| (k, point))
+    }
+
+    /// The joint values (chain order) at a root `t` of the branch `key`,
+    /// and whether the chain's forward kinematics reproduces the target to
+    /// [`EXACT_TOLERANCE`]; `None` if it misses by more than [`KEEP`].
+    fn finish(&self, t: f64, key: &Key) -> Option<([f64; 6], bool)> {
+        let (_, point) = self.nearest(t, key)?;
+        let mut q = self.configuration(t, &point);
+        let error = self.error(&q);
+        if error > KEEP {
+            return None;
+        }
+        if error > POLISHED {
+            // Near a fold subproblem 6 loses digits: a few Gauss-Newton
+            // steps on the 6-D pose error restore them.
+            let polished = polish(&self.s.chain, &self.s.home, q, &self.target, 3);
+            if let Some((p, _)) = polished {
+                if self.error(&p) < error {
+                    q = p.map(wrap_angle);
+                }
+            }
+        }
+        Some((q, self.error(&q) <= EXACT_TOLERANCE))
+    }
+
+    /// Every joint from `t` and a branch's point.
+    fn configuration(&self, t: f64, point: &Point) -> [f64; 6] {
+        let Form { k, l, r, .. } = self.form;
+        let p = self.s.p;
+        let h = &self.s.chain.h;
+        let axis = &self.s.h;
+        let mut q = [0.0; 6];
+        q[k] = t;
+        q[l] = point.left.angle;
+        q[r] = point.right.angle;
+        let (first, _) = subproblem1(axis, &self.s.link, &point.w);
+        q[p] = first;
+        q[p + 1] = wrap_angle(self.s.sign * (point.pair.angle - first));
+        // R6 = Ra' R(h, -th) Rb' R_O.
+        let mut before = Matrix3::<f64>::identity();
+        for (j, value) in q.iter().enumerate().take(p) {
+            before *= rotation(&h[j], *value);
+        }
+        let mut after = Matrix3::<f64>::identity();
+        for (j, value) in q.iter().enumerate().take(5).skip(p + 2) {
+            after *= rotation(&h[j], *value);
+        }
+        let tail = after.transpose()
+            * rotation(axis, -point.pair.angle)
+            * before.transpose()
+            * self.orientation;
+        let n = &self.s.tail_normal;
+        q[5] = subproblem1(&h[5], n, &(tail * n)).0;
+        q
+    }
+
+    /// The largest of the position (m) and rotation-matrix (Frobenius)
+    /// errors of the chain's forward kinematics at `q`.
+    fn error(&self, q: &[f64; 6]) -> f64 {
+        let (c, h) = (&self.s.chain.c, &self.s.chain.h);
+        let mut pose = Pose::identity();
+        for k in 0..6 {
+            let r = rotation(&h[k], q[k]);
+            pose = pose * Pose::new(r, c[k] - r * c[k]);
+        }
+        let pose = pose * self.s.home;
+        let position = (pose.translation - self.target.translation).norm();
+        let orientation = (pose.rotation - self.target.rotation).norm();
+        position.max(orientation)
+    }
+}
+
+impl Residual<4> for Problem<'_> {
+    type Key = Key;
+
+    const ENDS: EndCheck = EndCheck::SignChangeOrDip;
+
+    fn sample(&self, t: f64) -> [Option<(f64, Key)>; 4] {
+        self.branches(t)
+            .map(|b| b.map(|(key, point)| (self.residual_of(&point), key)))
+    }
+
+    fn residual(&self, t: f64, key: &Key) -> Option<(f64, Key)> {
+        let (k, point) = self.nearest(t, key)?;
+        Some((self.residual_of(&point), k))
+    }
+
+    fn align(&self, previous: &[Option<(f64, Key)>; 4], current: &mut [Option<(f64, Key)>; 4]) {
+        let mut result = [None; 4];
+        let mut used = [false; 4];
+        for (slot, before) in result.iter_mut().zip(previous) {
+            let Some((_, key)) = before else { continue };
+            let mut best: Option<(f64, usize)> = None;
+            for (j, now) in current.iter().enumerate() {
+                if let (false, Some((_, k))) = (used[j], now) {
+                    let d = gap(key, k);
+                    if d < LINK && best.is_none_or(|(e, _)| d < e) {
+                        best = Some((d, j));
+                    }
+                }
+            }
+            if let Some((_, j)) = best {
+                *slot = current[j];
+                used[j] = true;
+            }
+        }
+        // New branches: into slots empty before, then any free slot.
+        for j in 0..4 {
+            if used[j] || current[j].is_none() {
+                continue;
+            }
+            let free = (0..4)
+                .find(|&i| result[i].is_none() && previous[i].is_none())
+                .or_else(|| (0..4).find(|&i| result[i].is_none()));
+            if let Some(i) = free {
+                result[i] = current[j];
+            }
+        }
+        *current = result;
+    }
+
+    fn same_branch(&self, a: &Key, b: &Key) -> bool {
+        gap(a, b) < LINK
+    }
+
+    /// The end of a branch is where two solutions of subproblem 6 merge:
+    /// the squared Jacobian determinant falls linearly to zero there. Each
+    /// step goes 99 % of the way to that extrapolated zero (a bisection
+    /// when the extrapolation fails), until the gap is below
+    /// [`END_TOLERANCE`].
+    fn branch_end(&self, defined: (f64, f64, Key), undefined: f64) -> (f64, f64, Key) {
+        let (mut a, mut fa, mut ka) = defined;
+        let mut b = undefined;
+        let mut previous: Option<(f64, f64)> = None;
+        for _ in 0..60 {
+            if (b - a).abs() < END_TOLERANCE {
+                break;
+            }
+            let g = ka.determinant * ka.determinant;
+            let mut t = 0.5 * (a + b);
+            if let Some((t0, g0)) = previous {
+                if g0 != g {
+                    let zero = a - g * (a - t0) / (g - g0);
+                    if (zero - a) * (b - a) > 0.0 && (zero - a).abs() < (b - a).abs() {
+                        t = a + 0.99 * (zero - a);
+                        if (t - a).abs() < 0.25 * END_TOLERANCE {
+                            t = a + (b - a).signum() * 0.25 * END_TOLERANCE;
+                        }
+                    }
+                }
+            }
+            match self.residual(t, &ka) {
+                Some((f, k)) => {
+                    previous = Some((a, g));
+                    a = t;
+                    fa = f;
+                    ka = k;
+                }
+                None => b = t,
+            }
+        }
+        (a, fa, ka)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ik::analytic::structure::{ArmStructure, Motion};
+    use crate::ik::analytic::test_random::{point, unit};
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    /// The derivation, form by form: at the generating value of the
+    /// searched joint, subproblem 6 has the generating `(q_l, q_r)` among
+    /// its solutions, and on that branch the residual vanishes and every
+    /// joint is read back.
+    #[test]
+    fn each_form_reads_back_the_generating_configuration() {
+        let mut rng = ChaCha8Rng::seed_from_u64(17);
+        for layout in [ParallelLayout::SecondThird, ParallelLayout::ThirdFourth] {
+            for _ in 0..50 {
+                let p = layout.first();
+                let points: Vec<_> = (0..6).map(|_| point(&mut rng) * 2.0).collect();
+                let mut axes: Vec<_> = (0..6).map(|_| unit(&mut rng)).collect();
+                axes[p + 1] = -axes[p];
+                let home = Pose::new(
+                    crate::math::Rotation3::from_euler_angles(0.3, -0.2, 1.1).into_inner(),
+                    point(&mut rng),
+                );
+                let s = ArmStructure::from_lines(points, axes, vec![Motion::Rotation; 6], home);
+                let search = ParallelPairSearch::new(&Chain::of(&s).unwrap(), layout);
+                assert_eq!(search.searches, 2);
+                let q: [f64; 6] = std::array::from_fn(|_| rng.gen_range(-3.1..3.1));
+                let target = s.forward_kinematics(&q);
+                for form in search.forms {
+                    let problem = Problem::new(&search, &target, form);
+                    let branch =
+                        problem
+                            .branches(q[form.k])
+                            .into_iter()
+                            .flatten()
+                            .find(|(key, _)| {
+                                wrap_angle(key.angles[0] - q[form.l]).abs() < 1e-8
+                                    && wrap_angle(key.angles[1] - q[form.r]).abs() < 1e-8
+                            });
+                    let (_, at) = branch.unwrap_or_else(|| panic!("{form:?}: no branch"));
+                    assert!(problem.residual_of(&at).abs() < 1e-9, "{form:?}");
+                    let read = problem.configuration(q[form.k], &at);
+                    for (a, b) in read.iter().zip(&q) {
+                        assert!(wrap_angle(a - b).abs() < 1e-8, "{form:?}: {read:?} {q:?}");
+                    }
+                }
+            }
+        }
+    }
+}
