@@ -915,12 +915,14 @@ fn random_search_arms(
 
 #[test]
 fn random_one_pair_arms_by_1d_search() {
-    // The pair at 5-6 and 4-5 as built, 1-2 and 2-3 on the reversed lines.
+    // The pair at 5-6, 4-5 and 3-4 as built, 1-2 and 2-3 on the reversed
+    // lines.
     let cases = [
         (4, false, "one_pair_intersecting_5_6_1d_search"),
         (4, true, "one_pair_intersecting_1_2_1d_search"),
         (3, false, "one_pair_intersecting_4_5_1d_search"),
         (3, true, "one_pair_intersecting_2_3_1d_search"),
+        (2, false, "one_pair_intersecting_3_4_1d_search"),
     ];
     let mut total = Tally {
         poses: 0,
@@ -953,14 +955,8 @@ fn random_one_pair_arms_by_1d_search() {
 #[test]
 fn pairs_without_a_1d_search_are_refused_by_name() {
     let mut rng = common::rng(80);
-    // Intersecting 3-4 only, then parallel 2-3 only.
-    let mut middle = one_pair_lines(&mut rng, 2);
-    let model = model_from_lines("middle", &middle, random_home(&mut rng));
-    let error = AnalyticSolver::new(&model, AnalyticOptions::default())
-        .unwrap_err()
-        .to_string();
-    assert!(error.contains("one_pair_intersecting_3_4"), "{error}");
-    middle = (0..6)
+    // Parallel 2-3 only.
+    let mut middle: Lines = (0..6)
         .map(|_| (point(&mut rng), unit(&mut rng), false))
         .collect();
     middle[2].1 = middle[1].1;

@@ -20,10 +20,10 @@
 //!   joint held ([`Parameter::FixedJoint`]) if what is left has a class;
 //! * 1-D searches: a spherical wrist behind three general axes ([`search`]);
 //!   6R arms of no closed-form class with an intersecting pair of
-//!   consecutive axes at 1-2, 2-3, 4-5 or 5-6 ([`pair_search`]: up to 16
-//!   solutions; the three joints that place the pair's point in closed form
-//!   by a quartic). A pair at 3-4 or parallel pairs only are refused with
-//!   the class named ([`PairKind`]);
+//!   consecutive axes at 1-2, 2-3, 3-4, 4-5 or 5-6 ([`pair_search`]: up to
+//!   16 solutions; the three joints that place the pair's point in closed
+//!   form by a quartic). Parallel pairs only are refused with the class
+//!   named ([`PairKind`]);
 //! * on request ([`SearchPolicy::TwoDimensions`]), general 6R arms (no
 //!   intersecting or parallel consecutive axes) by a 2-D search
 //!   ([`search2d`]: a 16 x 16 grid over joints 1 and 2 polished by

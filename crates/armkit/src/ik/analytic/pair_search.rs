@@ -25,6 +25,16 @@
 //! `H = home T^-1`, the lines of joint 6 and of joints 1, 2 moved by `H`
 //! carry `H E3(t3) o` onto `o`); the residual is `h4 . G h5 - h4 . h5`.
 //!
+//! With the pair at 3-4 (`M = T home^-1`): `E1 E2 o = M E6^-1 E5^-1 o`.
+//! Over joint 1, with `N = M^-1 E1(t1)` and `E2' = N E2 N^-1` (a turn by
+//! `t2` about joint 2's line moved by `N`):
+//! `E2'^-1 E6^-1 E5^-1 o = N o`: three lines turning back (directions
+//! `-h`), the outermost moving with `t1`, the other two and the point
+//! fixed (so the placing step's arm-fixed matrix is read once,
+//! `ThreeAxes::solve_about`). Over joint 6, with `K = M E6(t6)^-1` and
+//! `E5' = K E5 K^-1`: `E5' E1 E2 o = K o`. Then `G = (R1 R2)' R_M (R5 R6)'`
+//! must be `R3 R4`: the residual `h3 . G h4 - h3 . h4`.
+//!
 //! The branches (solutions of the placing step) have no natural order: each
 //! sample's are matched to the previous sample's by the nearest joint angles
 //! within [`LINK`] and the same sign of the placing polynomial's slope (two
@@ -60,6 +70,8 @@ pub(crate) enum PairLayout {
     LastTwo,
     /// Axes 4-5 meet: searches over joints 6 and 3.
     FourthFifth,
+    /// Axes 3-4 meet: searches over joints 1 and 6.
+    Middle,
 }
 
 /// One of the two searches of a layout.
@@ -73,6 +85,12 @@ enum Searched {
     Sixth,
     /// Joint 6 and joints 1, 2 moved by `H` carry `H E3(t) o` onto `o`.
     Third,
+    /// Pair at 3-4: joint 2 moved by `N = (T home^-1)^-1 E1(t)` (turning
+    /// back), then joints 6 and 5 (turning back) carry `o` onto `N o`.
+    MiddleFirst,
+    /// Pair at 3-4: joint 5 moved by `K = T home^-1 E6(t)^-1`, then joints
+    /// 1 and 2 carry `o` onto `K o`.
+    MiddleSixth,
 }
 
 impl Searched {
@@ -84,6 +102,8 @@ impl Searched {
             Searched::Fourth => (3, [0, 1, 2], [4, 5]),
             Searched::Sixth => (5, [0, 1, 2], [3, 4]),
             Searched::Third => (2, [5, 0, 1], [3, 4]),
+            Searched::MiddleFirst => (0, [1, 5, 4], [2, 3]),
+            Searched::MiddleSixth => (5, [4, 0, 1], [2, 3]),
         }
     }
 }
@@ -104,22 +124,37 @@ pub(crate) struct PairSearch {
     arm_second: Spoke,
     /// The placing joints of the first search, prepared (point `o`).
     placing: ThreeAxes,
+    /// Pair at 3-4: the second search's placing joints (the outermost
+    /// line moves with the searched joint: given per evaluation).
+    placing_second: ThreeAxes,
+    /// Pair at 3-4: `[c2 - c1, h2, o - c1]` turned about `h1` and
+    /// `[c5 - c6, h5, o - c6]` about `h6`.
+    middle: [[Spoke; 3]; 2],
     /// `h_i . h_{i+1}` of the pair.
     pair_cosine: f64,
 }
 
 impl PairSearch {
     pub(crate) fn new(chain: &Chain, layout: PairLayout, point: &Vector3<f64>) -> PairSearch {
-        let first = match layout {
-            PairLayout::LastTwo => Searched::First,
-            PairLayout::FourthFifth => Searched::Sixth,
-        };
-        let (_, placing, pair) = first.joints();
+        let [first, second_form] = layout.searches();
+        let (_, _, pair) = first.joints();
         let second = match layout {
             PairLayout::LastTwo => 3,
-            PairLayout::FourthFifth => 2,
+            PairLayout::FourthFifth | PairLayout::Middle => 2,
         };
         let (c, h) = (&chain.c, &chain.h);
+        // The middle pair's searches turn their axes back (see `Searched`).
+        let lines = |form: Searched| {
+            let (_, placing, _) = form.joints();
+            let sign = if form == Searched::MiddleFirst {
+                -1.0
+            } else {
+                1.0
+            };
+            (placing.map(|i| c[i]), placing.map(|i| h[i] * sign))
+        };
+        let (c1, h1) = lines(first);
+        let (c2, h2) = lines(second_form);
         PairSearch {
             chain: *chain,
             layout,
@@ -128,17 +163,19 @@ impl PairSearch {
             point_home: chain.home_inverse.transform_point(point),
             arm6: Spoke::new(&h[5], &(point - c[5])),
             arm_second: Spoke::new(&h[second], &(point - c[second])),
-            placing: ThreeAxes::new(placing.map(|i| c[i]), placing.map(|i| h[i]), point),
+            placing: ThreeAxes::new(c1, h1, point),
+            placing_second: ThreeAxes::new(c2, h2, point),
+            middle: [
+                [c[1] - c[0], h[1], point - c[0]].map(|v| Spoke::new(&h[0], &v)),
+                [c[4] - c[5], h[4], point - c[5]].map(|v| Spoke::new(&h[5], &v)),
+            ],
             pair_cosine: h[pair[0]].dot(&h[pair[1]]),
         }
     }
 
     /// Every solution found for `target` (the chain's end-effector pose).
     pub(crate) fn solve(&self, target: &Pose, out: &mut Candidates) {
-        let forms = match self.layout {
-            PairLayout::LastTwo => [Searched::First, Searched::Fourth],
-            PairLayout::FourthFifth => [Searched::Sixth, Searched::Third],
-        };
+        let forms = self.layout.searches();
         let mut kept: [[f64; 6]; 32] = [[0.0; 6]; 32];
         let mut count = 0;
         for form in forms {
@@ -158,6 +195,17 @@ impl PairSearch {
                     out.push(&q, exact);
                 }
             });
+        }
+    }
+}
+
+impl PairLayout {
+    /// The layout's two searches.
+    fn searches(self) -> [Searched; 2] {
+        match self {
+            PairLayout::LastTwo => [Searched::First, Searched::Fourth],
+            PairLayout::FourthFifth => [Searched::Sixth, Searched::Third],
+            PairLayout::Middle => [Searched::MiddleFirst, Searched::MiddleSixth],
         }
     }
 }
@@ -270,6 +318,20 @@ impl<'a> Problem<'a> {
                     .back
                     .transform_point(&(c[2] + self.s.arm_second.turned(t)));
                 ThreeAxes::new(self.lines.0, self.lines.1, &w).solve(&self.s.point)
+            }
+            Searched::MiddleFirst => {
+                // N x = back (c1 + R1 (x - c1)).
+                let [to2, h2, to_o] = &self.s.middle[0];
+                let n = |v: &Spoke| self.back.transform_point(&(c[0] + v.turned(t)));
+                let axis = -(self.back.rotation * h2.turned(t));
+                self.s.placing.solve_about(&n(to2), &axis, &n(to_o))
+            }
+            Searched::MiddleSixth => {
+                // K x = moved (c6 + R6' (x - c6)).
+                let [to5, h5, to_o] = &self.s.middle[1];
+                let k = |v: &Spoke| self.moved.transform_point(&(c[5] + v.turned_back(t)));
+                let axis = self.moved.rotation * h5.turned_back(t);
+                self.s.placing_second.solve_about(&k(to5), &axis, &k(to_o))
             }
         }
     }

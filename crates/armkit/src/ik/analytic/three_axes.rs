@@ -118,17 +118,29 @@ impl ThreeAxes {
     /// Every `[t_a, t_b, t_c]` carrying `w` onto `goal` exactly (none when
     /// out of reach, or for a degenerate pair of circles).
     pub(crate) fn solve(&self, goal: &Vector3<f64>) -> Placements {
-        let (c, h) = (&self.c, &self.h);
+        self.solve_about(&self.c[0], &self.h[0], goal)
+    }
+
+    /// [`ThreeAxes::solve`] with the outermost axis `a` on the line
+    /// `(c_a, h_a)` instead of the one given at set-up (the one-pair search
+    /// with the pair at 3-4 moves that line with the searched joint; lines
+    /// `b`, `c` and the point stay, so does `A`).
+    pub(crate) fn solve_about(
+        &self,
+        c_a: &Vector3<f64>,
+        h_a: &Vector3<f64>,
+        goal: &Vector3<f64>,
+    ) -> Placements {
         let mut out = Placements {
             items: [[0.0; 3]; 4],
             slope: [0.0; 4],
             count: 0,
         };
         // v(t_a) = c_a + R(h_a, -t_a)(X - c_a) = v0 + v1 cos t_a + v2 sin t_a.
-        let to_goal = goal - c[0];
-        let par = h[0] * h[0].dot(&to_goal);
-        let v = [c[0] + par, to_goal - par, -h[0].cross(&to_goal)];
-        let (b, b0) = circle_rows(&h[1], &c[1], &v);
+        let to_goal = goal - c_a;
+        let par = h_a * h_a.dot(&to_goal);
+        let v = [c_a + par, to_goal - par, -h_a.cross(&to_goal)];
+        let (b, b0) = circle_rows(&self.h[1], &self.c[1], &v);
         let e = b0 - self.a0;
         // A x_c = B x_a + e.
         if self.invert_a {
@@ -215,6 +227,13 @@ mod tests {
             let goal = apply(&t);
             let solver = ThreeAxes::new(c, h, &w);
             let found = solver.solve(&goal);
+            // The outermost line given per call: the same answer.
+            let moved = ThreeAxes::new(
+                [point(&mut rng), c[1], c[2]],
+                [unit(&mut rng), h[1], h[2]],
+                &w,
+            );
+            assert_eq!(moved.solve_about(&c[0], &h[0], &goal), found);
             for s in found.as_slice() {
                 assert!((apply(s) - goal).norm() < 1e-9, "{s:?}");
             }
