@@ -48,8 +48,10 @@ use super::search::{find_roots, EndCheck, Residual};
 use super::search2d::polish;
 use super::subproblems::{rotation, subproblem1, Spoke, Turn};
 use super::three_axes::{Placements, ThreeAxes};
+use super::trig2::{Trig2, TrigRoots};
 use super::EXACT_TOLERANCE;
 use crate::math::{wrap_angle, Matrix3, Pose, Vector3};
+use std::cell::Cell;
 
 /// Samples per turn of each search.
 pub const SAMPLES: usize = 256;
@@ -58,6 +60,12 @@ pub const SAMPLES: usize = 256;
 pub const LINK: f64 = 1.0;
 /// Width (rad) to which the end of a branch (a fold) is located.
 pub const END_TOLERANCE: f64 = 1e-9;
+/// Largest distance (rad) of the searched joint from the last evaluation
+/// whose placing roots start the next one's (by Newton, accepted only when
+/// complete: `Trig2::roots_near`).
+const NEAR: f64 = 0.1;
+/// Branch ends remembered for the partner branch of the same fold.
+const FOLDS: usize = 16;
 /// Largest pose error (m and rad) of a root kept as a candidate.
 const KEEP: f64 = 1e-6;
 /// Pose error (m and rad) above which a root is polished by Gauss-Newton.
@@ -180,7 +188,7 @@ impl PairSearch {
         let mut count = 0;
         for form in forms {
             let problem = Problem::new(self, target, form);
-            find_roots::<_, 4, SAMPLES>(&problem, |t, key| {
+            let cb = |t: f64, key: Key| {
                 let Some((q, exact)) = problem.finish(t, &key) else {
                     return;
                 };
@@ -194,7 +202,8 @@ impl PairSearch {
                     count += 1;
                     out.push(&q, exact);
                 }
-            });
+            };
+            find_roots::<_, 4, SAMPLES>(&problem, cb);
         }
     }
 }
@@ -234,6 +243,13 @@ struct Problem<'a> {
     /// by `H = (T home^-1)^-1`) and `H`.
     lines: ([Vector3<f64>; 3], [Vector3<f64>; 3]),
     back: Pose,
+    /// The last evaluation's `t` and placing-polynomial roots (a start for
+    /// the next evaluation's within [`NEAR`]).
+    last: Cell<Option<(f64, TrigRoots)>>,
+    /// The last [`FOLDS`] branch ends located, latest first: the samples
+    /// each lay between (defined, undefined side) and the last point of
+    /// the branch and the first without it.
+    folds: Cell<[Option<(f64, f64, f64, f64)>; FOLDS]>,
 }
 
 /// The three placing joints' angles and the sign of the placing
@@ -295,43 +311,84 @@ impl<'a> Problem<'a> {
             goal1: Spoke::new(&h[0], &(goal - c[0])),
             lines,
             back,
+            last: Cell::new(None),
+            folds: Cell::new([None; FOLDS]),
         }
     }
 
     /// The placing step's solutions at the searched joint's value `t`.
     #[inline]
     fn placements(&self, t: &Turn) -> Placements {
+        let last = self.last.get();
+        let previous = last
+            .as_ref()
+            .filter(|(at, _)| (at - t.angle).abs() <= NEAR)
+            .map(|(_, roots)| roots);
+        let found = self.placements_from(t, previous);
+        self.last.set(found.roots.map(|roots| (t.angle, roots)));
+        found
+    }
+
+    /// [`Problem::placements`] with the placing polynomial's roots tracked
+    /// from `previous`, those of a nearby `t`.
+    fn placements_from(&self, t: &Turn, previous: Option<&TrigRoots>) -> Placements {
+        self.placing_step(t, |axes, line, goal| match line {
+            Some((c, h)) => axes.solve_about(c, h, goal, previous),
+            None => axes.solve_near(goal, previous),
+        })
+    }
+
+    /// The placing polynomial at `t` (`None` for degenerate circles).
+    fn placing_polynomial(&self, t: &Turn) -> Option<Trig2> {
+        self.placing_step(t, |axes, line, goal| match line {
+            Some((c, h)) => axes.polynomial_about(c, h, goal),
+            None => axes.polynomial(goal),
+        })
+    }
+
+    /// The placing step at `t` given to `step`: the prepared lines (built
+    /// here where they move with `t`), the outermost line where it differs
+    /// from theirs, and the goal.
+    fn placing_step<R>(
+        &self,
+        t: &Turn,
+        step: impl FnOnce(&ThreeAxes, Option<(&Vector3<f64>, &Vector3<f64>)>, &Vector3<f64>) -> R,
+    ) -> R {
         let (c, h) = (&self.s.chain.c, &self.s.chain.h);
         match self.form {
-            Searched::First => self.s.placing.solve(&(c[0] + self.goal1.turned_back(t))),
-            Searched::Sixth => self.s.placing.solve(
+            Searched::First => step(&self.s.placing, None, &(c[0] + self.goal1.turned_back(t))),
+            Searched::Sixth => step(
+                &self.s.placing,
+                None,
                 &self
                     .moved
                     .transform_point(&(c[5] + self.s.arm6.turned_back(t))),
             ),
             Searched::Fourth => {
                 let w = c[3] + self.s.arm_second.turned(t);
-                ThreeAxes::new([c[0], c[1], c[2]], [h[0], h[1], h[2]], &w).solve(&self.goal)
+                let axes = ThreeAxes::new([c[0], c[1], c[2]], [h[0], h[1], h[2]], &w);
+                step(&axes, None, &self.goal)
             }
             Searched::Third => {
                 let w = self
                     .back
                     .transform_point(&(c[2] + self.s.arm_second.turned(t)));
-                ThreeAxes::new(self.lines.0, self.lines.1, &w).solve(&self.s.point)
+                let axes = ThreeAxes::new(self.lines.0, self.lines.1, &w);
+                step(&axes, None, &self.s.point)
             }
             Searched::MiddleFirst => {
                 // N x = back (c1 + R1 (x - c1)).
                 let [to2, h2, to_o] = &self.s.middle[0];
                 let n = |v: &Spoke| self.back.transform_point(&(c[0] + v.turned(t)));
                 let axis = -(self.back.rotation * h2.turned(t));
-                self.s.placing.solve_about(&n(to2), &axis, &n(to_o))
+                step(&self.s.placing, Some((&n(to2), &axis)), &n(to_o))
             }
             Searched::MiddleSixth => {
                 // K x = moved (c6 + R6' (x - c6)).
                 let [to5, h5, to_o] = &self.s.middle[1];
                 let k = |v: &Spoke| self.moved.transform_point(&(c[5] + v.turned_back(t)));
                 let axis = self.moved.rotation * h5.turned_back(t);
-                self.s.placing_second.solve_about(&k(to5), &axis, &k(to_o))
+                step(&self.s.placing_second, Some((&k(to5), &axis)), &k(to_o))
             }
         }
     }
@@ -347,43 +404,47 @@ impl<'a> Problem<'a> {
         q
     }
 
-    /// The residual `h_i . G h_j - h_i . h_j` of configuration `q` (the
-    /// pair's values unused): `(R_before h_i) . (R_T R_home' R_after' h_j)`.
+    /// The residual `h_i . G h_j - h_i . h_j` at the searched joint's turn
+    /// `t` and the placing joints' turns `a`:
+    /// `(R_before h_i) . (R_T R_home' R_after' h_j)`.
     #[inline]
-    fn residual_of(&self, q: &[f64; 6]) -> f64 {
-        let (_, _, [i, j]) = self.form.joints();
+    fn residual_of(&self, t: &Turn, a: &[Turn; 3]) -> f64 {
+        let (searched, placing, [i, j]) = self.form.joints();
+        let mut q = [Turn::of_direction(0.0, 1.0); 6];
+        q[searched] = *t;
+        for (k, turn) in placing.iter().zip(a) {
+            q[*k] = *turn;
+        }
         let h = &self.s.chain.h;
         let mut hi = h[i];
         for k in (0..i).rev() {
-            let (s, c) = q[k].sin_cos();
-            hi = turn(&h[k], &hi, s, c);
+            hi = turn(&h[k], &hi, q[k].sin, q[k].cos);
         }
         let mut hj = h[j];
         for k in j + 1..6 {
-            let (s, c) = q[k].sin_cos();
-            hj = turn(&h[k], &hj, -s, c);
+            hj = turn(&h[k], &hj, -q[k].sin, q[k].cos);
         }
         hi.dot(&(self.orientation * hj)) - self.s.pair_cosine
     }
 
-    /// The placement nearest `key` at `t`, within [`LINK`].
-    fn nearest(&self, t: &Turn, key: &Key) -> Option<Key> {
+    /// The placement nearest `key` at `t`, within [`LINK`], and its turns.
+    fn nearest(&self, t: &Turn, key: &Key) -> Option<(Key, [Turn; 3])> {
         let found = self.placements(t);
-        let mut best: Option<(f64, Key)> = None;
-        for a in keys(&found) {
+        let mut best: Option<(f64, Key, usize)> = None;
+        for (n, a) in keys(&found).enumerate() {
             let d = gap(&a, key);
-            if d < LINK && best.is_none_or(|(e, _)| d < e) {
-                best = Some((d, a));
+            if d < LINK && best.is_none_or(|(e, _, _)| d < e) {
+                best = Some((d, a, n));
             }
         }
-        best.map(|(_, a)| a)
+        best.map(|(_, a, n)| (a, found.turns[n]))
     }
 
     /// The joint values (chain order) at a root `t` of the branch `key`,
     /// and whether the chain's forward kinematics reproduces the target to
     /// [`EXACT_TOLERANCE`]; `None` if it misses by more than [`KEEP`].
     fn finish(&self, t: f64, key: &Key) -> Option<([f64; 6], bool)> {
-        let a = self.nearest(&Turn::of_angle(t), key)?.angles;
+        let a = self.nearest(&Turn::of_angle(t), key)?.0.angles;
         let (_, _, [i, j]) = self.form.joints();
         let h = &self.s.chain.h;
         let mut q = self.configuration(t, &a);
@@ -439,23 +500,81 @@ impl<'a> Problem<'a> {
     }
 }
 
+impl Problem<'_> {
+    /// A fold between `defined` and `undefined` located where the placing
+    /// quartic's discriminant changes sign (two of its roots merge there):
+    /// Illinois regula falsi on the discriminant, which needs the
+    /// polynomial's coefficients only (no roots), to [`END_TOLERANCE`];
+    /// then the branch read once at the bracket's end on the defined side.
+    /// The branch's last point and the first point past it; `None` when
+    /// the discriminant does not change sign (the branch ends otherwise)
+    /// or the branch is not found there.
+    fn fold_by_discriminant(
+        &self,
+        defined: &(f64, f64, Key),
+        undefined: f64,
+    ) -> Option<((f64, f64, Key), f64)> {
+        let start = self.placing_polynomial(&Turn::of_angle(defined.0))?;
+        let shift = start.quarter_shift();
+        let at = |t: f64| {
+            self.placing_polynomial(&Turn::of_angle(t))
+                .map(|k| k.discriminant_about(shift))
+        };
+        let (mut a, mut fa) = (defined.0, start.discriminant_about(shift));
+        let (mut b, mut fb) = (undefined, at(undefined)?);
+        if !(fa * fb < 0.0) {
+            return None;
+        }
+        let mut side = 0i8;
+        for _ in 0..100 {
+            if (b - a).abs() < END_TOLERANCE {
+                break;
+            }
+            let mut t = (a * fb - b * fa) / (fb - fa);
+            if !(t > a.min(b) && t < a.max(b)) {
+                t = 0.5 * (a + b);
+            }
+            let f = at(t)?;
+            if f != 0.0 && f.signum() == fa.signum() {
+                a = t;
+                fa = f;
+                if side == 1 {
+                    fb *= 0.5;
+                }
+                side = 1;
+            } else {
+                b = t;
+                fb = f;
+                if side == -1 {
+                    fa *= 0.5;
+                }
+                side = -1;
+            }
+        }
+        let (f, k) = self.residual(a, &defined.2)?;
+        Some(((a, f, k), b))
+    }
+}
+
 impl Residual<4> for Problem<'_> {
     type Key = Key;
 
     const ENDS: EndCheck = EndCheck::SignChangeOrDip;
 
     fn sample(&self, t: f64) -> [Option<(f64, Key)>; 4] {
-        let found = self.placements(&Turn::of_angle(t));
+        let turn = Turn::of_angle(t);
+        let found = self.placements(&turn);
         let mut out = [None; 4];
-        for (slot, a) in out.iter_mut().zip(keys(&found)) {
-            *slot = Some((self.residual_of(&self.configuration(t, &a.angles)), a));
+        for ((slot, a), turns) in out.iter_mut().zip(keys(&found)).zip(&found.turns) {
+            *slot = Some((self.residual_of(&turn, turns), a));
         }
         out
     }
 
     fn residual(&self, t: f64, key: &Key) -> Option<(f64, Key)> {
-        let a = self.nearest(&Turn::of_angle(t), key)?;
-        Some((self.residual_of(&self.configuration(t, &a.angles)), a))
+        let turn = Turn::of_angle(t);
+        let (a, turns) = self.nearest(&turn, key)?;
+        Some((self.residual_of(&turn, &turns), a))
     }
 
     fn align(&self, previous: &[Option<(f64, Key)>; 4], current: &mut [Option<(f64, Key)>; 4]) {
@@ -500,8 +619,30 @@ impl Residual<4> for Problem<'_> {
     /// slope of the placing polynomial at the root falls linearly to zero
     /// there. Each step goes 99 % of the way from the last point of the
     /// branch to that extrapolated zero (a bisection when the
-    /// extrapolation fails), until the gap is below [`END_TOLERANCE`].
+    /// extrapolation fails; a step just past it once it is within
+    /// [`END_TOLERANCE`]), until the gap is below [`END_TOLERANCE`].
+    /// The two branches merging at a fold end between the same samples at
+    /// the same place: the second is tried at the first's ends (two
+    /// evaluations) before a search of its own.
     fn branch_end(&self, defined: (f64, f64, Key), undefined: f64) -> (f64, f64, Key) {
+        let folds = self.folds.get();
+        for (from, to, a, b) in folds.iter().flatten() {
+            if *from == defined.0 && *to == undefined {
+                if let Some((f, k)) = self.residual(*a, &defined.2) {
+                    if self.residual(*b, &k).is_none() {
+                        return (*a, f, k);
+                    }
+                }
+                break;
+            }
+        }
+        if let Some((end, b)) = self.fold_by_discriminant(&defined, undefined) {
+            let mut folds = folds;
+            folds.rotate_right(1);
+            folds[0] = Some((defined.0, undefined, end.0, b));
+            self.folds.set(folds);
+            return end;
+        }
         let (mut a, mut fa, mut ka) = defined;
         let mut b = undefined;
         let mut previous: Option<(f64, f64)> = None;
@@ -516,8 +657,8 @@ impl Residual<4> for Problem<'_> {
                     let zero = a - g * (a - t0) / (g - g0);
                     if (zero - a) * (b - a) > 0.0 && (zero - a).abs() < (b - a).abs() {
                         t = a + 0.99 * (zero - a);
-                        if (t - a).abs() < 0.25 * END_TOLERANCE {
-                            t = a + (b - a).signum() * 0.25 * END_TOLERANCE;
+                        if (zero - a).abs() < 0.5 * END_TOLERANCE {
+                            t = a + (b - a).signum() * 0.75 * END_TOLERANCE;
                         }
                     }
                 }
@@ -532,6 +673,10 @@ impl Residual<4> for Problem<'_> {
                 None => b = t,
             }
         }
+        let mut folds = folds;
+        folds.rotate_right(1);
+        folds[0] = Some((defined.0, undefined, a, b));
+        self.folds.set(folds);
         (a, fa, ka)
     }
 }
