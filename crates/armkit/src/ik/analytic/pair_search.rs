@@ -271,8 +271,19 @@ fn gap(a: &Key, b: &Key) -> f64 {
     a.angles
         .iter()
         .zip(&b.angles)
-        .map(|(x, y)| wrap_angle(x - y).abs())
+        .map(|(x, y)| angle_between(*x, *y))
         .sum()
+}
+
+/// `|wrap_angle(x - y)|` for `x`, `y` in `[-pi, pi]` (no rounding call).
+#[inline]
+fn angle_between(x: f64, y: f64) -> f64 {
+    let d = (x - y).abs();
+    if d > std::f64::consts::PI {
+        std::f64::consts::TAU - d
+    } else {
+        d
+    }
 }
 
 fn keys(found: &Placements) -> impl Iterator<Item = Key> + '_ {

@@ -295,12 +295,21 @@ mod tests {
             // Tracked from a nearby goal's roots: the same placements.
             let nearby = solver.solve(&(goal + point(&mut rng) * 0.01));
             let tracked = solver.solve_near(&goal, nearby.roots.as_ref());
+            // (Near a fold, where two solutions nearly merge, both are
+            // ill-conditioned: the same to the tolerance of the
+            // generating angles below, and both carry `w` onto the goal.)
             assert_eq!(tracked.count, found.count);
             for s in found.as_slice() {
-                assert!(tracked.as_slice().iter().any(|r| r
-                    .iter()
-                    .zip(s)
-                    .all(|(a, b)| crate::math::wrap_angle(a - b).abs() < 1e-9)));
+                assert!(
+                    tracked.as_slice().iter().any(|r| r
+                        .iter()
+                        .zip(s)
+                        .all(|(a, b)| crate::math::wrap_angle(a - b).abs() < 1e-7)),
+                    "{found:?} vs {tracked:?}"
+                );
+            }
+            for s in tracked.as_slice() {
+                assert!((apply(s) - goal).norm() < 1e-9, "{s:?}");
             }
             for s in found.as_slice() {
                 assert!((apply(s) - goal).norm() < 1e-9, "{s:?}");

@@ -207,11 +207,12 @@ impl Trig2 {
             count: 0,
         };
         for start in previous.as_slice() {
-            let root = self.newton_from(start)?;
+            let root = self.newton_from(start, out.as_slice())?;
+            // The chord between two unit directions, about their angle.
             if out
                 .as_slice()
                 .iter()
-                .any(|r| wrap_angle(r.angle - root.angle).abs() < DISTINCT)
+                .any(|r| (r.sin - root.sin).abs() + (r.cos - root.cos).abs() < DISTINCT)
             {
                 return None;
             }
@@ -304,19 +305,33 @@ impl Trig2 {
         }
     }
 
-    /// Newton on `f` from `start` to a root (until a step is below
+    /// Newton on `f`, deflated by the roots `found` already (so that it
+    /// does not converge to one of them again), from `start` to a root (until a step is below
     /// [`CONVERGED`]: the error after it is of its square), the sine and cosine
     /// carried along (a small step's by its Taylor series); `None` when it
     /// does not converge within 10 steps or wanders off by more than 1
     /// rad.
-    fn newton_from(&self, start: &Turn) -> Option<Turn> {
-        let (mut angle, mut s, mut c) = (start.angle, start.sin, start.cos);
+    fn newton_from(&self, start: &Turn, found: &[Turn]) -> Option<Turn> {
+        let (mut s, mut c) = (start.sin, start.cos);
+        let mut moved = 0.0_f64;
         for _ in 0..10 {
             let (value, slope) = self.value_and_slope(s, c);
-            if slope == 0.0 {
+            // Maehly's deflation: Newton on f / prod sin((phi - r) / 2)
+            // over the roots `r` found, whose log-derivative is
+            // f' / f - sum cot((phi - r) / 2) / 2.
+            let mut correction = 0.0;
+            for r in found {
+                let (sin_x, cos_x) = (s * r.cos - c * r.sin, c * r.cos + s * r.sin);
+                if sin_x == 0.0 {
+                    return None;
+                }
+                correction += 0.5 * (1.0 + cos_x) / sin_x;
+            }
+            let deflated = slope - value * correction;
+            if deflated == 0.0 {
                 return None;
             }
-            let step = -value / slope;
+            let step = -value / deflated;
             if !(step.abs() < 1.0) {
                 return None;
             }
@@ -330,13 +345,22 @@ impl Trig2 {
                 sin_cos(step)
             };
             (s, c) = (s * dc + c * ds, c * dc - s * ds);
-            angle += step;
+            moved += step;
             if step.abs() < CONVERGED {
-                if wrap_angle(angle - start.angle).abs() > 1.0 {
+                // A root of f itself (not a point the deflation stalls at
+                // beside a root found before), not far from the start.
+                if !((value / slope).abs() < CONVERGED) || moved.abs() > 1.0 {
                     return None;
                 }
+                // `start.angle` is in [-pi, pi] and `|moved| <= 1`.
+                let mut angle = start.angle + moved;
+                if angle > std::f64::consts::PI {
+                    angle -= std::f64::consts::TAU;
+                } else if angle <= -std::f64::consts::PI {
+                    angle += std::f64::consts::TAU;
+                }
                 return Some(Turn {
-                    angle: wrap_angle(angle),
+                    angle,
                     sin: s,
                     cos: c,
                 });
