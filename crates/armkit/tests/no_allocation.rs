@@ -780,13 +780,14 @@ fn analytic_ik_searches_do_not_allocate() {
     use armkit::model::{JointSpec, ModelBuilder};
     use std::f64::consts::PI;
     // Axes 5-6 meet (the one-pair 1-D search); moved apart, a general 6R
-    // arm (the 2-D search).
-    let lines = |last: [f64; 3]| {
+    // arm (the 2-D search); axes 3-4 meeting instead (the one-pair search
+    // with the pair in the middle).
+    let lines = |fourth: [f64; 3], last: [f64; 3]| {
         [
             ([0.0, 0.0, 0.0], [0.0, 0.0, 1.0]),
             ([0.1, 0.05, 0.4], [0.3, 0.9, 0.3]),
             ([0.5, -0.1, 0.6], [-0.2, 0.8, 0.55]),
-            ([0.8, 0.1, 0.55], [0.9, 0.2, -0.4]),
+            (fourth, [0.9, 0.2, -0.4]),
             ([1.0, 0.0, 0.5], [0.1, 0.95, 0.3]),
             (last, [0.85, -0.2, 0.5]),
         ]
@@ -795,10 +796,15 @@ fn analytic_ik_searches_do_not_allocate() {
         search: SearchPolicy::TwoDimensions,
         ..AnalyticOptions::default()
     };
-    for (name, last) in [("one_pair", [1.0, 0.0, 0.5]), ("general", [1.1, 0.1, 0.45])] {
+    let fourth = [0.8, 0.1, 0.55];
+    for (name, fourth, last) in [
+        ("one_pair", fourth, [1.0, 0.0, 0.5]),
+        ("general", fourth, [1.1, 0.1, 0.45]),
+        ("pair_3_4", [0.5, -0.1, 0.6], [1.1, 0.1, 0.45]),
+    ] {
         let mut builder = ModelBuilder::new(name);
         let mut previous = Vector3::zeros();
-        for (i, (c, h)) in lines(last).iter().enumerate() {
+        for (i, (c, h)) in lines(fourth, last).iter().enumerate() {
             let c = Vector3::from(*c);
             builder = builder.joint(
                 JointSpec::revolute(format!("q{}", i + 1), -PI, PI)
@@ -812,6 +818,12 @@ fn analytic_ik_searches_do_not_allocate() {
             .build()
             .unwrap();
         let mut solver = AnalyticSolver::new(&model, options).unwrap();
+        if name == "pair_3_4" {
+            assert_eq!(
+                solver.class().as_str(),
+                "one_pair_intersecting_3_4_1d_search"
+            );
+        }
         let targets = benchmark_targets(&model, 5, 3).unwrap();
         let start = model.neutral_configuration();
         let mut solutions = 0;

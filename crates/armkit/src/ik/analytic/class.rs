@@ -163,13 +163,13 @@ impl ArmClass {
                 kind: PairKind::Intersecting,
                 first: 1 | 5,
             } => {
-                "one intersecting pair of consecutive axes at an end, no closed-form class: 1-D search over the joint at the other end (128 samples per turn, the three joints between in closed form by a quartic, roots to 1e-13 rad), up to 16 solutions"
+                "one intersecting pair of consecutive axes at an end, no closed-form class: 1-D search over the joint at the other end and over a second joint (256 samples per turn each, merged; the three joints between in closed form by a quartic, roots to 1e-13 rad), up to 16 solutions"
             }
             ArmClass::OnePair {
                 kind: PairKind::Intersecting,
                 first: 2 | 4,
             } => {
-                "one intersecting pair of consecutive axes next to an end joint, no closed-form class: 1-D search over that end joint (128 samples per turn, the other three joints in closed form by a quartic, roots to 1e-13 rad), up to 16 solutions"
+                "one intersecting pair of consecutive axes next to an end joint, no closed-form class: 1-D search over that end joint and over a second joint (256 samples per turn each, merged; the other three joints in closed form by a quartic, roots to 1e-13 rad), up to 16 solutions"
             }
             ArmClass::OnePair {
                 kind: PairKind::Intersecting,

@@ -42,6 +42,18 @@
 //! branch from the nearest point already evaluated. Each root is checked by
 //! the chain's forward kinematics: exact when within 1e-10 m and rad; roots
 //! that miss by more than 1e-6 are dropped.
+//!
+//! Cost (an evaluation is one placing step, a quartic's roots): 512
+//! samples per solve plus ~150 evaluations refining roots and reading
+//! branch ends. The placing quartic's roots are tracked from the last
+//! evaluation's (within [`NEAR`]) by Newton, deflated by the roots found
+//! (`Trig2::roots_near`: accepted only when the quartic's discriminant
+//! certifies the same number of real roots and Newton finds that many
+//! distinct ones), the full isolation otherwise (near folds). A fold is
+//! located where the placing quartic's discriminant changes sign, by
+//! Illinois on the discriminant alone (the polynomial's coefficients, no
+//! roots); the partner branch merging there is read at the same place.
+//! The residual is formed from the placements' sines and cosines.
 
 use super::chain::{Candidates, Chain};
 use super::search::{find_roots, EndCheck, Residual};
@@ -249,8 +261,12 @@ struct Problem<'a> {
     /// The last [`FOLDS`] branch ends located, latest first: the samples
     /// each lay between (defined, undefined side) and the last point of
     /// the branch and the first without it.
-    folds: Cell<[Option<(f64, f64, f64, f64)>; FOLDS]>,
+    folds: Cell<[Option<Fold>; FOLDS]>,
 }
+
+/// A branch end located (rad): the samples it lay between (defined,
+/// undefined side), the branch's last point, the first point without it.
+type Fold = (f64, f64, f64, f64);
 
 /// The three placing joints' angles and the sign of the placing
 /// polynomial's slope at their root, naming a branch.
@@ -533,7 +549,8 @@ impl Problem<'_> {
         };
         let (mut a, mut fa) = (defined.0, start.discriminant_about(shift));
         let (mut b, mut fb) = (undefined, at(undefined)?);
-        if !(fa * fb < 0.0) {
+        let product = fa * fb;
+        if product.is_nan() || product >= 0.0 {
             return None;
         }
         let mut side = 0i8;

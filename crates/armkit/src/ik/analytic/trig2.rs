@@ -332,7 +332,7 @@ impl Trig2 {
                 return None;
             }
             let step = -value / deflated;
-            if !(step.abs() < 1.0) {
+            if step.is_nan() || step.abs() >= 1.0 {
                 return None;
             }
             let (ds, dc) = if step.abs() < 1e-3 {
@@ -349,7 +349,8 @@ impl Trig2 {
             if step.abs() < CONVERGED {
                 // A root of f itself (not a point the deflation stalls at
                 // beside a root found before), not far from the start.
-                if !((value / slope).abs() < CONVERGED) || moved.abs() > 1.0 {
+                let plain = (value / slope).abs();
+                if plain.is_nan() || plain >= CONVERGED || moved.abs() > 1.0 {
                     return None;
                 }
                 // `start.angle` is in [-pi, pi] and `|moved| <= 1`.
