@@ -365,6 +365,103 @@ fn explain_and_solve_a_parallel_pair_arm_by_1d_search() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// A DH file of a made-up 6R arm whose only special pair is axes 3-4
+/// meeting (a3 = 0): the one-pair 1-D search with the pair in the middle.
+const PAIR_3_4_DH: &str = r#"
+name = "pair-3-4"
+convention = "standard"
+[[links]]
+type = "R"
+d = 0.3
+a = 0.1
+alpha = 1.2
+[[links]]
+type = "R"
+d = 0.1
+a = 0.4
+alpha = 0.7
+[[links]]
+type = "R"
+d = 0.05
+a = 0.0
+alpha = 1.5707963267948966
+[[links]]
+type = "R"
+d = 0.35
+a = 0.08
+alpha = -1.1
+[[links]]
+type = "R"
+d = 0.1
+a = 0.06
+alpha = 0.9
+[[links]]
+type = "R"
+d = 0.08
+a = 0.0
+alpha = 0.0
+"#;
+
+#[test]
+fn explain_and_solve_an_arm_with_only_axes_3_4_meeting() {
+    let dir = std::env::temp_dir().join(format!("armkit-ik-pair34-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("pair-3-4.toml");
+    std::fs::write(&file, PAIR_3_4_DH).unwrap();
+    let path = file.to_str().unwrap();
+    let output = armkit(&[
+        "ik",
+        "--robot-file",
+        path,
+        "--solver",
+        "analytic",
+        "--explain",
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let text = stdout(&output);
+    assert!(
+        text.contains("class: one_pair_intersecting_3_4_1d_search\n"),
+        "{text}"
+    );
+    assert!(text.contains("axes 3 and 4"), "{text}");
+    let model = armkit::description::load(&file).unwrap();
+    let q = [0.4, -1.1, 1.3, -0.6, 1.4, 0.2];
+    let pose = *forward_kinematics(&model, &mut Data::new(&model), &q).unwrap();
+    let (r, p, y) = pose.rpy();
+    let t = pose.translation;
+    let pose = format!(
+        "{:.17e},{:.17e},{:.17e},{:.17e},{:.17e},{:.17e}",
+        t.x, t.y, t.z, r, p, y
+    );
+    let output = armkit(&[
+        "ik",
+        "--robot-file",
+        path,
+        "--pose",
+        &pose,
+        "--solver",
+        "analytic",
+        "--json",
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let json: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    assert_eq!(json["class"], "one_pair_intersecting_3_4_1d_search");
+    let fits = json["solution_fits"].as_array().unwrap();
+    assert!(fits.iter().all(|f| f["fit"] == "exact"), "{fits:?}");
+    // The generating configuration is among the solutions.
+    let solutions = json["solutions"].as_array().unwrap();
+    assert!(
+        solutions.iter().any(|s| {
+            let s = s.as_array().unwrap();
+            s.iter()
+                .zip(&q)
+                .all(|(a, b)| armkit::math::wrap_angle(a.as_f64().unwrap() - b).abs() < 1e-8)
+        }),
+        "{solutions:?}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 #[test]
 fn analytic_json_lists_every_solution_with_the_class() {
     let q0 = [0.4, -1.1, 1.3, -0.6, 1.4, 0.2];

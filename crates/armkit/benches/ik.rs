@@ -126,6 +126,16 @@ const PARALLEL_PAIR: [([f64; 3], [f64; 3]); 6] = [
     ([1.1, 0.1, 0.45], [0.85, -0.2, 0.5]),
 ];
 
+/// Lines of a 6R arm whose only special pair is axes 3-4 meeting.
+const PAIR_3_4: [([f64; 3], [f64; 3]); 6] = [
+    ([0.0, 0.0, 0.0], [0.0, 0.0, 1.0]),
+    ([0.1, 0.05, 0.4], [0.3, 0.9, 0.3]),
+    ([0.5, -0.1, 0.6], [-0.2, 0.8, 0.55]),
+    ([0.5, -0.1, 0.6], [0.9, 0.2, -0.4]),
+    ([1.0, 0.0, 0.5], [0.1, 0.95, 0.3]),
+    ([1.1, 0.1, 0.45], [0.85, -0.2, 0.5]),
+];
+
 /// Lines of a general 6R arm (no consecutive axes meet or are parallel).
 const GENERAL: [([f64; 3], [f64; 3]); 6] = [
     ([0.0, 0.0, 0.0], [0.0, 0.0, 1.0]),
@@ -250,6 +260,13 @@ fn bench_analytic(c: &mut Criterion) {
     let solver = AnalyticSolver::new(&parallel, nearest).unwrap();
     assert_eq!(solver.class().as_str(), "one_pair_parallel_2_3_1d_search");
     bench_analytic_solver(c, "parallel_pair_2_3_1d_search/distinct", &parallel, solver);
+    let pair = lines_model("pair_3_4", &PAIR_3_4);
+    let solver = AnalyticSolver::new(&pair, nearest).unwrap();
+    assert_eq!(
+        solver.class().as_str(),
+        "one_pair_intersecting_3_4_1d_search"
+    );
+    bench_analytic_solver(c, "one_pair_3_4_1d_search/distinct", &pair, solver);
     let general = lines_model("general", &GENERAL);
     let two = AnalyticOptions {
         search: SearchPolicy::TwoDimensions,

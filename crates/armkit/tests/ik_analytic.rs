@@ -915,12 +915,14 @@ fn random_search_arms(
 
 #[test]
 fn random_one_pair_arms_by_1d_search() {
-    // The pair at 5-6 and 4-5 as built, 1-2 and 2-3 on the reversed lines.
+    // The pair at 5-6, 4-5 and 3-4 as built, 1-2 and 2-3 on the reversed
+    // lines.
     let cases = [
         (4, false, "one_pair_intersecting_5_6_1d_search"),
         (4, true, "one_pair_intersecting_1_2_1d_search"),
         (3, false, "one_pair_intersecting_4_5_1d_search"),
         (3, true, "one_pair_intersecting_2_3_1d_search"),
+        (2, false, "one_pair_intersecting_3_4_1d_search"),
     ];
     let mut total = Tally {
         poses: 0,
@@ -1103,14 +1105,8 @@ fn auto_takes_the_numeric_route_on_parallel_pair_arms() {
 #[test]
 fn pairs_without_a_1d_search_are_refused_by_name() {
     let mut rng = common::rng(80);
-    // Intersecting 3-4 only, then parallel 2-3 only.
-    let mut middle = one_pair_lines(&mut rng, 2);
-    let model = model_from_lines("middle", &middle, random_home(&mut rng));
-    let error = AnalyticSolver::new(&model, AnalyticOptions::default())
-        .unwrap_err()
-        .to_string();
-    assert!(error.contains("one_pair_intersecting_3_4"), "{error}");
-    middle = (0..6)
+    // Parallel 1-2 only.
+    let mut middle: Lines = (0..6)
         .map(|_| (point(&mut rng), unit(&mut rng), false))
         .collect();
     middle[1].1 = middle[0].1;
@@ -1119,6 +1115,23 @@ fn pairs_without_a_1d_search_are_refused_by_name() {
         .unwrap_err()
         .to_string();
     assert!(error.contains("one_pair_parallel_1_2"), "{error}");
+    assert!(error.contains("--search 2d"), "{error}");
+    // The 2-D search takes it when asked: every exact solution it returns
+    // reproduces the pose.
+    let options = AnalyticOptions {
+        search: armkit::ik::analytic::SearchPolicy::TwoDimensions,
+        ..AnalyticOptions::default()
+    };
+    let mut solver = AnalyticSolver::new(&model, options).unwrap();
+    assert_eq!(solver.class().as_str(), "one_pair_parallel_1_2");
+    let mut data = Data::new(&model);
+    let q = [0.3, -0.4, 0.5, 0.2, -0.6, 0.1];
+    let target = *forward_kinematics(&model, &mut data, &q).unwrap();
+    let solutions = solver.solve(&target, &q).unwrap();
+    assert!(solutions.iter().any(|s| s.fit == Fit::Exact));
+    for s in solutions.iter().filter(|s| s.fit == Fit::Exact) {
+        assert!(s.position_error < 1e-10 && s.orientation_error < 1e-10);
+    }
 }
 
 #[test]

@@ -76,11 +76,10 @@ pub enum ArmClass {
     SphericalShoulderElbowWrist,
     /// 6 rotation joints whose special consecutive axes (intersecting or
     /// parallel) fit no closed-form class. Solved by a 1-D search when
-    /// axes `first`, `first + 1` (1-based, model order) intersect and
-    /// `first` is 1, 2, 4 or 5 (see `pair_search`), or are parallel (two
-    /// distinct lines, neither neighbour parallel to them) and `first` is
-    /// 2, 3 or 4 (see `parallel_pair`); refused otherwise (an intersecting
-    /// pair 3-4, a parallel pair 1-2 or 5-6 only).
+    /// axes `first`, `first + 1` (1-based, model order) intersect (see
+    /// `pair_search`), or are parallel (two distinct lines, neither
+    /// neighbour parallel to them) and `first` is 2, 3 or 4 (see
+    /// `parallel_pair`); refused otherwise (a parallel pair 1-2 or 5-6 only).
     OnePair {
         /// The pair's first joint, 1-based.
         first: u8,
@@ -124,7 +123,7 @@ impl ArmClass {
             ArmClass::OnePair { first, kind } => match (kind, first) {
                 (PairKind::Intersecting, 1) => "one_pair_intersecting_1_2_1d_search",
                 (PairKind::Intersecting, 2) => "one_pair_intersecting_2_3_1d_search",
-                (PairKind::Intersecting, 3) => "one_pair_intersecting_3_4",
+                (PairKind::Intersecting, 3) => "one_pair_intersecting_3_4_1d_search",
                 (PairKind::Intersecting, 4) => "one_pair_intersecting_4_5_1d_search",
                 (PairKind::Intersecting, _) => "one_pair_intersecting_5_6_1d_search",
                 (PairKind::Parallel, 1) => "one_pair_parallel_1_2",
@@ -167,19 +166,19 @@ impl ArmClass {
                 kind: PairKind::Intersecting,
                 first: 1 | 5,
             } => {
-                "one intersecting pair of consecutive axes at an end, no closed-form class: 1-D search over the joint at the other end (128 samples per turn, the three joints between in closed form by a quartic, roots to 1e-13 rad), up to 16 solutions"
+                "one intersecting pair of consecutive axes at an end, no closed-form class: 1-D search over the joint at the other end and over a second joint (256 samples per turn each, merged; the three joints between in closed form by a quartic, roots to 1e-13 rad), up to 16 solutions"
             }
             ArmClass::OnePair {
                 kind: PairKind::Intersecting,
                 first: 2 | 4,
             } => {
-                "one intersecting pair of consecutive axes next to an end joint, no closed-form class: 1-D search over that end joint (128 samples per turn, the other three joints in closed form by a quartic, roots to 1e-13 rad), up to 16 solutions"
+                "one intersecting pair of consecutive axes next to an end joint, no closed-form class: 1-D search over that end joint and over a second joint (256 samples per turn each, merged; the other three joints in closed form by a quartic, roots to 1e-13 rad), up to 16 solutions"
             }
             ArmClass::OnePair {
                 kind: PairKind::Intersecting,
                 ..
             } => {
-                "intersecting axes 3 and 4 only: needs a 1-D search with moving lines, not implemented here (use the numeric solver)"
+                "one intersecting pair, axes 3 and 4, no closed-form class: 1-D search over joint 1 and over joint 6 (256 samples per turn; joint 2 moved by the searched joint and joints 5, 6, or joint 5 moved and joints 1, 2, place the pair's point in closed form by a quartic; roots to 1e-13 rad), up to 16 solutions"
             }
             ArmClass::OnePair {
                 kind: PairKind::Parallel,
@@ -203,7 +202,7 @@ impl ArmClass {
                 kind: PairKind::Parallel,
                 ..
             } => {
-                "parallel axes 1-2 or 5-6 only (no intersecting pair, no closed-form class): the two joints beside the pair stay coupled, a 1-D search is not implemented here (use the numeric solver)"
+                "parallel axes 1-2 or 5-6 only (no intersecting pair, no closed-form class): the two joints beside the pair stay coupled, so no 1-D search here: the 2-D search of a general 6R arm (only with the search option `two_dimensions`, CLI: --search 2d) or the numeric solver"
             }
             ArmClass::General => {
                 "no intersecting or parallel consecutive axes: general 6R, a 2-D search (a 16 x 16 grid over joints 1 and 2, each point polished by damped Gauss-Newton; milliseconds, may miss solutions): only with the search option `two_dimensions` (CLI: --search 2d)"
@@ -223,7 +222,7 @@ impl ArmClass {
                 | ArmClass::SphericalShoulderElbowWrist
                 | ArmClass::OnePair {
                     kind: PairKind::Intersecting,
-                    first: 1 | 2 | 4 | 5,
+                    ..
                 }
                 | ArmClass::OnePair {
                     kind: PairKind::Parallel,
@@ -324,7 +323,7 @@ pub(crate) fn detect(structure: &ArmStructure) -> Detected {
 }
 
 /// A 6R arm of no closed-form class: an intersecting pair the 1-D search
-/// handles (preferring 5-6, 1-2, 4-5, 2-3), else the first special pair
+/// handles (preferring 5-6, 1-2, 4-5, 2-3, 3-4), else the first special pair
 /// (refused), else general.
 fn one_pair(structure: &ArmStructure, reversed: &ArmStructure) -> Detected {
     use PairLayout::*;
@@ -333,11 +332,13 @@ fn one_pair(structure: &ArmStructure, reversed: &ArmStructure) -> Detected {
         (1, ChainEnd::Base, LastTwo, reversed),
         (4, ChainEnd::Tip, FourthFifth, structure),
         (2, ChainEnd::Base, FourthFifth, reversed),
+        (3, ChainEnd::Tip, Middle, structure),
     ];
     for (first, end, layout, chain) in cases {
         let i = match layout {
             LastTwo => 4,
             FourthFifth => 3,
+            Middle => 2,
         };
         if let Relation::Intersecting(point) = chain.relation(i, i + 1) {
             return Detected::OnePair {

@@ -20,13 +20,12 @@
 //!   joint held ([`Parameter::FixedJoint`]) if what is left has a class;
 //! * 1-D searches: a spherical wrist behind three general axes ([`search`]);
 //!   6R arms of no closed-form class with an intersecting pair of
-//!   consecutive axes at 1-2, 2-3, 4-5 or 5-6 ([`pair_search`]: up to 16
-//!   solutions; the three joints that place the pair's point in closed form
-//!   by a quartic); 6R arms whose only special structure is two parallel
-//!   consecutive axes at 2-3, 3-4 or 4-5 ([`parallel_pair`]: up to 16
-//!   solutions; the pair's two neighbours by subproblem 6). An
-//!   intersecting pair at 3-4 or a parallel pair at 1-2 or 5-6 only are
-//!   refused with the class named ([`PairKind`]);
+//!   consecutive axes at 1-2, 2-3, 3-4, 4-5 or 5-6 ([`pair_search`]: up to
+//!   16 solutions; the three joints that place the pair's point in closed
+//!   form by a quartic); 6R arms whose only special structure is two
+//!   parallel consecutive axes at 2-3, 3-4 or 4-5 ([`parallel_pair`]: up to
+//!   16 solutions; the pair's two neighbours by subproblem 6). A parallel
+//!   pair at 1-2 or 5-6 only is refused with the class named ([`PairKind`]);
 //! * on request ([`SearchPolicy::TwoDimensions`]), general 6R arms (no
 //!   intersecting or parallel consecutive axes) by a 2-D search
 //!   ([`search2d`]: a 16 x 16 grid over joints 1 and 2 polished by
@@ -664,15 +663,21 @@ fn plan(
             let solver = ParallelPairSearch::new(&chain, layout);
             Ok((class, Plan::ParallelPair { solver, end }))
         }
-        (Detected::Unsolvable(ArmClass::General), Some(Parameter::FixedJoint { .. }) | None)
-            if search == SearchPolicy::TwoDimensions =>
+        // The 2-D search needs no special pair: it takes the general arm and
+        // the pairs no 1-D search handles (parallel 1-2 or 5-6 only).
+        (
+            Detected::Unsolvable(ArmClass::General | ArmClass::OnePair { .. }),
+            Some(Parameter::FixedJoint { .. }) | None,
+        ) if search == SearchPolicy::TwoDimensions =>
         {
             let chain = chain_of(&arm, ChainEnd::Tip).ok_or_else(|| unsolvable(""))?;
             Ok((class, Plan::TwoDimensional(GridSearch::new(&chain))))
         }
-        (Detected::Unsolvable(ArmClass::General), None) => Err(unsolvable(
-            "; a general 6R arm needs the 2-D search: set AnalyticOptions::search = SearchPolicy::TwoDimensions (CLI: --search 2d)",
-        )),
+        (Detected::Unsolvable(ArmClass::General | ArmClass::OnePair { .. }), None) => {
+            Err(unsolvable(
+                "; it needs the 2-D search: set AnalyticOptions::search = SearchPolicy::TwoDimensions (CLI: --search 2d)",
+            ))
+        }
         (Detected::Unsolvable(_), Some(Parameter::ElbowAngle(_))) => Err(unsolvable(
             "; an elbow angle needs a spherical-shoulder-elbow-wrist 7-DOF arm",
         )),

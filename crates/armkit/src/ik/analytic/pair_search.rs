@@ -25,6 +25,16 @@
 //! `H = home T^-1`, the lines of joint 6 and of joints 1, 2 moved by `H`
 //! carry `H E3(t3) o` onto `o`); the residual is `h4 . G h5 - h4 . h5`.
 //!
+//! With the pair at 3-4 (`M = T home^-1`): `E1 E2 o = M E6^-1 E5^-1 o`.
+//! Over joint 1, with `N = M^-1 E1(t1)` and `E2' = N E2 N^-1` (a turn by
+//! `t2` about joint 2's line moved by `N`):
+//! `E2'^-1 E6^-1 E5^-1 o = N o`: three lines turning back (directions
+//! `-h`), the outermost moving with `t1`, the other two and the point
+//! fixed (so the placing step's arm-fixed matrix is read once,
+//! `ThreeAxes::solve_about`). Over joint 6, with `K = M E6(t6)^-1` and
+//! `E5' = K E5 K^-1`: `E5' E1 E2 o = K o`. Then `G = (R1 R2)' R_M (R5 R6)'`
+//! must be `R3 R4`: the residual `h3 . G h4 - h3 . h4`.
+//!
 //! The branches (solutions of the placing step) have no natural order: each
 //! sample's are matched to the previous sample's by the nearest joint angles
 //! within [`LINK`] and the same sign of the placing polynomial's slope (two
@@ -32,14 +42,28 @@
 //! branch from the nearest point already evaluated. Each root is checked by
 //! the chain's forward kinematics: exact when within 1e-10 m and rad; roots
 //! that miss by more than 1e-6 are dropped.
+//!
+//! Cost (an evaluation is one placing step, a quartic's roots): 512
+//! samples per solve plus ~150 evaluations refining roots and reading
+//! branch ends. The placing quartic's roots are tracked from the last
+//! evaluation's (within [`NEAR`]) by Newton, deflated by the roots found
+//! (`Trig2::roots_near`: accepted only when the quartic's discriminant
+//! certifies the same number of real roots and Newton finds that many
+//! distinct ones), the full isolation otherwise (near folds). A fold is
+//! located where the placing quartic's discriminant changes sign, by
+//! Illinois on the discriminant alone (the polynomial's coefficients, no
+//! roots); the partner branch merging there is read at the same place.
+//! The residual is formed from the placements' sines and cosines.
 
 use super::chain::{Candidates, Chain};
 use super::search::{find_roots, EndCheck, Residual};
 use super::search2d::polish;
 use super::subproblems::{rotation, subproblem1, Spoke, Turn};
 use super::three_axes::{Placements, ThreeAxes};
+use super::trig2::{Trig2, TrigRoots};
 use super::EXACT_TOLERANCE;
 use crate::math::{wrap_angle, Matrix3, Pose, Vector3};
+use std::cell::Cell;
 
 /// Samples per turn of each search.
 pub const SAMPLES: usize = 256;
@@ -48,6 +72,12 @@ pub const SAMPLES: usize = 256;
 pub const LINK: f64 = 1.0;
 /// Width (rad) to which the end of a branch (a fold) is located.
 pub const END_TOLERANCE: f64 = 1e-9;
+/// Largest distance (rad) of the searched joint from the last evaluation
+/// whose placing roots start the next one's (by Newton, accepted only when
+/// complete: `Trig2::roots_near`).
+const NEAR: f64 = 0.1;
+/// Branch ends remembered for the partner branch of the same fold.
+const FOLDS: usize = 16;
 /// Largest pose error (m and rad) of a root kept as a candidate.
 const KEEP: f64 = 1e-6;
 /// Pose error (m and rad) above which a root is polished by Gauss-Newton.
@@ -60,6 +90,8 @@ pub(crate) enum PairLayout {
     LastTwo,
     /// Axes 4-5 meet: searches over joints 6 and 3.
     FourthFifth,
+    /// Axes 3-4 meet: searches over joints 1 and 6.
+    Middle,
 }
 
 /// One of the two searches of a layout.
@@ -73,6 +105,12 @@ enum Searched {
     Sixth,
     /// Joint 6 and joints 1, 2 moved by `H` carry `H E3(t) o` onto `o`.
     Third,
+    /// Pair at 3-4: joint 2 moved by `N = (T home^-1)^-1 E1(t)` (turning
+    /// back), then joints 6 and 5 (turning back) carry `o` onto `N o`.
+    MiddleFirst,
+    /// Pair at 3-4: joint 5 moved by `K = T home^-1 E6(t)^-1`, then joints
+    /// 1 and 2 carry `o` onto `K o`.
+    MiddleSixth,
 }
 
 impl Searched {
@@ -84,6 +122,8 @@ impl Searched {
             Searched::Fourth => (3, [0, 1, 2], [4, 5]),
             Searched::Sixth => (5, [0, 1, 2], [3, 4]),
             Searched::Third => (2, [5, 0, 1], [3, 4]),
+            Searched::MiddleFirst => (0, [1, 5, 4], [2, 3]),
+            Searched::MiddleSixth => (5, [4, 0, 1], [2, 3]),
         }
     }
 }
@@ -104,22 +144,37 @@ pub(crate) struct PairSearch {
     arm_second: Spoke,
     /// The placing joints of the first search, prepared (point `o`).
     placing: ThreeAxes,
+    /// Pair at 3-4: the second search's placing joints (the outermost
+    /// line moves with the searched joint: given per evaluation).
+    placing_second: ThreeAxes,
+    /// Pair at 3-4: `[c2 - c1, h2, o - c1]` turned about `h1` and
+    /// `[c5 - c6, h5, o - c6]` about `h6`.
+    middle: [[Spoke; 3]; 2],
     /// `h_i . h_{i+1}` of the pair.
     pair_cosine: f64,
 }
 
 impl PairSearch {
     pub(crate) fn new(chain: &Chain, layout: PairLayout, point: &Vector3<f64>) -> PairSearch {
-        let first = match layout {
-            PairLayout::LastTwo => Searched::First,
-            PairLayout::FourthFifth => Searched::Sixth,
-        };
-        let (_, placing, pair) = first.joints();
+        let [first, second_form] = layout.searches();
+        let (_, _, pair) = first.joints();
         let second = match layout {
             PairLayout::LastTwo => 3,
-            PairLayout::FourthFifth => 2,
+            PairLayout::FourthFifth | PairLayout::Middle => 2,
         };
         let (c, h) = (&chain.c, &chain.h);
+        // The middle pair's searches turn their axes back (see `Searched`).
+        let lines = |form: Searched| {
+            let (_, placing, _) = form.joints();
+            let sign = if form == Searched::MiddleFirst {
+                -1.0
+            } else {
+                1.0
+            };
+            (placing.map(|i| c[i]), placing.map(|i| h[i] * sign))
+        };
+        let (c1, h1) = lines(first);
+        let (c2, h2) = lines(second_form);
         PairSearch {
             chain: *chain,
             layout,
@@ -128,22 +183,24 @@ impl PairSearch {
             point_home: chain.home_inverse.transform_point(point),
             arm6: Spoke::new(&h[5], &(point - c[5])),
             arm_second: Spoke::new(&h[second], &(point - c[second])),
-            placing: ThreeAxes::new(placing.map(|i| c[i]), placing.map(|i| h[i]), point),
+            placing: ThreeAxes::new(c1, h1, point),
+            placing_second: ThreeAxes::new(c2, h2, point),
+            middle: [
+                [c[1] - c[0], h[1], point - c[0]].map(|v| Spoke::new(&h[0], &v)),
+                [c[4] - c[5], h[4], point - c[5]].map(|v| Spoke::new(&h[5], &v)),
+            ],
             pair_cosine: h[pair[0]].dot(&h[pair[1]]),
         }
     }
 
     /// Every solution found for `target` (the chain's end-effector pose).
     pub(crate) fn solve(&self, target: &Pose, out: &mut Candidates) {
-        let forms = match self.layout {
-            PairLayout::LastTwo => [Searched::First, Searched::Fourth],
-            PairLayout::FourthFifth => [Searched::Sixth, Searched::Third],
-        };
+        let forms = self.layout.searches();
         let mut kept: [[f64; 6]; 32] = [[0.0; 6]; 32];
         let mut count = 0;
         for form in forms {
             let problem = Problem::new(self, target, form);
-            find_roots::<_, 4, SAMPLES>(&problem, |t, key| {
+            let cb = |t: f64, key: Key| {
                 let Some((q, exact)) = problem.finish(t, &key) else {
                     return;
                 };
@@ -157,7 +214,19 @@ impl PairSearch {
                     count += 1;
                     out.push(&q, exact);
                 }
-            });
+            };
+            find_roots::<_, 4, SAMPLES>(&problem, cb);
+        }
+    }
+}
+
+impl PairLayout {
+    /// The layout's two searches.
+    fn searches(self) -> [Searched; 2] {
+        match self {
+            PairLayout::LastTwo => [Searched::First, Searched::Fourth],
+            PairLayout::FourthFifth => [Searched::Sixth, Searched::Third],
+            PairLayout::Middle => [Searched::MiddleFirst, Searched::MiddleSixth],
         }
     }
 }
@@ -186,7 +255,18 @@ struct Problem<'a> {
     /// by `H = (T home^-1)^-1`) and `H`.
     lines: ([Vector3<f64>; 3], [Vector3<f64>; 3]),
     back: Pose,
+    /// The last evaluation's `t` and placing-polynomial roots (a start for
+    /// the next evaluation's within [`NEAR`]).
+    last: Cell<Option<(f64, TrigRoots)>>,
+    /// The last [`FOLDS`] branch ends located, latest first: the samples
+    /// each lay between (defined, undefined side) and the last point of
+    /// the branch and the first without it.
+    folds: Cell<[Option<Fold>; FOLDS]>,
 }
+
+/// A branch end located (rad): the samples it lay between (defined,
+/// undefined side), the branch's last point, the first point without it.
+type Fold = (f64, f64, f64, f64);
 
 /// The three placing joints' angles and the sign of the placing
 /// polynomial's slope at their root, naming a branch.
@@ -207,8 +287,19 @@ fn gap(a: &Key, b: &Key) -> f64 {
     a.angles
         .iter()
         .zip(&b.angles)
-        .map(|(x, y)| wrap_angle(x - y).abs())
+        .map(|(x, y)| angle_between(*x, *y))
         .sum()
+}
+
+/// `|wrap_angle(x - y)|` for `x`, `y` in `[-pi, pi]` (no rounding call).
+#[inline]
+fn angle_between(x: f64, y: f64) -> f64 {
+    let d = (x - y).abs();
+    if d > std::f64::consts::PI {
+        std::f64::consts::TAU - d
+    } else {
+        d
+    }
 }
 
 fn keys(found: &Placements) -> impl Iterator<Item = Key> + '_ {
@@ -247,29 +338,84 @@ impl<'a> Problem<'a> {
             goal1: Spoke::new(&h[0], &(goal - c[0])),
             lines,
             back,
+            last: Cell::new(None),
+            folds: Cell::new([None; FOLDS]),
         }
     }
 
     /// The placing step's solutions at the searched joint's value `t`.
     #[inline]
     fn placements(&self, t: &Turn) -> Placements {
+        let last = self.last.get();
+        let previous = last
+            .as_ref()
+            .filter(|(at, _)| (at - t.angle).abs() <= NEAR)
+            .map(|(_, roots)| roots);
+        let found = self.placements_from(t, previous);
+        self.last.set(found.roots.map(|roots| (t.angle, roots)));
+        found
+    }
+
+    /// [`Problem::placements`] with the placing polynomial's roots tracked
+    /// from `previous`, those of a nearby `t`.
+    fn placements_from(&self, t: &Turn, previous: Option<&TrigRoots>) -> Placements {
+        self.placing_step(t, |axes, line, goal| match line {
+            Some((c, h)) => axes.solve_about(c, h, goal, previous),
+            None => axes.solve_near(goal, previous),
+        })
+    }
+
+    /// The placing polynomial at `t` (`None` for degenerate circles).
+    fn placing_polynomial(&self, t: &Turn) -> Option<Trig2> {
+        self.placing_step(t, |axes, line, goal| match line {
+            Some((c, h)) => axes.polynomial_about(c, h, goal),
+            None => axes.polynomial(goal),
+        })
+    }
+
+    /// The placing step at `t` given to `step`: the prepared lines (built
+    /// here where they move with `t`), the outermost line where it differs
+    /// from theirs, and the goal.
+    fn placing_step<R>(
+        &self,
+        t: &Turn,
+        step: impl FnOnce(&ThreeAxes, Option<(&Vector3<f64>, &Vector3<f64>)>, &Vector3<f64>) -> R,
+    ) -> R {
         let (c, h) = (&self.s.chain.c, &self.s.chain.h);
         match self.form {
-            Searched::First => self.s.placing.solve(&(c[0] + self.goal1.turned_back(t))),
-            Searched::Sixth => self.s.placing.solve(
+            Searched::First => step(&self.s.placing, None, &(c[0] + self.goal1.turned_back(t))),
+            Searched::Sixth => step(
+                &self.s.placing,
+                None,
                 &self
                     .moved
                     .transform_point(&(c[5] + self.s.arm6.turned_back(t))),
             ),
             Searched::Fourth => {
                 let w = c[3] + self.s.arm_second.turned(t);
-                ThreeAxes::new([c[0], c[1], c[2]], [h[0], h[1], h[2]], &w).solve(&self.goal)
+                let axes = ThreeAxes::new([c[0], c[1], c[2]], [h[0], h[1], h[2]], &w);
+                step(&axes, None, &self.goal)
             }
             Searched::Third => {
                 let w = self
                     .back
                     .transform_point(&(c[2] + self.s.arm_second.turned(t)));
-                ThreeAxes::new(self.lines.0, self.lines.1, &w).solve(&self.s.point)
+                let axes = ThreeAxes::new(self.lines.0, self.lines.1, &w);
+                step(&axes, None, &self.s.point)
+            }
+            Searched::MiddleFirst => {
+                // N x = back (c1 + R1 (x - c1)).
+                let [to2, h2, to_o] = &self.s.middle[0];
+                let n = |v: &Spoke| self.back.transform_point(&(c[0] + v.turned(t)));
+                let axis = -(self.back.rotation * h2.turned(t));
+                step(&self.s.placing, Some((&n(to2), &axis)), &n(to_o))
+            }
+            Searched::MiddleSixth => {
+                // K x = moved (c6 + R6' (x - c6)).
+                let [to5, h5, to_o] = &self.s.middle[1];
+                let k = |v: &Spoke| self.moved.transform_point(&(c[5] + v.turned_back(t)));
+                let axis = self.moved.rotation * h5.turned_back(t);
+                step(&self.s.placing_second, Some((&k(to5), &axis)), &k(to_o))
             }
         }
     }
@@ -285,43 +431,47 @@ impl<'a> Problem<'a> {
         q
     }
 
-    /// The residual `h_i . G h_j - h_i . h_j` of configuration `q` (the
-    /// pair's values unused): `(R_before h_i) . (R_T R_home' R_after' h_j)`.
+    /// The residual `h_i . G h_j - h_i . h_j` at the searched joint's turn
+    /// `t` and the placing joints' turns `a`:
+    /// `(R_before h_i) . (R_T R_home' R_after' h_j)`.
     #[inline]
-    fn residual_of(&self, q: &[f64; 6]) -> f64 {
-        let (_, _, [i, j]) = self.form.joints();
+    fn residual_of(&self, t: &Turn, a: &[Turn; 3]) -> f64 {
+        let (searched, placing, [i, j]) = self.form.joints();
+        let mut q = [Turn::of_direction(0.0, 1.0); 6];
+        q[searched] = *t;
+        for (k, turn) in placing.iter().zip(a) {
+            q[*k] = *turn;
+        }
         let h = &self.s.chain.h;
         let mut hi = h[i];
         for k in (0..i).rev() {
-            let (s, c) = q[k].sin_cos();
-            hi = turn(&h[k], &hi, s, c);
+            hi = turn(&h[k], &hi, q[k].sin, q[k].cos);
         }
         let mut hj = h[j];
         for k in j + 1..6 {
-            let (s, c) = q[k].sin_cos();
-            hj = turn(&h[k], &hj, -s, c);
+            hj = turn(&h[k], &hj, -q[k].sin, q[k].cos);
         }
         hi.dot(&(self.orientation * hj)) - self.s.pair_cosine
     }
 
-    /// The placement nearest `key` at `t`, within [`LINK`].
-    fn nearest(&self, t: &Turn, key: &Key) -> Option<Key> {
+    /// The placement nearest `key` at `t`, within [`LINK`], and its turns.
+    fn nearest(&self, t: &Turn, key: &Key) -> Option<(Key, [Turn; 3])> {
         let found = self.placements(t);
-        let mut best: Option<(f64, Key)> = None;
-        for a in keys(&found) {
+        let mut best: Option<(f64, Key, usize)> = None;
+        for (n, a) in keys(&found).enumerate() {
             let d = gap(&a, key);
-            if d < LINK && best.is_none_or(|(e, _)| d < e) {
-                best = Some((d, a));
+            if d < LINK && best.is_none_or(|(e, _, _)| d < e) {
+                best = Some((d, a, n));
             }
         }
-        best.map(|(_, a)| a)
+        best.map(|(_, a, n)| (a, found.turns[n]))
     }
 
     /// The joint values (chain order) at a root `t` of the branch `key`,
     /// and whether the chain's forward kinematics reproduces the target to
     /// [`EXACT_TOLERANCE`]; `None` if it misses by more than [`KEEP`].
     fn finish(&self, t: f64, key: &Key) -> Option<([f64; 6], bool)> {
-        let a = self.nearest(&Turn::of_angle(t), key)?.angles;
+        let a = self.nearest(&Turn::of_angle(t), key)?.0.angles;
         let (_, _, [i, j]) = self.form.joints();
         let h = &self.s.chain.h;
         let mut q = self.configuration(t, &a);
@@ -377,23 +527,82 @@ impl<'a> Problem<'a> {
     }
 }
 
+impl Problem<'_> {
+    /// A fold between `defined` and `undefined` located where the placing
+    /// quartic's discriminant changes sign (two of its roots merge there):
+    /// Illinois regula falsi on the discriminant, which needs the
+    /// polynomial's coefficients only (no roots), to [`END_TOLERANCE`];
+    /// then the branch read once at the bracket's end on the defined side.
+    /// The branch's last point and the first point past it; `None` when
+    /// the discriminant does not change sign (the branch ends otherwise)
+    /// or the branch is not found there.
+    fn fold_by_discriminant(
+        &self,
+        defined: &(f64, f64, Key),
+        undefined: f64,
+    ) -> Option<((f64, f64, Key), f64)> {
+        let start = self.placing_polynomial(&Turn::of_angle(defined.0))?;
+        let shift = start.quarter_shift();
+        let at = |t: f64| {
+            self.placing_polynomial(&Turn::of_angle(t))
+                .map(|k| k.discriminant_about(shift))
+        };
+        let (mut a, mut fa) = (defined.0, start.discriminant_about(shift));
+        let (mut b, mut fb) = (undefined, at(undefined)?);
+        let product = fa * fb;
+        if product.is_nan() || product >= 0.0 {
+            return None;
+        }
+        let mut side = 0i8;
+        for _ in 0..100 {
+            if (b - a).abs() < END_TOLERANCE {
+                break;
+            }
+            let mut t = (a * fb - b * fa) / (fb - fa);
+            if !(t > a.min(b) && t < a.max(b)) {
+                t = 0.5 * (a + b);
+            }
+            let f = at(t)?;
+            if f != 0.0 && f.signum() == fa.signum() {
+                a = t;
+                fa = f;
+                if side == 1 {
+                    fb *= 0.5;
+                }
+                side = 1;
+            } else {
+                b = t;
+                fb = f;
+                if side == -1 {
+                    fa *= 0.5;
+                }
+                side = -1;
+            }
+        }
+        let (f, k) = self.residual(a, &defined.2)?;
+        Some(((a, f, k), b))
+    }
+}
+
 impl Residual<4> for Problem<'_> {
     type Key = Key;
 
     const ENDS: EndCheck = EndCheck::SignChangeOrDip;
 
     fn sample(&self, t: f64) -> [Option<(f64, Key)>; 4] {
-        let found = self.placements(&Turn::of_angle(t));
+        let turn = Turn::of_angle(t);
+        let found = self.placements(&turn);
         let mut out = [None; 4];
-        for (slot, a) in out.iter_mut().zip(keys(&found)) {
-            *slot = Some((self.residual_of(&self.configuration(t, &a.angles)), a));
+        for ((slot, a), turns) in out.iter_mut().zip(keys(&found)).zip(&found.turns) {
+            *slot = Some((self.residual_of(&turn, turns), a));
         }
         out
     }
 
     fn residual(&self, t: f64, key: &Key) -> Option<(f64, Key)> {
-        let a = self.nearest(&Turn::of_angle(t), key)?;
-        Some((self.residual_of(&self.configuration(t, &a.angles)), a))
+        let turn = Turn::of_angle(t);
+        let (a, turns) = self.nearest(&turn, key)?;
+        Some((self.residual_of(&turn, &turns), a))
     }
 
     fn align(&self, previous: &[Option<(f64, Key)>; 4], current: &mut [Option<(f64, Key)>; 4]) {
@@ -438,8 +647,30 @@ impl Residual<4> for Problem<'_> {
     /// slope of the placing polynomial at the root falls linearly to zero
     /// there. Each step goes 99 % of the way from the last point of the
     /// branch to that extrapolated zero (a bisection when the
-    /// extrapolation fails), until the gap is below [`END_TOLERANCE`].
+    /// extrapolation fails; a step just past it once it is within
+    /// [`END_TOLERANCE`]), until the gap is below [`END_TOLERANCE`].
+    /// The two branches merging at a fold end between the same samples at
+    /// the same place: the second is tried at the first's ends (two
+    /// evaluations) before a search of its own.
     fn branch_end(&self, defined: (f64, f64, Key), undefined: f64) -> (f64, f64, Key) {
+        let folds = self.folds.get();
+        for (from, to, a, b) in folds.iter().flatten() {
+            if *from == defined.0 && *to == undefined {
+                if let Some((f, k)) = self.residual(*a, &defined.2) {
+                    if self.residual(*b, &k).is_none() {
+                        return (*a, f, k);
+                    }
+                }
+                break;
+            }
+        }
+        if let Some((end, b)) = self.fold_by_discriminant(&defined, undefined) {
+            let mut folds = folds;
+            folds.rotate_right(1);
+            folds[0] = Some((defined.0, undefined, end.0, b));
+            self.folds.set(folds);
+            return end;
+        }
         let (mut a, mut fa, mut ka) = defined;
         let mut b = undefined;
         let mut previous: Option<(f64, f64)> = None;
@@ -454,8 +685,8 @@ impl Residual<4> for Problem<'_> {
                     let zero = a - g * (a - t0) / (g - g0);
                     if (zero - a) * (b - a) > 0.0 && (zero - a).abs() < (b - a).abs() {
                         t = a + 0.99 * (zero - a);
-                        if (t - a).abs() < 0.25 * END_TOLERANCE {
-                            t = a + (b - a).signum() * 0.25 * END_TOLERANCE;
+                        if (zero - a).abs() < 0.5 * END_TOLERANCE {
+                            t = a + (b - a).signum() * 0.75 * END_TOLERANCE;
                         }
                     }
                 }
@@ -470,6 +701,10 @@ impl Residual<4> for Problem<'_> {
                 None => b = t,
             }
         }
+        let mut folds = folds;
+        folds.rotate_right(1);
+        folds[0] = Some((defined.0, undefined, a, b));
+        self.folds.set(folds);
         (a, fa, ka)
     }
 }

@@ -19,8 +19,8 @@
 //! in `tan(t / 2)` (module `trig2`), up to 4 solutions. Joint `b` follows
 //! by subproblem 1.
 
-use super::subproblems::{subproblem1, Spoke, Turn};
-use super::trig2::Trig2;
+use super::subproblems::{subproblem1_turn, Spoke, Turn};
+use super::trig2::{Trig2, TrigRoots};
 use crate::math::Vector3;
 use nalgebra::{Matrix2, Vector2};
 
@@ -43,6 +43,8 @@ pub(crate) struct ThreeAxes {
     u: [Vector3<f64>; 3],
     /// `A` and the constant side of `u`: `[h_b . (u0 - c_b), |u0 - c_b|^2 + |u1|^2]`.
     a: Matrix2<f64>,
+    /// `A^-1` (when it exists).
+    a_inverse: Option<Matrix2<f64>>,
     a0: Vector2<f64>,
     /// Which side is inverted, fixed at set-up so that the polynomial's
     /// variable (and the sign of `f'`) is the same for every goal: `A`
@@ -58,6 +60,11 @@ pub(crate) struct ThreeAxes {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Placements {
     pub items: [[f64; 3]; 4],
+    /// The same angles as turns (sine and cosine).
+    pub turns: [[Turn; 3]; 4],
+    /// The roots of the placing polynomial (a start for the next, nearby
+    /// goal's: [`ThreeAxes::solve_near`]).
+    pub roots: Option<TrigRoots>,
     /// `f'` at each root (its square vanishes linearly where two merge).
     pub slope: [f64; 4],
     pub count: usize,
@@ -110,6 +117,7 @@ impl ThreeAxes {
             arm_c,
             u,
             a,
+            a_inverse: a.try_inverse(),
             a0,
             invert_a: conditioning(&a) > WELL_CONDITIONED,
         }
@@ -117,55 +125,117 @@ impl ThreeAxes {
 
     /// Every `[t_a, t_b, t_c]` carrying `w` onto `goal` exactly (none when
     /// out of reach, or for a degenerate pair of circles).
+    #[cfg(test)]
     pub(crate) fn solve(&self, goal: &Vector3<f64>) -> Placements {
-        let (c, h) = (&self.c, &self.h);
+        self.solve_about(&self.c[0], &self.h[0], goal, None)
+    }
+
+    /// [`ThreeAxes::solve`] for a goal near one solved before, whose
+    /// placing polynomial's roots are `previous` (from its
+    /// [`Placements::roots`]): the roots by Newton from those when the
+    /// root count is certain (`Trig2::roots_near`), else from scratch.
+    pub(crate) fn solve_near(
+        &self,
+        goal: &Vector3<f64>,
+        previous: Option<&TrigRoots>,
+    ) -> Placements {
+        self.solve_about(&self.c[0], &self.h[0], goal, previous)
+    }
+
+    /// [`ThreeAxes::solve`] with the outermost axis `a` on the line
+    /// `(c_a, h_a)` instead of the one given at set-up (the one-pair search
+    /// with the pair at 3-4 moves that line with the searched joint; lines
+    /// `b`, `c` and the point stay, so does `A`), and the polynomial's
+    /// roots tracked from `previous` as in [`ThreeAxes::solve_near`].
+    pub(crate) fn solve_about(
+        &self,
+        c_a: &Vector3<f64>,
+        h_a: &Vector3<f64>,
+        goal: &Vector3<f64>,
+        previous: Option<&TrigRoots>,
+    ) -> Placements {
         let mut out = Placements {
             items: [[0.0; 3]; 4],
+            turns: [[Turn::of_angle(0.0); 3]; 4],
+            roots: None,
             slope: [0.0; 4],
             count: 0,
         };
-        // v(t_a) = c_a + R(h_a, -t_a)(X - c_a) = v0 + v1 cos t_a + v2 sin t_a.
-        let to_goal = goal - c[0];
-        let par = h[0] * h[0].dot(&to_goal);
-        let v = [c[0] + par, to_goal - par, -h[0].cross(&to_goal)];
-        let (b, b0) = circle_rows(&h[1], &c[1], &v);
-        let e = b0 - self.a0;
-        // A x_c = B x_a + e.
-        if self.invert_a {
-            let Some(inverse) = self.a.try_inverse() else {
-                return out;
-            };
-            let (p, m) = (inverse * b, inverse * e);
-            let k = circle_poly(&p, &m);
-            for ta in k.roots().as_slice() {
-                let xc = p * Vector2::new(ta.cos, ta.sin) + m;
-                let slope = k.value_and_slope(ta.sin, ta.cos).1;
-                self.push(ta.angle, xc.y.atan2(xc.x), slope, &v, &mut out);
-            }
-        } else if conditioning(&b) > SINGULAR {
-            let Some(inverse) = b.try_inverse() else {
-                return out;
-            };
-            let (p, m) = (inverse * self.a, -(inverse * e));
-            let k = circle_poly(&p, &m);
-            for tc in k.roots().as_slice() {
-                let xa = p * Vector2::new(tc.cos, tc.sin) + m;
-                let slope = k.value_and_slope(tc.sin, tc.cos).1;
-                self.push(xa.y.atan2(xa.x), tc.angle, slope, &v, &mut out);
+        let Some((k, p, m, v)) = self.system(c_a, h_a, goal) else {
+            return out;
+        };
+        let found = previous
+            .and_then(|previous| k.roots_near(previous))
+            .unwrap_or_else(|| k.roots());
+        for root in found.as_slice() {
+            // The other angle of `|P x + m| = 1`.
+            let x = p * Vector2::new(root.cos, root.sin) + m;
+            let other = Turn::of_direction(x.y, x.x);
+            let slope = k.value_and_slope(root.sin, root.cos).1;
+            if self.invert_a {
+                self.push(*root, other, slope, &v, &mut out);
+            } else {
+                self.push(other, *root, slope, &v, &mut out);
             }
         }
+        out.roots = Some(found);
         out
     }
 
+    /// The placing polynomial (see the module docs) for `goal`.
+    pub(crate) fn polynomial(&self, goal: &Vector3<f64>) -> Option<Trig2> {
+        self.polynomial_about(&self.c[0], &self.h[0], goal)
+    }
+
+    /// The placing polynomial (see the module docs) for the outermost line
+    /// `(c_a, h_a)` and `goal`; `None` for a degenerate pair of circles.
+    pub(crate) fn polynomial_about(
+        &self,
+        c_a: &Vector3<f64>,
+        h_a: &Vector3<f64>,
+        goal: &Vector3<f64>,
+    ) -> Option<Trig2> {
+        self.system(c_a, h_a, goal).map(|(k, ..)| k)
+    }
+
+    /// The polynomial `k(t) = |P x(t) + m|^2 - 1` in the angle of the
+    /// inverted side, `P`, `m`, and the circle `v` of the goal about
+    /// axis `a`.
+    #[allow(clippy::type_complexity)]
+    fn system(
+        &self,
+        c_a: &Vector3<f64>,
+        h_a: &Vector3<f64>,
+        goal: &Vector3<f64>,
+    ) -> Option<(Trig2, Matrix2<f64>, Vector2<f64>, [Vector3<f64>; 3])> {
+        // v(t_a) = c_a + R(h_a, -t_a)(X - c_a) = v0 + v1 cos t_a + v2 sin t_a.
+        let to_goal = goal - c_a;
+        let par = h_a * h_a.dot(&to_goal);
+        let v = [c_a + par, to_goal - par, -h_a.cross(&to_goal)];
+        let (b, b0) = circle_rows(&self.h[1], &self.c[1], &v);
+        let e = b0 - self.a0;
+        // A x_c = B x_a + e.
+        let (p, m) = if self.invert_a {
+            let inverse = self.a_inverse?;
+            (inverse * b, inverse * e)
+        } else if conditioning(&b) > SINGULAR {
+            let inverse = b.try_inverse()?;
+            (inverse * self.a, -(inverse * e))
+        } else {
+            return None;
+        };
+        Some((circle_poly(&p, &m), p, m, v))
+    }
+
     /// Completes a solution with joint `b` (subproblem 1).
-    fn push(&self, ta: f64, tc: f64, slope: f64, v: &[Vector3<f64>; 3], out: &mut Placements) {
+    fn push(&self, ta: Turn, tc: Turn, slope: f64, v: &[Vector3<f64>; 3], out: &mut Placements) {
         let (c, h) = (&self.c, &self.h);
-        let u = c[2] + self.arm_c.turned(&Turn::of_angle(tc));
-        let (s, co) = ta.sin_cos();
-        let va = v[0] + v[1] * co + v[2] * s;
-        let (tb, _) = subproblem1(&h[1], &(u - c[1]), &(va - c[1]));
+        let u = c[2] + self.arm_c.turned(&tc);
+        let va = v[0] + v[1] * ta.cos + v[2] * ta.sin;
+        let (tb, _) = subproblem1_turn(&h[1], &(u - c[1]), &(va - c[1]));
         if out.count < 4 {
-            out.items[out.count] = [ta, tb, tc];
+            out.items[out.count] = [ta.angle, tb.angle, tc.angle];
+            out.turns[out.count] = [ta, tb, tc];
             out.slope[out.count] = slope;
             out.count += 1;
         }
@@ -215,6 +285,32 @@ mod tests {
             let goal = apply(&t);
             let solver = ThreeAxes::new(c, h, &w);
             let found = solver.solve(&goal);
+            // The outermost line given per call: the same answer.
+            let moved = ThreeAxes::new(
+                [point(&mut rng), c[1], c[2]],
+                [unit(&mut rng), h[1], h[2]],
+                &w,
+            );
+            assert_eq!(moved.solve_about(&c[0], &h[0], &goal, None), found);
+            // Tracked from a nearby goal's roots: the same placements.
+            let nearby = solver.solve(&(goal + point(&mut rng) * 0.01));
+            let tracked = solver.solve_near(&goal, nearby.roots.as_ref());
+            // (Near a fold, where two solutions nearly merge, both are
+            // ill-conditioned: the same to the tolerance of the
+            // generating angles below, and both carry `w` onto the goal.)
+            assert_eq!(tracked.count, found.count);
+            for s in found.as_slice() {
+                assert!(
+                    tracked.as_slice().iter().any(|r| r
+                        .iter()
+                        .zip(s)
+                        .all(|(a, b)| crate::math::wrap_angle(a - b).abs() < 1e-7)),
+                    "{found:?} vs {tracked:?}"
+                );
+            }
+            for s in tracked.as_slice() {
+                assert!((apply(s) - goal).norm() < 1e-9, "{s:?}");
+            }
             for s in found.as_slice() {
                 assert!((apply(s) - goal).norm() < 1e-9, "{s:?}");
             }

@@ -26,10 +26,15 @@
 //! `double_roots_are_found_once`).
 
 use super::subproblems::Turn;
-use crate::math::wrap_angle;
+use crate::math::{sin_cos, wrap_angle};
 
 /// Angle (rad) below which two polished roots are one.
 const SAME_ROOT: f64 = 1e-12;
+
+/// Angle (rad) two roots tracked by [`Trig2::roots_near`] must be apart.
+const DISTINCT: f64 = 1e-9;
+/// Newton step (rad) after which a tracked root counts as converged.
+const CONVERGED: f64 = 1e-13;
 
 /// Size (relative to the sum of its terms' magnitudes) below which the
 /// quartic at one of its critical points counts as zero: a double root.
@@ -184,6 +189,187 @@ impl Trig2 {
         out
     }
 
+    /// Every real root, given the roots of a nearby polynomial (the one
+    /// before it in a search: same variable, coefficients moved a little):
+    /// Newton on `f` from each of them. Accepted only when certain: the
+    /// number of real roots, read from the quartic's discriminant and its
+    /// two companions `P`, `D` (shift 0), each clear of zero by 4 times a
+    /// bound on its round-off, equals the number given, and Newton
+    /// from them converges to that many distinct roots (a complete set, in
+    /// whatever order). `None` otherwise (a fold between the two: roots
+    /// appear or merge), where [`Trig2::roots`] is the answer.
+    pub(crate) fn roots_near(&self, previous: &TrigRoots) -> Option<TrigRoots> {
+        if self.real_root_count()? != previous.count {
+            return None;
+        }
+        let mut out = TrigRoots {
+            items: [Turn::of_angle(0.0); 4],
+            count: 0,
+        };
+        for start in previous.as_slice() {
+            let root = self.newton_from(start, out.as_slice())?;
+            // The chord between two unit directions, about their angle.
+            if out
+                .as_slice()
+                .iter()
+                .any(|r| (r.sin - root.sin).abs() + (r.cos - root.cos).abs() < DISTINCT)
+            {
+                return None;
+            }
+            out.items[out.count] = root;
+            out.count += 1;
+        }
+        Some(out)
+    }
+
+    /// A shift putting `u = infinity` at the quarter turn of largest `|f|`
+    /// (the quartic's leading coefficient): a quartic about as well scaled
+    /// as [`Trig2::roots`]' at a fraction of the cost.
+    pub(crate) fn quarter_shift(&self) -> f64 {
+        let values = [
+            self.c0 + self.c1 + self.c2,
+            self.c0 + self.s1 - self.c2,
+            self.c0 - self.c1 + self.c2,
+            self.c0 - self.s1 - self.c2,
+        ];
+        let mut far = 0;
+        for (i, v) in values.iter().enumerate() {
+            if v.abs() > values[far].abs() {
+                far = i;
+            }
+        }
+        far as f64 * std::f64::consts::FRAC_PI_2 - std::f64::consts::PI
+    }
+
+    /// The discriminant of the quartic in `u = tan((phi - shift) / 2)`:
+    /// negative with 2 real roots, positive with 0 or 4, zero at a double
+    /// root (where two roots merge as the coefficients move, it changes
+    /// sign).
+    pub(crate) fn discriminant_about(&self, shift: f64) -> f64 {
+        discriminant(&self.shifted(shift).quartic())
+    }
+
+    /// The number of real roots (0, 2 or 4) when the quartic in
+    /// `tan(phi / 2)` has a clear leading coefficient, discriminant and
+    /// (for a positive discriminant) `P` and `D`; `None` near a multiple
+    /// root or a root near `phi = pi`.
+    fn real_root_count(&self) -> Option<usize> {
+        let q = self.shifted(self.quarter_shift()).quartic();
+        // Each coefficient is off by up to a few ulps of `f`'s terms (the
+        // sums forming it): `delta`. A polynomial in the coefficients is
+        // then off by at most its value at `|coefficients| + delta` minus
+        // its value at `|coefficients|` (first order), plus its own
+        // round-off: the margin each quantity must clear.
+        let delta = 8.0 * f64::EPSILON * self.terms();
+        let [e, d, c, b, a] = q;
+        if a.abs() <= 2.0 * delta {
+            return None;
+        }
+        let clear = |value: f64, exact: f64, widened: f64| {
+            let error = (widened - exact) + 32.0 * f64::EPSILON * exact;
+            value.abs() > 4.0 * error
+        };
+        let abs = q.map(f64::abs);
+        let wide = abs.map(|x| x + delta);
+        let discriminant = discriminant(&q);
+        if !clear(
+            discriminant,
+            discriminant_size(&abs),
+            discriminant_size(&wide),
+        ) {
+            return None;
+        }
+        if discriminant < 0.0 {
+            return Some(2);
+        }
+        let p = 8.0 * a * c - 3.0 * b * b;
+        let p_size = |[_, _, c, b, a]: [f64; 5]| 8.0 * a * c + 3.0 * b * b;
+        let dd = 64.0 * a * a * a * e - 16.0 * a * a * c * c + 16.0 * a * b * b * c
+            - 16.0 * a * a * b * d
+            - 3.0 * b * b * b * b;
+        let d_size = |[e, d, c, b, a]: [f64; 5]| {
+            64.0 * a * a * a * e
+                + 16.0 * a * a * c * c
+                + 16.0 * a * b * b * c
+                + 16.0 * a * a * b * d
+                + 3.0 * b * b * b * b
+        };
+        let p_clear = clear(p, p_size(abs), p_size(wide));
+        let d_clear = clear(dd, d_size(abs), d_size(wide));
+        if p_clear && d_clear && p < 0.0 && dd < 0.0 {
+            Some(4)
+        } else if (p_clear && p > 0.0) || (d_clear && dd > 0.0) {
+            Some(0)
+        } else {
+            None
+        }
+    }
+
+    /// Newton on `f`, deflated by the roots `found` already (so that it
+    /// does not converge to one of them again), from `start` to a root (until a step is below
+    /// [`CONVERGED`]: the error after it is of its square), the sine and cosine
+    /// carried along (a small step's by its Taylor series); `None` when it
+    /// does not converge within 10 steps or wanders off by more than 1
+    /// rad.
+    fn newton_from(&self, start: &Turn, found: &[Turn]) -> Option<Turn> {
+        let (mut s, mut c) = (start.sin, start.cos);
+        let mut moved = 0.0_f64;
+        for _ in 0..10 {
+            let (value, slope) = self.value_and_slope(s, c);
+            // Maehly's deflation: Newton on f / prod sin((phi - r) / 2)
+            // over the roots `r` found, whose log-derivative is
+            // f' / f - sum cot((phi - r) / 2) / 2.
+            let mut correction = 0.0;
+            for r in found {
+                let (sin_x, cos_x) = (s * r.cos - c * r.sin, c * r.cos + s * r.sin);
+                if sin_x == 0.0 {
+                    return None;
+                }
+                correction += 0.5 * (1.0 + cos_x) / sin_x;
+            }
+            let deflated = slope - value * correction;
+            if deflated == 0.0 {
+                return None;
+            }
+            let step = -value / deflated;
+            if step.is_nan() || step.abs() >= 1.0 {
+                return None;
+            }
+            let (ds, dc) = if step.abs() < 1e-3 {
+                let q = step * step;
+                (
+                    step * (1.0 - q / 6.0 * (1.0 - q / 20.0)),
+                    1.0 - q / 2.0 * (1.0 - q / 12.0 * (1.0 - q / 30.0)),
+                )
+            } else {
+                sin_cos(step)
+            };
+            (s, c) = (s * dc + c * ds, c * dc - s * ds);
+            moved += step;
+            if step.abs() < CONVERGED {
+                // A root of f itself (not a point the deflation stalls at
+                // beside a root found before), not far from the start.
+                let plain = (value / slope).abs();
+                if plain.is_nan() || plain >= CONVERGED || moved.abs() > 1.0 {
+                    return None;
+                }
+                // `start.angle` is in [-pi, pi] and `|moved| <= 1`.
+                let mut angle = start.angle + moved;
+                if angle > std::f64::consts::PI {
+                    angle -= std::f64::consts::TAU;
+                } else if angle <= -std::f64::consts::PI {
+                    angle += std::f64::consts::TAU;
+                }
+                return Some(Turn {
+                    angle,
+                    sin: s,
+                    cos: c,
+                });
+            }
+        }
+        None
+    }
+
     /// The angles (rad, up to 3) of the critical points of the quartic in
     /// `u` (see the module docs): where `|f|` is locally nearest zero on
     /// the circle, starts for a least-squares search when `f` has no root.
@@ -205,7 +391,7 @@ impl Trig2 {
     /// Newton on `f` (at most 3 steps), kept while it lowers `|f|`;
     /// returns the angle with its sine and cosine.
     fn polish(&self, phi: f64) -> (f64, f64, f64) {
-        let (s, c) = phi.sin_cos();
+        let (s, c) = sin_cos(phi);
         let mut best = (phi, s, c);
         let (mut value, mut slope) = self.value_and_slope(s, c);
         for _ in 0..3 {
@@ -213,7 +399,7 @@ impl Trig2 {
                 break;
             }
             let next = best.0 - value / slope;
-            let (s, c) = next.sin_cos();
+            let (s, c) = sin_cos(next);
             let (next_value, next_slope) = self.value_and_slope(s, c);
             if next_value.abs() >= value.abs() {
                 break;
@@ -224,6 +410,42 @@ impl Trig2 {
         }
         best
     }
+}
+
+/// The discriminant of the quartic `q[4] u^4 + ... + q[0]`.
+fn discriminant(q: &[f64; 5]) -> f64 {
+    discriminant_terms(q, 1.0)
+}
+
+/// The sum of the magnitudes of the discriminant's terms for nonnegative
+/// coefficients `q`.
+fn discriminant_size(q: &[f64; 5]) -> f64 {
+    discriminant_terms(q, -1.0)
+}
+
+/// The discriminant's 16 terms summed, the negative ones multiplied by
+/// `negative` (1: the discriminant; -1 with `q >= 0`: its terms' size).
+#[inline]
+fn discriminant_terms(q: &[f64; 5], negative: f64) -> f64 {
+    let [e, d, c, b, a] = *q;
+    let (aa, bb, cc, dd, ee) = (a * a, b * b, c * c, d * d, e * e);
+    let positive = 256.0 * aa * a * ee * e
+        + 144.0 * aa * c * dd * e
+        + 144.0 * a * bb * c * ee
+        + 18.0 * a * b * c * dd * d
+        + 16.0 * a * cc * cc * e
+        + 18.0 * bb * b * c * d * e
+        + bb * cc * dd;
+    let negatives = 192.0 * aa * b * d * ee
+        + 128.0 * aa * cc * ee
+        + 27.0 * aa * dd * dd
+        + 6.0 * a * bb * dd * e
+        + 80.0 * a * b * cc * d * e
+        + 4.0 * a * cc * c * dd
+        + 27.0 * bb * bb * ee
+        + 4.0 * bb * b * dd * d
+        + 4.0 * bb * cc * c * e;
+    positive - negative * negatives
 }
 
 /// Most real roots [`real_roots`] returns (a quartic's 4, with room for
@@ -579,6 +801,82 @@ mod tests {
             }
         }
         assert!(single > 0);
+    }
+
+    #[test]
+    fn roots_tracked_from_a_nearby_polynomial_are_all_the_roots() {
+        // Newton from the roots of a polynomial moved a little: when
+        // accepted, the same roots as the full isolation, none missing.
+        let mut rng = ChaCha8Rng::seed_from_u64(13);
+        let (mut accepted, mut refused) = (0, 0);
+        for _ in 0..2000 {
+            let mut f = Trig2 {
+                c0: rng.gen_range(-1.0..1.0),
+                c1: rng.gen_range(-1.0..1.0),
+                s1: rng.gen_range(-1.0..1.0),
+                c2: rng.gen_range(-1.0..1.0),
+                s2: rng.gen_range(-1.0..1.0),
+            };
+            let previous = f.roots();
+            let size = rng.gen_range(0.0..0.05);
+            f.c0 += rng.gen_range(-size..size);
+            f.c1 += rng.gen_range(-size..size);
+            f.s2 += rng.gen_range(-size..size);
+            let full = angles(&f);
+            match f.roots_near(&previous) {
+                Some(tracked) => {
+                    accepted += 1;
+                    assert_eq!(tracked.as_slice().len(), full.len(), "{f:?}");
+                    for r in tracked.as_slice() {
+                        assert!(found(&full, r.angle, 1e-12), "{f:?}: {r:?} not in {full:?}");
+                        assert!((r.angle.sin() - r.sin).abs() < 1e-14);
+                        assert!((r.angle.cos() - r.cos).abs() < 1e-14);
+                    }
+                }
+                None => refused += 1,
+            }
+        }
+        assert!(accepted > 1500, "{accepted} accepted, {refused} refused");
+    }
+
+    #[test]
+    fn tracking_refuses_double_and_appearing_roots() {
+        // An exact double root: the count is uncertain, so the full
+        // isolation answers.
+        for (a, shift) in [(0.7, 0.3), (1.9, -2.0), (0.2, 3.0)] {
+            let double = with_roots(a, a, shift);
+            let apart = with_roots(a, a + 0.05, shift);
+            assert!(double.roots_near(&apart.roots()).is_none());
+            // A near-double pair: refused, or both roots found.
+            let near = with_roots(a, a + 1e-7, shift);
+            if let Some(tracked) = near.roots_near(&apart.roots()) {
+                assert_eq!(tracked.as_slice().len(), 4);
+            }
+            // Two roots appearing (2 -> 4): the count differs, refused.
+            // (Lowered, the double root at `shift` is gone.)
+            let two = with_roots(a, 0.0, shift);
+            let two = Trig2 {
+                c0: two.c0 - 0.01,
+                ..two
+            };
+            assert_eq!(two.roots().as_slice().len(), 2, "{two:?}");
+            assert!(apart.roots_near(&two.roots()).is_none());
+        }
+        // The discriminant's sign: 4 roots, 2, none.
+        let shift = 0.4;
+        assert!(with_roots(0.5, 2.0, shift).discriminant_about(shift) > 0.0);
+        let two = Trig2 {
+            c2: 0.0,
+            s2: 0.0,
+            c1: 1.0,
+            s1: 0.0,
+            c0: 0.3,
+        };
+        assert!(two.discriminant_about(two.quarter_shift()) < 0.0);
+        assert_eq!(two.real_root_count(), Some(2));
+        let none = Trig2 { c0: 1.5, ..two };
+        assert_eq!(none.real_root_count(), Some(0));
+        assert_eq!(with_roots(0.5, 2.0, shift).real_root_count(), Some(4));
     }
 
     #[test]
