@@ -12,12 +12,12 @@ use numpy::ndarray::Dim;
 use numpy::{PyArray1, PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 
+use crate::analytic::{IkSolutions, SolutionsArguments};
 use crate::arrays::{
     copy_values, float_array, new_array, pose_argument, read_flat_sequence, read_pose, shape_error,
     vector, write_jacobian, write_pose, RowMajor,
 };
 use crate::errors::{load_error, row_error, OrRaise};
-use crate::analytic::{IkSolutions, SolutionsArguments};
 use crate::ik::{IkArguments, IkEngine, IkResult};
 use crate::parallel::{for_each_row, thread_count, RowsMut};
 use armkit::ik::IkStatus;
