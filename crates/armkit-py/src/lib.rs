@@ -9,6 +9,7 @@
 //! with the library's message; a solver that did not converge says so in its
 //! result's status.
 
+mod analytic;
 mod arrays;
 mod beam;
 mod dynamics;
@@ -38,6 +39,7 @@ fn _armkit(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(builtin_robots, m)?)?;
     m.add_class::<robot::Robot>()?;
     m.add_class::<ik::IkResult>()?;
+    m.add_class::<analytic::IkSolutions>()?;
     m.add_class::<trajectory::PyTrajectory>()?;
     m.add_class::<trajectory::ContinuousPath>()?;
     m.add_function(wrap_pyfunction!(trajectory::continuous_path, m)?)?;

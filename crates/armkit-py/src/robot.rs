@@ -12,6 +12,7 @@ use numpy::ndarray::Dim;
 use numpy::{PyArray1, PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 
+use crate::analytic::{IkSolutions, SolutionsArguments};
 use crate::arrays::{
     copy_values, float_array, new_array, pose_argument, read_flat_sequence, read_pose, shape_error,
     vector, write_jacobian, write_pose, RowMajor,
@@ -491,6 +492,48 @@ impl Robot {
             .map_err(|e| row_error("Ts", e.row, &e.error))?;
         }
         Ok((q_out, converged_out))
+    }
+
+    /// Every analytic IK solution of `T` (4 x 4, world frame, m) within the
+    /// joint limits, nearest `q0` first (default: mid-range): the route of
+    /// `armkit ik --solver analytic`. `search`: `"1d"` (closed forms and 1-D
+    /// searches) or `"2d"` (also a general 6R arm's 2-D search). 7-joint
+    /// arms: the elbow angle of a spherical-shoulder-elbow-wrist arm, else a
+    /// held joint; `fixed_joint` (0-based, like a numpy index) holds that
+    /// joint; `parameter` is the elbow angle (rad) or the held joint's value
+    /// (default: `q0`'s); `sweep` N solves at N values of it (the elbow
+    /// angle's circle or the held joint's range) together. Returns an
+    /// `IkSolutions` (`q` (k, dof), `exact` (k,), `fits`, `position_error`,
+    /// `orientation_error`, `arm_class`, `method`). An arm without analytic
+    /// solver raises `ValueError` naming its class.
+    #[pyo3(signature = (T, q0=None, search="1d", fixed_joint=None, parameter=None, sweep=None))]
+    #[allow(non_snake_case, clippy::too_many_arguments)]
+    fn ik_solutions(
+        &self,
+        py: Python<'_>,
+        T: &Bound<'_, PyAny>,
+        q0: Option<&Bound<'_, PyAny>>,
+        search: &str,
+        fixed_joint: Option<i64>,
+        parameter: Option<f64>,
+        sweep: Option<i64>,
+    ) -> PyResult<IkSolutions> {
+        let arguments =
+            SolutionsArguments::new(search, fixed_joint, parameter, sweep).or_raise()?;
+        let target = pose_argument(T, "T")?;
+        let start = match q0 {
+            None => self.model.neutral_configuration(),
+            Some(q0) => crate::arrays::vector_argument(q0, "q0", self.model.dof())?,
+        };
+        crate::analytic::ik_solutions(py, &self.model, &arguments, &target, &start)
+    }
+
+    /// The arm's analytic class: `(name, description)`, as `armkit ik
+    /// --explain` (a 7-joint arm's with its held joint, 0-based, when the
+    /// whole arm has no class). Arms without analytic solver have a class too
+    /// (`ik_solutions` raises naming it).
+    fn arm_class(&self) -> PyResult<(&'static str, String)> {
+        crate::analytic::arm_class(&self.model).or_raise()
     }
 
     /// The IK benchmark's targets (`armkit bench-ik`'s protocol): `count`

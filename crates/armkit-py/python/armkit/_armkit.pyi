@@ -17,7 +17,7 @@ import numpy.typing as npt
 
 __version__: str
 __all__ = [
-    "__version__", "Beam", "ContinuousPath", "IkResult", "MpcPlanner", "Robot", "SpaceRobot", "Trajectory",
+    "__version__", "Beam", "ContinuousPath", "IkResult", "IkSolutions", "MpcPlanner", "Robot", "SpaceRobot", "Trajectory",
     "builtin_robots", "continuous_path", "dynamics", "redundancy", "singularity", "study",
 ]
 
@@ -25,6 +25,7 @@ _ArrayLike = npt.ArrayLike
 _FloatArray = npt.NDArray[np.float64]
 _BoolArray = npt.NDArray[np.bool_]
 _StrPath = Union[str, "PathLike[str]"]
+_AnalyticSearch = Literal["1d", "2d"]
 _IkSolverName = Literal["auto", "closed-form", "lm", "nr", "dls", "sri"]
 _JacobianFrameName = Literal["world", "end-effector"]
 
@@ -59,6 +60,31 @@ class IkResult:
     """Every solution found, shape (k, dof): all closed-form solutions within
     the limits, nearest the start first; for a numeric solver the converged
     ``q`` (k = 1) or none (k = 0)."""
+
+@final
+class IkSolutions:
+    """Result of ``Robot.ik_solutions``: every analytic solution within the
+    joint limits, nearest ``q0`` first (k of them, possibly 0)."""
+
+    q: _FloatArray
+    """Joint positions (rad or m), shape (k, dof), nearest ``q0`` first."""
+    exact: _BoolArray
+    """Shape (k,): True where the solution reproduces the pose within 1e-10 m
+    and rad; False for a least-squares one (a pose out of reach)."""
+    fits: list[Literal["exact", "approximate"]]
+    """Per solution, the library's fit name."""
+    position_error: _FloatArray
+    """Position error of each solution, m, shape (k,)."""
+    orientation_error: _FloatArray
+    """Orientation error of each solution, rad, shape (k,)."""
+    arm_class: str
+    """The arm's analytic class (``"three_parallel_2_3_4_intersecting_5_6"``
+    for the UR5, ``"seed002_arm4"`` for arm4, ...)."""
+    method: str
+    """The class's description and the redundancy parameter of a 7-joint arm
+    (elbow angle, or the held joint, 0-based, and its value)."""
+    def __len__(self) -> int:
+        """The number of solutions k."""
 
 @final
 class Robot:
@@ -134,6 +160,31 @@ class Robot:
         per solve (None: none); ``task_weights`` on ``[x, y, z, rx, ry, rz]``
         (a zero masks that component). Deterministic for a given ``seed``
         unless the time budget cuts the search short."""
+    def ik_solutions(
+        self,
+        T: _ArrayLike,
+        q0: Optional[_ArrayLike] = None,
+        search: _AnalyticSearch = "1d",
+        fixed_joint: Optional[int] = None,
+        parameter: Optional[float] = None,
+        sweep: Optional[int] = None,
+    ) -> IkSolutions:
+        """Every analytic IK solution of ``T`` ((4, 4), world frame, m) within
+        the joint limits, nearest ``q0`` (dof,) first (default: mid-range),
+        as ``armkit ik --solver analytic``. ``search``: ``"1d"`` (closed forms
+        and 1-D searches) or ``"2d"`` (also a general 6R arm's 2-D search,
+        milliseconds, may miss solutions). 7-joint arms: the elbow angle of a
+        spherical-shoulder-elbow-wrist arm (iiwa), else a held joint (Panda);
+        ``fixed_joint`` holds that joint (0-based, like a numpy index);
+        ``parameter`` is the elbow angle (rad) or the held joint's value
+        (default: ``q0``'s); ``sweep`` N solves at N values of it (the elbow
+        angle's circle, the held joint's range) together. ValueError naming
+        the argument for bad input, or naming the arm's class when it has no
+        analytic solver; GIL released."""
+    def arm_class(self) -> Tuple[str, str]:
+        """The arm's analytic class ``(name, description)`` (``armkit ik
+        --explain``; a 7-joint arm's with its held joint, 0-based, when the
+        whole arm has no class). Arms without solver have a class too."""
     def ik_batch(
         self,
         Ts: _ArrayLike,

@@ -62,35 +62,14 @@ impl Route {
                     "--fixed-joint: must be 1 to 7, got {joint}"
                 )));
             }
-            let value = redundancy.parameter.unwrap_or(start[joint - 1]);
-            let parameter = Parameter::FixedJoint {
-                joint: joint - 1,
-                value,
-            };
-            return Ok(Route::Subproblems(Box::new(
-                AnalyticSolver::with_parameter(model, options, parameter)?,
-            )));
         }
-        let elbow = AnalyticSolver::with_parameter(model, options, Parameter::ElbowAngle(0.0));
-        if let Ok(mut solver) = elbow {
-            let psi = match redundancy.parameter {
-                Some(psi) => psi,
-                None => solver.elbow_angle(start)?,
-            };
-            solver.set_parameter_value(psi)?;
-            return Ok(Route::Subproblems(Box::new(solver)));
-        }
-        if let Some((joint, _)) = analytic::joint_to_hold(model) {
-            let value = redundancy.parameter.unwrap_or(start[joint]);
-            let parameter = Parameter::FixedJoint { joint, value };
-            return Ok(Route::Subproblems(Box::new(
-                AnalyticSolver::with_parameter(model, options, parameter)?,
-            )));
-        }
-        Err(elbow
-            .err()
-            .map(CliError::from)
-            .unwrap_or_else(|| CliError(format!("`{}` has no analytic solver", model.name()))))
+        let choice = analytic::Redundancy {
+            fixed_joint: redundancy.fixed_joint.map(|joint| joint - 1),
+            value: redundancy.parameter,
+        };
+        Ok(Route::Subproblems(Box::new(analytic::solver_for(
+            model, options, choice, start,
+        )?)))
     }
 
     /// The class name (JSON `class`).
@@ -166,7 +145,7 @@ impl Route {
                     None => s.solve(target, start)?.to_vec(),
                     Some(0) => return Err(CliError("--sweep: must be >= 1".into())),
                     Some(n) => {
-                        let values = sweep_values(s, n)?;
+                        let values = analytic::sweep_values(s, n)?;
                         s.sweep(target, start, &values)?
                     }
                 };
@@ -182,27 +161,6 @@ impl Route {
             }
         }
     }
-}
-
-/// `n` values of the solver's parameter: the elbow angle's circle or the
-/// held joint's range, evenly (cell midpoints).
-fn sweep_values(solver: &AnalyticSolver, n: usize) -> CliResult<Vec<f64>> {
-    use std::f64::consts::PI;
-    let (lower, upper) = match solver.parameter() {
-        Some(Parameter::ElbowAngle(_)) => (-PI, PI),
-        Some(Parameter::FixedJoint { joint, .. }) => {
-            let limits = solver.model().joints()[joint].limits;
-            if limits.is_bounded() {
-                (limits.lower, limits.upper)
-            } else {
-                (-PI, PI)
-            }
-        }
-        None => return Err(CliError("--sweep: only for 7-joint arms".into())),
-    };
-    Ok((0..n)
-        .map(|k| lower + (upper - lower) * (k as f64 + 0.5) / n as f64)
-        .collect())
 }
 
 /// Runs `armkit ik --solver analytic`.
@@ -279,14 +237,8 @@ pub(super) fn explain(model: &Model, redundancy: &RedundancyArgs, json: bool) ->
         joint: j.saturating_sub(1),
         value: redundancy.parameter.unwrap_or(0.0),
     });
-    let (mut class, structure) = analytic::explain(model, parameter)?;
-    let mut held = None;
-    if model.dof() == 7 && parameter.is_none() && !class.is_solvable() {
-        if let Some((joint, reduced)) = analytic::joint_to_hold(model) {
-            class = reduced;
-            held = Some(joint + 1);
-        }
-    }
+    let (class, held, structure) = analytic::route_class(model, parameter)?;
+    let held = held.map(|joint| joint + 1);
     let held_text = held
         .map(|j| format!(" (with joint {j} held, the route of --solver analytic)"))
         .unwrap_or_default();
