@@ -231,9 +231,19 @@ fn position(
 /// are sums of the three parts' dot products (taken once per goal); joint
 /// 6's `v = R5' R4' g5` enters only through `h6 . v = p . u`,
 /// `h5 . v = h5 . u` and `(h6 x h5) . v = p . (h5 x u)` with `u = R4' g5`.
+///
+/// When `h6 = +-h4` and `h5 . h4 = 0` (PUMA, Stanford, KUKA, the iiwa's
+/// wrist; [`WristSecond::Mirror`]), joint 5's second root gives its joints
+/// 4 and 6 without a subproblem: with `S = R(h4, pi) = R(h6, pi)`,
+/// `S R(h5, t) S = R(-h5, t) = R(h5, -t)` (a half turn about `h4` reverses
+/// `h5`), so `R4(t4 + pi) R5(-t5) R6(t6 + pi) = R4 S R5(-t5) S R6 = R4 R5 R6`.
+/// Joint 5's sinusoid `h4 . R5 h6 = (h4 . h6) cos t5 + h4 . (h5 x h6) sin t5`
+/// has phase 0 or pi there, so its two roots are `phi +- s`, i.e. `t5` and
+/// `-t5` modulo 2 pi: the second wrist solution is `(t4 + pi, -t5, t6 + pi)`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct WristOrientation {
     h: [Vector3<f64>; 3],
+    second: WristSecond,
     joint5: Sinusoid,
     /// `h6` turned by joint 5, and `h4 .` its three parts.
     h6_by_5: Spoke,
@@ -243,6 +253,23 @@ pub(crate) struct WristOrientation {
     h6_h5: f64,
     h5_radius: f64,
 }
+
+/// How a wrist's second joint-5 root gets its joints 4 and 6.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum WristSecond {
+    /// `(t4 + pi, -t5, t6 + pi)` from the first (`h6 = +-h4`, `h5 . h4 = 0`
+    /// to [`MIRROR_TOLERANCE`]; see [`WristOrientation`]).
+    Mirror,
+    /// By the two subproblems 1 again (any other wrist).
+    Solve,
+}
+
+/// Largest `|h4 x h6|` and `|h4 . h5|` (unit axes) for which a wrist's
+/// second solution is mirrored from the first ([`WristSecond::Mirror`]):
+/// the mirrored joints are then off by at most about this angle (rad), two
+/// orders below [`super::EXACT_TOLERANCE`]. Axes read from DH tables or
+/// URDF files with right angles meet it to round-off (1e-16).
+pub(crate) const MIRROR_TOLERANCE: f64 = 1e-12;
 
 /// Subproblem 1's exactness test (see [`super::subproblems::subproblem1`]):
 /// equal heights along the axis and equal distances from it, to the
@@ -258,8 +285,17 @@ impl WristOrientation {
         let h6_by_5 = Spoke::new(h5, h6);
         let [par, perp, cross] = h6_by_5.parts();
         let h6_h5 = h6.dot(h5);
+        let mirrored = h4.cross(h6).norm() <= MIRROR_TOLERANCE
+            && h4.dot(h5).abs() <= MIRROR_TOLERANCE
+            && (h4.norm_squared() - 1.0).abs() <= MIRROR_TOLERANCE
+            && (h6.norm_squared() - 1.0).abs() <= MIRROR_TOLERANCE;
         WristOrientation {
             h: [*h4, *h5, *h6],
+            second: if mirrored {
+                WristSecond::Mirror
+            } else {
+                WristSecond::Solve
+            },
             joint5: Sinusoid::new(h4, h5, h6),
             h6_by_5,
             h4_dot_parts: [h4.dot(&par), h4.dot(&perp), h4.dot(&cross)],
@@ -306,7 +342,8 @@ impl WristOrientation {
         let mut q = [0.0; MAX_JOINTS];
         q[..n].copy_from_slice(prefix);
         let combine = |parts: &[f64; 3], t: &Turn| parts[0] + t.cos * parts[1] + t.sin * parts[2];
-        for t5 in t5s.as_slice() {
+        // Joints 4 and 6 for one joint-5 turn, and whether both were exact.
+        let joints_4_6 = |t5: &Turn| {
             // Joint 4: R4 p = g6 with p = R5 h6.
             let height_p = combine(&self.h4_dot_parts, t5);
             let x = combine(&along, t5) - height_p * height6;
@@ -322,10 +359,111 @@ impl WristOrientation {
             let y6 = p.dot(&h5.cross(&u));
             let radius_v = (g5_length2 - height_v * height_v).max(0.0).sqrt();
             let e6 = same_circle(self.h6_h5, self.h5_radius, height_v, radius_v, scale6);
-            q[n] = t4.angle;
-            q[n + 1] = t5.angle;
-            q[n + 2] = atan2(y6, x6);
-            out.push(&q[..n + 3], exact && t5s.exact && e4 && e6);
+            (t4.angle, atan2(y6, x6), e4 && e6)
+        };
+        let exact = exact && t5s.exact;
+        match (self.second, t5s.as_slice()) {
+            (WristSecond::Mirror, [first, second]) => {
+                let (t4, t6, e) = joints_4_6(first);
+                q[n] = t4;
+                q[n + 1] = first.angle;
+                q[n + 2] = t6;
+                out.push(&q[..n + 3], exact && e);
+                // Equal roots (a tangent) give one solution, as the
+                // subproblems would (their duplicate is merged).
+                if second.angle != first.angle {
+                    use std::f64::consts::PI;
+                    q[n] = t4 + PI;
+                    q[n + 1] = second.angle;
+                    q[n + 2] = t6 + PI;
+                    out.push(&q[..n + 3], exact && e);
+                }
+            }
+            (_, turns) => {
+                for t5 in turns {
+                    let (t4, t6, e) = joints_4_6(t5);
+                    q[n] = t4;
+                    q[n + 1] = t5.angle;
+                    q[n + 2] = t6;
+                    out.push(&q[..n + 3], exact && e);
+                }
+            }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::subproblems::rotation;
+    use super::super::test_random::unit;
+    use super::*;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    /// The wrist's solutions as rotations' errors from `goal`, and their
+    /// joint values (angles wrapped).
+    fn solutions(
+        wrist: &WristOrientation,
+        goal: &crate::math::Matrix3<f64>,
+    ) -> Vec<([f64; 3], f64, bool)> {
+        let [h4, h5, h6] = &wrist.h;
+        let mut out = Candidates::new();
+        wrist.solve_directions(&(goal * h6), &(goal * h5), &[], true, &mut out);
+        out.as_slice()
+            .iter()
+            .map(|c| {
+                let q = [c.q[0], c.q[1], c.q[2]];
+                let r = rotation(h4, q[0]) * rotation(h5, q[1]) * rotation(h6, q[2]);
+                let wrapped = q.map(crate::math::wrap_angle);
+                (wrapped, (r - goal).norm(), c.exact)
+            })
+            .collect()
+    }
+
+    /// Wrists with `h6 = +-h4 _|_ h5` mirror the second solution; it
+    /// reproduces the goal rotation, and equals the one the subproblems
+    /// find (the `Solve` path on the same wrist), on random wrists and
+    /// goals. Other wrists are not mirrored.
+    #[test]
+    fn the_mirrored_wrist_solution_matches_the_subproblems() {
+        let mut rng = ChaCha8Rng::seed_from_u64(23);
+        for _ in 0..200 {
+            let h4 = unit(&mut rng);
+            let h5 = h4.cross(&unit(&mut rng)).normalize();
+            let h6 = if rng.gen::<bool>() { h4 } else { -h4 };
+            let wrist = WristOrientation::new(&h4, &h5, &h6);
+            assert_eq!(wrist.second, WristSecond::Mirror);
+            let solved = WristOrientation {
+                second: WristSecond::Solve,
+                ..wrist
+            };
+            for _ in 0..20 {
+                let t = [0; 3].map(|_| rng.gen_range(-3.0..3.0));
+                let goal = rotation(&h4, t[0]) * rotation(&h5, t[1]) * rotation(&h6, t[2]);
+                let mirrored = solutions(&wrist, &goal);
+                let reference = solutions(&solved, &goal);
+                assert_eq!(mirrored.len(), reference.len());
+                assert_eq!(mirrored.len(), 2);
+                for ((a, error, exact), (b, _, _)) in mirrored.iter().zip(&reference) {
+                    // Joints 4 and 6 are ill-conditioned as sin t5 -> 0
+                    // (only their sum or difference is well defined at 0).
+                    let sine = a[1].sin().abs();
+                    assert!(*exact && *error < 1e-13 + 1e-14 / sine, "{error:e} {a:?}");
+                    if sine < 0.01 {
+                        continue;
+                    }
+                    for (x, y) in a.iter().zip(b) {
+                        let gap = crate::math::wrap_angle(x - y).abs();
+                        assert!(gap < 1e-11, "{a:?} vs {b:?}");
+                    }
+                }
+            }
+        }
+        // A wrist whose first and last axes differ is solved twice.
+        let wrist = WristOrientation::new(&Vector3::x(), &Vector3::y(), &Vector3::z());
+        assert_eq!(wrist.second, WristSecond::Solve);
+        let tilted = Vector3::new(1.0, 0.0, 1e-9).normalize();
+        let wrist = WristOrientation::new(&Vector3::x(), &Vector3::y(), &tilted);
+        assert_eq!(wrist.second, WristSecond::Solve);
     }
 }
