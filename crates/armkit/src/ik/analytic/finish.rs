@@ -323,57 +323,52 @@ impl Finisher {
         let mut count = 0;
         'candidates: for candidate in candidates {
             // Each joint's value wrapped into its range's form (angles into
-            // (-pi, pi]) and its representatives within the range: a
+            // (-pi, pi]) and its first representative within the range: a
             // candidate with none is dropped before anything else.
-            let q = model_order(candidate, dof, reverse, fixed);
-            let mut wrapped = [0.0; MAX_JOINTS];
-            let mut first = [0.0; MAX_JOINTS];
-            let mut counts = [1usize; MAX_JOINTS];
+            let mut q = model_order(candidate, dof, reverse, fixed);
+            let mut values = q;
+            let mut distance2 = 0.0;
             let mut single = true;
-            let mut s = AnalyticSolution {
-                values: [0.0; MAX_JOINTS],
-                dof,
-                fit: Fit::Approximate,
-                position_error: f64::NAN,
-                orientation_error: f64::NAN,
-                distance2: 0.0,
-            };
             for j in 0..dof {
                 let r = representatives(ranges[j], q[j], current[j]);
                 if r.count == 0 {
                     continue 'candidates;
                 }
-                wrapped[j] = r.wrapped;
-                first[j] = r.k;
-                counts[j] = r.count;
+                q[j] = r.wrapped;
+                values[j] = r.first;
                 single &= r.count == 1;
-                s.values[j] = r.first;
-                s.distance2 += (r.first - current[j]) * (r.first - current[j]);
+                distance2 += (r.first - current[j]) * (r.first - current[j]);
             }
             for a in &self.accepted[..count] {
-                if same_configuration(ranges, a, &wrapped) {
+                if same_configuration(ranges, a, &q) {
                     continue 'candidates;
                 }
             }
             if count < MAX_CANDIDATES {
-                self.accepted[count] = wrapped;
+                self.accepted[count] = q;
                 count += 1;
             }
-            match self.options.verification {
+            let (fit, position_error, orientation_error) = match self.options.verification {
                 Verification::ForwardKinematics => {
                     let (position_error, orientation_error) =
-                        self.check.errors(model, target, &wrapped[..dof])?;
-                    s.fit = fit_of(
-                        position_error <= EXACT_TOLERANCE && orientation_error <= EXACT_TOLERANCE,
-                    );
-                    s.position_error = position_error;
-                    s.orientation_error = orientation_error;
+                        self.check.errors(model, target, &q[..dof])?;
+                    let exact =
+                        position_error <= EXACT_TOLERANCE && orientation_error <= EXACT_TOLERANCE;
+                    (fit_of(exact), position_error, orientation_error)
                 }
-                Verification::Subproblems => s.fit = fit_of(candidate.exact),
-            }
-            self.solutions.push(s);
+                Verification::Subproblems => (fit_of(candidate.exact), f64::NAN, f64::NAN),
+            };
+            let solution = AnalyticSolution {
+                values,
+                dof,
+                fit,
+                position_error,
+                orientation_error,
+                distance2,
+            };
+            self.solutions.push(solution);
             if !single {
-                self.expand(s, &wrapped, &first, &counts, current);
+                self.expand(solution, &q, ranges, current);
             }
         }
         self.sort();
@@ -381,19 +376,25 @@ impl Finisher {
     }
 
     /// Pushes the other representative combinations of `solution` (its
-    /// first already pushed): joint `j`'s are `wrapped[j] + 2 pi (first[j]
-    /// + i)` for `i` below `counts[j]` (see [`representatives`]), in
-    /// odometer order, joint 1 fastest.
+    /// first already pushed; `wrapped` its joint values wrapped as the
+    /// ranges read them): joint `j`'s are `wrapped[j] + 2 pi (k_j + i)` for
+    /// `i` below its count (see [`representatives`]), in odometer order,
+    /// joint 1 fastest.
     fn expand(
         &mut self,
         solution: AnalyticSolution,
         wrapped: &[f64; MAX_JOINTS],
-        first: &[f64; MAX_JOINTS],
-        counts: &[usize; MAX_JOINTS],
+        ranges: &[Range],
         current: &[f64],
     ) {
         use std::f64::consts::TAU;
         let dof = current.len();
+        let mut first = [0.0; MAX_JOINTS];
+        let mut counts = [1usize; MAX_JOINTS];
+        for (j, (range, c)) in ranges.iter().zip(current).enumerate() {
+            let r = representatives(*range, wrapped[j], *c);
+            (first[j], counts[j]) = (r.k, r.count);
+        }
         let mut s = solution;
         let mut index = [0usize; MAX_JOINTS];
         loop {
@@ -474,8 +475,9 @@ struct Choices {
 
 /// The representatives of a joint with `range` to return for `value` (as
 /// solved: a rotation joint's angle is first wrapped into (-pi, pi]),
-/// given the joint's `current` value.
-#[inline]
+/// given the joint's `current` value. Inline: it runs for every joint of
+/// every candidate (the rarer cases are out of line).
+#[inline(always)]
 fn representatives(range: Range, value: f64, current: f64) -> Choices {
     use std::f64::consts::TAU;
     let one = |wrapped: f64, k: f64, first: f64, inside: bool| Choices {
@@ -484,8 +486,6 @@ fn representatives(range: Range, value: f64, current: f64) -> Choices {
         k,
         count: usize::from(inside),
     };
-    // The multiple of 2 pi taking `wrapped` nearest `current`.
-    let nearest = |wrapped: f64| nearest_integer((current - wrapped) * (1.0 / TAU));
     match range {
         Range::Narrow { lower, upper } => {
             // The only representative inside, if any.
@@ -504,42 +504,67 @@ fn representatives(range: Range, value: f64, current: f64) -> Choices {
         Range::FreeSlide => one(value, 0.0, value, true),
         Range::Nearest => {
             let w = wrap(value);
-            let k = nearest(w);
+            let k = nearest_turns(w, current);
             one(w, k, w + TAU * k, true)
         }
         Range::NearestInside { lower, upper } => {
-            // The one nearest the current value if inside, else the one
-            // just inside the bound it passed (if inside the other).
+            // The one nearest the current value if inside, else (out of
+            // line) the one just inside the bound it passed.
             let w = wrap(value);
-            let k = nearest(w);
+            let k = nearest_turns(w, current);
             let v = w + TAU * k;
             if v >= lower && v <= upper {
-                return one(w, k, v, true);
-            }
-            let k = if v < lower {
-                ceil((lower - w) / TAU)
+                one(w, k, v, true)
             } else {
-                floor((upper - w) / TAU)
-            };
-            let v = w + TAU * k;
-            one(w, k, v, v >= lower && v <= upper)
-        }
-        Range::Every { lower, upper } => {
-            let w = wrap(value);
-            let first = ceil((lower - w) / TAU);
-            let last = floor((upper - w) / TAU);
-            let count = if last >= first {
-                ((last - first) as usize).saturating_add(1)
-            } else {
-                0
-            };
-            Choices {
-                wrapped: w,
-                first: w + TAU * first,
-                k: first,
-                count: count.min(MAX_REPRESENTATIVES),
+                inside_bound(w, v, lower, upper)
             }
         }
+        Range::Every { lower, upper } => every(wrap(value), lower, upper),
+    }
+}
+
+/// The multiple of 2 pi taking `wrapped` nearest `current`.
+#[inline(always)]
+fn nearest_turns(wrapped: f64, current: f64) -> f64 {
+    nearest_integer((current - wrapped) * (1.0 / std::f64::consts::TAU))
+}
+
+/// [`Range::NearestInside`] when the representative `v` nearest the
+/// current value is outside `[lower, upper]`: the one just inside the
+/// bound it passed, if it is inside the other.
+#[inline(never)]
+fn inside_bound(w: f64, v: f64, lower: f64, upper: f64) -> Choices {
+    use std::f64::consts::TAU;
+    let k = if v < lower {
+        ceil((lower - w) / TAU)
+    } else {
+        floor((upper - w) / TAU)
+    };
+    let v = w + TAU * k;
+    Choices {
+        wrapped: w,
+        first: v,
+        k,
+        count: usize::from(v >= lower && v <= upper),
+    }
+}
+
+/// [`Range::Every`]: every representative of `w` in `[lower, upper]`.
+#[inline(always)]
+fn every(w: f64, lower: f64, upper: f64) -> Choices {
+    use std::f64::consts::TAU;
+    let first = ceil((lower - w) / TAU);
+    let last = floor((upper - w) / TAU);
+    let count = if last >= first {
+        ((last - first) as usize).saturating_add(1)
+    } else {
+        0
+    };
+    Choices {
+        wrapped: w,
+        first: w + TAU * first,
+        k: first,
+        count: count.min(MAX_REPRESENTATIVES),
     }
 }
 
