@@ -384,7 +384,7 @@ impl Sinusoid {
     }
 
     /// The angles with `h . R(k, t) p = d` (see [`subproblem4`]).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn solve(&self, d: f64) -> Turns {
         let c = d - self.offset;
         let scale = self.size.max(d.abs()).max(f64::MIN_POSITIVE);
@@ -531,7 +531,7 @@ impl Spoke {
 }
 
 /// Subproblem 1 as a [`Turn`] (see [`subproblem1`]).
-#[inline]
+#[inline(always)]
 pub(crate) fn subproblem1_turn(
     k: &Vector3<f64>,
     p1: &Vector3<f64>,

@@ -233,17 +233,22 @@ fn position(
 /// `h5 . v = h5 . u` and `(h6 x h5) . v = p . (h5 x u)` with `u = R4' g5`.
 ///
 /// When `h6 = +-h4` and `h5 . h4 = 0` (PUMA, Stanford, KUKA, the iiwa's
-/// wrist; [`WristSecond::Mirror`]), joint 5's second root gives its joints
-/// 4 and 6 without a subproblem: with `S = R(h4, pi) = R(h6, pi)`,
-/// `S R(h5, t) S = R(-h5, t) = R(h5, -t)` (a half turn about `h4` reverses
-/// `h5`), so `R4(t4 + pi) R5(-t5) R6(t6 + pi) = R4 S R5(-t5) S R6 = R4 R5 R6`.
-/// Joint 5's sinusoid `h4 . R5 h6 = (h4 . h6) cos t5 + h4 . (h5 x h6) sin t5`
-/// has phase 0 or pi there, so its two roots are `phi +- s`, i.e. `t5` and
-/// `-t5` modulo 2 pi: the second wrist solution is `(t4 + pi, -t5, t6 + pi)`.
+/// wrist; [`WristForm::Euler`]) the wrist is a Z-Y-Z Euler wrist in the
+/// frame `F = (h5 x h6, h5, h6)`: `R(h4, t) = F Rz(s t) F'` (`s = h4 . h6`),
+/// `R5 = F Ry(t5) F'`, `R6 = F Rz(t6) F'`, so `Rz(s t4) Ry(t5) Rz(t6) =
+/// M = F' goal F`, whose third column is `F' (goal h6)` and second
+/// `F' (goal h5)`: `t5 = atan2(hypot(M13, M23), M33)`, `s t4 =
+/// atan2(M23, M13)`, and `t6` from the second column turned back by joints
+/// 4 and 5 (`Rz(t6) e2 = Ry(-t5) Rz(-s t4) M e2`, consistent with the
+/// computed `t4`, so accurate near `t5 = 0`); three arctangents, no
+/// subproblem. The second solution mirrors the first: with
+/// `S = R(h4, pi) = R(h6, pi)`, `S R(h5, t) S = R(h5, -t)` (a half turn
+/// about `h4` reverses `h5`), so `R4(t4 + pi) R5(-t5) R6(t6 + pi) =
+/// R4 S R5(-t5) S R6 = R4 R5 R6`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct WristOrientation {
     h: [Vector3<f64>; 3],
-    second: WristSecond,
+    form: WristForm,
     joint5: Sinusoid,
     /// `h6` turned by joint 5, and `h4 .` its three parts.
     h6_by_5: Spoke,
@@ -254,22 +259,28 @@ pub(crate) struct WristOrientation {
     h5_radius: f64,
 }
 
-/// How a wrist's second joint-5 root gets its joints 4 and 6.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum WristSecond {
-    /// `(t4 + pi, -t5, t6 + pi)` from the first (`h6 = +-h4`, `h5 . h4 = 0`
-    /// to [`MIRROR_TOLERANCE`]; see [`WristOrientation`]).
-    Mirror,
-    /// By the two subproblems 1 again (any other wrist).
-    Solve,
+/// How a wrist's joints are found (see [`WristOrientation`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum WristForm {
+    /// `h6 = +-h4`, `h5 . h4 = 0` (unit axes, to [`EULER_TOLERANCE`]):
+    /// Z-Y-Z Euler angles in the frame `(h5 x h6, h5, h6)`, the second
+    /// solution mirrored from the first.
+    Euler {
+        /// `h5 x h6`, the frame's first axis.
+        first_axis: Vector3<f64>,
+        /// `h4 . h6 = +-1`.
+        sign: f64,
+    },
+    /// Subproblem 4 for joint 5, two subproblems 1 per root (any other wrist).
+    Subproblems,
 }
 
-/// Largest `|h4 x h6|` and `|h4 . h5|` (unit axes) for which a wrist's
-/// second solution is mirrored from the first ([`WristSecond::Mirror`]):
-/// the mirrored joints are then off by at most about this angle (rad), two
-/// orders below [`super::EXACT_TOLERANCE`]. Axes read from DH tables or
-/// URDF files with right angles meet it to round-off (1e-16).
-pub(crate) const MIRROR_TOLERANCE: f64 = 1e-12;
+/// Largest `|h4 x h6|`, `|h4 . h5|` and departure of the axes' squared
+/// lengths from 1 for which a wrist is solved as an Euler wrist
+/// ([`WristForm::Euler`]): its joints are then off by at most about this
+/// angle (rad), two orders below [`super::EXACT_TOLERANCE`]. Axes read from
+/// DH tables or URDF files with right angles meet it to round-off (1e-16).
+pub(crate) const EULER_TOLERANCE: f64 = 1e-12;
 
 /// Subproblem 1's exactness test (see [`super::subproblems::subproblem1`]):
 /// equal heights along the axis and equal distances from it, to the
@@ -285,16 +296,21 @@ impl WristOrientation {
         let h6_by_5 = Spoke::new(h5, h6);
         let [par, perp, cross] = h6_by_5.parts();
         let h6_h5 = h6.dot(h5);
-        let mirrored = h4.cross(h6).norm() <= MIRROR_TOLERANCE
-            && h4.dot(h5).abs() <= MIRROR_TOLERANCE
-            && (h4.norm_squared() - 1.0).abs() <= MIRROR_TOLERANCE
-            && (h6.norm_squared() - 1.0).abs() <= MIRROR_TOLERANCE;
+        let unit = |v: &Vector3<f64>| (v.norm_squared() - 1.0).abs() <= EULER_TOLERANCE;
+        let euler = h4.cross(h6).norm() <= EULER_TOLERANCE
+            && h4.dot(h5).abs() <= EULER_TOLERANCE
+            && unit(h4)
+            && unit(h5)
+            && unit(h6);
         WristOrientation {
             h: [*h4, *h5, *h6],
-            second: if mirrored {
-                WristSecond::Mirror
+            form: if euler {
+                WristForm::Euler {
+                    first_axis: h5.cross(h6),
+                    sign: h4.dot(h6).signum(),
+                }
             } else {
-                WristSecond::Solve
+                WristForm::Subproblems
             },
             joint5: Sinusoid::new(h4, h5, h6),
             h6_by_5,
@@ -317,6 +333,10 @@ impl WristOrientation {
         exact: bool,
         out: &mut Candidates,
     ) {
+        if let WristForm::Euler { first_axis, sign } = &self.form {
+            self.solve_euler(first_axis, *sign, goal_h6, goal_h5, prefix, exact, out);
+            return;
+        }
         let [h4, h5, _] = &self.h;
         let (g6, g5) = (goal_h6, goal_h5);
         let height6 = h4.dot(g6);
@@ -362,32 +382,64 @@ impl WristOrientation {
             (t4.angle, atan2(y6, x6), e4 && e6)
         };
         let exact = exact && t5s.exact;
-        match (self.second, t5s.as_slice()) {
-            (WristSecond::Mirror, [first, second]) => {
-                let (t4, t6, e) = joints_4_6(first);
-                q[n] = t4;
-                q[n + 1] = first.angle;
-                q[n + 2] = t6;
-                out.push(&q[..n + 3], exact && e);
-                // Equal roots (a tangent) give one solution, as the
-                // subproblems would (their duplicate is merged).
-                if second.angle != first.angle {
-                    use std::f64::consts::PI;
-                    q[n] = t4 + PI;
-                    q[n + 1] = second.angle;
-                    q[n + 2] = t6 + PI;
-                    out.push(&q[..n + 3], exact && e);
-                }
-            }
-            (_, turns) => {
-                for t5 in turns {
-                    let (t4, t6, e) = joints_4_6(t5);
-                    q[n] = t4;
-                    q[n + 1] = t5.angle;
-                    q[n + 2] = t6;
-                    out.push(&q[..n + 3], exact && e);
-                }
-            }
+        for t5 in t5s.as_slice() {
+            let (t4, t6, e) = joints_4_6(t5);
+            q[n] = t4;
+            q[n + 1] = t5.angle;
+            q[n + 2] = t6;
+            out.push(&q[..n + 3], exact && e);
+        }
+    }
+
+    /// [`WristOrientation::solve_directions`] for an Euler wrist (see
+    /// [`WristOrientation`]): `M`'s third and second columns are `g6` and
+    /// `g5` in the frame `(first_axis, h5, h6)`. Exact when `g6` and `g5`
+    /// are unit and perpendicular (as `h6` and `h5`) to
+    /// [`RELATIVE_TOLERANCE`], as the subproblems' tests would find.
+    #[allow(clippy::too_many_arguments)]
+    #[inline]
+    fn solve_euler(
+        &self,
+        first_axis: &Vector3<f64>,
+        sign: f64,
+        g6: &Vector3<f64>,
+        g5: &Vector3<f64>,
+        prefix: &[f64],
+        exact: bool,
+        out: &mut Candidates,
+    ) {
+        let [_, h5, h6] = &self.h;
+        let (m13, m23, m33) = (first_axis.dot(g6), h5.dot(g6), h6.dot(g6));
+        let (m12, m22, m32) = (first_axis.dot(g5), h5.dot(g5), h6.dot(g5));
+        let exact = exact
+            && (g6.norm_squared() - 1.0).abs() <= 2.0 * RELATIVE_TOLERANCE
+            && (g5.norm_squared() - 1.0).abs() <= 2.0 * RELATIVE_TOLERANCE
+            && g6.dot(g5).abs() <= RELATIVE_TOLERANCE;
+        // Joint 5 in [0, pi] (sin t5 >= 0), joint 4 (times `sign`).
+        let sine5 = (m13 * m13 + m23 * m23).sqrt();
+        let t5 = atan2(sine5, m33);
+        let t4 = Turn::of_direction(m23, m13);
+        // Joint 6: Rz(t6) e2 = (-sin t6, cos t6, 0) = Ry(-t5) Rz(-t4) M e2.
+        let inverse = 1.0 / (sine5 * sine5 + m33 * m33).sqrt().max(f64::MIN_POSITIVE);
+        let (s5, c5) = (sine5 * inverse, m33 * inverse);
+        let v1 = t4.cos * m12 + t4.sin * m22;
+        let v2 = t4.cos * m22 - t4.sin * m12;
+        let t6 = atan2(s5 * m32 - c5 * v1, v2);
+        let n = prefix.len();
+        let mut q = [0.0; MAX_JOINTS];
+        q[..n].copy_from_slice(prefix);
+        q[n] = sign * t4.angle;
+        q[n + 1] = t5;
+        q[n + 2] = t6;
+        out.push(&q[..n + 3], exact);
+        // The mirrored solution; at t5 = 0 it is the same configuration
+        // family (one solution, as the subproblems give).
+        if t5 != 0.0 {
+            use std::f64::consts::PI;
+            q[n] = sign * t4.angle + PI;
+            q[n + 1] = -t5;
+            q[n + 2] = t6 + PI;
+            out.push(&q[..n + 3], exact);
         }
     }
 }
@@ -420,21 +472,22 @@ mod tests {
             .collect()
     }
 
-    /// Wrists with `h6 = +-h4 _|_ h5` mirror the second solution; it
-    /// reproduces the goal rotation, and equals the one the subproblems
-    /// find (the `Solve` path on the same wrist), on random wrists and
-    /// goals. Other wrists are not mirrored.
+    /// Wrists with `h6 = +-h4 _|_ h5` are solved as Euler wrists (the
+    /// second solution mirrored); both solutions reproduce the goal
+    /// rotation and equal the ones the subproblems find (the `Subproblems`
+    /// form on the same wrist), on random wrists and goals. Other wrists
+    /// are solved by the subproblems.
     #[test]
-    fn the_mirrored_wrist_solution_matches_the_subproblems() {
+    fn the_euler_wrist_matches_the_subproblems() {
         let mut rng = ChaCha8Rng::seed_from_u64(23);
         for _ in 0..200 {
             let h4 = unit(&mut rng);
             let h5 = h4.cross(&unit(&mut rng)).normalize();
             let h6 = if rng.gen::<bool>() { h4 } else { -h4 };
             let wrist = WristOrientation::new(&h4, &h5, &h6);
-            assert_eq!(wrist.second, WristSecond::Mirror);
+            assert!(matches!(wrist.form, WristForm::Euler { .. }));
             let solved = WristOrientation {
-                second: WristSecond::Solve,
+                form: WristForm::Subproblems,
                 ..wrist
             };
             for _ in 0..20 {
@@ -444,7 +497,12 @@ mod tests {
                 let reference = solutions(&solved, &goal);
                 assert_eq!(mirrored.len(), reference.len());
                 assert_eq!(mirrored.len(), 2);
-                for ((a, error, exact), (b, _, _)) in mirrored.iter().zip(&reference) {
+                let same = |a: &[f64; 3], b: &[f64; 3]| {
+                    a.iter()
+                        .zip(b)
+                        .all(|(x, y)| crate::math::wrap_angle(x - y).abs() < 1e-11)
+                };
+                for (a, error, exact) in &mirrored {
                     // Joints 4 and 6 are ill-conditioned as sin t5 -> 0
                     // (only their sum or difference is well defined at 0).
                     let sine = a[1].sin().abs();
@@ -452,18 +510,18 @@ mod tests {
                     if sine < 0.01 {
                         continue;
                     }
-                    for (x, y) in a.iter().zip(b) {
-                        let gap = crate::math::wrap_angle(x - y).abs();
-                        assert!(gap < 1e-11, "{a:?} vs {b:?}");
-                    }
+                    assert!(
+                        reference.iter().any(|(b, _, _)| same(a, b)),
+                        "{a:?} vs {reference:?}"
+                    );
                 }
             }
         }
         // A wrist whose first and last axes differ is solved twice.
         let wrist = WristOrientation::new(&Vector3::x(), &Vector3::y(), &Vector3::z());
-        assert_eq!(wrist.second, WristSecond::Solve);
+        assert_eq!(wrist.form, WristForm::Subproblems);
         let tilted = Vector3::new(1.0, 0.0, 1e-9).normalize();
         let wrist = WristOrientation::new(&Vector3::x(), &Vector3::y(), &tilted);
-        assert_eq!(wrist.second, WristSecond::Solve);
+        assert_eq!(wrist.form, WristForm::Subproblems);
     }
 }
