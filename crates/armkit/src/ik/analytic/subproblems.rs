@@ -255,7 +255,8 @@ impl Turn {
         Turn { angle, sin, cos }
     }
 
-    const ZERO: Turn = Turn {
+    /// The zero turn.
+    pub(crate) const ZERO: Turn = Turn {
         angle: 0.0,
         sin: 0.0,
         cos: 1.0,

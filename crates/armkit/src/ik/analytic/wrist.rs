@@ -7,8 +7,8 @@
 use super::chain::{Candidates, Chain, MAX_JOINTS};
 use super::class::Positioning;
 use super::subproblems::{
-    atan2, rotation, subproblem1, subproblem1_turn, subproblem2, subproblem3, subproblem4,
-    Distance, Sinusoid, SinusoidFamily, Spoke, Turn, RELATIVE_TOLERANCE,
+    atan2, subproblem1_turn, subproblem2_turns, Distance, Sinusoid, SinusoidFamily, Spoke, Turn,
+    RELATIVE_TOLERANCE,
 };
 use crate::math::{Pose, Vector3};
 
@@ -77,26 +77,42 @@ impl SphericalWrist {
             self.parallel_second_third(&goal, &g6, &g5, out);
             return;
         }
-        let mut angles = [([0.0; 3], false); 16];
+        let (h, translation) = (&self.chain.h, &self.chain.translation);
+        if self.positioning == Positioning::General {
+            let mut angles = [([0.0; 3], false); 16];
+            let count = super::search::position(&self.chain, &self.wrist, &goal, &mut angles);
+            for (q, exact) in &angles[..count] {
+                let (mut v6, mut v5) = (g6, g5);
+                for i in 0..3 {
+                    if !translation[i] {
+                        let turn = Turn::of_angle(q[i]);
+                        v6 = turn.rotate_back(&h[i], &v6);
+                        v5 = turn.rotate_back(&h[i], &v5);
+                    }
+                }
+                self.orientation.solve_directions(&v6, &v5, q, *exact, out);
+            }
+            return;
+        }
+        let mut turns = [([Turn::ZERO; 3], false); 16];
         let count = position(
             &self.chain,
             self.positioning,
             &self.wrist,
             &self.shoulder,
             &goal,
-            &mut angles,
+            &mut turns,
         );
-        let (h, translation) = (&self.chain.h, &self.chain.translation);
-        for (q, exact) in &angles[..count] {
+        for (t, exact) in &turns[..count] {
             let (mut v6, mut v5) = (g6, g5);
             for i in 0..3 {
                 if !translation[i] {
-                    let turn = Turn::of_angle(q[i]);
-                    v6 = turn.rotate_back(&h[i], &v6);
-                    v5 = turn.rotate_back(&h[i], &v5);
+                    v6 = t[i].rotate_back(&h[i], &v6);
+                    v5 = t[i].rotate_back(&h[i], &v5);
                 }
             }
-            self.orientation.solve_directions(&v6, &v5, q, *exact, out);
+            let q = [t[0].angle, t[1].angle, t[2].angle];
+            self.orientation.solve_directions(&v6, &v5, &q, *exact, out);
         }
     }
 
@@ -133,59 +149,64 @@ impl SphericalWrist {
     }
 }
 
-/// Joints 1-3 putting the wrist point `w` at `goal`; returns how many.
+/// Joints 1-3 putting the wrist point `w` at `goal` in closed form (every
+/// positioning but `ParallelSecondThird`, solved in
+/// [`SphericalWrist::parallel_second_third`], and `General`, searched), as
+/// turns (a sliding joint's `angle` is its slide, m, with the zero turn's
+/// sine and cosine); returns how many.
 fn position(
     chain: &Chain,
     positioning: Positioning,
     w: &Vector3<f64>,
     o: &Vector3<f64>,
     goal: &Vector3<f64>,
-    out: &mut [([f64; 3], bool); 16],
+    out: &mut [([Turn; 3], bool); 16],
 ) -> usize {
-    if positioning == Positioning::General {
-        return super::search::position(chain, w, goal, out);
-    }
     let (c, h) = (&chain.c, &chain.h);
     let mut count = 0;
-    let mut push = |q: [f64; 3], exact: bool| {
+    let mut push = |q: [Turn; 3], exact: bool| {
         if count < out.len() {
             out[count] = (q, exact);
             count += 1;
         }
     };
+    // R(k, t) v for a turn t (`rotate_back` by the opposite turn).
+    let turned =
+        |t: &Turn, k: &Vector3<f64>, v: &Vector3<f64>| t.times_sign(-1.0).rotate_back(k, v);
     match positioning {
         Positioning::ParallelFirstSecond => {
             // h1 . W = h1 . E3 w (subproblem 4 for joint 3).
-            let t3s = subproblem4(&h[0], &h[2], &(w - c[2]), h[0].dot(&(goal - c[2])));
-            for &t3 in t3s.as_slice() {
-                let w3 = c[2] + rotation(&h[2], t3) * (w - c[2]);
-                let t2s = subproblem3(&h[1], &(w3 - c[1]), &(c[0] - c[1]), (goal - c[0]).norm());
-                for &t2 in t2s.as_slice() {
-                    let w2 = c[1] + rotation(&h[1], t2) * (w3 - c[1]);
-                    let (t1, e1) = subproblem1(&h[0], &(w2 - c[0]), &(goal - c[0]));
-                    push([t1, t2, t3], t3s.exact && t2s.exact && e1);
+            let t3s = Sinusoid::new(&h[0], &h[2], &(w - c[2])).solve(h[0].dot(&(goal - c[2])));
+            for t3 in t3s.as_slice() {
+                let w3 = c[2] + turned(t3, &h[2], &(w - c[2]));
+                let t2s =
+                    Distance::new(&h[1], &(w3 - c[1]), &(c[0] - c[1])).solve((goal - c[0]).norm());
+                for t2 in t2s.as_slice() {
+                    let w2 = c[1] + turned(t2, &h[1], &(w3 - c[1]));
+                    let (t1, e1) = subproblem1_turn(&h[0], &(w2 - c[0]), &(goal - c[0]));
+                    push([t1, *t2, *t3], t3s.exact && t2s.exact && e1);
                 }
             }
         }
         Positioning::IntersectingFirstSecond => {
             // Joints 1, 2 turn about lines through o: |E3 w - o| = |W - o|.
-            let t3s = subproblem3(&h[2], &(w - c[2]), &(o - c[2]), (goal - o).norm());
-            for &t3 in t3s.as_slice() {
-                let w3 = c[2] + rotation(&h[2], t3) * (w - c[2]);
-                let pairs = subproblem2(&-h[0], &(goal - o), &h[1], &(w3 - o));
-                for &(t1, t2) in pairs.as_slice() {
-                    push([t1, t2, t3], t3s.exact && pairs.exact);
+            let t3s = Distance::new(&h[2], &(w - c[2]), &(o - c[2])).solve((goal - o).norm());
+            for t3 in t3s.as_slice() {
+                let w3 = c[2] + turned(t3, &h[2], &(w - c[2]));
+                let pairs = subproblem2_turns(&-h[0], &(goal - o), &h[1], &(w3 - o));
+                for (t1, t2) in pairs.as_slice() {
+                    push([*t1, *t2, *t3], t3s.exact && pairs.exact);
                 }
             }
         }
         Positioning::IntersectingSecondThird => {
             // |W - E1 o| = |w - o| (subproblem 3 for joint 1).
-            let t1s = subproblem3(&h[0], &(o - c[0]), &(goal - c[0]), (w - o).norm());
-            for &t1 in t1s.as_slice() {
-                let goal1 = c[0] + rotation(&h[0], t1).transpose() * (goal - c[0]);
-                let pairs = subproblem2(&-h[1], &(goal1 - o), &h[2], &(w - o));
-                for &(t2, t3) in pairs.as_slice() {
-                    push([t1, t2, t3], t1s.exact && pairs.exact);
+            let t1s = Distance::new(&h[0], &(o - c[0]), &(goal - c[0])).solve((w - o).norm());
+            for t1 in t1s.as_slice() {
+                let goal1 = c[0] + t1.rotate_back(&h[0], &(goal - c[0]));
+                let pairs = subproblem2_turns(&-h[1], &(goal1 - o), &h[2], &(w - o));
+                for (t2, t3) in pairs.as_slice() {
+                    push([*t1, *t2, *t3], t1s.exact && pairs.exact);
                 }
             }
         }
@@ -205,9 +226,13 @@ fn position(
             };
             for &d3 in slides {
                 let w3 = w + h[2] * d3;
-                let pairs = subproblem2(&-h[0], &(goal - o), &h[1], &(w3 - o));
-                for &(t1, t2) in pairs.as_slice() {
-                    push([t1, t2, d3], exact && pairs.exact);
+                let pairs = subproblem2_turns(&-h[0], &(goal - o), &h[1], &(w3 - o));
+                let slide = Turn {
+                    angle: d3,
+                    ..Turn::ZERO
+                };
+                for (t1, t2) in pairs.as_slice() {
+                    push([*t1, *t2, slide], exact && pairs.exact);
                 }
             }
         }
