@@ -272,10 +272,11 @@ pub(crate) struct Finisher {
     options: AnalyticOptions,
     ranges: [Range; MAX_JOINTS],
     solutions: Vec<AnalyticSolution>,
-    /// `(distance2, index in solutions)` of the current solve, sorted to
-    /// reorder `solutions` in place (moving the small keys, not the
-    /// solutions, while sorting).
-    order: Vec<(f64, usize)>,
+    /// `(distance2 bits, index in solutions)` of the current solve, sorted
+    /// to reorder `solutions` in place (moving the small keys, not the
+    /// solutions, while sorting). The distances are sums of squares (`+0`
+    /// or more, or NaN), whose bit patterns order as their values.
+    order: Vec<(u64, usize)>,
     /// Distinct candidates of the current solve (model order, angles in (-pi, pi]).
     accepted: [[f64; MAX_JOINTS]; MAX_CANDIDATES],
 }
@@ -432,9 +433,10 @@ impl Finisher {
             self.solutions
                 .iter()
                 .enumerate()
-                .map(|(i, s)| (s.distance2, i)),
+                .map(|(i, s)| (s.distance2.to_bits(), i)),
         );
-        self.order.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
+        // Ties broken by the order found: deterministic.
+        self.order.sort_unstable();
         // Position p takes the solution at order[p].1; a visited position
         // is marked by usize::MAX.
         const DONE: usize = usize::MAX;
