@@ -1,7 +1,8 @@
-//! From candidates to solutions: joint order restored, duplicates merged,
-//! each candidate checked by forward kinematics, angles wrapped into the
-//! limits (every representative, or the nearest), sorted by distance to the
-//! caller's configuration.
+//! From candidates to solutions: joint order restored, angles wrapped into
+//! the limits (every representative, or the nearest; a candidate with none
+//! inside is dropped first), duplicates merged, each remaining candidate
+//! checked by forward kinematics, sorted by distance to the caller's
+//! configuration.
 
 use super::chain::{Candidate, LineForwardKinematics, LineKinematics, MAX_CANDIDATES, MAX_JOINTS};
 use super::structure::ArmStructure;
@@ -525,10 +526,16 @@ fn representatives(range: Range, value: f64, current: f64) -> Choices {
     }
 }
 
-/// The multiple of 2 pi taking `wrapped` nearest `current`.
+/// The multiple of 2 pi taking `wrapped` nearest `current` (0 without a
+/// rounding when they are within pi).
 #[inline(always)]
 fn nearest_turns(wrapped: f64, current: f64) -> f64 {
-    nearest_integer((current - wrapped) * (1.0 / std::f64::consts::TAU))
+    let gap = current - wrapped;
+    if gap.abs() < std::f64::consts::PI {
+        0.0
+    } else {
+        nearest_integer(gap * (1.0 / std::f64::consts::TAU))
+    }
 }
 
 /// [`Range::NearestInside`] when the representative `v` nearest the
