@@ -146,6 +146,19 @@ const GENERAL: [([f64; 3], [f64; 3]); 6] = [
     ([1.1, 0.1, 0.45], [0.85, -0.2, 0.5]),
 ];
 
+/// Lines of a spherical-wrist arm with a shoulder offset (KUKA KR-type:
+/// vertical axis 1, shoulder 2 offset 0.35 m forward and 0.1 m sideways,
+/// skew to axis 1, elbow 3 parallel to 2, wrist 4-5-6 meeting), as in the
+/// `ik_analytic` test of that name.
+const SHOULDER_OFFSET: [([f64; 3], [f64; 3]); 6] = [
+    ([0.0, 0.0, 0.0], [0.0, 0.0, 1.0]),
+    ([0.35, 0.1, 0.675], [0.0, 1.0, 0.0]),
+    ([0.35, 0.1, 1.825], [0.0, 1.0, 0.0]),
+    ([0.35, 0.0, 1.86], [1.0, 0.0, 0.0]),
+    ([1.55, 0.0, 1.86], [0.0, 1.0, 0.0]),
+    ([1.55, 0.0, 1.86], [1.0, 0.0, 0.0]),
+];
+
 /// A model from lines at zero configuration, revolute joints in [-pi, pi].
 fn lines_model(name: &str, lines: &[([f64; 3], [f64; 3]); 6]) -> Model {
     use armkit::math::{Pose, Vector3};
@@ -213,10 +226,17 @@ fn bench_analytic(c: &mut Criterion) {
         verification: Verification::Subproblems,
         ..nearest
     };
-    for name in ["ur5", "puma560"] {
+    for name in ["ur5", "puma560", "stanford"] {
         let model = armkit::robots::by_name(name).unwrap();
         let solver = AnalyticSolver::new(&model, unchecked).unwrap();
         bench_analytic_solver(c, &format!("{name}/distinct_unchecked"), &model, solver);
+    }
+    // A spherical wrist behind a skew shoulder offset (parallel 2-3).
+    let offset = lines_model("shoulder_offset", &SHOULDER_OFFSET);
+    for (label, options) in [("distinct", nearest), ("distinct_unchecked", unchecked)] {
+        let solver = AnalyticSolver::new(&offset, options).unwrap();
+        assert_eq!(solver.class().as_str(), "spherical_wrist_parallel_2_3");
+        bench_analytic_solver(c, &format!("shoulder_offset/{label}"), &offset, solver);
     }
     let iiwa = ideal_iiwa14();
     let solver =

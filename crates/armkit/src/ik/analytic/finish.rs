@@ -1,7 +1,8 @@
-//! From candidates to solutions: joint order restored, duplicates merged,
-//! each candidate checked by forward kinematics, angles wrapped into the
-//! limits (every representative, or the nearest), sorted by distance to the
-//! caller's configuration.
+//! From candidates to solutions: joint order restored, angles wrapped into
+//! the limits (every representative, or the nearest; a candidate with none
+//! inside is dropped first), duplicates merged, each remaining candidate
+//! checked by forward kinematics, sorted by distance to the caller's
+//! configuration.
 
 use super::chain::{Candidate, LineForwardKinematics, LineKinematics, MAX_CANDIDATES, MAX_JOINTS};
 use super::structure::ArmStructure;
@@ -272,10 +273,13 @@ pub(crate) struct Finisher {
     options: AnalyticOptions,
     ranges: [Range; MAX_JOINTS],
     solutions: Vec<AnalyticSolution>,
+    /// `(distance2 bits, index in solutions)` of the current solve, sorted
+    /// to reorder `solutions` in place (moving the small keys, not the
+    /// solutions, while sorting). The distances are sums of squares (`+0`
+    /// or more, or NaN), whose bit patterns order as their values.
+    order: Vec<(u64, usize)>,
     /// Distinct candidates of the current solve (model order, angles in (-pi, pi]).
     accepted: [[f64; MAX_JOINTS]; MAX_CANDIDATES],
-    /// Per-joint representatives of the current candidate.
-    choices: [[f64; MAX_REPRESENTATIVES]; MAX_JOINTS],
 }
 
 impl Finisher {
@@ -296,8 +300,8 @@ impl Finisher {
             options,
             ranges,
             solutions: Vec::with_capacity(capacity),
+            order: Vec::with_capacity(capacity),
             accepted: [[0.0; MAX_JOINTS]; MAX_CANDIDATES],
-            choices: [[0.0; MAX_REPRESENTATIVES]; MAX_JOINTS],
         }
     }
 
@@ -317,23 +321,30 @@ impl Finisher {
         let dof = model.dof();
         let all_ranges = self.ranges;
         let ranges = &all_ranges[..dof];
+        let current = &current[..dof];
         let mut count = 0;
-        for candidate in candidates {
+        'candidates: for candidate in candidates {
+            // Each joint's value wrapped into its range's form (angles into
+            // (-pi, pi]) and its first representative within the range: a
+            // candidate with none is dropped before anything else.
             let mut q = model_order(candidate, dof, reverse, fixed);
-            for (value, range) in q.iter_mut().zip(ranges) {
-                if range.is_rotation() {
-                    *value = wrap(*value);
+            let mut values = q;
+            let mut distance2 = 0.0;
+            let mut single = true;
+            for j in 0..dof {
+                let r = representatives(ranges[j], q[j], current[j]);
+                if r.count == 0 {
+                    continue 'candidates;
                 }
+                q[j] = r.wrapped;
+                values[j] = r.first;
+                single &= r.count == 1;
+                distance2 += (r.first - current[j]) * (r.first - current[j]);
             }
-            let mut duplicate = false;
             for a in &self.accepted[..count] {
                 if same_configuration(ranges, a, &q) {
-                    duplicate = true;
-                    break;
+                    continue 'candidates;
                 }
-            }
-            if duplicate {
-                continue;
             }
             if count < MAX_CANDIDATES {
                 self.accepted[count] = q;
@@ -350,56 +361,45 @@ impl Finisher {
                 Verification::Subproblems => (fit_of(candidate.exact), f64::NAN, f64::NAN),
             };
             let solution = AnalyticSolution {
-                values: q,
+                values,
                 dof,
                 fit,
                 position_error,
                 orientation_error,
-                distance2: 0.0,
+                distance2,
             };
-            self.expand(solution, current);
+            self.solutions.push(solution);
+            if !single {
+                self.expand(solution, &q, ranges, current);
+            }
         }
-        sort_by_distance(&mut self.solutions);
+        self.sort();
         Ok(&self.solutions)
     }
 
-    /// Pushes every allowed representative combination of `solution`.
-    fn expand(&mut self, solution: AnalyticSolution, current: &[f64]) {
-        let dof = solution.dof;
-        let mut counts = [0usize; MAX_JOINTS];
-        let mut combinations = 1;
-        for j in 0..dof {
-            counts[j] = representatives(
-                self.ranges[j],
-                solution.values[j],
-                current[j],
-                &mut self.choices[j],
-            );
-            combinations *= counts[j];
+    /// Pushes the other representative combinations of `solution` (its
+    /// first already pushed; `wrapped` its joint values wrapped as the
+    /// ranges read them): joint `j`'s are `wrapped[j] + 2 pi (k_j + i)` for
+    /// `i` below its count (see [`representatives`]), in odometer order,
+    /// joint 1 fastest.
+    fn expand(
+        &mut self,
+        solution: AnalyticSolution,
+        wrapped: &[f64; MAX_JOINTS],
+        ranges: &[Range],
+        current: &[f64],
+    ) {
+        use std::f64::consts::TAU;
+        let dof = current.len();
+        let mut first = [0.0; MAX_JOINTS];
+        let mut counts = [1usize; MAX_JOINTS];
+        for (j, (range, c)) in ranges.iter().zip(current).enumerate() {
+            let r = representatives(*range, wrapped[j], *c);
+            (first[j], counts[j]) = (r.k, r.count);
         }
         let mut s = solution;
-        if combinations == 1 {
-            let mut distance2 = 0.0;
-            for ((value, choices), c) in s.values.iter_mut().zip(&self.choices).zip(current) {
-                *value = choices[0];
-                distance2 += (*value - c) * (*value - c);
-            }
-            s.distance2 = distance2;
-            self.solutions.push(s);
-            return;
-        }
-        if combinations == 0 {
-            return;
-        }
-        // Odometer over the per-joint choices.
         let mut index = [0usize; MAX_JOINTS];
         loop {
-            s.distance2 = 0.0;
-            for j in 0..dof {
-                s.values[j] = self.choices[j][index[j]];
-                s.distance2 += (s.values[j] - current[j]) * (s.values[j] - current[j]);
-            }
-            self.solutions.push(s);
             let mut j = 0;
             loop {
                 if j == dof {
@@ -412,101 +412,196 @@ impl Finisher {
                 index[j] = 0;
                 j += 1;
             }
+            s.distance2 = 0.0;
+            for (j, c) in current.iter().enumerate() {
+                s.values[j] = wrapped[j] + TAU * (first[j] + index[j] as f64);
+                s.distance2 += (s.values[j] - c) * (s.values[j] - c);
+            }
+            self.solutions.push(s);
+        }
+    }
+
+    /// Sorts the solutions by their distances: the keys are sorted
+    /// (unstable: allocates nothing, the key buffer is sized at set-up),
+    /// then the solutions are moved once along the permutation's cycles.
+    fn sort(&mut self) {
+        let n = self.solutions.len();
+        if n < 2 {
+            return;
+        }
+        self.order.clear();
+        self.order.extend(
+            self.solutions
+                .iter()
+                .enumerate()
+                .map(|(i, s)| (s.distance2.to_bits(), i)),
+        );
+        // Ties broken by the order found: deterministic.
+        self.order.sort_unstable();
+        // Position p takes the solution at order[p].1; a visited position
+        // is marked by usize::MAX.
+        const DONE: usize = usize::MAX;
+        for start in 0..n {
+            let source = self.order[start].1;
+            if source == start || source == DONE {
+                continue;
+            }
+            let saved = self.solutions[start];
+            let mut p = start;
+            loop {
+                let source = self.order[p].1;
+                self.order[p].1 = DONE;
+                if source == start {
+                    self.solutions[p] = saved;
+                    break;
+                }
+                self.solutions[p] = self.solutions[source];
+                p = source;
+            }
         }
     }
 }
 
-/// The values of a joint with `range` to return for `value` (an angle in
-/// (-pi, pi] for a rotation joint); how many.
-#[inline]
-fn representatives(
-    range: Range,
-    value: f64,
-    current: f64,
-    out: &mut [f64; MAX_REPRESENTATIVES],
-) -> usize {
+/// A joint value's representatives within its range (see
+/// [`representatives`]).
+#[derive(Clone, Copy, Debug)]
+struct Choices {
+    /// The value as the range reads it (an angle wrapped into (-pi, pi]).
+    wrapped: f64,
+    /// The first representative, `wrapped + 2 pi k`.
+    first: f64,
+    /// `k`, an integer (0 for slides).
+    k: f64,
+    /// How many: `wrapped + 2 pi (k + i)` for `i` below it.
+    count: usize,
+}
+
+/// The representatives of a joint with `range` to return for `value` (as
+/// solved: a rotation joint's angle is first wrapped into (-pi, pi]),
+/// given the joint's `current` value. Inline: it runs for every joint of
+/// every candidate (the rarer cases are out of line).
+#[inline(always)]
+fn representatives(range: Range, value: f64, current: f64) -> Choices {
     use std::f64::consts::TAU;
-    let nearest = || value + TAU * round((current - value) / TAU);
+    let one = |wrapped: f64, k: f64, first: f64, inside: bool| Choices {
+        wrapped,
+        first,
+        k,
+        count: usize::from(inside),
+    };
     match range {
         Range::Narrow { lower, upper } => {
-            // The only representative inside, if any (`value` in (-pi, pi]).
-            out[0] = if value < lower {
-                value + TAU
-            } else if value > upper {
-                value - TAU
+            // The only representative inside, if any.
+            let w = wrap(value);
+            if w < lower {
+                let v = w + TAU;
+                one(w, 1.0, v, v >= lower && v <= upper)
+            } else if w > upper {
+                let v = w - TAU;
+                one(w, -1.0, v, v >= lower && v <= upper)
             } else {
-                value
-            };
-            usize::from(out[0] >= lower && out[0] <= upper)
+                one(w, 0.0, w, true)
+            }
         }
-        Range::Slide { lower, upper } => {
-            out[0] = value;
-            usize::from(value >= lower && value <= upper)
-        }
-        Range::FreeSlide => {
-            out[0] = value;
-            1
-        }
+        Range::Slide { lower, upper } => one(value, 0.0, value, value >= lower && value <= upper),
+        Range::FreeSlide => one(value, 0.0, value, true),
         Range::Nearest => {
-            out[0] = nearest();
-            1
+            let w = wrap(value);
+            let k = nearest_turns(w, current);
+            one(w, k, w + TAU * k, true)
         }
         Range::NearestInside { lower, upper } => {
-            nearest_inside(value, nearest(), lower, upper, out)
-        }
-        Range::Every { lower, upper } => {
-            let first = ceil((lower - value) / TAU);
-            let last = floor((upper - value) / TAU);
-            let mut count = 0;
-            let mut k = first;
-            while k <= last && count < MAX_REPRESENTATIVES {
-                out[count] = value + TAU * k;
-                count += 1;
-                k += 1.0;
+            // The one nearest the current value if inside, else (out of
+            // line) the one just inside the bound it passed.
+            let w = wrap(value);
+            let k = nearest_turns(w, current);
+            let v = w + TAU * k;
+            if v >= lower && v <= upper {
+                one(w, k, v, true)
+            } else {
+                inside_bound(w, v, lower, upper)
             }
-            count
         }
+        Range::Every { lower, upper } => every(wrap(value), lower, upper),
     }
 }
 
-/// The representative of `value` within `[lower, upper]` nearest
-/// `nearest` (the one nearest the current value): `nearest` itself when
-/// inside, else the one just inside the bound it passed; 0 or 1 written.
-fn nearest_inside(
-    value: f64,
-    nearest: f64,
-    lower: f64,
-    upper: f64,
-    out: &mut [f64; MAX_REPRESENTATIVES],
-) -> usize {
-    use std::f64::consts::TAU;
-    out[0] = if nearest < lower {
-        value + TAU * ceil((lower - value) / TAU)
-    } else if nearest > upper {
-        value + TAU * floor((upper - value) / TAU)
+/// The multiple of 2 pi taking `wrapped` nearest `current` (0 without a
+/// rounding when they are within pi).
+#[inline(always)]
+fn nearest_turns(wrapped: f64, current: f64) -> f64 {
+    let gap = current - wrapped;
+    if gap.abs() < std::f64::consts::PI {
+        0.0
     } else {
-        nearest
-    };
-    usize::from(out[0] >= lower && out[0] <= upper)
+        nearest_integer(gap * (1.0 / std::f64::consts::TAU))
+    }
 }
 
-/// Largest magnitude below which [`floor`], [`ceil`] and [`round`] go
-/// through an integer conversion (exact there) instead of the library call.
-const FAST_INTEGER_LIMIT: f64 = 4.0e15;
+/// [`Range::NearestInside`] when the representative `v` nearest the
+/// current value is outside `[lower, upper]`: the one just inside the
+/// bound it passed, if it is inside the other.
+#[inline(never)]
+fn inside_bound(w: f64, v: f64, lower: f64, upper: f64) -> Choices {
+    use std::f64::consts::TAU;
+    let k = if v < lower {
+        ceil((lower - w) / TAU)
+    } else {
+        floor((upper - w) / TAU)
+    };
+    let v = w + TAU * k;
+    Choices {
+        wrapped: w,
+        first: v,
+        k,
+        count: usize::from(v >= lower && v <= upper),
+    }
+}
+
+/// [`Range::Every`]: every representative of `w` in `[lower, upper]`.
+#[inline(always)]
+fn every(w: f64, lower: f64, upper: f64) -> Choices {
+    use std::f64::consts::TAU;
+    let first = ceil((lower - w) / TAU);
+    let last = floor((upper - w) / TAU);
+    let count = if last >= first {
+        ((last - first) as usize).saturating_add(1)
+    } else {
+        0
+    };
+    Choices {
+        wrapped: w,
+        first: w + TAU * first,
+        k: first,
+        count: count.min(MAX_REPRESENTATIVES),
+    }
+}
+
+/// Largest magnitude below which [`nearest_integer`], [`floor`] and
+/// [`ceil`] round by adding and subtracting `1.5 * 2^52` (exact there:
+/// the sum's unit in the last place is 1) instead of the library call.
+const FAST_INTEGER_LIMIT: f64 = 2_251_799_813_685_248.0; // 2^51
+
+/// The integer nearest `x` (halves to even), inline for moderate `x`.
+#[inline]
+fn nearest_integer(x: f64) -> f64 {
+    const SHIFT: f64 = 6_755_399_441_055_744.0; // 1.5 * 2^52
+    if x.abs() < FAST_INTEGER_LIMIT {
+        (x + SHIFT) - SHIFT
+    } else {
+        x.round_ties_even()
+    }
+}
 
 /// `x.floor()`, inline for moderate `x` (the library call costs more than
 /// the rest of a representative).
 #[inline]
 fn floor(x: f64) -> f64 {
-    if x.abs() < FAST_INTEGER_LIMIT {
-        let t = x as i64 as f64;
-        if t > x {
-            t - 1.0
-        } else {
-            t
-        }
+    let r = nearest_integer(x);
+    if r > x {
+        r - 1.0
     } else {
-        x.floor()
+        r
     }
 }
 
@@ -514,21 +609,6 @@ fn floor(x: f64) -> f64 {
 #[inline]
 fn ceil(x: f64) -> f64 {
     -floor(-x)
-}
-
-/// The nearest integer to `x` (halves away from zero, as `f64::round`),
-/// inline for moderate `x`.
-#[inline]
-fn round(x: f64) -> f64 {
-    let magnitude = x.abs();
-    let whole = floor(magnitude);
-    // `magnitude - whole` is exact (both within one unit of each other).
-    let rounded = if magnitude - whole >= 0.5 {
-        whole + 1.0
-    } else {
-        whole
-    };
-    rounded.copysign(x)
 }
 
 /// `angle` wrapped into (-pi, pi] (one addition for the angles the
@@ -766,11 +846,18 @@ mod tests {
             -5e15,
             1e300,
             4503599627370495.5,
+            2251799813685247.5,
+            -2251799813685247.5,
+            2251799813685248.5,
+            -2251799813685249.5,
+            3.5,
+            -2.5,
+            f64::INFINITY,
         ];
         for x in values {
             assert_eq!(floor(x), x.floor(), "floor {x}");
             assert_eq!(ceil(x), x.ceil(), "ceil {x}");
-            assert_eq!(round(x), x.round(), "round {x}");
+            assert_eq!(nearest_integer(x), x.round_ties_even(), "nearest {x}");
         }
     }
 

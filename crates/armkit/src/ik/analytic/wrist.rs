@@ -7,8 +7,8 @@
 use super::chain::{Candidates, Chain, MAX_JOINTS};
 use super::class::Positioning;
 use super::subproblems::{
-    atan2, rotation, subproblem1, subproblem1_turn, subproblem2, subproblem3, subproblem4,
-    Distance, Sinusoid, SinusoidFamily, Spoke, Turn, RELATIVE_TOLERANCE,
+    atan2, subproblem1_turn, subproblem2_turns, Distance, Sinusoid, SinusoidFamily, Spoke, Turn,
+    RELATIVE_TOLERANCE,
 };
 use crate::math::{Pose, Vector3};
 
@@ -77,26 +77,42 @@ impl SphericalWrist {
             self.parallel_second_third(&goal, &g6, &g5, out);
             return;
         }
-        let mut angles = [([0.0; 3], false); 16];
+        let (h, translation) = (&self.chain.h, &self.chain.translation);
+        if self.positioning == Positioning::General {
+            let mut angles = [([0.0; 3], false); 16];
+            let count = super::search::position(&self.chain, &self.wrist, &goal, &mut angles);
+            for (q, exact) in &angles[..count] {
+                let (mut v6, mut v5) = (g6, g5);
+                for i in 0..3 {
+                    if !translation[i] {
+                        let turn = Turn::of_angle(q[i]);
+                        v6 = turn.rotate_back(&h[i], &v6);
+                        v5 = turn.rotate_back(&h[i], &v5);
+                    }
+                }
+                self.orientation.solve_directions(&v6, &v5, q, *exact, out);
+            }
+            return;
+        }
+        let mut turns = [([Turn::ZERO; 3], false); 16];
         let count = position(
             &self.chain,
             self.positioning,
             &self.wrist,
             &self.shoulder,
             &goal,
-            &mut angles,
+            &mut turns,
         );
-        let (h, translation) = (&self.chain.h, &self.chain.translation);
-        for (q, exact) in &angles[..count] {
+        for (t, exact) in &turns[..count] {
             let (mut v6, mut v5) = (g6, g5);
             for i in 0..3 {
                 if !translation[i] {
-                    let turn = Turn::of_angle(q[i]);
-                    v6 = turn.rotate_back(&h[i], &v6);
-                    v5 = turn.rotate_back(&h[i], &v5);
+                    v6 = t[i].rotate_back(&h[i], &v6);
+                    v5 = t[i].rotate_back(&h[i], &v5);
                 }
             }
-            self.orientation.solve_directions(&v6, &v5, q, *exact, out);
+            let q = [t[0].angle, t[1].angle, t[2].angle];
+            self.orientation.solve_directions(&v6, &v5, &q, *exact, out);
         }
     }
 
@@ -133,59 +149,64 @@ impl SphericalWrist {
     }
 }
 
-/// Joints 1-3 putting the wrist point `w` at `goal`; returns how many.
+/// Joints 1-3 putting the wrist point `w` at `goal` in closed form (every
+/// positioning but `ParallelSecondThird`, solved in
+/// [`SphericalWrist::parallel_second_third`], and `General`, searched), as
+/// turns (a sliding joint's `angle` is its slide, m, with the zero turn's
+/// sine and cosine); returns how many.
 fn position(
     chain: &Chain,
     positioning: Positioning,
     w: &Vector3<f64>,
     o: &Vector3<f64>,
     goal: &Vector3<f64>,
-    out: &mut [([f64; 3], bool); 16],
+    out: &mut [([Turn; 3], bool); 16],
 ) -> usize {
-    if positioning == Positioning::General {
-        return super::search::position(chain, w, goal, out);
-    }
     let (c, h) = (&chain.c, &chain.h);
     let mut count = 0;
-    let mut push = |q: [f64; 3], exact: bool| {
+    let mut push = |q: [Turn; 3], exact: bool| {
         if count < out.len() {
             out[count] = (q, exact);
             count += 1;
         }
     };
+    // R(k, t) v for a turn t (`rotate_back` by the opposite turn).
+    let turned =
+        |t: &Turn, k: &Vector3<f64>, v: &Vector3<f64>| t.times_sign(-1.0).rotate_back(k, v);
     match positioning {
         Positioning::ParallelFirstSecond => {
             // h1 . W = h1 . E3 w (subproblem 4 for joint 3).
-            let t3s = subproblem4(&h[0], &h[2], &(w - c[2]), h[0].dot(&(goal - c[2])));
-            for &t3 in t3s.as_slice() {
-                let w3 = c[2] + rotation(&h[2], t3) * (w - c[2]);
-                let t2s = subproblem3(&h[1], &(w3 - c[1]), &(c[0] - c[1]), (goal - c[0]).norm());
-                for &t2 in t2s.as_slice() {
-                    let w2 = c[1] + rotation(&h[1], t2) * (w3 - c[1]);
-                    let (t1, e1) = subproblem1(&h[0], &(w2 - c[0]), &(goal - c[0]));
-                    push([t1, t2, t3], t3s.exact && t2s.exact && e1);
+            let t3s = Sinusoid::new(&h[0], &h[2], &(w - c[2])).solve(h[0].dot(&(goal - c[2])));
+            for t3 in t3s.as_slice() {
+                let w3 = c[2] + turned(t3, &h[2], &(w - c[2]));
+                let t2s =
+                    Distance::new(&h[1], &(w3 - c[1]), &(c[0] - c[1])).solve((goal - c[0]).norm());
+                for t2 in t2s.as_slice() {
+                    let w2 = c[1] + turned(t2, &h[1], &(w3 - c[1]));
+                    let (t1, e1) = subproblem1_turn(&h[0], &(w2 - c[0]), &(goal - c[0]));
+                    push([t1, *t2, *t3], t3s.exact && t2s.exact && e1);
                 }
             }
         }
         Positioning::IntersectingFirstSecond => {
             // Joints 1, 2 turn about lines through o: |E3 w - o| = |W - o|.
-            let t3s = subproblem3(&h[2], &(w - c[2]), &(o - c[2]), (goal - o).norm());
-            for &t3 in t3s.as_slice() {
-                let w3 = c[2] + rotation(&h[2], t3) * (w - c[2]);
-                let pairs = subproblem2(&-h[0], &(goal - o), &h[1], &(w3 - o));
-                for &(t1, t2) in pairs.as_slice() {
-                    push([t1, t2, t3], t3s.exact && pairs.exact);
+            let t3s = Distance::new(&h[2], &(w - c[2]), &(o - c[2])).solve((goal - o).norm());
+            for t3 in t3s.as_slice() {
+                let w3 = c[2] + turned(t3, &h[2], &(w - c[2]));
+                let pairs = subproblem2_turns(&-h[0], &(goal - o), &h[1], &(w3 - o));
+                for (t1, t2) in pairs.as_slice() {
+                    push([*t1, *t2, *t3], t3s.exact && pairs.exact);
                 }
             }
         }
         Positioning::IntersectingSecondThird => {
             // |W - E1 o| = |w - o| (subproblem 3 for joint 1).
-            let t1s = subproblem3(&h[0], &(o - c[0]), &(goal - c[0]), (w - o).norm());
-            for &t1 in t1s.as_slice() {
-                let goal1 = c[0] + rotation(&h[0], t1).transpose() * (goal - c[0]);
-                let pairs = subproblem2(&-h[1], &(goal1 - o), &h[2], &(w - o));
-                for &(t2, t3) in pairs.as_slice() {
-                    push([t1, t2, t3], t1s.exact && pairs.exact);
+            let t1s = Distance::new(&h[0], &(o - c[0]), &(goal - c[0])).solve((w - o).norm());
+            for t1 in t1s.as_slice() {
+                let goal1 = c[0] + t1.rotate_back(&h[0], &(goal - c[0]));
+                let pairs = subproblem2_turns(&-h[1], &(goal1 - o), &h[2], &(w - o));
+                for (t2, t3) in pairs.as_slice() {
+                    push([*t1, *t2, *t3], t1s.exact && pairs.exact);
                 }
             }
         }
@@ -205,9 +226,13 @@ fn position(
             };
             for &d3 in slides {
                 let w3 = w + h[2] * d3;
-                let pairs = subproblem2(&-h[0], &(goal - o), &h[1], &(w3 - o));
-                for &(t1, t2) in pairs.as_slice() {
-                    push([t1, t2, d3], exact && pairs.exact);
+                let pairs = subproblem2_turns(&-h[0], &(goal - o), &h[1], &(w3 - o));
+                let slide = Turn {
+                    angle: d3,
+                    ..Turn::ZERO
+                };
+                for (t1, t2) in pairs.as_slice() {
+                    push([*t1, *t2, slide], exact && pairs.exact);
                 }
             }
         }
@@ -231,9 +256,24 @@ fn position(
 /// are sums of the three parts' dot products (taken once per goal); joint
 /// 6's `v = R5' R4' g5` enters only through `h6 . v = p . u`,
 /// `h5 . v = h5 . u` and `(h6 x h5) . v = p . (h5 x u)` with `u = R4' g5`.
+///
+/// When `h6 = +-h4` and `h5 . h4 = 0` (PUMA, Stanford, KUKA, the iiwa's
+/// wrist; [`WristForm::Euler`]) the wrist is a Z-Y-Z Euler wrist in the
+/// frame `F = (h5 x h6, h5, h6)`: `R(h4, t) = F Rz(s t) F'` (`s = h4 . h6`),
+/// `R5 = F Ry(t5) F'`, `R6 = F Rz(t6) F'`, so `Rz(s t4) Ry(t5) Rz(t6) =
+/// M = F' goal F`, whose third column is `F' (goal h6)` and second
+/// `F' (goal h5)`: `t5 = atan2(hypot(M13, M23), M33)`, `s t4 =
+/// atan2(M23, M13)`, and `t6` from the second column turned back by joints
+/// 4 and 5 (`Rz(t6) e2 = Ry(-t5) Rz(-s t4) M e2`, consistent with the
+/// computed `t4`, so accurate near `t5 = 0`); three arctangents, no
+/// subproblem. The second solution mirrors the first: with
+/// `S = R(h4, pi) = R(h6, pi)`, `S R(h5, t) S = R(h5, -t)` (a half turn
+/// about `h4` reverses `h5`), so `R4(t4 + pi) R5(-t5) R6(t6 + pi) =
+/// R4 S R5(-t5) S R6 = R4 R5 R6`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct WristOrientation {
     h: [Vector3<f64>; 3],
+    form: WristForm,
     joint5: Sinusoid,
     /// `h6` turned by joint 5, and `h4 .` its three parts.
     h6_by_5: Spoke,
@@ -243,6 +283,29 @@ pub(crate) struct WristOrientation {
     h6_h5: f64,
     h5_radius: f64,
 }
+
+/// How a wrist's joints are found (see [`WristOrientation`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum WristForm {
+    /// `h6 = +-h4`, `h5 . h4 = 0` (unit axes, to [`EULER_TOLERANCE`]):
+    /// Z-Y-Z Euler angles in the frame `(h5 x h6, h5, h6)`, the second
+    /// solution mirrored from the first.
+    Euler {
+        /// `h5 x h6`, the frame's first axis.
+        first_axis: Vector3<f64>,
+        /// `h4 . h6 = +-1`.
+        sign: f64,
+    },
+    /// Subproblem 4 for joint 5, two subproblems 1 per root (any other wrist).
+    Subproblems,
+}
+
+/// Largest `|h4 x h6|`, `|h4 . h5|` and departure of the axes' squared
+/// lengths from 1 for which a wrist is solved as an Euler wrist
+/// ([`WristForm::Euler`]): its joints are then off by at most about this
+/// angle (rad), two orders below [`super::EXACT_TOLERANCE`]. Axes read from
+/// DH tables or URDF files with right angles meet it to round-off (1e-16).
+pub(crate) const EULER_TOLERANCE: f64 = 1e-12;
 
 /// Subproblem 1's exactness test (see [`super::subproblems::subproblem1`]):
 /// equal heights along the axis and equal distances from it, to the
@@ -258,8 +321,22 @@ impl WristOrientation {
         let h6_by_5 = Spoke::new(h5, h6);
         let [par, perp, cross] = h6_by_5.parts();
         let h6_h5 = h6.dot(h5);
+        let unit = |v: &Vector3<f64>| (v.norm_squared() - 1.0).abs() <= EULER_TOLERANCE;
+        let euler = h4.cross(h6).norm() <= EULER_TOLERANCE
+            && h4.dot(h5).abs() <= EULER_TOLERANCE
+            && unit(h4)
+            && unit(h5)
+            && unit(h6);
         WristOrientation {
             h: [*h4, *h5, *h6],
+            form: if euler {
+                WristForm::Euler {
+                    first_axis: h5.cross(h6),
+                    sign: h4.dot(h6).signum(),
+                }
+            } else {
+                WristForm::Subproblems
+            },
             joint5: Sinusoid::new(h4, h5, h6),
             h6_by_5,
             h4_dot_parts: [h4.dot(&par), h4.dot(&perp), h4.dot(&cross)],
@@ -281,6 +358,10 @@ impl WristOrientation {
         exact: bool,
         out: &mut Candidates,
     ) {
+        if let WristForm::Euler { first_axis, sign } = &self.form {
+            self.solve_euler(first_axis, *sign, goal_h6, goal_h5, prefix, exact, out);
+            return;
+        }
         let [h4, h5, _] = &self.h;
         let (g6, g5) = (goal_h6, goal_h5);
         let height6 = h4.dot(g6);
@@ -306,7 +387,8 @@ impl WristOrientation {
         let mut q = [0.0; MAX_JOINTS];
         q[..n].copy_from_slice(prefix);
         let combine = |parts: &[f64; 3], t: &Turn| parts[0] + t.cos * parts[1] + t.sin * parts[2];
-        for t5 in t5s.as_slice() {
+        // Joints 4 and 6 for one joint-5 turn, and whether both were exact.
+        let joints_4_6 = |t5: &Turn| {
             // Joint 4: R4 p = g6 with p = R5 h6.
             let height_p = combine(&self.h4_dot_parts, t5);
             let x = combine(&along, t5) - height_p * height6;
@@ -322,10 +404,149 @@ impl WristOrientation {
             let y6 = p.dot(&h5.cross(&u));
             let radius_v = (g5_length2 - height_v * height_v).max(0.0).sqrt();
             let e6 = same_circle(self.h6_h5, self.h5_radius, height_v, radius_v, scale6);
-            q[n] = t4.angle;
+            (t4.angle, atan2(y6, x6), e4 && e6)
+        };
+        let exact = exact && t5s.exact;
+        for t5 in t5s.as_slice() {
+            let (t4, t6, e) = joints_4_6(t5);
+            q[n] = t4;
             q[n + 1] = t5.angle;
-            q[n + 2] = atan2(y6, x6);
-            out.push(&q[..n + 3], exact && t5s.exact && e4 && e6);
+            q[n + 2] = t6;
+            out.push(&q[..n + 3], exact && e);
         }
+    }
+
+    /// [`WristOrientation::solve_directions`] for an Euler wrist (see
+    /// [`WristOrientation`]): `M`'s third and second columns are `g6` and
+    /// `g5` in the frame `(first_axis, h5, h6)`. Exact when `g6` and `g5`
+    /// are unit and perpendicular (as `h6` and `h5`) to
+    /// [`RELATIVE_TOLERANCE`], as the subproblems' tests would find.
+    #[allow(clippy::too_many_arguments)]
+    #[inline]
+    fn solve_euler(
+        &self,
+        first_axis: &Vector3<f64>,
+        sign: f64,
+        g6: &Vector3<f64>,
+        g5: &Vector3<f64>,
+        prefix: &[f64],
+        exact: bool,
+        out: &mut Candidates,
+    ) {
+        let [_, h5, h6] = &self.h;
+        let (m13, m23, m33) = (first_axis.dot(g6), h5.dot(g6), h6.dot(g6));
+        let (m12, m22, m32) = (first_axis.dot(g5), h5.dot(g5), h6.dot(g5));
+        let exact = exact
+            && (g6.norm_squared() - 1.0).abs() <= 2.0 * RELATIVE_TOLERANCE
+            && (g5.norm_squared() - 1.0).abs() <= 2.0 * RELATIVE_TOLERANCE
+            && g6.dot(g5).abs() <= RELATIVE_TOLERANCE;
+        // Joint 5 in [0, pi] (sin t5 >= 0), joint 4 (times `sign`).
+        let sine5 = (m13 * m13 + m23 * m23).sqrt();
+        let t5 = atan2(sine5, m33);
+        let t4 = Turn::of_direction(m23, m13);
+        // Joint 6: Rz(t6) e2 = (-sin t6, cos t6, 0) = Ry(-t5) Rz(-t4) M e2.
+        let inverse = 1.0 / (sine5 * sine5 + m33 * m33).sqrt().max(f64::MIN_POSITIVE);
+        let (s5, c5) = (sine5 * inverse, m33 * inverse);
+        let v1 = t4.cos * m12 + t4.sin * m22;
+        let v2 = t4.cos * m22 - t4.sin * m12;
+        let t6 = atan2(s5 * m32 - c5 * v1, v2);
+        let n = prefix.len();
+        let mut q = [0.0; MAX_JOINTS];
+        q[..n].copy_from_slice(prefix);
+        q[n] = sign * t4.angle;
+        q[n + 1] = t5;
+        q[n + 2] = t6;
+        out.push(&q[..n + 3], exact);
+        // The mirrored solution; at t5 = 0 it is the same configuration
+        // family (one solution, as the subproblems give).
+        if t5 != 0.0 {
+            use std::f64::consts::PI;
+            q[n] = sign * t4.angle + PI;
+            q[n + 1] = -t5;
+            q[n + 2] = t6 + PI;
+            out.push(&q[..n + 3], exact);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::subproblems::rotation;
+    use super::super::test_random::unit;
+    use super::*;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    /// The wrist's solutions as rotations' errors from `goal`, and their
+    /// joint values (angles wrapped).
+    fn solutions(
+        wrist: &WristOrientation,
+        goal: &crate::math::Matrix3<f64>,
+    ) -> Vec<([f64; 3], f64, bool)> {
+        let [h4, h5, h6] = &wrist.h;
+        let mut out = Candidates::new();
+        wrist.solve_directions(&(goal * h6), &(goal * h5), &[], true, &mut out);
+        out.as_slice()
+            .iter()
+            .map(|c| {
+                let q = [c.q[0], c.q[1], c.q[2]];
+                let r = rotation(h4, q[0]) * rotation(h5, q[1]) * rotation(h6, q[2]);
+                let wrapped = q.map(crate::math::wrap_angle);
+                (wrapped, (r - goal).norm(), c.exact)
+            })
+            .collect()
+    }
+
+    /// Wrists with `h6 = +-h4 _|_ h5` are solved as Euler wrists (the
+    /// second solution mirrored); both solutions reproduce the goal
+    /// rotation and equal the ones the subproblems find (the `Subproblems`
+    /// form on the same wrist), on random wrists and goals. Other wrists
+    /// are solved by the subproblems.
+    #[test]
+    fn the_euler_wrist_matches_the_subproblems() {
+        let mut rng = ChaCha8Rng::seed_from_u64(23);
+        for _ in 0..200 {
+            let h4 = unit(&mut rng);
+            let h5 = h4.cross(&unit(&mut rng)).normalize();
+            let h6 = if rng.gen::<bool>() { h4 } else { -h4 };
+            let wrist = WristOrientation::new(&h4, &h5, &h6);
+            assert!(matches!(wrist.form, WristForm::Euler { .. }));
+            let solved = WristOrientation {
+                form: WristForm::Subproblems,
+                ..wrist
+            };
+            for _ in 0..20 {
+                let t = [0; 3].map(|_| rng.gen_range(-3.0..3.0));
+                let goal = rotation(&h4, t[0]) * rotation(&h5, t[1]) * rotation(&h6, t[2]);
+                let mirrored = solutions(&wrist, &goal);
+                let reference = solutions(&solved, &goal);
+                assert_eq!(mirrored.len(), reference.len());
+                assert_eq!(mirrored.len(), 2);
+                let same = |a: &[f64; 3], b: &[f64; 3]| {
+                    a.iter()
+                        .zip(b)
+                        .all(|(x, y)| crate::math::wrap_angle(x - y).abs() < 1e-11)
+                };
+                for (a, error, exact) in &mirrored {
+                    // Joints 4 and 6 are ill-conditioned as sin t5 -> 0
+                    // (only their sum or difference is well defined at 0).
+                    let sine = a[1].sin().abs();
+                    assert!(*exact && *error < 1e-13 + 1e-14 / sine, "{error:e} {a:?}");
+                    if sine < 0.01 {
+                        continue;
+                    }
+                    assert!(
+                        reference.iter().any(|(b, _, _)| same(a, b)),
+                        "{a:?} vs {reference:?}"
+                    );
+                }
+            }
+        }
+        // A wrist whose first and last axes differ is solved twice.
+        let wrist = WristOrientation::new(&Vector3::x(), &Vector3::y(), &Vector3::z());
+        assert_eq!(wrist.form, WristForm::Subproblems);
+        let tilted = Vector3::new(1.0, 0.0, 1e-9).normalize();
+        let wrist = WristOrientation::new(&Vector3::x(), &Vector3::y(), &tilted);
+        assert_eq!(wrist.form, WristForm::Subproblems);
     }
 }
