@@ -113,6 +113,10 @@ pub const END_TOLERANCE: f64 = 1e-9;
 /// roots are tracked from the previous evaluation's (else isolated from
 /// scratch).
 const NEAR: f64 = 0.1;
+/// Largest ratio of the Jacobian determinant of subproblem 6 just past a
+/// fold located on the discriminant to the one at the sample before it for
+/// the branch to count as ending there.
+const FOLDING: f64 = 1e-2;
 /// Largest pose error (m and rad) of a root kept as a candidate.
 const KEEP: f64 = 1e-6;
 /// Pose error (m and rad) above which a root is polished by Gauss-Newton.
@@ -590,7 +594,7 @@ impl Problem<'_> {
     /// parametrized): Illinois regula falsi on the discriminant, which
     /// needs `f`'s coefficients only (no roots), to [`END_TOLERANCE`]; then
     /// the branch read at the bracket's end on the defined side, and
-    /// checked gone at the other. The branch's last point; `None` when the
+    /// checked gone (or folding) at the other. The branch's last point; `None` when the
     /// discriminant does not change sign (the branch ends otherwise: the
     /// circle vanishes), the branch is not found there or does not end.
     fn fold_by_discriminant(
@@ -634,8 +638,16 @@ impl Problem<'_> {
             }
         }
         let (f, k) = self.residual(a, &defined.2)?;
-        if self.residual(b, &k).is_some() {
-            return None;
+        // Past the fold the branch is gone, or lingers as the double root
+        // of `f` that round-off lets through (within `TANGENT_TOLERANCE`),
+        // its Jacobian determinant near zero (it falls as the square root
+        // of the distance to the fold: ~3e-4 of a sample's at 1e-9 rad
+        // from it); a branch going on at its own size there means the sign
+        // change was another pair's fold.
+        if let Some((_, past)) = self.residual(b, &k) {
+            if past.determinant.abs() >= FOLDING * defined.2.determinant.abs() {
+                return None;
+            }
         }
         Some((a, f, k))
     }
