@@ -55,7 +55,7 @@
 //! ```
 
 use super::subproblems::{Turn, RELATIVE_TOLERANCE};
-use super::trig2::Trig2;
+use super::trig2::{Trig2, TrigRoots};
 use crate::math::Vector3;
 
 pub use super::trig2::TANGENT_TOLERANCE;
@@ -170,6 +170,33 @@ pub(crate) struct Sinusoids {
 
 type Vector4 = [f64; 4];
 
+/// The points `x = (cos t1, sin t1, cos t2, sin t2)` of every root of `f`
+/// found by [`Sinusoids::exact_solutions_near`] (up to 4): starts for the
+/// next, nearby system's roots.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct CirclePoints {
+    points: [Vector4; 4],
+    count: usize,
+}
+
+impl CirclePoints {
+    /// The points as angles on `space`'s circle (of the component of
+    /// `x - x0` in its null space); `None` when one projects onto the
+    /// centre.
+    fn on(&self, space: &Solutions) -> Option<TrigRoots> {
+        let mut turns = [Turn::of_direction(0.0, 1.0); 4];
+        for (turn, x) in turns.iter_mut().zip(&self.points[..self.count]) {
+            let r = axpy(-1.0, &space.x0, x);
+            let (c, s) = (dot4(&space.null[0], &r), dot4(&space.null[1], &r));
+            if c == 0.0 && s == 0.0 {
+                return None;
+            }
+            *turn = Turn::of_direction(s, c);
+        }
+        Some(TrigRoots::of_turns(&turns[..self.count]))
+    }
+}
+
 fn dot4(a: &Vector4, b: &Vector4) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3]
 }
@@ -210,8 +237,27 @@ impl Sinusoids {
     /// The exact solutions only (none when the system has no solution or
     /// is rank-deficient: no least-squares pair), for callers that discard
     /// inexact pairs anyway (the parallel-pair search samples it hundreds
-    /// of times per solve).
+    /// of times per solve: [`Sinusoids::exact_solutions_near`] there).
+    #[cfg_attr(not(test), allow(dead_code))]
     pub(crate) fn exact_solutions(&self, d: [f64; 2]) -> TurnPairs {
+        self.exact_solutions_near(d, None).0
+    }
+
+    /// [`Sinusoids::exact_solutions`] for a system near one solved before
+    /// (the one before it in a search), whose circle points are `previous`:
+    /// each is projected onto this system's circle (the angle of its
+    /// component across `x0`, whatever the null-space basis) and `f`'s
+    /// roots are tracked from there by `Trig2::roots_near` (accepted only
+    /// when the real-root count is certified and Newton finds that many
+    /// distinct roots), else isolated from scratch as
+    /// [`Sinusoids::exact_solutions`] does. Also returns this system's circle
+    /// points (every root of `f`, exact or not) for the next call; `None`
+    /// when there is no circle (rank-deficient, or `|x0|^2 > 2`).
+    pub(crate) fn exact_solutions_near(
+        &self,
+        d: [f64; 2],
+        previous: Option<&CirclePoints>,
+    ) -> (TurnPairs, Option<CirclePoints>) {
         let (m, e) = self.linear(d);
         let scale = dot4(&m[0], &m[0])
             .sqrt()
@@ -228,20 +274,45 @@ impl Sinusoids {
             count: 0,
         };
         let Some(space) = Solutions::of(&m, &e) else {
-            return out;
+            return (out, None);
         };
         let rho2 = 2.0 - dot4(&space.x0, &space.x0);
         if rho2 < -RELATIVE_TOLERANCE {
-            return out;
+            return (out, None);
         }
         let rho = rho2.max(0.0).sqrt();
-        for root in space.difference(rho).roots().as_slice() {
-            let pair = self.pair_at(&space.point(rho, root.sin, root.cos), &m, &e, scale);
+        let f = space.difference(rho);
+        let roots = previous
+            .and_then(|p| f.roots_near(&p.on(&space)?))
+            .unwrap_or_else(|| f.roots());
+        let mut points = CirclePoints {
+            points: [[0.0; 4]; 4],
+            count: 0,
+        };
+        for root in roots.as_slice() {
+            let x = space.point(rho, root.sin, root.cos);
+            points.points[points.count] = x;
+            points.count += 1;
+            let pair = self.pair_at(&x, &m, &e, scale);
             if pair.exact {
                 out.push(pair);
             }
         }
-        out
+        (out, Some(points))
+    }
+
+    /// `f` (see the module docs) of the system with right-hand side `d`:
+    /// its discriminant changes sign where two solutions merge (a fold as
+    /// `d` and the waves move). `None` without a circle (as
+    /// [`Sinusoids::exact_solutions_near`]).
+    pub(crate) fn difference_polynomial(&self, d: [f64; 2]) -> Option<Trig2> {
+        let (m, e) = self.linear(d);
+        let space = Solutions::of(&m, &e)?;
+        let rho2 = 2.0 - dot4(&space.x0, &space.x0);
+        if rho2 < -RELATIVE_TOLERANCE {
+            return None;
+        }
+        Some(space.difference(rho2.max(0.0).sqrt()))
     }
 
     /// Every solution, or the least-squares pair (see the module docs).
@@ -689,6 +760,63 @@ mod tests {
         }
         // Instances with 2 and with 4 solutions both occur.
         assert!(counts[2] > 0 && counts[4] > 0, "{counts:?}");
+    }
+
+    /// Along a path of systems (one vector and both right-hand sides
+    /// moving in small steps, folds crossed on the way), the solutions
+    /// tracked from the previous step's circle points are those found
+    /// from scratch, in number and value.
+    #[test]
+    fn tracked_solutions_are_the_solutions_from_scratch() {
+        let mut rng = ChaCha8Rng::seed_from_u64(63);
+        let mut counts = [0; 5];
+        for _ in 0..20 {
+            let instance = Instance::random(&mut rng);
+            let (t1, t2) = (rng.gen_range(-PI..PI), rng.gen_range(-PI..PI));
+            let d0 = instance.sides(t1, t2);
+            let drift = vector(&mut rng) * 0.02;
+            let move_d = [rng.gen_range(-0.02..0.02), rng.gen_range(-0.02..0.02)];
+            let mut previous = None;
+            for step in 0..100 {
+                let s = step as f64;
+                let h0 = instance.h[0] + drift * s;
+                let system = Sinusoids {
+                    first: [
+                        Wave::new(&h0, &instance.k1, &instance.p[0]),
+                        Wave::new(&instance.h[2], &instance.k1, &instance.p[2]),
+                    ],
+                    second: [
+                        Wave::new(&instance.h[1], &instance.k2, &instance.p[1]),
+                        Wave::new(&instance.h[3], &instance.k2, &instance.p[3]),
+                    ],
+                };
+                let d = [d0[0] + move_d[0] * s, d0[1] + move_d[1] * s];
+                let (tracked, points) = system.exact_solutions_near(d, previous.as_ref());
+                let scratch = system.exact_solutions(d);
+                assert_eq!(
+                    tracked.as_slice().len(),
+                    scratch.as_slice().len(),
+                    "step {step}"
+                );
+                for a in tracked.as_slice() {
+                    assert!(
+                        scratch.as_slice().iter().any(|b| {
+                            (a.first.angle - b.first.angle).abs() < 1e-9
+                                && (a.second.angle - b.second.angle).abs() < 1e-9
+                        }),
+                        "step {step}: {a:?} not in {:?}",
+                        scratch.as_slice()
+                    );
+                }
+                counts[tracked.as_slice().len()] += 1;
+                previous = points;
+            }
+        }
+        // The paths pass through 0, 2 and 4 solutions.
+        assert!(
+            counts[0] > 0 && counts[2] > 0 && counts[4] > 0,
+            "{counts:?}"
+        );
     }
 
     #[test]

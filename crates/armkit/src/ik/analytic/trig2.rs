@@ -67,6 +67,18 @@ impl TrigRoots {
     pub(crate) fn as_slice(&self) -> &[Turn] {
         &self.items[..self.count]
     }
+
+    /// Up to 4 given turns (the rest dropped) as a set of roots: starts
+    /// for [`Trig2::roots_near`] read from elsewhere (e.g. the previous
+    /// solutions projected onto the current variable).
+    pub(crate) fn of_turns(turns: &[Turn]) -> TrigRoots {
+        let mut out = TrigRoots {
+            items: [Turn::of_angle(0.0); 4],
+            count: turns.len().min(4),
+        };
+        out.items[..out.count].copy_from_slice(&turns[..out.count]);
+        out
+    }
 }
 
 /// A [`Trig2`] written as a quartic in `u = tan((phi - shift) / 2)`.
