@@ -103,7 +103,7 @@
 //! ```
 
 use super::chain::{Candidates, Chain};
-use super::search::{find_roots, EndCheck, Residual};
+use super::search::{align_nearest, find_roots, illinois, EndCheck, Residual};
 use super::search2d::polish;
 use super::structure::GEOMETRY_TOLERANCE;
 use super::subproblem6::{CirclePoints, Sinusoids, Wave};
@@ -616,38 +616,17 @@ impl Problem<'_> {
         let start = self.difference_at(defined.0)?;
         let shift = start.quarter_shift();
         let at = |t: f64| self.difference_at(t).map(|f| f.discriminant_about(shift));
-        let (mut a, mut fa) = (defined.0, start.discriminant_about(shift));
-        let (mut b, mut fb) = (undefined, at(undefined)?);
+        let (fa, fb) = (start.discriminant_about(shift), at(undefined)?);
         let product = fa * fb;
         if product.is_nan() || product >= 0.0 {
             return None;
         }
-        let mut side = 0i8;
-        for _ in 0..100 {
-            if (b - a).abs() < END_TOLERANCE {
-                break;
-            }
-            let mut t = (a * fb - b * fa) / (fb - fa);
-            if !(t > a.min(b) && t < a.max(b)) {
-                t = 0.5 * (a + b);
-            }
-            let f = at(t)?;
-            if f != 0.0 && f.signum() == fa.signum() {
-                a = t;
-                fa = f;
-                if side == 1 {
-                    fb *= 0.5;
-                }
-                side = 1;
-            } else {
-                b = t;
-                fb = f;
-                if side == -1 {
-                    fa *= 0.5;
-                }
-                side = -1;
-            }
-        }
+        let ((a, _, _), (b, _, _)) = illinois(
+            (defined.0, fa, ()),
+            (undefined, fb, ()),
+            END_TOLERANCE,
+            |t, _| at(t).map(|f| (f, ())),
+        )?;
         let (f, k) = self.residual(a, &defined.2)?;
         // Past the fold the branch is gone, or lingers as the double root
         // of `f` that round-off lets through (within `TANGENT_TOLERANCE`),
@@ -680,37 +659,7 @@ impl Residual<4> for Problem<'_> {
     }
 
     fn align(&self, previous: &[Option<(f64, Key)>; 4], current: &mut [Option<(f64, Key)>; 4]) {
-        let mut result = [None; 4];
-        let mut used = [false; 4];
-        for (slot, before) in result.iter_mut().zip(previous) {
-            let Some((_, key)) = before else { continue };
-            let mut best: Option<(f64, usize)> = None;
-            for (j, now) in current.iter().enumerate() {
-                if let (false, Some((_, k))) = (used[j], now) {
-                    let d = gap(key, k);
-                    if d < LINK && best.is_none_or(|(e, _)| d < e) {
-                        best = Some((d, j));
-                    }
-                }
-            }
-            if let Some((_, j)) = best {
-                *slot = current[j];
-                used[j] = true;
-            }
-        }
-        // New branches: into slots empty before, then any free slot.
-        for j in 0..4 {
-            if used[j] || current[j].is_none() {
-                continue;
-            }
-            let free = (0..4)
-                .find(|&i| result[i].is_none() && previous[i].is_none())
-                .or_else(|| (0..4).find(|&i| result[i].is_none()));
-            if let Some(i) = free {
-                result[i] = current[j];
-            }
-        }
-        *current = result;
+        align_nearest(previous, current, gap, LINK);
     }
 
     fn same_branch(&self, a: &Key, b: &Key) -> bool {

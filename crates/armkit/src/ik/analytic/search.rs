@@ -242,7 +242,7 @@ pub(crate) enum EndCheck {
 }
 
 /// A point of a branch: angle, residual, key.
-type Point<K> = (f64, f64, K);
+pub(crate) type Point<K> = (f64, f64, K);
 
 /// Every root of every branch of `p` over one turn (see the module docs
 /// for the sampling, bracketing and refinement), each given to `found`
@@ -498,51 +498,106 @@ fn refine<R: Residual<B>, const B: usize>(
     a: Point<R::Key>,
     b: Point<R::Key>,
 ) -> Option<(f64, R::Key)> {
-    let ((mut ta, mut fa, mut ka), (mut tb, mut fb, mut kb)) = (a, b);
-    if fa == 0.0 {
-        return Some((ta, ka));
+    let (a, b) = illinois(a, b, ROOT_TOLERANCE, |t, near| p.residual(t, near))?;
+    Some(if a.1.abs() < b.1.abs() {
+        (a.0, a.2)
+    } else {
+        (b.0, b.2)
+    })
+}
+
+/// The Illinois variant of regula falsi: shrinks the bracket `a`, `b`
+/// (points `(t, f(t), payload)` with `f(a) f(b) <= 0`) until it is
+/// narrower than `width` (or [`MAX_STEPS`] steps); each trial is evaluated
+/// by `f(t, payload of the nearer end)`. Returns the final ends (both the
+/// trial where `f` is exactly zero); `None` where `f` is undefined.
+pub(crate) fn illinois<P: Copy>(
+    a: Point<P>,
+    b: Point<P>,
+    width: f64,
+    mut f: impl FnMut(f64, &P) -> Option<(f64, P)>,
+) -> Option<(Point<P>, Point<P>)> {
+    let (mut a, mut b) = (a, b);
+    if a.1 == 0.0 {
+        return Some((a, a));
     }
     let mut side = 0i8;
     for _ in 0..MAX_STEPS {
-        if (tb - ta).abs() < ROOT_TOLERANCE {
+        if (b.0 - a.0).abs() < width {
             break;
         }
-        let mut t = (ta * fb - tb * fa) / (fb - fa);
-        if !(t > ta.min(tb) && t < ta.max(tb)) {
-            t = 0.5 * (ta + tb);
+        let mut t = (a.0 * b.1 - b.0 * a.1) / (b.1 - a.1);
+        if !(t > a.0.min(b.0) && t < a.0.max(b.0)) {
+            t = 0.5 * (a.0 + b.0);
         }
-        let near = if (t - ta).abs() <= (t - tb).abs() {
-            &ka
+        let near = if (t - a.0).abs() <= (t - b.0).abs() {
+            &a.2
         } else {
-            &kb
+            &b.2
         };
-        let (f, k) = p.residual(t, near)?;
-        if f == 0.0 {
-            return Some((t, k));
+        let (value, payload) = f(t, near)?;
+        let point = (t, value, payload);
+        if value == 0.0 {
+            return Some((point, point));
         }
-        if f.signum() == fb.signum() {
-            tb = t;
-            fb = f;
-            kb = k;
+        if value.signum() == b.1.signum() {
+            b = point;
             if side == -1 {
-                fa *= 0.5;
+                a.1 *= 0.5;
             }
             side = -1;
         } else {
-            ta = t;
-            fa = f;
-            ka = k;
+            a = point;
             if side == 1 {
-                fb *= 0.5;
+                b.1 *= 0.5;
             }
             side = 1;
         }
     }
-    Some(if fa.abs() < fb.abs() {
-        (ta, ka)
-    } else {
-        (tb, kb)
-    })
+    Some((a, b))
+}
+
+/// Matches `current`'s branches to `previous`'s (one sample before): each
+/// previous branch takes the nearest current one by `gap` within `link`;
+/// current branches left over go to slots empty before, then to any free
+/// slot. The [`Residual::align`] of searches whose branches have no natural
+/// order.
+pub(crate) fn align_nearest<K: Copy, const B: usize>(
+    previous: &[Option<(f64, K)>; B],
+    current: &mut [Option<(f64, K)>; B],
+    gap: impl Fn(&K, &K) -> f64,
+    link: f64,
+) {
+    let mut result = [None; B];
+    let mut used = [false; B];
+    for (slot, before) in result.iter_mut().zip(previous) {
+        let Some((_, key)) = before else { continue };
+        let mut best: Option<(f64, usize)> = None;
+        for (j, now) in current.iter().enumerate() {
+            if let (false, Some((_, k))) = (used[j], now) {
+                let d = gap(key, k);
+                if d < link && best.is_none_or(|(e, _)| d < e) {
+                    best = Some((d, j));
+                }
+            }
+        }
+        if let Some((_, j)) = best {
+            *slot = current[j];
+            used[j] = true;
+        }
+    }
+    for j in 0..B {
+        if used[j] || current[j].is_none() {
+            continue;
+        }
+        let free = (0..B)
+            .find(|&i| result[i].is_none() && previous[i].is_none())
+            .or_else(|| (0..B).find(|&i| result[i].is_none()));
+        if let Some(i) = free {
+            result[i] = current[j];
+        }
+    }
+    *current = result;
 }
 
 /// Joints 1-3 at a root `t1` of branch `branch`.
