@@ -56,7 +56,9 @@
 //! The residual is formed from the placements' sines and cosines.
 
 use super::chain::{Candidates, Chain};
-use super::search::{align_nearest, find_roots, illinois, EndCheck, Residual};
+use super::search::{
+    align_nearest, find_roots, fold_by_extrapolation, illinois, EndCheck, Residual,
+};
 use super::search2d::polish;
 use super::subproblems::{rotation, subproblem1, Spoke, Turn};
 use super::three_axes::{Placements, ThreeAxes};
@@ -594,10 +596,9 @@ impl Residual<4> for Problem<'_> {
 
     /// The end of a branch is where two placements merge: the squared
     /// slope of the placing polynomial at the root falls linearly to zero
-    /// there. Each step goes 99 % of the way from the last point of the
-    /// branch to that extrapolated zero (a bisection when the
-    /// extrapolation fails; a step just past it once it is within
-    /// [`END_TOLERANCE`]), until the gap is below [`END_TOLERANCE`].
+    /// there: located on the quartic's discriminant where it changes sign,
+    /// else where that squared slope extrapolates to zero
+    /// (`search::fold_by_extrapolation`, to [`END_TOLERANCE`]).
     /// The two branches merging at a fold end between the same samples at
     /// the same place: the second is tried at the first's ends (two
     /// evaluations) before a search of its own.
@@ -620,40 +621,13 @@ impl Residual<4> for Problem<'_> {
             self.folds.set(folds);
             return end;
         }
-        let (mut a, mut fa, mut ka) = defined;
-        let mut b = undefined;
-        let mut previous: Option<(f64, f64)> = None;
-        for _ in 0..60 {
-            if (b - a).abs() < END_TOLERANCE {
-                break;
-            }
-            let g = ka.slope * ka.slope;
-            let mut t = 0.5 * (a + b);
-            if let Some((t0, g0)) = previous {
-                if g0 != g {
-                    let zero = a - g * (a - t0) / (g - g0);
-                    if (zero - a) * (b - a) > 0.0 && (zero - a).abs() < (b - a).abs() {
-                        t = a + 0.99 * (zero - a);
-                        if (zero - a).abs() < 0.5 * END_TOLERANCE {
-                            t = a + (b - a).signum() * 0.75 * END_TOLERANCE;
-                        }
-                    }
-                }
-            }
-            match self.residual(t, &ka) {
-                Some((f, k)) => {
-                    previous = Some((a, g));
-                    a = t;
-                    fa = f;
-                    ka = k;
-                }
-                None => b = t,
-            }
-        }
+        let (end, b) = fold_by_extrapolation(self, defined, undefined, END_TOLERANCE, |k| {
+            k.slope * k.slope
+        });
         let mut folds = folds;
         folds.rotate_right(1);
-        folds[0] = Some((defined.0, undefined, a, b));
+        folds[0] = Some((defined.0, undefined, end.0, b));
         self.folds.set(folds);
-        (a, fa, ka)
+        end
     }
 }

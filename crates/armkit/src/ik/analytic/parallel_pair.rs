@@ -103,7 +103,9 @@
 //! ```
 
 use super::chain::{Candidates, Chain};
-use super::search::{align_nearest, find_roots, illinois, EndCheck, Residual};
+use super::search::{
+    align_nearest, find_roots, fold_by_extrapolation, illinois, EndCheck, Residual,
+};
 use super::search2d::polish;
 use super::structure::GEOMETRY_TOLERANCE;
 use super::subproblem6::{CirclePoints, Sinusoids, Wave};
@@ -668,46 +670,15 @@ impl Residual<4> for Problem<'_> {
 
     /// The end of a branch is where two solutions of subproblem 6 merge:
     /// first located on the discriminant of its `f`
-    /// ([`Problem::fold_by_discriminant`]); where that does not apply, the
-    /// squared Jacobian determinant falls linearly to zero there. Each
-    /// step goes 99 % of the way to that extrapolated zero (a bisection
-    /// when the extrapolation fails), until the gap is below
-    /// [`END_TOLERANCE`].
+    /// ([`Problem::fold_by_discriminant`]); where that does not apply, where
+    /// the squared Jacobian determinant extrapolates to zero
+    /// (`search::fold_by_extrapolation`, to [`END_TOLERANCE`]).
     fn branch_end(&self, defined: (f64, f64, Key), undefined: f64) -> (f64, f64, Key) {
         if let Some(end) = self.fold_by_discriminant(&defined, undefined) {
             return end;
         }
-        let (mut a, mut fa, mut ka) = defined;
-        let mut b = undefined;
-        let mut previous: Option<(f64, f64)> = None;
-        for _ in 0..60 {
-            if (b - a).abs() < END_TOLERANCE {
-                break;
-            }
-            let g = ka.determinant * ka.determinant;
-            let mut t = 0.5 * (a + b);
-            if let Some((t0, g0)) = previous {
-                if g0 != g {
-                    let zero = a - g * (a - t0) / (g - g0);
-                    if (zero - a) * (b - a) > 0.0 && (zero - a).abs() < (b - a).abs() {
-                        t = a + 0.99 * (zero - a);
-                        if (t - a).abs() < 0.25 * END_TOLERANCE {
-                            t = a + (b - a).signum() * 0.25 * END_TOLERANCE;
-                        }
-                    }
-                }
-            }
-            match self.residual(t, &ka) {
-                Some((f, k)) => {
-                    previous = Some((a, g));
-                    a = t;
-                    fa = f;
-                    ka = k;
-                }
-                None => b = t,
-            }
-        }
-        (a, fa, ka)
+        let determinant = |k: &Key| k.determinant * k.determinant;
+        fold_by_extrapolation(self, defined, undefined, END_TOLERANCE, determinant).0
     }
 }
 

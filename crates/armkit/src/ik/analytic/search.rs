@@ -557,6 +557,54 @@ pub(crate) fn illinois<P: Copy>(
     Some((a, b))
 }
 
+/// The end of a branch between `defined`, where it exists, and
+/// `undefined`, where it does not, at a fold: where `measure` of the
+/// branch's key (a squared slope or Jacobian determinant, which falls
+/// linearly to zero as two solutions merge) extrapolates to zero. Each step
+/// goes 99 % of the way from the branch's last point to that zero (a
+/// bisection when the extrapolation fails; just past it once it is within
+/// `width`), until the bracket is narrower than `width`. Returns the last
+/// point on the branch and the nearest point known beyond it.
+pub(crate) fn fold_by_extrapolation<R: Residual<B>, const B: usize>(
+    p: &R,
+    defined: Point<R::Key>,
+    undefined: f64,
+    width: f64,
+    measure: impl Fn(&R::Key) -> f64,
+) -> (Point<R::Key>, f64) {
+    let (mut a, mut fa, mut ka) = defined;
+    let mut b = undefined;
+    let mut previous: Option<(f64, f64)> = None;
+    for _ in 0..60 {
+        if (b - a).abs() < width {
+            break;
+        }
+        let g = measure(&ka);
+        let mut t = 0.5 * (a + b);
+        if let Some((t0, g0)) = previous {
+            if g0 != g {
+                let zero = a - g * (a - t0) / (g - g0);
+                if (zero - a) * (b - a) > 0.0 && (zero - a).abs() < (b - a).abs() {
+                    t = a + 0.99 * (zero - a);
+                    if (zero - a).abs() < 0.5 * width {
+                        t = a + (b - a).signum() * 0.75 * width;
+                    }
+                }
+            }
+        }
+        match p.residual(t, &ka) {
+            Some((f, k)) => {
+                previous = Some((a, g));
+                a = t;
+                fa = f;
+                ka = k;
+            }
+            None => b = t,
+        }
+    }
+    ((a, fa, ka), b)
+}
+
 /// Matches `current`'s branches to `previous`'s (one sample before): each
 /// previous branch takes the nearest current one by `gap` within `link`;
 /// current branches left over go to slots empty before, then to any free
