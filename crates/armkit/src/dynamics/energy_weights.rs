@@ -163,7 +163,7 @@ pub struct MotionEnergy {
 /// sample), holding `load`, with the torques of `torque_model`. For
 /// [`TorqueModel::Dynamic`] the accelerations are the central differences
 /// of `q_dot` (one-sided at the ends). Use it on the samples of a
-/// [`crate::redundancy::TrackingReport`] (its `time`, `q`, `q_dot`) to
+/// [`crate::tracking::TrackingReport`] (its `time`, `q`, `q_dot`) to
 /// compare distributions under static and dynamic torques.
 ///
 /// Errors: fewer than 2 samples, sizes, times not increasing, NaN, a model

@@ -209,7 +209,7 @@ pub struct Joint {
 /// robot; poses and Jacobians are reported in it unless stated otherwise.
 /// Joint positions `q` (the configuration) hold the independent joints
 /// ([`Model::joints`], [`Model::dof`] of them), rad or m; mimic joints of the
-/// chain follow them ([`Model::chain_joints`], [`coupling`](self::coupling)).
+/// chain follow them ([`Model::chain_joints`], the `coupling` module).
 #[derive(Clone, Debug)]
 pub struct Model {
     name: String,

@@ -139,7 +139,7 @@ impl Default for MpcOptions {
 
 impl MpcOptions {
     /// Checks the options on their own (sizes against a model are checked by
-    /// [`MpcPlanner::new`]).
+    /// [`crate::mpc::MpcPlanner::new`]).
     pub fn validate(&self) -> Result<()> {
         prediction::check_horizons(self.horizon, self.control_horizon)?;
         if !(self.sample_time.is_finite() && self.sample_time > 0.0) {

@@ -100,7 +100,7 @@ impl WeightedLeastNorm {
     /// metric: `q_dot = z + A^-1 J' (J A^-1 J')^-1 (V - J z)` with
     /// `z = preferred`, i.e. the least-norm solution plus the projection
     /// `N z` of `z` onto the null space of `J` (Liegeois' gradient projection
-    /// when `z` is a scaled gradient, see [`super::nullspace`]). Allocates nothing.
+    /// when `z` is a scaled gradient, see the `nullspace` module). Allocates nothing.
     ///
     /// Errors: as [`WeightedLeastNorm::solve`], and `preferred` of the wrong
     /// size or not finite.

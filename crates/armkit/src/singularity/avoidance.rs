@@ -372,7 +372,7 @@ impl<'m> PathTracker<'m> {
     /// base); the state then advances by `h` (the base moving on a
     /// free-floating system).
     ///
-    /// The avoidance method checks every period ([`detect`]) with the plain
+    /// The avoidance method checks every period ([`super::detect`]) with the plain
     /// rates as candidate; when a test triggers at sample `i`, it solves the
     /// IK of the planned poses at samples `i + k, i + 2k, ...` (each
     /// warm-started from the previous solution) until a solution's `|det J|`

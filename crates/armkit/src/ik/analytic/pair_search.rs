@@ -46,7 +46,7 @@
 //! Cost (an evaluation is one placing step, a quartic's roots): 512
 //! samples per solve plus ~150 evaluations refining roots and reading
 //! branch ends. The placing quartic's roots are tracked from the last
-//! evaluation's (within [`NEAR`]) by Newton, deflated by the roots found
+//! evaluation's (within `NEAR`) by Newton, deflated by the roots found
 //! (`Trig2::roots_near`: accepted only when the quartic's discriminant
 //! certifies the same number of real roots and Newton finds that many
 //! distinct ones), the full isolation otherwise (near folds). A fold is

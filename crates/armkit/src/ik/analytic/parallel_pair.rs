@@ -51,7 +51,7 @@
 //! Jacobian determinant of its two equations (two solutions that merge as
 //! `t` moves have opposite signs), matched sample to sample within
 //! [`LINK`]. Subproblem 6's roots are tracked from the previous
-//! evaluation's (within [`NEAR`]; `Sinusoids::exact_solutions_near`:
+//! evaluation's (within `NEAR`; `Sinusoids::exact_solutions_near`:
 //! Newton on its `f`, accepted only when the quartic's discriminant
 //! certifies the same number of real roots and Newton finds that many
 //! distinct ones), isolated completely otherwise (near folds). A branch's

@@ -35,8 +35,8 @@ pub struct SchemeRun {
     pub status: PathStatus,
     /// Largest error at 100 points inside every segment.
     pub interior: PathError,
-    /// [`crate::trajectory::rate_amplification`]: the
-    /// recursion's growth (about 1 for a stable scheme).
+    /// The recursion's growth, [`crate::trajectory::rate_amplification`]
+    /// (about 1 for a stable scheme).
     pub amplification: f64,
 }
 
