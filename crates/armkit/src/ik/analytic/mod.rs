@@ -24,13 +24,12 @@
 //!   16 solutions; the three joints that place the pair's point in closed
 //!   form by a quartic); 6R arms whose only special structure is two
 //!   parallel consecutive axes at 2-3, 3-4 or 4-5 ([`parallel_pair`]: up to
-//!   16 solutions; the pair's two neighbours by subproblem 6). A parallel
-//!   pair at 1-2 or 5-6 only is refused with the class named ([`PairKind`]);
+//!   16 solutions; the pair's two neighbours by subproblem 6);
 //! * on request ([`SearchPolicy::TwoDimensions`]), general 6R arms (no
 //!   intersecting or parallel consecutive axes) by a 2-D search
 //!   ([`search2d`]: a 16 x 16 grid over joints 1 and 2 polished by
-//!   Gauss-Newton; milliseconds, may miss solutions). By default they are
-//!   refused with an error naming the option.
+//!   Gauss-Newton; milliseconds), refused by default with an error naming
+//!   the option; with it also the parallel pairs at 1-2 or 5-6.
 //!
 //! Each solution is checked by forward kinematics (the product of
 //! exponentials of the model's joint lines, compared with the model's own
@@ -46,11 +45,10 @@
 //! configuration. After [`AnalyticSolver::new`], a solve allocates nothing
 //! (unless the representatives outgrow the buffer sized at set-up for every
 //! joint's range, which only happens for [`Parameter::FixedJoint`] changes).
-//! The search classes' tolerances are in [`search`] (128 samples per turn
-//! for the spherical wrist, 256 for the one-pair search, 512 in
-//! [`parallel_pair`], roots to 1e-13
-//! rad; a double root may be missed: >= 99.9 % of random poses recover the
-//! generating configuration) and [`search2d`]; a search's solution is
+//! The searches sample 128 (spherical wrist), 256 (one pair) or 512
+//! (parallel pair) points per turn and refine roots to 1e-13 rad (a double
+//! root may be missed: >= 99.9 % of random poses recover the generating
+//! configuration; [`search2d`] may miss more); a search's solution is
 //! exact only if forward kinematics confirms it to 1e-10.
 //!
 //! ```
@@ -73,6 +71,7 @@
 mod chain;
 mod class;
 mod finish;
+mod options;
 pub mod pair_search;
 mod parallel;
 mod parallel_offset;
@@ -95,6 +94,7 @@ pub use finish::{
     AnalyticSolution, Representatives, Verification, LINE_CHECK_CONFIGURATIONS,
     LINE_CHECK_TOLERANCE,
 };
+pub use options::{AnalyticOptions, Parameter, SearchPolicy};
 pub use route::{route_class, solver_for, sweep_values, Redundancy};
 
 use self::chain::{Candidates, Chain};
@@ -113,83 +113,6 @@ use super::numeric::check_target;
 use crate::error::{check_finite_vector, Error, Result};
 use crate::math::Pose;
 use crate::model::Model;
-
-/// Options of an [`AnalyticSolver`]. Defaults: every representative within
-/// the limits, solutions outside the limits dropped, each solution checked
-/// by forward kinematics.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct AnalyticOptions {
-    /// Which 2 pi multiples of a joint angle are returned.
-    pub representatives: Representatives,
-    /// Whether solutions outside the joint limits are kept.
-    pub limits: RangeFilter,
-    /// How each solution's fit is decided.
-    pub verification: Verification,
-    /// Which searches the solver may run.
-    pub search: SearchPolicy,
-}
-
-/// Which searches an [`AnalyticSolver`] may run (set-up decides the class).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
-pub enum SearchPolicy {
-    /// Closed forms and 1-D searches (tens of microseconds); a general 6R
-    /// arm is refused. The default.
-    #[default]
-    UpToOneDimension,
-    /// Also the 2-D search of a general 6R arm ([`search2d`]: milliseconds,
-    /// may miss solutions).
-    TwoDimensions,
-}
-
-impl SearchPolicy {
-    /// A short snake-case name.
-    pub fn as_str(&self) -> &'static str {
-        match self {
-            SearchPolicy::UpToOneDimension => "up_to_one_dimension",
-            SearchPolicy::TwoDimensions => "two_dimensions",
-        }
-    }
-}
-
-impl std::fmt::Display for SearchPolicy {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.as_str())
-    }
-}
-
-impl Default for AnalyticOptions {
-    fn default() -> Self {
-        AnalyticOptions {
-            representatives: Representatives::Every,
-            limits: RangeFilter::WithinLimits,
-            verification: Verification::ForwardKinematics,
-            search: SearchPolicy::UpToOneDimension,
-        }
-    }
-}
-
-impl AnalyticOptions {
-    /// Nothing to check (every combination is valid); kept for uniformity.
-    pub fn validate(&self) -> Result<()> {
-        Ok(())
-    }
-}
-
-/// The redundancy parameter of a 7-DOF arm.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Parameter {
-    /// Joint `joint` (0-based) held at `value` (rad or m); the other six
-    /// must form a class.
-    FixedJoint {
-        /// Which joint, 0-based.
-        joint: usize,
-        /// Its value, rad or m.
-        value: f64,
-    },
-    /// The elbow angle of a spherical-shoulder-elbow-wrist arm, rad (see
-    /// [`AnalyticSolver::elbow_angle`]).
-    ElbowAngle(f64),
-}
 
 /// What the solver does per solve, fixed at set-up. Variants differ in
 /// size (the prepared geometry); a plan is built once per solver and read
