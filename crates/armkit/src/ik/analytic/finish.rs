@@ -436,8 +436,9 @@ impl Finisher {
                 .enumerate()
                 .map(|(i, s)| (s.distance2.to_bits(), i)),
         );
-        // Ties broken by the order found: deterministic.
-        self.order.sort_unstable();
+        // Ties broken by the order found: deterministic (the keys are
+        // distinct, so any sort gives this one order).
+        sort_keys(&mut self.order);
         // Position p takes the solution at order[p].1; a visited position
         // is marked by usize::MAX.
         const DONE: usize = usize::MAX;
@@ -464,6 +465,28 @@ impl Finisher {
 
 /// A joint value's representatives within its range (see
 /// [`representatives`]).
+/// Sorts distinct keys ascending: by insertion (keys packed into one
+/// `u128`, compared branch-free) for the few of one pose's solutions, by
+/// the library's unstable sort for many (every representative).
+fn sort_keys(keys: &mut [(u64, usize)]) {
+    const FEW: usize = 16;
+    if keys.len() > FEW {
+        keys.sort_unstable();
+        return;
+    }
+    let packed = |(bits, index): (u64, usize)| (u128::from(bits) << 64) | index as u128;
+    for i in 1..keys.len() {
+        let key = keys[i];
+        let value = packed(key);
+        let mut j = i;
+        while j > 0 && packed(keys[j - 1]) > value {
+            keys[j] = keys[j - 1];
+            j -= 1;
+        }
+        keys[j] = key;
+    }
+}
+
 #[derive(Clone, Copy, Debug)]
 struct Choices {
     /// The value as the range reads it (an angle wrapped into (-pi, pi]).

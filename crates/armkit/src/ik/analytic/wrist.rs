@@ -94,7 +94,7 @@ impl SphericalWrist {
             }
             return;
         }
-        let mut turns = [([Turn::ZERO; 3], false); 16];
+        let mut turns = [([Turn::ZERO; 3], false); MAX_POSITIONS];
         let count = position(
             &self.chain,
             self.positioning,
@@ -149,6 +149,12 @@ impl SphericalWrist {
     }
 }
 
+/// The most solutions of joints 1-3 in closed form (two roots of the
+/// first subproblem, each giving at most two of the second): the buffer
+/// [`position`] fills is this size (zeroing a larger one per solve cost
+/// more than 100 instructions).
+const MAX_POSITIONS: usize = 4;
+
 /// Joints 1-3 putting the wrist point `w` at `goal` in closed form (every
 /// positioning but `ParallelSecondThird`, solved in
 /// [`SphericalWrist::parallel_second_third`], and `General`, searched), as
@@ -160,7 +166,7 @@ fn position(
     w: &Vector3<f64>,
     o: &Vector3<f64>,
     goal: &Vector3<f64>,
-    out: &mut [([Turn; 3], bool); 16],
+    out: &mut [([Turn; 3], bool); MAX_POSITIONS],
 ) -> usize {
     let (c, h) = (&chain.c, &chain.h);
     let mut count = 0;
