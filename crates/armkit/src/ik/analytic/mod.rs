@@ -76,6 +76,7 @@ pub mod pair_search;
 mod parallel;
 mod parallel_offset;
 pub mod parallel_pair;
+mod ranges;
 mod route;
 pub mod search;
 pub mod search2d;
