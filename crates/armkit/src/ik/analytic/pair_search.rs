@@ -59,11 +59,10 @@ use super::chain::{Candidates, Chain};
 use super::search::{
     align_nearest, find_roots, fold_by_extrapolation, illinois, EndCheck, Residual,
 };
-use super::search2d::polish;
+use super::search2d::settle_root;
 use super::subproblems::{rotation, subproblem1, Spoke, Turn};
 use super::three_axes::{Placements, ThreeAxes};
 use super::trig2::{Trig2, TrigRoots};
-use super::EXACT_TOLERANCE;
 use crate::math::{wrap_angle, Matrix3, Pose, Vector3};
 use std::cell::Cell;
 
@@ -80,10 +79,6 @@ pub const END_TOLERANCE: f64 = 1e-9;
 const NEAR: f64 = 0.1;
 /// Branch ends remembered for the partner branch of the same fold.
 const FOLDS: usize = 16;
-/// Largest pose error (m and rad) of a root kept as a candidate.
-const KEEP: f64 = 1e-6;
-/// Pose error (m and rad) above which a root is polished by Gauss-Newton.
-const POLISHED: f64 = 1e-12;
 
 /// Where the intersecting pair is, along the chain as solved.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -471,7 +466,8 @@ impl<'a> Problem<'a> {
 
     /// The joint values (chain order) at a root `t` of the branch `key`,
     /// and whether the chain's forward kinematics reproduces the target to
-    /// [`EXACT_TOLERANCE`]; `None` if it misses by more than [`KEEP`].
+    /// [`EXACT_TOLERANCE`](super::EXACT_TOLERANCE); `None` if it misses by
+    /// more (`search2d::settle_root`).
     fn finish(&self, t: f64, key: &Key) -> Option<([f64; 6], bool)> {
         let a = self.nearest(&Turn::of_angle(t), key)?.0.angles;
         let (_, _, [i, j]) = self.form.joints();
@@ -491,41 +487,7 @@ impl<'a> Problem<'a> {
         let (tj, _) = subproblem1(&h[j], &h[i], &(rotation(&h[i], ti).transpose() * g * h[i]));
         q[i] = ti;
         q[j] = tj;
-        let error = self.error(&q);
-        if error > KEEP {
-            return None;
-        }
-        if error > POLISHED {
-            // Near a fold the placing step loses digits: a few Gauss-Newton
-            // steps on the 6-D pose error restore them.
-            let polished = polish(&self.s.chain, &self.s.home, q, &self.target, 3);
-            if let Some((p, _)) = polished {
-                if self.error(&p) < error {
-                    q = p.map(wrap_angle);
-                }
-            }
-        }
-        Some((q, self.error(&q) <= EXACT_TOLERANCE))
-    }
-
-    /// The largest of the position (m) and rotation-matrix (Frobenius)
-    /// errors of the chain's forward kinematics at `q`.
-    fn error(&self, q: &[f64; 6]) -> f64 {
-        let pose = self.forward_kinematics(q);
-        let position = (pose.translation - self.target.translation).norm();
-        let orientation = (pose.rotation - self.target.rotation).norm();
-        position.max(orientation)
-    }
-
-    /// `E1(q1) ... E6(q6) home` of the chain.
-    fn forward_kinematics(&self, q: &[f64; 6]) -> Pose {
-        let (c, h) = (&self.s.chain.c, &self.s.chain.h);
-        let mut pose = Pose::identity();
-        for k in 0..6 {
-            let r = rotation(&h[k], q[k]);
-            pose = pose * Pose::new(r, c[k] - r * c[k]);
-        }
-        pose * self.s.home
+        settle_root(&self.s.chain, &self.s.home, q, &self.target)
     }
 }
 

@@ -106,12 +106,11 @@ use super::chain::{Candidates, Chain};
 use super::search::{
     align_nearest, find_roots, fold_by_extrapolation, illinois, EndCheck, Residual,
 };
-use super::search2d::polish;
+use super::search2d::settle_root;
 use super::structure::GEOMETRY_TOLERANCE;
 use super::subproblem6::{CirclePoints, Sinusoids, Wave};
 use super::subproblems::{rotation, subproblem1, subproblem1_turn, Turn};
 use super::trig2::Trig2;
-use super::EXACT_TOLERANCE;
 use crate::math::{wrap_angle, Matrix3, Pose, Vector3};
 use std::cell::Cell;
 
@@ -130,10 +129,6 @@ const NEAR: f64 = 0.1;
 /// fold located on the discriminant to the one at the sample before it for
 /// the branch to count as ending there.
 const FOLDING: f64 = 1e-2;
-/// Largest pose error (m and rad) of a root kept as a candidate.
-const KEEP: f64 = 1e-6;
-/// Pose error (m and rad) above which a root is polished by Gauss-Newton.
-const POLISHED: f64 = 1e-12;
 
 /// Where the parallel pair is, along the chain as solved.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -526,25 +521,12 @@ impl<'a> Problem<'a> {
 
     /// The joint values (chain order) at a root `t` of the branch `key`,
     /// and whether the chain's forward kinematics reproduces the target to
-    /// [`EXACT_TOLERANCE`]; `None` if it misses by more than [`KEEP`].
+    /// [`EXACT_TOLERANCE`](super::EXACT_TOLERANCE); `None` if it misses by
+    /// more (`search2d::settle_root`).
     fn finish(&self, t: f64, key: &Key) -> Option<([f64; 6], bool)> {
         let (_, point) = self.nearest(t, key)?;
-        let mut q = self.configuration(t, &point);
-        let error = self.error(&q);
-        if error > KEEP {
-            return None;
-        }
-        if error > POLISHED {
-            // Near a fold subproblem 6 loses digits: a few Gauss-Newton
-            // steps on the 6-D pose error restore them.
-            let polished = polish(&self.s.chain, &self.s.home, q, &self.target, 3);
-            if let Some((p, _)) = polished {
-                if self.error(&p) < error {
-                    q = p.map(wrap_angle);
-                }
-            }
-        }
-        Some((q, self.error(&q) <= EXACT_TOLERANCE))
+        let q = self.configuration(t, &point);
+        settle_root(&self.s.chain, &self.s.home, q, &self.target)
     }
 
     /// Every joint from `t` and a branch's point.
@@ -576,21 +558,6 @@ impl<'a> Problem<'a> {
         let n = &self.s.tail_normal;
         q[5] = subproblem1(&h[5], n, &(tail * n)).0;
         q
-    }
-
-    /// The largest of the position (m) and rotation-matrix (Frobenius)
-    /// errors of the chain's forward kinematics at `q`.
-    fn error(&self, q: &[f64; 6]) -> f64 {
-        let (c, h) = (&self.s.chain.c, &self.s.chain.h);
-        let mut pose = Pose::identity();
-        for k in 0..6 {
-            let r = rotation(&h[k], q[k]);
-            pose = pose * Pose::new(r, c[k] - r * c[k]);
-        }
-        let pose = pose * self.s.home;
-        let position = (pose.translation - self.target.translation).norm();
-        let orientation = (pose.rotation - self.target.rotation).norm();
-        position.max(orientation)
     }
 }
 

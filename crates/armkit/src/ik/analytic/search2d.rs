@@ -89,6 +89,57 @@ impl GridSearch {
     }
 }
 
+/// Largest pose error (m and rad) of a 1-D search's root kept as a candidate.
+const KEEP: f64 = 1e-6;
+/// Pose error (m and rad) above which a 1-D search's root is polished.
+const POLISHED: f64 = 1e-12;
+
+/// A 1-D search's root `q` (chain order) as a solution for `target`:
+/// dropped (`None`) when the chain's pose misses it by more than [`KEEP`];
+/// polished by three steps of [`polish`] when it misses by more than
+/// [`POLISHED`] (near a fold the closed-form steps lose digits), the
+/// polished configuration kept only if it errs less; with whether it is
+/// exact (within [`EXACT_TOLERANCE`]).
+pub(crate) fn settle_root(
+    chain: &Chain,
+    home: &Pose,
+    mut q: [f64; 6],
+    target: &Pose,
+) -> Option<([f64; 6], bool)> {
+    let error = pose_gap(chain, home, &q, target);
+    if error > KEEP {
+        return None;
+    }
+    if error > POLISHED {
+        if let Some((p, _)) = polish(chain, home, q, target, 3) {
+            if pose_gap(chain, home, &p, target) < error {
+                q = p.map(wrap_angle);
+            }
+        }
+    }
+    Some((q, pose_gap(chain, home, &q, target) <= EXACT_TOLERANCE))
+}
+
+/// `E1(q1) ... E6(q6) home` of a chain of rotation joints (m, rad).
+pub(crate) fn chain_pose(chain: &Chain, home: &Pose, q: &[f64; 6]) -> Pose {
+    let (c, h) = (&chain.c, &chain.h);
+    let mut pose = Pose::identity();
+    for k in 0..6 {
+        let r = rotation(&h[k], q[k]);
+        pose = pose * Pose::new(r, c[k] - r * c[k]);
+    }
+    pose * *home
+}
+
+/// The largest of the position (m) and rotation-matrix (Frobenius) errors
+/// of [`chain_pose`] at `q` against `target`.
+fn pose_gap(chain: &Chain, home: &Pose, q: &[f64; 6], target: &Pose) -> f64 {
+    let pose = chain_pose(chain, home, q);
+    let position = (pose.translation - target.translation).norm();
+    let orientation = (pose.rotation - target.rotation).norm();
+    position.max(orientation)
+}
+
 /// Levenberg-Marquardt on the chain's 6-D pose error from `q` to
 /// `target` (at most `iterations` steps, stopping below [`CONVERGED`]); the
 /// configuration and its error norm if it ends within 1e-8 (a candidate;
