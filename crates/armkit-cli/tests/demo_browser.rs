@@ -3,8 +3,9 @@
 //! the animation's script runs, and the page asks the network for nothing.
 //!
 //! Chromium (Debian's `chromium`) is needed for the browser half. Without it
-//! the test only checks the files, unless `ARMKIT_REQUIRE_BROWSER=1` (set by
-//! `.ci/run`, which installs Chromium) makes its absence a failure.
+//! the test only checks the files, unless `ARMKIT_REQUIRE_BROWSER=1` makes its
+//! absence a failure (`.ci/run` installs Chromium, and stops if it cannot,
+//! before it runs the README's test command).
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
