@@ -57,7 +57,7 @@
 
 use super::chain::{Candidates, Chain};
 use super::search::{
-    align_nearest, find_roots, fold_by_extrapolation, illinois, EndCheck, Residual,
+    align_nearest, find_roots, fold_by_extrapolation, illinois, BranchKey, EndCheck, Residual,
 };
 use super::search2d::settle_root;
 use super::subproblems::{rotation, subproblem1, Spoke, Turn};
@@ -265,39 +265,9 @@ struct Problem<'a> {
 /// undefined side), the branch's last point, the first point without it.
 type Fold = (f64, f64, f64, f64);
 
-/// The three placing joints' angles and the sign of the placing
-/// polynomial's slope at their root, naming a branch.
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct Key {
-    angles: [f64; 3],
-    rising: bool,
-    /// The slope itself.
-    slope: f64,
-}
-
-/// Joint-space gap between two placements (infinite across a slope sign:
-/// never the same branch).
-fn gap(a: &Key, b: &Key) -> f64 {
-    if a.rising != b.rising {
-        return f64::INFINITY;
-    }
-    a.angles
-        .iter()
-        .zip(&b.angles)
-        .map(|(x, y)| angle_between(*x, *y))
-        .sum()
-}
-
-/// `|wrap_angle(x - y)|` for `x`, `y` in `[-pi, pi]` (no rounding call).
-#[inline]
-fn angle_between(x: f64, y: f64) -> f64 {
-    let d = (x - y).abs();
-    if d > std::f64::consts::PI {
-        std::f64::consts::TAU - d
-    } else {
-        d
-    }
-}
+/// The three placing joints' angles and the placing polynomial's slope at
+/// their root, naming a branch.
+type Key = BranchKey<3>;
 
 fn keys(found: &Placements) -> impl Iterator<Item = Key> + '_ {
     found
@@ -306,8 +276,7 @@ fn keys(found: &Placements) -> impl Iterator<Item = Key> + '_ {
         .zip(&found.slope)
         .map(|(angles, slope)| Key {
             angles: *angles,
-            rising: *slope > 0.0,
-            slope: *slope,
+            fold: *slope,
         })
 }
 
@@ -456,7 +425,7 @@ impl<'a> Problem<'a> {
         let found = self.placements(t);
         let mut best: Option<(f64, Key, usize)> = None;
         for (n, a) in keys(&found).enumerate() {
-            let d = gap(&a, key);
+            let d = a.gap(key);
             if d < LINK && best.is_none_or(|(e, _, _)| d < e) {
                 best = Some((d, a, n));
             }
@@ -549,11 +518,11 @@ impl Residual<4> for Problem<'_> {
     }
 
     fn align(&self, previous: &[Option<(f64, Key)>; 4], current: &mut [Option<(f64, Key)>; 4]) {
-        align_nearest(previous, current, gap, LINK);
+        align_nearest(previous, current, Key::gap, LINK);
     }
 
     fn same_branch(&self, a: &Key, b: &Key) -> bool {
-        gap(a, b) < LINK
+        a.gap(b) < LINK
     }
 
     /// The end of a branch is where two placements merge: the squared
@@ -583,9 +552,8 @@ impl Residual<4> for Problem<'_> {
             self.folds.set(folds);
             return end;
         }
-        let (end, b) = fold_by_extrapolation(self, defined, undefined, END_TOLERANCE, |k| {
-            k.slope * k.slope
-        });
+        let (end, b) =
+            fold_by_extrapolation(self, defined, undefined, END_TOLERANCE, |k| k.fold * k.fold);
         let mut folds = folds;
         folds.rotate_right(1);
         folds[0] = Some((defined.0, undefined, end.0, b));

@@ -104,7 +104,7 @@
 
 use super::chain::{Candidates, Chain};
 use super::search::{
-    align_nearest, find_roots, fold_by_extrapolation, illinois, EndCheck, Residual,
+    align_nearest, find_roots, fold_by_extrapolation, illinois, BranchKey, EndCheck, Residual,
 };
 use super::search2d::settle_root;
 use super::structure::GEOMETRY_TOLERANCE;
@@ -316,24 +316,9 @@ struct Problem<'a> {
     last: Cell<Option<(f64, CirclePoints)>>,
 }
 
-/// A branch: the subproblem-6 angles `(q_l, q_r)` and the sign of its
-/// Jacobian determinant.
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct Key {
-    angles: [f64; 2],
-    rising: bool,
-    /// The determinant itself.
-    determinant: f64,
-}
-
-/// Joint-space gap between two branches' points (infinite across a
-/// determinant sign: never the same branch).
-fn gap(a: &Key, b: &Key) -> f64 {
-    if a.rising != b.rising {
-        return f64::INFINITY;
-    }
-    wrap_angle(a.angles[0] - b.angles[0]).abs() + wrap_angle(a.angles[1] - b.angles[1]).abs()
-}
+/// A branch: the subproblem-6 angles `(q_l, q_r)` and its Jacobian
+/// determinant.
+type Key = BranchKey<2>;
 
 /// What subproblem 6 turns at a trial `t` (see the module docs): the
 /// left side is `g_l . R(h_l, q_l)' v` (`v` = `left[0]` for the
@@ -457,8 +442,7 @@ impl<'a> Problem<'a> {
                 - wave_slope(&system.second[0], b) * wave_slope(&system.first[1], a);
             let key = Key {
                 angles: [a.angle, b.angle],
-                rising: determinant > 0.0,
-                determinant,
+                fold: determinant,
             };
             *slot = Some((key, self.point(&v, a, b)));
         }
@@ -511,7 +495,7 @@ impl<'a> Problem<'a> {
     fn nearest(&self, t: f64, key: &Key) -> Option<(Key, Point)> {
         let mut best: Option<(f64, Key, Point)> = None;
         for (k, point) in self.branches(t).into_iter().flatten() {
-            let d = gap(&k, key);
+            let d = k.gap(key);
             if d < LINK && best.as_ref().is_none_or(|(e, _, _)| d < *e) {
                 best = Some((d, k, point));
             }
@@ -604,7 +588,7 @@ impl Problem<'_> {
         // from it); a branch going on at its own size there means the sign
         // change was another pair's fold.
         if let Some((_, past)) = self.residual(b, &k) {
-            if past.determinant.abs() >= FOLDING * defined.2.determinant.abs() {
+            if past.fold.abs() >= FOLDING * defined.2.fold.abs() {
                 return None;
             }
         }
@@ -628,11 +612,11 @@ impl Residual<4> for Problem<'_> {
     }
 
     fn align(&self, previous: &[Option<(f64, Key)>; 4], current: &mut [Option<(f64, Key)>; 4]) {
-        align_nearest(previous, current, gap, LINK);
+        align_nearest(previous, current, Key::gap, LINK);
     }
 
     fn same_branch(&self, a: &Key, b: &Key) -> bool {
-        gap(a, b) < LINK
+        a.gap(b) < LINK
     }
 
     /// The end of a branch is where two solutions of subproblem 6 merge:
@@ -644,7 +628,7 @@ impl Residual<4> for Problem<'_> {
         if let Some(end) = self.fold_by_discriminant(&defined, undefined) {
             return end;
         }
-        let determinant = |k: &Key| k.determinant * k.determinant;
+        let determinant = |k: &Key| k.fold * k.fold;
         fold_by_extrapolation(self, defined, undefined, END_TOLERANCE, determinant).0
     }
 }

@@ -605,6 +605,45 @@ pub(crate) fn fold_by_extrapolation<R: Residual<B>, const B: usize>(
     ((a, fa, ka), b)
 }
 
+/// A branch of a 1-D search at one point: the closed-form step's angles
+/// there (rad) and `fold`, the quantity that vanishes where two of its
+/// solutions merge (the placing quartic's slope at its root, subproblem 6's
+/// Jacobian determinant): its sign tells apart the two branches about to
+/// merge.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct BranchKey<const N: usize> {
+    /// The step's angles, each in `[-pi, pi]`, rad.
+    pub angles: [f64; N],
+    /// The merging quantity.
+    pub fold: f64,
+}
+
+impl<const N: usize> BranchKey<N> {
+    /// Joint-space gap (rad, summed over the angles) between two points;
+    /// infinite across a sign of `fold` (never the same branch).
+    pub(crate) fn gap(&self, other: &Self) -> f64 {
+        if (self.fold > 0.0) != (other.fold > 0.0) {
+            return f64::INFINITY;
+        }
+        self.angles
+            .iter()
+            .zip(&other.angles)
+            .map(|(x, y)| angle_between(*x, *y))
+            .sum()
+    }
+}
+
+/// `|wrap_angle(x - y)|` for `x`, `y` in `[-pi, pi]` (no rounding call).
+#[inline]
+fn angle_between(x: f64, y: f64) -> f64 {
+    let d = (x - y).abs();
+    if d > std::f64::consts::PI {
+        std::f64::consts::TAU - d
+    } else {
+        d
+    }
+}
+
 /// Matches `current`'s branches to `previous`'s (one sample before): each
 /// previous branch takes the nearest current one by `gap` within `link`;
 /// current branches left over go to slots empty before, then to any free
