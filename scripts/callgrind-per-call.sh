@@ -48,5 +48,7 @@ for line in open(path).read().split("\n"):
         if len(parts) >= 2:
             inclusive += int(parts[1])
         pending = False
-print(f"{label}: calls {calls} instructions/call {inclusive // max(calls, 1)}")
+if calls == 0:
+    sys.exit(f"no call of {function!r} in the bench(es) matching {label!r} (the binary's --list names them)")
+print(f"{label}: calls {calls} instructions/call {inclusive // calls}")
 PY
