@@ -1,13 +1,12 @@
 //! Every analytic IK solution from Python (`Robot.ik_solutions`) and the
 //! arm's analytic class (`Robot.arm_class`): the library's
 //! [`armkit::ik::analytic`] solver, chosen as `armkit ik --solver analytic`
-//! chooses it ([`analytic::solver_for`]), with seed 002's 4-DOF arm by its
-//! closed form as in the CLI.
+//! chooses it ([`AnalyticRoute`]: seed 002's 4-DOF arm by its closed form).
 
 use armkit::ik::analytic::{
-    self, AnalyticOptions, AnalyticSolver, Fit, Parameter, Redundancy, SearchPolicy,
+    self, AnalyticOptions, AnalyticRoute, Fit, JointNumbering, Redundancy, SearchPolicy,
 };
-use armkit::ik::closed_form::ClosedFormSolver;
+use armkit::ik::closed_form::ClosedFormSolution;
 use armkit::math::Pose;
 use armkit::{Error, Model};
 use numpy::{PyArray1, PyArray2};
@@ -76,79 +75,6 @@ impl SolutionsArguments {
     }
 }
 
-/// One solution, whichever solver found it.
-struct Found {
-    q: Vec<f64>,
-    fit: Fit,
-    position_error: f64,
-    orientation_error: f64,
-}
-
-/// Every solution of `model` for `target` from `start` (both checked by
-/// the caller), with the class name and the method's description.
-fn solve(
-    model: &Model,
-    arguments: &SolutionsArguments,
-    target: &Pose,
-    start: &[f64],
-) -> armkit::Result<(Vec<Found>, &'static str, String)> {
-    let options = AnalyticOptions {
-        search: arguments.search,
-        ..AnalyticOptions::default()
-    };
-    let mut solver = match analytic::solver_for(model, options, arguments.redundancy, start) {
-        Ok(solver) => solver,
-        Err(error) => {
-            // Seed 002's 4-DOF arm: its closed form (as the CLI's route).
-            return match ClosedFormSolver::new(model) {
-                Ok(arm4 @ ClosedFormSolver::Arm4(_)) if arguments.sweep.is_none() => {
-                    let found = arm4
-                        .solve(target, start)?
-                        .into_iter()
-                        .map(|s| Found {
-                            q: s.q,
-                            fit: s.fit,
-                            position_error: s.position_error,
-                            orientation_error: s.orientation_error,
-                        })
-                        .collect();
-                    Ok((found, "seed002_arm4", arm4.description().to_string()))
-                }
-                _ => Err(error),
-            };
-        }
-    };
-    let solutions = match arguments.sweep {
-        None => solver.solve(target, start)?.to_vec(),
-        Some(n) => {
-            let values = analytic::sweep_values(&solver, n)?;
-            solver.sweep(target, start, &values)?
-        }
-    };
-    let found = solutions
-        .iter()
-        .map(|s| Found {
-            q: s.q().to_vec(),
-            fit: s.fit,
-            position_error: s.position_error,
-            orientation_error: s.orientation_error,
-        })
-        .collect();
-    Ok((found, solver.class().as_str(), method(&solver)))
-}
-
-/// The class's description with the redundancy parameter (0-based joint).
-fn method(solver: &AnalyticSolver) -> String {
-    let class = solver.class().description();
-    match solver.parameter() {
-        Some(Parameter::ElbowAngle(psi)) => format!("{class}; elbow angle {psi:.6} rad"),
-        Some(Parameter::FixedJoint { joint, value }) => {
-            format!("{class}; joint {joint} (0-based) held at {value:.6}")
-        }
-        None => class.to_string(),
-    }
-}
-
 /// `Robot.arm_class()`: the class name and its description (the `armkit
 /// ik --explain` class; a 7-joint arm's with the held joint named, 0-based).
 pub fn arm_class(model: &Model) -> armkit::Result<(&'static str, String)> {
@@ -193,7 +119,7 @@ pub struct IkSolutions {
 impl IkSolutions {
     fn new(
         py: Python<'_>,
-        found: &[Found],
+        found: &[ClosedFormSolution],
         arm_class: &'static str,
         method: String,
         dof: usize,
@@ -205,7 +131,7 @@ impl IkSolutions {
         Ok(IkSolutions {
             q: matrix_from_rows(py, &rows, dof)?.unbind(),
             exact: PyArray1::from_slice(py, &exact).unbind(),
-            fits: found.iter().map(|s| fit_name(s.fit)).collect(),
+            fits: found.iter().map(|s| s.fit.as_str()).collect(),
             position_error: vector(py, &position).unbind(),
             orientation_error: vector(py, &orientation).unbind(),
             arm_class,
@@ -231,14 +157,6 @@ impl IkSolutions {
     }
 }
 
-/// `"exact"` or `"approximate"`.
-fn fit_name(fit: Fit) -> &'static str {
-    match fit {
-        Fit::Exact => "exact",
-        Fit::Approximate => "approximate",
-    }
-}
-
 /// `Robot.ik_solutions` after argument parsing: solves with the GIL released.
 pub fn ik_solutions(
     py: Python<'_>,
@@ -248,7 +166,19 @@ pub fn ik_solutions(
     start: &[f64],
 ) -> PyResult<IkSolutions> {
     let (found, class, method) = py
-        .detach(|| solve(model, arguments, target, start))
+        .detach(|| {
+            let options = AnalyticOptions {
+                search: arguments.search,
+                ..AnalyticOptions::default()
+            };
+            let mut route = AnalyticRoute::new(model, options, arguments.redundancy, start)?;
+            let found = route.solve(target, start, arguments.sweep)?;
+            Ok::<_, armkit::Error>((
+                found,
+                route.class_name(),
+                route.method(JointNumbering::ZeroBased),
+            ))
+        })
         .or_raise()?;
     IkSolutions::new(py, &found, class, method, model.dof())
 }

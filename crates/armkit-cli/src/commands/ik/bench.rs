@@ -9,7 +9,7 @@ use armkit::Model;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 
-use super::analytic::Route;
+use super::analytic::route;
 use super::report::errors;
 use super::{RedundancyArgs, SolverArg, ToleranceArgs};
 use crate::common::{print_json, CliError, CliResult, Outcome, RobotArgs};
@@ -181,7 +181,7 @@ fn bench_solver(
         _ => None,
     };
     let mut analytic = match solver {
-        SolverArg::Analytic => Some(Route::new(model, redundancy, start)?),
+        SolverArg::Analytic => Some(route(model, redundancy, start)?),
         _ => None,
     };
     let progress = ProgressBar::new(targets.len() as u64);
@@ -198,7 +198,7 @@ fn bench_solver(
     for (i, (_, target)) in targets.iter().enumerate() {
         let began = Instant::now();
         let q = if let Some(route) = analytic.as_mut() {
-            route.first_exact(target, start)?
+            route.nearest_exact(target, start)?
         } else {
             let report = match auto.as_mut() {
                 Some(auto) => auto.solve(target, start)?.report,

@@ -16,18 +16,10 @@ pub(super) fn outcome(status: IkStatus) -> Outcome {
     }
 }
 
-/// `exact` or `approximate`.
-pub(super) fn fit_name(fit: Fit) -> &'static str {
-    match fit {
-        Fit::Exact => "exact",
-        Fit::Approximate => "approximate",
-    }
-}
-
 /// One entry of `solution_fits`.
 pub(super) fn fit_json(fit: Fit, position_error: f64, orientation_error: f64) -> serde_json::Value {
     serde_json::json!({
-        "fit": fit_name(fit),
+        "fit": fit.as_str(),
         "position_error": position_error,
         "orientation_error": orientation_error,
     })

@@ -96,7 +96,7 @@ pub use finish::{
     LINE_CHECK_TOLERANCE,
 };
 pub use options::{AnalyticOptions, Parameter, SearchPolicy};
-pub use route::{route_class, solver_for, sweep_values, Redundancy};
+pub use route::{route_class, solver_for, sweep_values, AnalyticRoute, JointNumbering, Redundancy};
 
 use self::chain::{Candidates, Chain};
 use self::class::{detect, Detected};

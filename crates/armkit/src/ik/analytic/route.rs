@@ -1,11 +1,30 @@
 //! Which analytic solver a model gets: the route shared by `armkit ik
-//! --solver analytic` and Python's `Robot.ik_solutions` (a 6-joint arm as
-//! it is, a 7-joint arm by a held joint or its elbow angle), the values of
-//! a redundancy sweep, and the class `--explain` reports.
+//! --solver analytic`, `armkit bench-ik --solver analytic` and Python's
+//! `Robot.ik_solutions` (a 6-joint arm as it is, a 7-joint arm by a held
+//! joint or its elbow angle, seed 002's 4-joint arm by its closed form:
+//! [`AnalyticRoute`]), the values of a redundancy sweep, and the class
+//! `--explain` reports.
+//!
+//! ```
+//! use armkit::ik::analytic::{AnalyticOptions, AnalyticRoute, JointNumbering, Redundancy};
+//! use armkit::kinematics::{forward_kinematics, Data};
+//! let model = armkit::robots::by_name("arm4").unwrap();
+//! let q = [0.3, -0.4, 0.5, 0.2];
+//! let mut data = Data::new(&model);
+//! forward_kinematics(&model, &mut data, &q).unwrap();
+//! let target = *data.end_effector_pose();
+//! let mut route = AnalyticRoute::new(&model, AnalyticOptions::default(), Redundancy::default(), &q).unwrap();
+//! assert_eq!(route.class_name(), "seed002_arm4");
+//! let solutions = route.solve(&target, &q, None).unwrap();
+//! assert!(solutions.iter().any(|s| s.q.iter().zip(&q).all(|(a, b)| (a - b).abs() < 1e-9)));
+//! assert!(route.method(JointNumbering::OneBased).contains("4-DOF"));
+//! ```
 
 use super::structure::ArmStructure;
-use super::{explain, joint_to_hold, AnalyticOptions, AnalyticSolver, ArmClass, Parameter};
+use super::{explain, joint_to_hold, AnalyticOptions, AnalyticSolver, ArmClass, Fit, Parameter};
 use crate::error::{check_finite_vector, Error, Result};
+use crate::ik::closed_form::{ClosedFormSolution, ClosedFormSolver};
+use crate::math::Pose;
 use crate::model::Model;
 
 /// How [`solver_for`] resolves a 7-joint arm's redundancy. Nothing set (the
@@ -115,12 +134,7 @@ pub fn sweep_values(solver: &AnalyticSolver, n: usize) -> Result<Vec<f64>> {
                 (-PI, PI)
             }
         }
-        None => {
-            return Err(Error::invalid_argument(
-                "sweep",
-                "only for 7-joint arms (the redundancy parameter is swept)",
-            ))
-        }
+        None => return Err(nothing_to_sweep()),
     };
     Ok((0..n)
         .map(|k| lower + (upper - lower) * (k as f64 + 0.5) / n as f64)
@@ -142,4 +156,136 @@ pub fn route_class(
         }
     }
     Ok((class, None, structure))
+}
+
+/// The error of a sweep asked of an arm without redundancy parameter.
+fn nothing_to_sweep() -> Error {
+    Error::invalid_argument(
+        "sweep",
+        "only for 7-joint arms (the redundancy parameter is swept)",
+    )
+}
+
+/// The analytic solver of one model, chosen once: the subproblem
+/// decomposition ([`solver_for`]), or, for seed 002's 4-joint arm (which
+/// the decomposition does not take), its closed form
+/// ([`ClosedFormSolver::Arm4`]).
+#[derive(Clone, Debug)]
+pub enum AnalyticRoute {
+    /// [`solver_for`]'s solver.
+    Subproblems(Box<AnalyticSolver>),
+    /// Seed 002's 4-DOF arm.
+    Arm4(Box<ClosedFormSolver>),
+}
+
+/// How joints are numbered in text meant for a user.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum JointNumbering {
+    /// 0 to n - 1 (Python).
+    ZeroBased,
+    /// 1 to n (the CLI's flags).
+    OneBased,
+}
+
+impl AnalyticRoute {
+    /// [`solver_for`]'s solver for `model`; if it has none, seed 002's
+    /// 4-joint closed form when the model is that arm. Errors: those of
+    /// [`solver_for`] (the message names the class it cannot solve).
+    pub fn new(
+        model: &Model,
+        options: AnalyticOptions,
+        redundancy: Redundancy,
+        start: &[f64],
+    ) -> Result<AnalyticRoute> {
+        match solver_for(model, options, redundancy, start) {
+            Ok(solver) => Ok(AnalyticRoute::Subproblems(Box::new(solver))),
+            Err(error) => match ClosedFormSolver::new(model) {
+                Ok(arm4 @ ClosedFormSolver::Arm4(_)) => Ok(AnalyticRoute::Arm4(Box::new(arm4))),
+                _ => Err(error),
+            },
+        }
+    }
+
+    /// The class name (`armkit ik --json`'s `class`, Python's `arm_class`).
+    pub fn class_name(&self) -> &'static str {
+        match self {
+            AnalyticRoute::Subproblems(s) => s.class().as_str(),
+            AnalyticRoute::Arm4(_) => "seed002_arm4",
+        }
+    }
+
+    /// The method in one line: the class's description and, for a 7-joint
+    /// arm, the redundancy parameter (the held joint numbered per
+    /// `numbering`).
+    pub fn method(&self, numbering: JointNumbering) -> String {
+        let solver = match self {
+            AnalyticRoute::Subproblems(s) => s,
+            AnalyticRoute::Arm4(c) => return c.description().to_string(),
+        };
+        let class = solver.class().description();
+        match solver.parameter() {
+            Some(Parameter::ElbowAngle(psi)) => format!("{class}; elbow angle {psi:.6} rad"),
+            Some(Parameter::FixedJoint { joint, value }) => match numbering {
+                JointNumbering::ZeroBased => {
+                    format!("{class}; joint {joint} (0-based) held at {value:.6}")
+                }
+                JointNumbering::OneBased => {
+                    format!("{class}; joint {} held at {value:.6}", joint + 1)
+                }
+            },
+            None => class.to_string(),
+        }
+    }
+
+    /// Every solution within the limits for `target` (end-effector pose,
+    /// base frame), nearest `start` first (rad or m, one per joint); with
+    /// `sweep` = Some(n), over n values of a 7-joint arm's redundancy
+    /// parameter ([`sweep_values`]). Errors: those of the solvers, and a
+    /// sweep asked of an arm without parameter (named `sweep`).
+    pub fn solve(
+        &mut self,
+        target: &Pose,
+        start: &[f64],
+        sweep: Option<usize>,
+    ) -> Result<Vec<ClosedFormSolution>> {
+        let solver = match (self, sweep) {
+            (AnalyticRoute::Arm4(c), None) => return c.solve(target, start),
+            (AnalyticRoute::Arm4(_), Some(_)) => return Err(nothing_to_sweep()),
+            (AnalyticRoute::Subproblems(s), _) => s,
+        };
+        let found = match sweep {
+            None => solver.solve(target, start)?.to_vec(),
+            Some(n) => {
+                let values = sweep_values(solver, n)?;
+                solver.sweep(target, start, &values)?
+            }
+        };
+        Ok(found
+            .iter()
+            .map(|s| ClosedFormSolution {
+                q: s.q().to_vec(),
+                fit: s.fit,
+                position_error: s.position_error,
+                orientation_error: s.orientation_error,
+            })
+            .collect())
+    }
+
+    /// The exact solution within the limits nearest `start`, if any (every
+    /// solution is computed, only this one copied out: what `armkit
+    /// bench-ik --solver analytic` times).
+    pub fn nearest_exact(&mut self, target: &Pose, start: &[f64]) -> Result<Option<Vec<f64>>> {
+        Ok(match self {
+            AnalyticRoute::Subproblems(s) => s
+                .solve(target, start)?
+                .iter()
+                .find(|s| s.fit == Fit::Exact)
+                .map(|s| s.q().to_vec()),
+            AnalyticRoute::Arm4(c) => c
+                .solve(target, start)?
+                .into_iter()
+                .find(|s| s.fit == Fit::Exact)
+                .map(|s| s.q),
+        })
+    }
 }

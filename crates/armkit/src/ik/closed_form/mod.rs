@@ -60,6 +60,22 @@ pub enum Fit {
     Approximate,
 }
 
+impl Fit {
+    /// `"exact"` or `"approximate"` (the CLI's JSON, Python's `fits`).
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Fit::Exact => "exact",
+            Fit::Approximate => "approximate",
+        }
+    }
+}
+
+impl std::fmt::Display for Fit {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
 /// Whether solutions outside the joint limits are kept.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum RangeFilter {
