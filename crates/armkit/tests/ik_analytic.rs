@@ -1047,7 +1047,7 @@ fn random_end_parallel_pair_arms_by_1d_search() {
 #[test]
 #[ignore = "slow: cargo test --release --test ik_analytic -- --ignored --nocapture"]
 fn many_random_end_parallel_pair_arms_by_1d_search() {
-    let tally = parallel_pair_tally(&END_PARALLEL_CASES, 350, 10, 100);
+    let tally = parallel_pair_tally(&END_PARALLEL_CASES, 350, 50, 100);
     assert_search_recovered("end parallel-pair arms", &tally);
 }
 
@@ -1172,7 +1172,10 @@ fn parallel_end_pairs_are_solved_and_pairs_no_search_takes_are_refused_by_name()
     let error = AnalyticSolver::new(&model, AnalyticOptions::default())
         .unwrap_err()
         .to_string();
-    assert!(error.contains("has no analytic solver: class other"), "{error}");
+    assert!(
+        error.contains("has no analytic solver: class other"),
+        "{error}"
+    );
 }
 
 #[test]

@@ -805,7 +805,13 @@ fn analytic_ik_searches_do_not_allocate() {
         ("one_pair", skew, fourth, [1.0, 0.0, 0.5], second),
         ("general", skew, fourth, [1.1, 0.1, 0.45], second),
         ("parallel_pair", second, fourth, [1.1, 0.1, 0.45], second),
-        ("parallel_pair_1_2", skew, fourth, [1.1, 0.1, 0.45], [0.0, 0.0, 1.0]),
+        (
+            "parallel_pair_1_2",
+            skew,
+            fourth,
+            [1.1, 0.1, 0.45],
+            [0.0, 0.0, 1.0],
+        ),
         ("pair_3_4", skew, [0.5, -0.1, 0.6], [1.1, 0.1, 0.45], second),
     ] {
         let mut builder = ModelBuilder::new(name);

@@ -30,31 +30,47 @@
 //! roots to 1e-13 rad). Then `q1` by subproblem 1 (`R1 L = w`) and
 //! `q2 = s (th - q1)`.
 //!
-//! A second search runs over `t = q3`: with `v = R3' h` and `r = R_O' h`,
-//! the orientation gives `R5' R4' v = R6 r`, so `h5 . (R4' v) = h5 . (R6 r)`,
-//! and the height `h . c3 + v . (c4 - c3) + (R4' v) . (c5 - c4) +
-//! (R6 r) . (c6 - c5) = h . X`: subproblem 6 in `(q4, q6)`, `q5` by
-//! subproblem 1 (`R5' (R4' v) = R6 r`), the rest as above. The two
-//! searches' roots are merged (duplicates within 1e-9 rad dropped), as
-//! [`super::parallel_pair`] merges its two; a search is skipped when its
-//! subproblem 6 is degenerate (the joint it turns in the first equation
-//! parallel to the joint whose component is kept: axes 3-4 or 4-5 for the
-//! first, 4-5 or 5-6 for the second).
+//! Three more searches decouple the same way (with `r = R_O' h` and
+//! `v = R3' h`), each a subproblem 6 in two joints with the joint between
+//! them by subproblem 1:
 //!
-//! Branches are keyed, tracked and ended as in [`super::parallel_pair`]
-//! (the subproblem-6 angles and its Jacobian determinant, matched within
-//! [`LINK`]; roots tracked from the previous evaluation's within `NEAR`;
-//! a branch's end located on the discriminant of subproblem 6's `f`, by
-//! the Jacobian determinant where that does not apply). Each root is
-//! checked by the chain's forward kinematics: exact when within 1e-10 m and
-//! rad (a root missing by more than 1e-12 is first polished by a few
-//! Gauss-Newton steps); roots missing by more than 1e-6 are dropped.
+//! * over `q3` (`v` known): `R5' R4' v = R6 r` keeps the `h5` component,
+//!   `h5 . (R4' v) = h5 . (R6 r)`, and the height is
+//!   `h . c3 + v . (c4 - c3) + (R4' v) . (c5 - c4) + (R6 r) . (c6 - c5) = h . X`:
+//!   subproblem 6 in `(q4, q6)`, `q5` from `R5' (R4' v) = R6 r`;
+//! * over `q5` (`R5` known): `h4 . (R3' h) = (R5' h4) . (R6 r)` and
+//!   `h . c3 + (R3' h) . (c4 - c3) + (R5' (c5 - c4) + c6 - c5) . (R6 r) = h . X`:
+//!   subproblem 6 in `(q3, q6)`, `q4` from `R4' (R3' h) = R5 R6 r`;
+//! * over `q4` (`R4` known): `(R4 h5) . (R3' h) = h5 . (R6 r)` and
+//!   `h . c3 + (c4 - c3 + R4 (c5 - c4)) . (R3' h) + (c6 - c5) . (R6 r) = h . X`:
+//!   subproblem 6 in `(q3, q6)`, `q5` from `R5' R4' R3' h = R6 r`.
 //!
-//! Recall and cost: on 4 000 poses of 40 random arms (20 with the pair at
-//! 1-2, 20 at 5-6; `many_random_end_parallel_pair_arms_by_1d_search`) the
-//! generating configuration was among the solutions on every pose; see the
-//! test and the `ik/analytic/parallel_pair_1_2_1d_search` bench for the
-//! figures.
+//! A solve runs [`SEARCHES`] = 3 of them, the first usable in the order
+//! over `q6`, `q3`, `q5`, `q4` (a search is unusable where its subproblem 6
+//! is degenerate: the joint whose component is kept parallel to the joint
+//! turning the vector it is read from, e.g. axes 5-6 parallel for the search
+//! over `q3`), and merges their roots (duplicates within 1e-9 rad dropped),
+//! as [`super::parallel_pair`] merges its two. Branches are keyed, tracked
+//! and ended as there: the subproblem-6 angles and its Jacobian determinant,
+//! matched within [`LINK`]; roots tracked from the previous evaluation's
+//! within `NEAR`; a branch's end located on the discriminant of subproblem
+//! 6's `f`, by the Jacobian determinant where that does not apply. Each
+//! root is checked by the chain's forward kinematics: exact when within
+//! 1e-10 m and rad (a root missing by more than 1e-12 is first polished by a
+//! few Gauss-Newton steps); roots missing by more than 1e-6 are dropped.
+//!
+//! Recall: the searches miss roots where the residual dips through zero
+//! and back between two samples, i.e. near a configuration where two
+//! solutions merge (every miss examined had a Jacobian whose smallest
+//! singular value was 1e-4 to 5e-3 of its largest). On 20 000 poses of
+//! 200 random arms (the pair at 1-2 and at 5-6, each built forwards and
+//! reversed; `many_random_end_parallel_pair_arms_by_1d_search`) the
+//! generating configuration was among the exact solutions on 19 999; on
+//! 10 000 poses of 100 more arms, on all. Two searches (over `q6` and `q3`)
+//! missed 8 of 16 000 and 6 of 10 000 (7, 3 and 0 of 10 000 at 640, 768 and
+//! 1 024 samples per turn). Cost: 14.3M instructions per solve (three
+//! searches; two: 9.0M), the
+//! `ik/analytic/parallel_pair_1_2_1d_search` bench.
 //!
 //! ```
 //! use armkit::ik::analytic::{AnalyticOptions, AnalyticSolver};
@@ -107,8 +123,13 @@ use std::cell::Cell;
 
 /// Samples per turn of each search.
 pub const SAMPLES: usize = 512;
+/// Searches per solve (the first usable of [`PREFERENCE`]), merged.
+pub const SEARCHES: usize = 3;
+/// The searches in the order they are taken.
+const PREFERENCE: [Form; 4] = [Form::Sixth, Form::Third, Form::Fifth, Form::Fourth];
 
-/// One of the two searches (chain as solved, pair at joints 1-2).
+/// One of the four searches (chain as solved, pair at joints 1-2; see the
+/// module docs).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Form {
     /// Over joint 6: subproblem 6 in joints 3 and 5, joint 4 by
@@ -117,15 +138,24 @@ enum Form {
     /// Over joint 3: subproblem 6 in joints 4 and 6, joint 5 by
     /// subproblem 1.
     Third,
+    /// Over joint 5: subproblem 6 in joints 3 and 6, joint 4 by
+    /// subproblem 1.
+    Fifth,
+    /// Over joint 4: subproblem 6 in joints 3 and 6, joint 5 by
+    /// subproblem 1.
+    Fourth,
 }
 
 impl Form {
-    /// The searched joint, the subproblem-6 joints (first, second), the
-    /// joint between them (0-based).
-    fn joints(self) -> (usize, usize, usize, usize) {
+    /// The searched joint and the subproblem-6 joints (first, second),
+    /// 0-based.
+    #[cfg(test)]
+    fn joints(self) -> (usize, usize, usize) {
         match self {
-            Form::Sixth => (5, 2, 4, 3),
-            Form::Third => (2, 3, 5, 4),
+            Form::Sixth => (5, 2, 4),
+            Form::Third => (2, 3, 5),
+            Form::Fifth => (4, 2, 5),
+            Form::Fourth => (3, 2, 5),
         }
     }
 
@@ -133,25 +163,28 @@ impl Form {
     /// equation keeps the component along the middle joint's axis, which
     /// the subproblem-6 joints must turn (`h` the axes).
     fn usable(self, h: &[Vector3<f64>]) -> bool {
-        let (_, a, b, m) = self.joints();
         let apart = |i: usize, j: usize| h[i].cross(&h[j]).norm() > GEOMETRY_TOLERANCE;
-        apart(a, m) && apart(b, m)
+        match self {
+            Form::Sixth => apart(2, 3) && apart(4, 3),
+            Form::Third => apart(3, 4) && apart(5, 4),
+            Form::Fifth => apart(2, 3) && (apart(3, 4) || apart(4, 5)),
+            Form::Fourth => (apart(2, 3) || apart(3, 4)) && apart(4, 5),
+        }
     }
 }
 
 /// True when a chain whose axes 1-2 (0-based 0, 1) are parallel has a
-/// usable search: axis 3 not parallel to the pair and at least one of the
-/// two searches' subproblem 6 not degenerate (`h` the six axes).
+/// usable search: axis 3 not parallel to the pair and at least one
+/// search's subproblem 6 not degenerate (`h` the six axes).
 pub(crate) fn searchable(h: &[Vector3<f64>]) -> bool {
-    h[0].cross(&h[2]).norm() > GEOMETRY_TOLERANCE
-        && (Form::Sixth.usable(h) || Form::Third.usable(h))
+    h[0].cross(&h[2]).norm() > GEOMETRY_TOLERANCE && PREFERENCE.iter().any(|f| f.usable(h))
 }
 
 /// The arm-fixed quantities of an end-parallel-pair search, read once.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct EndPairSearch {
     chain: Chain,
-    forms: [Form; 2],
+    forms: [Form; 4],
     searches: usize,
     home: Pose,
     /// `h = h1` and `s = h1 . h2` (+-1).
@@ -175,10 +208,11 @@ impl EndPairSearch {
         } else {
             Vector3::y()
         };
-        let mut forms = [Form::Sixth, Form::Third];
-        let searches = forms.iter().filter(|f| f.usable(h)).count();
-        if !Form::Sixth.usable(h) {
-            forms = [Form::Third, Form::Sixth];
+        let mut forms = [Form::Sixth; 4];
+        let mut searches = 0;
+        for form in PREFERENCE.iter().filter(|f| f.usable(h)).take(SEARCHES) {
+            forms[searches] = *form;
+            searches += 1;
         }
         EndPairSearch {
             chain: *chain,
@@ -243,7 +277,8 @@ type Key = BranchKey<2>;
 
 /// What subproblem 6 solves at a trial `t`: the system, its right-hand
 /// side, the searched joint's turn and the vector it turns (`g = R6 r`
-/// over joint 6, `v = R3' h` over joint 3).
+/// over joint 6, `v = R3' h` over joint 3; zero, unused, over joints 4
+/// and 5).
 struct Sides {
     system: Sinusoids,
     d: [f64; 2],
@@ -330,6 +365,47 @@ impl<'a> Problem<'a> {
                     turned: v,
                 }
             }
+            Form::Fifth => {
+                // q3 turns h back, q6 turns r (R5 known).
+                let back = -h[2];
+                let kept = k.rotate_back(&h[4], &h[3]);
+                let arm = k.rotate_back(&h[4], &(c[4] - c[3])) + c[5] - c[4];
+                let system = Sinusoids {
+                    first: [
+                        Wave::new(&h[3], &back, axis),
+                        Wave::new(&(c[3] - c[2]), &back, axis),
+                    ],
+                    second: [
+                        negated(Wave::new(&kept, &h[5], &self.reach)),
+                        Wave::new(&arm, &h[5], &self.reach),
+                    ],
+                };
+                Sides {
+                    system,
+                    d: [0.0, self.height],
+                    k,
+                    turned: Vector3::zeros(),
+                }
+            }
+            Form::Fourth => {
+                // q3 turns h back, q6 turns r (R4 known).
+                let back = -h[2];
+                let kept = turned(&h[3], &h[4], &k);
+                let arm = c[3] - c[2] + turned(&h[3], &(c[4] - c[3]), &k);
+                let system = Sinusoids {
+                    first: [Wave::new(&kept, &back, axis), Wave::new(&arm, &back, axis)],
+                    second: [
+                        negated(Wave::new(&h[4], &h[5], &self.reach)),
+                        Wave::new(&(c[5] - c[4]), &h[5], &self.reach),
+                    ],
+                };
+                Sides {
+                    system,
+                    d: [0.0, self.height],
+                    k,
+                    turned: Vector3::zeros(),
+                }
+            }
         }
     }
 
@@ -378,6 +454,20 @@ impl<'a> Problem<'a> {
                 let down = turned(&h[5], &self.reach, b);
                 let (q5, _) = subproblem1_turn(&h[4], &down, &up);
                 [v.k, *a, q5, *b]
+            }
+            Form::Fifth => {
+                // R(h4, q4) (R5 R6 r) = R3' h.
+                let up = a.rotate_back(&h[2], axis);
+                let down = turned(&h[4], &turned(&h[5], &self.reach, b), &v.k);
+                let (q4, _) = subproblem1_turn(&h[3], &down, &up);
+                [*a, q4, v.k, *b]
+            }
+            Form::Fourth => {
+                // R(h5, q5) (R6 r) = R4' R3' h.
+                let up = v.k.rotate_back(&h[3], &a.rotate_back(&h[2], axis));
+                let down = turned(&h[5], &self.reach, b);
+                let (q5, _) = subproblem1_turn(&h[4], &down, &up);
+                [*a, v.k, q5, *b]
             }
         };
         // R(h, th) n = R_O (R3 R4 R5 R6)' n.
@@ -582,11 +672,11 @@ mod tests {
         for _ in 0..100 {
             let s = random_arm(&mut rng);
             let search = EndPairSearch::new(&Chain::of(&s).unwrap());
-            assert_eq!(search.searches, 2);
+            assert_eq!(search.searches, SEARCHES);
             let q: [f64; 6] = std::array::from_fn(|_| rng.gen_range(-3.1..3.1));
             let target = s.forward_kinematics(&q);
-            for form in search.forms {
-                let (k, a, b, _) = form.joints();
+            for form in PREFERENCE {
+                let (k, a, b) = form.joints();
                 let problem = Problem::new(&search, &target, form);
                 let branch = problem
                     .branches(q[k])
@@ -614,7 +704,8 @@ mod tests {
         s.axes[5] = s.axes[4];
         assert!(searchable(&s.axes));
         let search = EndPairSearch::new(&Chain::of(&s).unwrap());
-        assert_eq!((search.searches, search.forms[0]), (1, Form::Sixth));
+        let forms = &search.forms[..search.searches];
+        assert_eq!(forms, [Form::Sixth, Form::Fifth]);
         s.axes[2] = s.axes[0];
         assert!(!searchable(&s.axes));
     }
