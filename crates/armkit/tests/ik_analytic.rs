@@ -1120,21 +1120,24 @@ fn parallel_pair_detection_takes_only_its_class() {
 fn auto_takes_the_numeric_route_on_parallel_pair_arms() {
     use armkit::ik::{AutoSolver, IkOptions, IkRoute};
     let mut rng = common::rng(330);
-    let model = model_from_lines(
-        "parallel23",
-        &parallel_pair_lines(&mut rng, 1),
-        random_home(&mut rng),
-    );
-    assert_eq!(
-        solver(&model).class().as_str(),
-        "one_pair_parallel_2_3_1d_search"
-    );
-    let mut auto = AutoSolver::new(&model, IkOptions::default()).unwrap();
-    assert_eq!(auto.class(), None);
-    let mut data = Data::new(&model);
-    let target = *forward_kinematics(&model, &mut data, &[0.3, -0.4, 0.5, 0.2, -0.6, 0.1]).unwrap();
-    let solved = auto.solve(&target, &model.neutral_configuration()).unwrap();
-    assert_eq!(solved.route, IkRoute::Numeric);
+    for (first, class) in [
+        (1, "one_pair_parallel_2_3_1d_search"),
+        (0, "one_pair_parallel_1_2_1d_search"),
+    ] {
+        let model = model_from_lines(
+            "parallel",
+            &parallel_pair_lines(&mut rng, first),
+            random_home(&mut rng),
+        );
+        assert_eq!(solver(&model).class().as_str(), class);
+        let mut auto = AutoSolver::new(&model, IkOptions::default()).unwrap();
+        assert_eq!(auto.class(), None);
+        let mut data = Data::new(&model);
+        let q = [0.3, -0.4, 0.5, 0.2, -0.6, 0.1];
+        let target = *forward_kinematics(&model, &mut data, &q).unwrap();
+        let solved = auto.solve(&target, &model.neutral_configuration()).unwrap();
+        assert_eq!(solved.route, IkRoute::Numeric);
+    }
 }
 
 #[test]
