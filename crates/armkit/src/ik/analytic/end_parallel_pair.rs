@@ -318,94 +318,60 @@ impl<'a> Problem<'a> {
     #[inline]
     fn sides(&self, t: f64) -> Sides {
         let (c, h) = (&self.s.chain.c, &self.s.chain.h);
-        let axis = &self.s.h;
+        let (axis, reach) = (&self.s.h, &self.reach);
         let k = Turn::of_angle(t);
-        match self.form {
+        // q3 turning h back (kept along `kept`, height along c4 - c3), or
+        // q6 turning r (kept along `kept`, height along `arm`).
+        let third = |kept: &Vector3<f64>, arm: &Vector3<f64>| {
+            [Wave::new(kept, &-h[2], axis), Wave::new(arm, &-h[2], axis)]
+        };
+        let sixth = |kept: &Vector3<f64>, arm: &Vector3<f64>| {
+            [
+                negated(Wave::new(kept, &h[5], reach)),
+                Wave::new(arm, &h[5], reach),
+            ]
+        };
+        let (first, second, height, turned_by_k) = match self.form {
             Form::Sixth => {
                 // g = R6 r; q3 turns h back, q5 turns g.
-                let g = turned(&h[5], &self.reach, &k);
-                let back = -h[2];
-                let system = Sinusoids {
-                    first: [
-                        Wave::new(&h[3], &back, axis),
-                        Wave::new(&(c[3] - c[2]), &back, axis),
-                    ],
-                    second: [
-                        negated(Wave::new(&h[3], &h[4], &g)),
-                        Wave::new(&(c[4] - c[3]), &h[4], &g),
-                    ],
-                };
-                let d = [0.0, self.height - g.dot(&(c[5] - c[4]))];
-                Sides {
-                    system,
-                    d,
-                    k,
-                    turned: g,
-                }
+                let g = turned(&h[5], reach, &k);
+                let second = [
+                    negated(Wave::new(&h[3], &h[4], &g)),
+                    Wave::new(&(c[4] - c[3]), &h[4], &g),
+                ];
+                let height = self.height - g.dot(&(c[5] - c[4]));
+                (third(&h[3], &(c[3] - c[2])), second, height, g)
             }
             Form::Third => {
                 // v = R3' h; q4 turns v back, q6 turns r.
                 let v = k.rotate_back(&h[2], axis);
-                let back = -h[3];
-                let system = Sinusoids {
-                    first: [
-                        Wave::new(&h[4], &back, &v),
-                        Wave::new(&(c[4] - c[3]), &back, &v),
-                    ],
-                    second: [
-                        negated(Wave::new(&h[4], &h[5], &self.reach)),
-                        Wave::new(&(c[5] - c[4]), &h[5], &self.reach),
-                    ],
-                };
-                let d = [0.0, self.height - v.dot(&(c[3] - c[2]))];
-                Sides {
-                    system,
-                    d,
-                    k,
-                    turned: v,
-                }
+                let first = [
+                    Wave::new(&h[4], &-h[3], &v),
+                    Wave::new(&(c[4] - c[3]), &-h[3], &v),
+                ];
+                let second = sixth(&h[4], &(c[5] - c[4]));
+                (first, second, self.height - v.dot(&(c[3] - c[2])), v)
             }
             Form::Fifth => {
-                // q3 turns h back, q6 turns r (R5 known).
-                let back = -h[2];
+                // R5 known: h4 seen after it, c5 - c4 likewise.
                 let kept = k.rotate_back(&h[4], &h[3]);
                 let arm = k.rotate_back(&h[4], &(c[4] - c[3])) + c[5] - c[4];
-                let system = Sinusoids {
-                    first: [
-                        Wave::new(&h[3], &back, axis),
-                        Wave::new(&(c[3] - c[2]), &back, axis),
-                    ],
-                    second: [
-                        negated(Wave::new(&kept, &h[5], &self.reach)),
-                        Wave::new(&arm, &h[5], &self.reach),
-                    ],
-                };
-                Sides {
-                    system,
-                    d: [0.0, self.height],
-                    k,
-                    turned: Vector3::zeros(),
-                }
+                let first = third(&h[3], &(c[3] - c[2]));
+                (first, sixth(&kept, &arm), self.height, Vector3::zeros())
             }
             Form::Fourth => {
-                // q3 turns h back, q6 turns r (R4 known).
-                let back = -h[2];
+                // R4 known: h5 seen before it, c5 - c4 likewise.
                 let kept = turned(&h[3], &h[4], &k);
                 let arm = c[3] - c[2] + turned(&h[3], &(c[4] - c[3]), &k);
-                let system = Sinusoids {
-                    first: [Wave::new(&kept, &back, axis), Wave::new(&arm, &back, axis)],
-                    second: [
-                        negated(Wave::new(&h[4], &h[5], &self.reach)),
-                        Wave::new(&(c[5] - c[4]), &h[5], &self.reach),
-                    ],
-                };
-                Sides {
-                    system,
-                    d: [0.0, self.height],
-                    k,
-                    turned: Vector3::zeros(),
-                }
+                let second = sixth(&h[4], &(c[5] - c[4]));
+                (third(&kept, &arm), second, self.height, Vector3::zeros())
             }
+        };
+        Sides {
+            system: Sinusoids { first, second },
+            d: [0.0, height],
+            k,
+            turned: turned_by_k,
         }
     }
 
