@@ -68,7 +68,7 @@
 //! generating configuration was among the exact solutions on 19 999; on
 //! 10 000 poses of 100 more arms, on all. Two searches (over `q6` and `q3`)
 //! missed 8 of 16 000 and 6 of 10 000 (7, 3 and 0 of 10 000 at 640, 768 and
-//! 1 024 samples per turn). Cost: 14.3M instructions per solve (three
+//! 1 024 samples per turn). Cost: 14.2M instructions per solve (three
 //! searches; two: 9.0M), the
 //! `ik/analytic/parallel_pair_1_2_1d_search` bench.
 //!
