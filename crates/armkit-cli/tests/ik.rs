@@ -309,20 +309,74 @@ a = 0.0
 alpha = 0.0
 "#;
 
+/// A DH file of a made-up 6R arm whose only special pair is axes 1-2
+/// parallel (alpha1 = 0, a1 != 0): the end parallel-pair 1-D search.
+const PARALLEL_PAIR_1_2_DH: &str = r#"
+name = "parallel-pair-1-2"
+convention = "standard"
+[[links]]
+type = "R"
+d = 0.3
+a = 0.4
+alpha = 0.0
+[[links]]
+type = "R"
+d = 0.05
+a = 0.1
+alpha = 1.2
+[[links]]
+type = "R"
+d = 0.02
+a = 0.05
+alpha = 1.5707963267948966
+[[links]]
+type = "R"
+d = 0.35
+a = 0.03
+alpha = -1.3
+[[links]]
+type = "R"
+d = 0.02
+a = 0.04
+alpha = 1.1
+[[links]]
+type = "R"
+d = 0.1
+a = 0.0
+alpha = 0.0
+"#;
+
 #[test]
 fn explain_and_solve_a_parallel_pair_arm_by_1d_search() {
-    let dir = std::env::temp_dir().join(format!("armkit-ik-parallel-{}", std::process::id()));
+    explain_and_solve_by_parallel_pair_search(
+        "parallel-pair",
+        PARALLEL_PAIR_DH,
+        "one_pair_parallel_2_3_1d_search",
+    );
+}
+
+#[test]
+fn explain_and_solve_a_parallel_1_2_pair_arm_by_1d_search() {
+    explain_and_solve_by_parallel_pair_search(
+        "parallel-pair-1-2",
+        PARALLEL_PAIR_1_2_DH,
+        "one_pair_parallel_1_2_1d_search",
+    );
+}
+
+/// `armkit ik --explain` names `class` (a subproblem-6 search) for the DH
+/// file `dh`, and `--solver analytic` returns only exact solutions, the
+/// generating configuration nearest the start first.
+fn explain_and_solve_by_parallel_pair_search(name: &str, dh: &str, class: &str) {
+    let dir = std::env::temp_dir().join(format!("armkit-ik-{name}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let file = dir.join("parallel-pair.toml");
-    std::fs::write(&file, PARALLEL_PAIR_DH).unwrap();
+    let file = dir.join(format!("{name}.toml"));
+    std::fs::write(&file, dh).unwrap();
     let path = file.to_str().unwrap();
     let output = armkit(&["ik", "--robot-file", path, "--explain"]);
     assert!(output.status.success(), "{}", stderr(&output));
     let text = stdout(&output);
-    assert!(
-        text.contains("class: one_pair_parallel_2_3_1d_search\n"),
-        "{text}"
-    );
+    assert!(text.contains(&format!("class: {class}\n")), "{text}");
     assert!(text.contains("subproblem 6"), "{text}");
     let model = armkit::description::load(&file).unwrap();
     let q = [0.4, -1.1, 1.3, -0.6, 1.4, 0.2];
@@ -347,7 +401,7 @@ fn explain_and_solve_a_parallel_pair_arm_by_1d_search() {
     ]);
     assert!(output.status.success(), "{}", stderr(&output));
     let json: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
-    assert_eq!(json["class"], "one_pair_parallel_2_3_1d_search");
+    assert_eq!(json["class"], class);
     let fits = json["solution_fits"].as_array().unwrap();
     assert!(!fits.is_empty());
     assert!(fits.iter().all(|f| f["fit"] == "exact"), "{fits:?}");

@@ -126,6 +126,18 @@ const PARALLEL_PAIR: [([f64; 3], [f64; 3]); 6] = [
     ([1.1, 0.1, 0.45], [0.85, -0.2, 0.5]),
 ];
 
+/// Lines of an arm whose axes 1 and 2 are parallel (both along z) and whose
+/// other consecutive axes are skew (the end parallel-pair 1-D search class;
+/// the lines of `end_parallel_pair`'s doc example).
+const PARALLEL_PAIR_1_2: [([f64; 3], [f64; 3]); 6] = [
+    ([0.0, 0.0, 0.0], [0.0, 0.0, 1.0]),
+    ([0.3, 0.05, 0.4], [0.0, 0.0, 1.0]),
+    ([0.5, -0.1, 0.6], [0.3, 0.9, 0.3]),
+    ([0.8, 0.1, 0.55], [0.9, 0.2, -0.4]),
+    ([1.0, 0.0, 0.5], [0.1, 0.95, 0.3]),
+    ([1.1, 0.1, 0.45], [0.85, -0.2, 0.5]),
+];
+
 /// Lines of a 6R arm whose only special pair is axes 3-4 meeting.
 const PAIR_3_4: [([f64; 3], [f64; 3]); 6] = [
     ([0.0, 0.0, 0.0], [0.0, 0.0, 1.0]),
@@ -280,6 +292,11 @@ fn bench_analytic(c: &mut Criterion) {
     let solver = AnalyticSolver::new(&parallel, nearest).unwrap();
     assert_eq!(solver.class().as_str(), "one_pair_parallel_2_3_1d_search");
     bench_analytic_solver(c, "parallel_pair_2_3_1d_search/distinct", &parallel, solver);
+    // Axes 1-2 parallel, the rest general: the end parallel-pair 1-D search.
+    let end = lines_model("parallel_pair_1_2", &PARALLEL_PAIR_1_2);
+    let solver = AnalyticSolver::new(&end, nearest).unwrap();
+    assert_eq!(solver.class().as_str(), "one_pair_parallel_1_2_1d_search");
+    bench_analytic_solver(c, "parallel_pair_1_2_1d_search/distinct", &end, solver);
     let pair = lines_model("pair_3_4", &PAIR_3_4);
     let solver = AnalyticSolver::new(&pair, nearest).unwrap();
     assert_eq!(

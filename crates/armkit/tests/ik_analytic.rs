@@ -974,16 +974,30 @@ const PARALLEL_CASES: [(usize, bool, &str); 5] = [
     (2, false, "one_pair_parallel_3_4_1d_search"),
 ];
 
-/// Every case of [`PARALLEL_CASES`] on `arms` arms x `poses` poses; the
-/// recovery over all.
-fn parallel_pair_tally(seed: u64, arms: u64, poses: usize) -> Tally {
+/// The parallel pairs at an end of the chain (1-2 solved as built, 5-6 on
+/// the reversed chain), each built both ways.
+const END_PARALLEL_CASES: [(usize, bool, &str); 4] = [
+    (0, false, "one_pair_parallel_1_2_1d_search"),
+    (4, false, "one_pair_parallel_5_6_1d_search"),
+    (0, true, "one_pair_parallel_5_6_1d_search"),
+    (4, true, "one_pair_parallel_1_2_1d_search"),
+];
+
+/// Every case of `cases` on `arms` arms x `poses` poses; the recovery over
+/// all.
+fn parallel_pair_tally(
+    cases: &[(usize, bool, &'static str)],
+    seed: u64,
+    arms: u64,
+    poses: usize,
+) -> Tally {
     let mut total = Tally {
         poses: 0,
         recovered: 0,
         worst_error: 0.0,
         solutions: 0,
     };
-    for (i, (first, reverse, class)) in PARALLEL_CASES.into_iter().enumerate() {
+    for (i, &(first, reverse, class)) in cases.iter().enumerate() {
         let lines = move |rng: &mut ChaCha8Rng| {
             let mut lines = parallel_pair_lines(rng, first);
             if reverse {
@@ -1013,15 +1027,28 @@ fn parallel_pair_tally(seed: u64, arms: u64, poses: usize) -> Tally {
 
 #[test]
 fn random_parallel_pair_arms_by_1d_search() {
-    let tally = parallel_pair_tally(300, 10, 20);
+    let tally = parallel_pair_tally(&PARALLEL_CASES, 300, 10, 20);
     assert_search_recovered("parallel-pair arms", &tally);
 }
 
 #[test]
 #[ignore = "slow: cargo test --release --test ik_analytic -- --ignored --nocapture"]
 fn many_random_parallel_pair_arms_by_1d_search() {
-    let tally = parallel_pair_tally(310, 40, 100);
+    let tally = parallel_pair_tally(&PARALLEL_CASES, 310, 40, 100);
     assert_search_recovered("parallel-pair arms", &tally);
+}
+
+#[test]
+fn random_end_parallel_pair_arms_by_1d_search() {
+    let tally = parallel_pair_tally(&END_PARALLEL_CASES, 340, 6, 20);
+    assert_search_recovered("end parallel-pair arms", &tally);
+}
+
+#[test]
+#[ignore = "slow: cargo test --release --test ik_analytic -- --ignored --nocapture"]
+fn many_random_end_parallel_pair_arms_by_1d_search() {
+    let tally = parallel_pair_tally(&END_PARALLEL_CASES, 350, 50, 100);
+    assert_search_recovered("end parallel-pair arms", &tally);
 }
 
 #[test]
@@ -1037,22 +1064,22 @@ fn parallel_pair_detection_takes_only_its_class() {
     for _ in 0..5 {
         // Each position, built as such.
         for (first, class) in [
+            (0, "one_pair_parallel_1_2_1d_search"),
             (1, "one_pair_parallel_2_3_1d_search"),
             (2, "one_pair_parallel_3_4_1d_search"),
             (3, "one_pair_parallel_4_5_1d_search"),
+            (4, "one_pair_parallel_5_6_1d_search"),
         ] {
             let lines = parallel_pair_lines(&mut rng, first);
             assert_eq!(class_of(&lines, &mut rng), class);
         }
-        // Parallel 1-2 or 5-6 only: refused by name.
-        for (first, class) in [(0, "one_pair_parallel_1_2"), (4, "one_pair_parallel_5_6")] {
-            let lines = parallel_pair_lines(&mut rng, first);
-            let found = class_of(&lines, &mut rng);
-            assert!(
-                found.starts_with("refused") && found.contains(class),
-                "{found}"
-            );
-        }
+        // A pair in the middle wins over one at an end.
+        let mut lines = parallel_pair_lines(&mut rng, 2);
+        lines[1].1 = lines[0].1;
+        assert_eq!(
+            class_of(&lines, &mut rng),
+            "one_pair_parallel_3_4_1d_search"
+        );
         // An intersecting pair the one-pair search handles wins.
         let mut lines = parallel_pair_lines(&mut rng, 1);
         lines[5].0 = lines[4].0;
@@ -1064,12 +1091,20 @@ fn parallel_pair_detection_takes_only_its_class() {
         let mut lines = parallel_pair_lines(&mut rng, 1);
         lines[3].1 = lines[2].1;
         assert_eq!(class_of(&lines, &mut rng), "three_parallel_2_3_4");
-        // Axes 1-2-3 parallel: the pair 2-3 has a parallel neighbour, 1-2
-        // is refused.
+        // Axes 1-2-3 parallel: each pair has a parallel neighbour, so no
+        // search takes the arm: refused as no class.
         let mut lines = parallel_pair_lines(&mut rng, 1);
         lines[0].1 = lines[1].1;
         let found = class_of(&lines, &mut rng);
-        assert!(found.contains("one_pair_parallel_1_2"), "{found}");
+        assert!(found.contains("class other"), "{found}");
+        // Axes 1-2 and 5-6 parallel: the 1-2 search, over joint 6 only
+        // (its search over joint 3 would turn axis 6 about itself).
+        let mut lines = parallel_pair_lines(&mut rng, 0);
+        lines[5].1 = lines[4].1;
+        assert_eq!(
+            class_of(&lines, &mut rng),
+            "one_pair_parallel_1_2_1d_search"
+        );
         // The pair on one line (a degenerate arm): refused as no class.
         let mut lines = parallel_pair_lines(&mut rng, 1);
         lines[2].0 = lines[1].0 + lines[1].1 * 0.3;
@@ -1085,53 +1120,65 @@ fn parallel_pair_detection_takes_only_its_class() {
 fn auto_takes_the_numeric_route_on_parallel_pair_arms() {
     use armkit::ik::{AutoSolver, IkOptions, IkRoute};
     let mut rng = common::rng(330);
-    let model = model_from_lines(
-        "parallel23",
-        &parallel_pair_lines(&mut rng, 1),
-        random_home(&mut rng),
-    );
-    assert_eq!(
-        solver(&model).class().as_str(),
-        "one_pair_parallel_2_3_1d_search"
-    );
-    let mut auto = AutoSolver::new(&model, IkOptions::default()).unwrap();
-    assert_eq!(auto.class(), None);
-    let mut data = Data::new(&model);
-    let target = *forward_kinematics(&model, &mut data, &[0.3, -0.4, 0.5, 0.2, -0.6, 0.1]).unwrap();
-    let solved = auto.solve(&target, &model.neutral_configuration()).unwrap();
-    assert_eq!(solved.route, IkRoute::Numeric);
+    for (first, class) in [
+        (1, "one_pair_parallel_2_3_1d_search"),
+        (0, "one_pair_parallel_1_2_1d_search"),
+    ] {
+        let model = model_from_lines(
+            "parallel",
+            &parallel_pair_lines(&mut rng, first),
+            random_home(&mut rng),
+        );
+        assert_eq!(solver(&model).class().as_str(), class);
+        let mut auto = AutoSolver::new(&model, IkOptions::default()).unwrap();
+        assert_eq!(auto.class(), None);
+        let mut data = Data::new(&model);
+        let q = [0.3, -0.4, 0.5, 0.2, -0.6, 0.1];
+        let target = *forward_kinematics(&model, &mut data, &q).unwrap();
+        let solved = auto.solve(&target, &model.neutral_configuration()).unwrap();
+        assert_eq!(solved.route, IkRoute::Numeric);
+    }
 }
 
 #[test]
-fn pairs_without_a_1d_search_are_refused_by_name() {
+fn parallel_end_pairs_are_solved_and_pairs_no_search_takes_are_refused_by_name() {
     let mut rng = common::rng(80);
-    // Parallel 1-2 only.
-    let mut middle: Lines = (0..6)
+    // Parallel 1-2 only: the end-pair 1-D search (was refused, or the 2-D
+    // search on request), with the 2-D option too.
+    let mut lines: Lines = (0..6)
         .map(|_| (point(&mut rng), unit(&mut rng), false))
         .collect();
-    middle[1].1 = middle[0].1;
-    let model = model_from_lines("parallel", &middle, random_home(&mut rng));
-    let error = AnalyticSolver::new(&model, AnalyticOptions::default())
-        .unwrap_err()
-        .to_string();
-    assert!(error.contains("one_pair_parallel_1_2"), "{error}");
-    assert!(error.contains("--search 2d"), "{error}");
-    // The 2-D search takes it when asked: every exact solution it returns
-    // reproduces the pose.
+    lines[1].1 = lines[0].1;
+    let model = model_from_lines("parallel", &lines, random_home(&mut rng));
     let options = AnalyticOptions {
         search: armkit::ik::analytic::SearchPolicy::TwoDimensions,
         ..AnalyticOptions::default()
     };
-    let mut solver = AnalyticSolver::new(&model, options).unwrap();
-    assert_eq!(solver.class().as_str(), "one_pair_parallel_1_2");
-    let mut data = Data::new(&model);
-    let q = [0.3, -0.4, 0.5, 0.2, -0.6, 0.1];
-    let target = *forward_kinematics(&model, &mut data, &q).unwrap();
-    let solutions = solver.solve(&target, &q).unwrap();
-    assert!(solutions.iter().any(|s| s.fit == Fit::Exact));
-    for s in solutions.iter().filter(|s| s.fit == Fit::Exact) {
-        assert!(s.position_error < 1e-10 && s.orientation_error < 1e-10);
+    for options in [AnalyticOptions::default(), options] {
+        let mut s = AnalyticSolver::new(&model, options).unwrap();
+        assert_eq!(s.class().as_str(), "one_pair_parallel_1_2_1d_search");
+        let tally = check(&model, &mut s, 20, 81, &no_parameter);
+        assert_all_recovered("parallel 1-2", &tally);
     }
+    // Parallel 1-2 and 5-6: one search (over joint 6) only; still every
+    // generating configuration on these poses.
+    lines[5].1 = -lines[4].1;
+    let model = model_from_lines("parallel_ends", &lines, random_home(&mut rng));
+    let mut s = solver(&model);
+    assert_eq!(s.class().as_str(), "one_pair_parallel_1_2_1d_search");
+    let tally = check(&model, &mut s, 20, 82, &no_parameter);
+    assert_all_recovered("parallel 1-2 and 5-6", &tally);
+    // Parallel 1-2-3: every pair has a parallel neighbour, no search takes
+    // it: refused with the class named.
+    lines[2].1 = lines[0].1;
+    let model = model_from_lines("parallel123", &lines, random_home(&mut rng));
+    let error = AnalyticSolver::new(&model, AnalyticOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        error.contains("has no analytic solver: class other"),
+        "{error}"
+    );
 }
 
 #[test]

@@ -782,11 +782,12 @@ fn analytic_ik_searches_do_not_allocate() {
     // Axes 5-6 meet (the one-pair 1-D search); moved apart, a general 6R
     // arm (the 2-D search); that with axis 3 along axis 2, the
     // parallel-pair 1-D search; axes 3-4 meeting instead (the one-pair
-    // search with the pair in the middle).
-    let lines = |third: [f64; 3], fourth: [f64; 3], last: [f64; 3]| {
+    // search with the pair in the middle); axis 2 along axis 1 (the end
+    // parallel-pair search).
+    let lines = |third: [f64; 3], fourth: [f64; 3], last: [f64; 3], second: [f64; 3]| {
         [
             ([0.0, 0.0, 0.0], [0.0, 0.0, 1.0]),
-            ([0.1, 0.05, 0.4], [0.3, 0.9, 0.3]),
+            ([0.1, 0.05, 0.4], second),
             ([0.5, -0.1, 0.6], third),
             (fourth, [0.9, 0.2, -0.4]),
             ([1.0, 0.0, 0.5], [0.1, 0.95, 0.3]),
@@ -799,15 +800,23 @@ fn analytic_ik_searches_do_not_allocate() {
     };
     let skew = [-0.2, 0.8, 0.55];
     let fourth = [0.8, 0.1, 0.55];
-    for (name, third, fourth, last) in [
-        ("one_pair", skew, fourth, [1.0, 0.0, 0.5]),
-        ("general", skew, fourth, [1.1, 0.1, 0.45]),
-        ("parallel_pair", [0.3, 0.9, 0.3], fourth, [1.1, 0.1, 0.45]),
-        ("pair_3_4", skew, [0.5, -0.1, 0.6], [1.1, 0.1, 0.45]),
+    let second = [0.3, 0.9, 0.3];
+    for (name, third, fourth, last, second) in [
+        ("one_pair", skew, fourth, [1.0, 0.0, 0.5], second),
+        ("general", skew, fourth, [1.1, 0.1, 0.45], second),
+        ("parallel_pair", second, fourth, [1.1, 0.1, 0.45], second),
+        (
+            "parallel_pair_1_2",
+            skew,
+            fourth,
+            [1.1, 0.1, 0.45],
+            [0.0, 0.0, 1.0],
+        ),
+        ("pair_3_4", skew, [0.5, -0.1, 0.6], [1.1, 0.1, 0.45], second),
     ] {
         let mut builder = ModelBuilder::new(name);
         let mut previous = Vector3::zeros();
-        for (i, (c, h)) in lines(third, fourth, last).iter().enumerate() {
+        for (i, (c, h)) in lines(third, fourth, last, second).iter().enumerate() {
             let c = Vector3::from(*c);
             builder = builder.joint(
                 JointSpec::revolute(format!("q{}", i + 1), -PI, PI)
@@ -823,6 +832,9 @@ fn analytic_ik_searches_do_not_allocate() {
         let mut solver = AnalyticSolver::new(&model, options).unwrap();
         if name == "parallel_pair" {
             assert_eq!(solver.class().as_str(), "one_pair_parallel_2_3_1d_search");
+        }
+        if name == "parallel_pair_1_2" {
+            assert_eq!(solver.class().as_str(), "one_pair_parallel_1_2_1d_search");
         }
         if name == "pair_3_4" {
             assert_eq!(

@@ -1,5 +1,6 @@
 //! The classes of arms, and their detection from an [`ArmStructure`].
 
+use super::end_parallel_pair;
 use super::pair_search::PairLayout;
 use super::parallel_pair::ParallelLayout;
 use super::structure::{ArmStructure, Motion, Relation, GEOMETRY_TOLERANCE};
@@ -77,9 +78,10 @@ pub enum ArmClass {
     /// 6 rotation joints whose special consecutive axes (intersecting or
     /// parallel) fit no closed-form class. Solved by a 1-D search when
     /// axes `first`, `first + 1` (1-based, model order) intersect (see
-    /// `pair_search`), or are parallel (two distinct lines, neither
-    /// neighbour parallel to them) and `first` is 2, 3 or 4 (see
-    /// `parallel_pair`); refused otherwise (a parallel pair 1-2 or 5-6 only).
+    /// `pair_search`), or are parallel on two distinct lines with no
+    /// parallel neighbour (`first` 2, 3 or 4: see `parallel_pair`; 1 or 5:
+    /// see `end_parallel_pair`, which also needs a non-degenerate
+    /// subproblem 6 beyond the pair).
     OnePair {
         /// The pair's first joint, 1-based.
         first: u8,
@@ -126,11 +128,11 @@ impl ArmClass {
                 (PairKind::Intersecting, 3) => "one_pair_intersecting_3_4_1d_search",
                 (PairKind::Intersecting, 4) => "one_pair_intersecting_4_5_1d_search",
                 (PairKind::Intersecting, _) => "one_pair_intersecting_5_6_1d_search",
-                (PairKind::Parallel, 1) => "one_pair_parallel_1_2",
+                (PairKind::Parallel, 1) => "one_pair_parallel_1_2_1d_search",
                 (PairKind::Parallel, 2) => "one_pair_parallel_2_3_1d_search",
                 (PairKind::Parallel, 3) => "one_pair_parallel_3_4_1d_search",
                 (PairKind::Parallel, 4) => "one_pair_parallel_4_5_1d_search",
-                (PairKind::Parallel, _) => "one_pair_parallel_5_6",
+                (PairKind::Parallel, _) => "one_pair_parallel_5_6_1d_search",
             },
             ArmClass::General => "general_6r_2d_search",
             ArmClass::Other => "other",
@@ -200,9 +202,15 @@ impl ArmClass {
             }
             ArmClass::OnePair {
                 kind: PairKind::Parallel,
+                first: 1,
+            } => {
+                "parallel axes 1 and 2, no intersecting pair, no closed-form class: 1-D search over joint 6, again over joint 3 and over joint 5, merged (512 samples per turn each; joints 3 and 5, 4 and 6, or 3 and 6 by subproblem 6, joint 4 or 5, the pair and its split by subproblem 1; roots to 1e-13 rad), up to 16 solutions"
+            }
+            ArmClass::OnePair {
+                kind: PairKind::Parallel,
                 ..
             } => {
-                "parallel axes 1-2 or 5-6 only (no intersecting pair, no closed-form class): the two joints beside the pair stay coupled, so no 1-D search here: the 2-D search of a general 6R arm (only with the search option `two_dimensions`, CLI: --search 2d) or the numeric solver"
+                "parallel axes 5 and 6, no intersecting pair, no closed-form class: 1-D search on the reversed chain over joint 1, again over joint 4 and over joint 2, merged (512 samples per turn each; joints 4 and 2, 3 and 1, or 4 and 1 by subproblem 6, joint 3 or 2, the pair and its split by subproblem 1; roots to 1e-13 rad), up to 16 solutions"
             }
             ArmClass::General => {
                 "no intersecting or parallel consecutive axes: general 6R, a 2-D search (a 16 x 16 grid over joints 1 and 2, each point polished by damped Gauss-Newton; milliseconds, may miss solutions): only with the search option `two_dimensions` (CLI: --search 2d)"
@@ -226,7 +234,7 @@ impl ArmClass {
                 }
                 | ArmClass::OnePair {
                     kind: PairKind::Parallel,
-                    first: 2..=4,
+                    ..
                 }
         )
     }
@@ -278,6 +286,12 @@ pub(crate) enum Detected {
         end: ChainEnd,
         layout: ParallelLayout,
     },
+    /// One parallel pair at axes 1-2 of the chain as solved (5-6 of the
+    /// model for `end` = `Base`), solved by a 1-D search.
+    EndParallelPair {
+        class: ArmClass,
+        end: ChainEnd,
+    },
     Unsolvable(ArmClass),
 }
 
@@ -292,6 +306,7 @@ impl Detected {
             Detected::ShoulderElbowWrist { .. } => ArmClass::SphericalShoulderElbowWrist,
             Detected::OnePair { class, .. }
             | Detected::ParallelPair { class, .. }
+            | Detected::EndParallelPair { class, .. }
             | Detected::Unsolvable(class) => class,
         }
     }
@@ -323,7 +338,8 @@ pub(crate) fn detect(structure: &ArmStructure) -> Detected {
 }
 
 /// A 6R arm of no closed-form class: an intersecting pair the 1-D search
-/// handles (preferring 5-6, 1-2, 4-5, 2-3, 3-4), else the first special pair
+/// handles (preferring 5-6, 1-2, 4-5, 2-3, 3-4), else a parallel pair one
+/// handles (2-3, 4-5, 3-4, then 1-2, 5-6), else the first special pair
 /// (refused), else general.
 fn one_pair(structure: &ArmStructure, reversed: &ArmStructure) -> Detected {
     use PairLayout::*;
@@ -373,6 +389,18 @@ fn one_pair(structure: &ArmStructure, reversed: &ArmStructure) -> Detected {
             };
         }
     }
+    let end_cases = [(1, ChainEnd::Tip, structure), (5, ChainEnd::Base, reversed)];
+    for (first, end, chain) in end_cases {
+        if lone_end_parallel_pair(chain) {
+            return Detected::EndParallelPair {
+                class: ArmClass::OnePair {
+                    first,
+                    kind: PairKind::Parallel,
+                },
+                end,
+            };
+        }
+    }
     let special = (0..5).filter_map(|i| match structure.relation(i, i + 1) {
         Relation::Skew(_) => None,
         Relation::Parallel => Some((i, PairKind::Parallel)),
@@ -390,7 +418,8 @@ fn one_pair(structure: &ArmStructure, reversed: &ArmStructure) -> Detected {
         }
     }
     // Special pairs only of solvable kinds that the searches refused (a
-    // parallel pair on one line, or with a parallel neighbour).
+    // parallel pair on one line, or with a parallel neighbour, or at an end
+    // with a degenerate subproblem 6 beyond it).
     Detected::Unsolvable(if any {
         ArmClass::Other
     } else {
@@ -407,6 +436,15 @@ fn lone_parallel_pair(chain: &ArmStructure, p: usize) -> bool {
         && chain.relation(p - 1, p) != Relation::Parallel
         && chain.relation(p + 1, p + 2) != Relation::Parallel
         && chain.distance_to_axis(p + 1, &chain.points[p]) > GEOMETRY_TOLERANCE * chain.scale
+}
+
+/// True when axes 1-2 of `chain` are parallel on two distinct lines and
+/// the end-pair search applies (`end_parallel_pair::searchable`: axis 3 not
+/// parallel to them, a non-degenerate subproblem 6 beyond).
+fn lone_end_parallel_pair(chain: &ArmStructure) -> bool {
+    chain.relation(0, 1) == Relation::Parallel
+        && chain.distance_to_axis(1, &chain.points[0]) > GEOMETRY_TOLERANCE * chain.scale
+        && end_parallel_pair::searchable(&chain.axes)
 }
 
 fn rotational(chain: &ArmStructure, joints: std::ops::Range<usize>) -> bool {

@@ -24,12 +24,14 @@
 //!   16 solutions; the three joints that place the pair's point in closed
 //!   form by a quartic); 6R arms whose only special structure is two
 //!   parallel consecutive axes at 2-3, 3-4 or 4-5 ([`parallel_pair`]: up to
-//!   16 solutions; the pair's two neighbours by subproblem 6);
+//!   16 solutions; the pair's two neighbours by subproblem 6), or at 1-2 or
+//!   5-6 ([`end_parallel_pair`]: up to 16; two joints beyond the pair by
+//!   subproblem 6);
 //! * on request ([`SearchPolicy::TwoDimensions`]), general 6R arms (no
 //!   intersecting or parallel consecutive axes) by a 2-D search
 //!   ([`search2d`]: a 16 x 16 grid over joints 1 and 2 polished by
 //!   Gauss-Newton; milliseconds), refused by default with an error naming
-//!   the option; with it also the parallel pairs at 1-2 or 5-6.
+//!   the option.
 //!
 //! Each solution is checked by forward kinematics (the product of
 //! exponentials of the model's joint lines, compared with the model's own
@@ -70,6 +72,7 @@
 
 mod chain;
 mod class;
+pub mod end_parallel_pair;
 mod finish;
 mod options;
 pub mod pair_search;
@@ -100,6 +103,7 @@ pub use route::{route_class, solver_for, sweep_values, AnalyticRoute, JointNumbe
 
 use self::chain::{Candidates, Chain};
 use self::class::{detect, Detected};
+use self::end_parallel_pair::EndPairSearch;
 use self::finish::Finisher;
 use self::pair_search::PairSearch;
 use self::parallel::ThreeParallel;
@@ -140,6 +144,10 @@ enum Plan {
     },
     ParallelPair {
         solver: ParallelPairSearch,
+        end: ChainEnd,
+    },
+    EndParallelPair {
+        solver: EndPairSearch,
         end: ChainEnd,
     },
     TwoDimensional(GridSearch),
@@ -355,6 +363,13 @@ impl AnalyticSolver {
                     fixed = Some((joint, value));
                 }
             }
+            Plan::EndParallelPair { solver, end } => {
+                reverse = *end == ChainEnd::Base;
+                solver.solve(&goal_of(goal, *end), &mut self.candidates);
+                if let Some(Parameter::FixedJoint { joint, value }) = self.parameter {
+                    fixed = Some((joint, value));
+                }
+            }
             Plan::TwoDimensional(solver) => {
                 solver.solve(goal, &mut self.candidates);
                 if let Some(Parameter::FixedJoint { joint, value }) = self.parameter {
@@ -546,7 +561,8 @@ fn plan(
             | Detected::ThreeParallel { .. }
             | Detected::ThreeParallelOffset { .. }
             | Detected::OnePair { .. }
-            | Detected::ParallelPair { .. },
+            | Detected::ParallelPair { .. }
+            | Detected::EndParallelPair { .. },
             Some(Parameter::ElbowAngle(_)),
         ) => Err(unsolvable(
             "; an elbow angle needs a spherical-shoulder-elbow-wrist 7-DOF arm",
@@ -589,8 +605,13 @@ fn plan(
             let solver = ParallelPairSearch::new(&chain, layout);
             Ok((class, Plan::ParallelPair { solver, end }))
         }
+        (Detected::EndParallelPair { end, .. }, _) => {
+            let chain = chain_of(&arm, end).ok_or_else(|| unsolvable(""))?;
+            let solver = EndPairSearch::new(&chain);
+            Ok((class, Plan::EndParallelPair { solver, end }))
+        }
         // The 2-D search needs no special pair: it takes the general arm and
-        // the pairs no 1-D search handles (parallel 1-2 or 5-6 only).
+        // the pairs no 1-D search handles.
         (
             Detected::Unsolvable(ArmClass::General | ArmClass::OnePair { .. }),
             Some(Parameter::FixedJoint { .. }) | None,

@@ -124,11 +124,11 @@ pub const END_TOLERANCE: f64 = 1e-9;
 /// Largest step (rad) of the searched joint over which subproblem 6's
 /// roots are tracked from the previous evaluation's (else isolated from
 /// scratch).
-const NEAR: f64 = 0.1;
+pub(super) const NEAR: f64 = 0.1;
 /// Largest ratio of the Jacobian determinant of subproblem 6 just past a
 /// fold located on the discriminant to the one at the sample before it for
 /// the branch to count as ending there.
-const FOLDING: f64 = 1e-2;
+pub(super) const FOLDING: f64 = 1e-2;
 
 /// Where the parallel pair is, along the chain as solved.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -266,7 +266,7 @@ impl ParallelPairSearch {
 
 /// `R(k, t) v` for the turn `t` (Rodrigues, `k` a unit axis).
 #[inline]
-fn turned(k: &Vector3<f64>, v: &Vector3<f64>, t: &Turn) -> Vector3<f64> {
+pub(super) fn turned(k: &Vector3<f64>, v: &Vector3<f64>, t: &Turn) -> Vector3<f64> {
     v * t.cos + k.cross(v) * t.sin + k * ((1.0 - t.cos) * k.dot(v))
 }
 
@@ -284,7 +284,7 @@ fn moved_back(c: &Vector3<f64>, k: &Vector3<f64>, y: &Vector3<f64>, t: &Turn) ->
 
 /// The wave `-w` (a term moved to the other side).
 #[inline]
-fn negated(w: Wave) -> Wave {
+pub(super) fn negated(w: Wave) -> Wave {
     Wave {
         cos_part: -w.cos_part,
         sin_part: -w.sin_part,
@@ -294,7 +294,7 @@ fn negated(w: Wave) -> Wave {
 
 /// `d/dt` of a wave at the turn `t`.
 #[inline]
-fn wave_slope(w: &Wave, t: &Turn) -> f64 {
+pub(super) fn wave_slope(w: &Wave, t: &Turn) -> f64 {
     w.sin_part * t.cos - w.cos_part * t.sin
 }
 

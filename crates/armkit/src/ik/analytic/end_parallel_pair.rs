@@ -1,0 +1,678 @@
+//! 6R arms whose only special structure is two parallel axes at an end of
+//! the chain (joints 1-2, or 5-6 solved as the 1-2 case of the reversed
+//! chain): a 1-D search over one joint, the rest in closed form (derived
+//! here from the geometry).
+//!
+//! Chain as solved (`T home^-1 = E1 ... E6`, `E_k x = c_k + R_k (x - c_k)`),
+//! `h1 = h`, `h2 = s h` (`s = +-1`), `R_O = R_T R_home'`,
+//! `X = T home^-1 c6` (`c6` on axis 6, which `E6` leaves in place). The pair
+//! turns about parallel lines: `R1 R2 = R(h, th)`, `th = q1 + s q2`, and
+//! `E1 E2` keeps the `h` component of every point. So:
+//!
+//! * orientation: `R(h, th) R3 R4 R5 R6 = R_O` and `R(h, th)' h = h` give
+//!   `R5' R4' R3' h = g`, `g = R6 R_O' h`; joint 4 keeps the `h4` component,
+//!   so `h4 . (R3' h) = h4 . (R5 g)`;
+//! * height: `h . X = h . (E3 E4 E5 c6)`; expanded with the identity above
+//!   (`R4' R3' h = R5 g`, `R5' R4' R3' h = g`):
+//!   `h . c3 + (R3' h) . (c4 - c3) + (R5 g) . (c5 - c4) + g . (c6 - c5) = h . X`.
+//!
+//! At a trial `t = q6` (`g` known) both are a sinusoid in `q3` plus one in
+//! `q5` equal to a constant: subproblem 6 ([`super::subproblem6`], its exact
+//! solutions only: up to 4 `(q3, q5)`, the branches). `q4` follows by
+//! subproblem 1 (`R4' (R3' h) = R5 g`), `th` by subproblem 1 from the
+//! orientation (`R(h, th) n = R_O (R3 R4 R5 R6)' n`, `n` normal to `h`),
+//! and the pair must carry `y = E3 E4 E5 c6` onto `X`:
+//! `X = c1 + R1 (c2 - c1) + R(h, th)(y - c2)`, i.e.
+//! `w = X - c1 - R(h, th)(y - c2) = R1 L`, `L = c2 - c1`. The `h`
+//! components agree by the height equation; the lengths across `h` must
+//! too: the residual `f(t) = |w_perp| - |L_perp|` (m), smooth on each
+//! branch, its roots found by `search::find_roots` ([`SAMPLES`] per turn,
+//! roots to 1e-13 rad). Then `q1` by subproblem 1 (`R1 L = w`) and
+//! `q2 = s (th - q1)`.
+//!
+//! Three more searches decouple the same way (with `r = R_O' h` and
+//! `v = R3' h`), each a subproblem 6 in two joints with the joint between
+//! them by subproblem 1:
+//!
+//! * over `q3` (`v` known): `R5' R4' v = R6 r` keeps the `h5` component,
+//!   `h5 . (R4' v) = h5 . (R6 r)`, and the height is
+//!   `h . c3 + v . (c4 - c3) + (R4' v) . (c5 - c4) + (R6 r) . (c6 - c5) = h . X`:
+//!   subproblem 6 in `(q4, q6)`, `q5` from `R5' (R4' v) = R6 r`;
+//! * over `q5` (`R5` known): `h4 . (R3' h) = (R5' h4) . (R6 r)` and
+//!   `h . c3 + (R3' h) . (c4 - c3) + (R5' (c5 - c4) + c6 - c5) . (R6 r) = h . X`:
+//!   subproblem 6 in `(q3, q6)`, `q4` from `R4' (R3' h) = R5 R6 r`;
+//! * over `q4` (`R4` known): `(R4 h5) . (R3' h) = h5 . (R6 r)` and
+//!   `h . c3 + (c4 - c3 + R4 (c5 - c4)) . (R3' h) + (c6 - c5) . (R6 r) = h . X`:
+//!   subproblem 6 in `(q3, q6)`, `q5` from `R5' R4' R3' h = R6 r`.
+//!
+//! A solve runs [`SEARCHES`] = 3 of them, the first usable in the order
+//! over `q6`, `q3`, `q5`, `q4` (a search is unusable where its subproblem 6
+//! is degenerate: the joint whose component is kept parallel to the joint
+//! turning the vector it is read from, e.g. axes 5-6 parallel for the search
+//! over `q3`), and merges their roots (duplicates within 1e-9 rad dropped),
+//! as [`super::parallel_pair`] merges its two. Branches are keyed, tracked
+//! and ended as there: the subproblem-6 angles and its Jacobian determinant,
+//! matched within [`LINK`]; roots tracked from the previous evaluation's
+//! within `NEAR`; a branch's end located on the discriminant of subproblem
+//! 6's `f`, by the Jacobian determinant where that does not apply. Each
+//! root is checked by the chain's forward kinematics: exact when within
+//! 1e-10 m and rad (a root missing by more than 1e-12 is first polished by a
+//! few Gauss-Newton steps); roots missing by more than 1e-6 are dropped.
+//!
+//! Recall: the searches miss roots where the residual dips through zero
+//! and back between two samples, i.e. near a configuration where two
+//! solutions merge (every miss examined had a Jacobian whose smallest
+//! singular value was 1e-4 to 5e-3 of its largest). On 20 000 poses of
+//! 200 random arms (the pair at 1-2 and at 5-6, each built forwards and
+//! reversed; `many_random_end_parallel_pair_arms_by_1d_search`) the
+//! generating configuration was among the exact solutions on 19 999; on
+//! 10 000 poses of 100 more arms, on all. Two searches (over `q6` and `q3`)
+//! missed 8 of 16 000 and 6 of 10 000 (7, 3 and 0 of 10 000 at 640, 768 and
+//! 1 024 samples per turn). Cost: 14.2M instructions per solve (three
+//! searches; two: 9.0M), the
+//! `ik/analytic/parallel_pair_1_2_1d_search` bench.
+//!
+//! ```
+//! use armkit::ik::analytic::{AnalyticOptions, AnalyticSolver};
+//! use armkit::ik::closed_form::Fit;
+//! use armkit::kinematics::{forward_kinematics, Data};
+//! use armkit::math::{Pose, Vector3};
+//! use armkit::model::{JointSpec, ModelBuilder};
+//! // Axes 1 and 2 parallel (both along z), every other consecutive pair skew.
+//! let lines = [
+//!     ([0.0, 0.0, 0.0], [0.0, 0.0, 1.0]),
+//!     ([0.3, 0.05, 0.4], [0.0, 0.0, 1.0]),
+//!     ([0.5, -0.1, 0.6], [0.3, 0.9, 0.3]),
+//!     ([0.8, 0.1, 0.55], [0.9, 0.2, -0.4]),
+//!     ([1.0, 0.0, 0.5], [0.1, 0.95, 0.3]),
+//!     ([1.1, 0.1, 0.45], [0.85, -0.2, 0.5]),
+//! ];
+//! let mut builder = ModelBuilder::new("parallel12");
+//! let mut previous = Vector3::zeros();
+//! for (i, (c, h)) in lines.iter().enumerate() {
+//!     let c = Vector3::from(*c);
+//!     builder = builder.joint(
+//!         JointSpec::revolute(format!("q{}", i + 1), -3.2, 3.2)
+//!             .with_origin(Pose::from_translation(c - previous))
+//!             .with_axis(Vector3::from(*h).normalize()),
+//!     );
+//!     previous = c;
+//! }
+//! let model = builder.build().unwrap();
+//! let mut solver = AnalyticSolver::new(&model, AnalyticOptions::default()).unwrap();
+//! assert_eq!(solver.class().as_str(), "one_pair_parallel_1_2_1d_search");
+//! let q = [0.3, -0.4, 0.5, 0.2, -0.6, 0.1];
+//! let target = *forward_kinematics(&model, &mut Data::new(&model), &q).unwrap();
+//! let solutions = solver.solve(&target, &q).unwrap();
+//! assert!(solutions.iter().all(|s| s.fit == Fit::Exact));
+//! assert!(solutions[0].q().iter().zip(&q).all(|(a, b)| (a - b).abs() < 1e-9));
+//! ```
+
+use super::chain::{Candidates, Chain};
+use super::parallel_pair::{negated, turned, wave_slope, END_TOLERANCE, FOLDING, LINK, NEAR};
+use super::search::{
+    align_nearest, find_roots, fold_by_extrapolation, illinois, BranchKey, EndCheck, Residual,
+};
+use super::search2d::settle_root;
+use super::structure::GEOMETRY_TOLERANCE;
+use super::subproblem6::{CirclePoints, Sinusoids, Wave};
+use super::subproblems::{subproblem1, subproblem1_turn, Turn};
+use super::trig2::Trig2;
+use crate::math::{wrap_angle, Matrix3, Pose, Vector3};
+use std::cell::Cell;
+
+/// Samples per turn of each search.
+pub const SAMPLES: usize = 512;
+/// Searches per solve (the first usable of [`PREFERENCE`]), merged.
+pub const SEARCHES: usize = 3;
+/// The searches in the order they are taken.
+const PREFERENCE: [Form; 4] = [Form::Sixth, Form::Third, Form::Fifth, Form::Fourth];
+
+/// One of the four searches (chain as solved, pair at joints 1-2; see the
+/// module docs).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Form {
+    /// Over joint 6: subproblem 6 in joints 3 and 5, joint 4 by
+    /// subproblem 1.
+    Sixth,
+    /// Over joint 3: subproblem 6 in joints 4 and 6, joint 5 by
+    /// subproblem 1.
+    Third,
+    /// Over joint 5: subproblem 6 in joints 3 and 6, joint 4 by
+    /// subproblem 1.
+    Fifth,
+    /// Over joint 4: subproblem 6 in joints 3 and 6, joint 5 by
+    /// subproblem 1.
+    Fourth,
+}
+
+impl Form {
+    /// The searched joint and the subproblem-6 joints (first, second),
+    /// 0-based.
+    #[cfg(test)]
+    fn joints(self) -> (usize, usize, usize) {
+        match self {
+            Form::Sixth => (5, 2, 4),
+            Form::Third => (2, 3, 5),
+            Form::Fifth => (4, 2, 5),
+            Form::Fourth => (3, 2, 5),
+        }
+    }
+
+    /// True when the form's subproblem 6 is not degenerate: its first
+    /// equation keeps the component along the middle joint's axis, which
+    /// the subproblem-6 joints must turn (`h` the axes).
+    fn usable(self, h: &[Vector3<f64>]) -> bool {
+        let apart = |i: usize, j: usize| h[i].cross(&h[j]).norm() > GEOMETRY_TOLERANCE;
+        match self {
+            Form::Sixth => apart(2, 3) && apart(4, 3),
+            Form::Third => apart(3, 4) && apart(5, 4),
+            Form::Fifth => apart(2, 3) && (apart(3, 4) || apart(4, 5)),
+            Form::Fourth => (apart(2, 3) || apart(3, 4)) && apart(4, 5),
+        }
+    }
+}
+
+/// True when a chain whose axes 1-2 (0-based 0, 1) are parallel has a
+/// usable search: axis 3 not parallel to the pair and at least one
+/// search's subproblem 6 not degenerate (`h` the six axes).
+pub(crate) fn searchable(h: &[Vector3<f64>]) -> bool {
+    h[0].cross(&h[2]).norm() > GEOMETRY_TOLERANCE && PREFERENCE.iter().any(|f| f.usable(h))
+}
+
+/// The arm-fixed quantities of an end-parallel-pair search, read once.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct EndPairSearch {
+    chain: Chain,
+    forms: [Form; 4],
+    searches: usize,
+    home: Pose,
+    /// `h = h1` and `s = h1 . h2` (+-1).
+    h: Vector3<f64>,
+    sign: f64,
+    /// `L = c2 - c1` and `|L_perp|`.
+    link: Vector3<f64>,
+    link_length: f64,
+    /// A unit vector normal to `h` (reads `th`).
+    normal: Vector3<f64>,
+}
+
+impl EndPairSearch {
+    /// The search of `chain` (axes 1-2 parallel, [`searchable`]).
+    pub(crate) fn new(chain: &Chain) -> EndPairSearch {
+        let (c, h) = (&chain.c, &chain.h);
+        let axis = h[0];
+        let link = c[1] - c[0];
+        let helper = if axis.x.abs() < 0.9 {
+            Vector3::x()
+        } else {
+            Vector3::y()
+        };
+        let mut forms = [Form::Sixth; 4];
+        let mut searches = 0;
+        for form in PREFERENCE.iter().filter(|f| f.usable(h)).take(SEARCHES) {
+            forms[searches] = *form;
+            searches += 1;
+        }
+        EndPairSearch {
+            chain: *chain,
+            forms,
+            searches,
+            home: chain.home_inverse.inverse(),
+            h: axis,
+            sign: axis.dot(&h[1]).signum(),
+            link,
+            link_length: (link - axis * axis.dot(&link)).norm(),
+            normal: axis.cross(&helper).normalize(),
+        }
+    }
+
+    /// Every solution found for `target` (the chain's end-effector pose).
+    pub(crate) fn solve(&self, target: &Pose, out: &mut Candidates) {
+        let mut kept: [[f64; 6]; 32] = [[0.0; 6]; 32];
+        let mut count = 0;
+        for form in &self.forms[..self.searches] {
+            let problem = Problem::new(self, target, *form);
+            find_roots::<_, 4, SAMPLES>(&problem, |t, key| {
+                let Some((q, exact)) = problem.finish(t, &key) else {
+                    return;
+                };
+                let duplicate = kept[..count].iter().any(|p| {
+                    p.iter()
+                        .zip(&q)
+                        .all(|(a, b)| wrap_angle(a - b).abs() < 1e-9)
+                });
+                if !duplicate && count < kept.len() {
+                    kept[count] = q;
+                    count += 1;
+                    out.push(&q, exact);
+                }
+            });
+        }
+    }
+}
+
+/// One search of one solve: the target read into what every evaluation
+/// shares.
+struct Problem<'a> {
+    s: &'a EndPairSearch,
+    form: Form,
+    target: Pose,
+    /// `R_O = R_T R_home'`.
+    orientation: Matrix3<f64>,
+    /// `r = R_O' h`.
+    reach: Vector3<f64>,
+    /// `X = T home^-1 c6`.
+    goal: Vector3<f64>,
+    /// `h . X - h . c3`.
+    height: f64,
+    /// The searched joint's value at the last evaluation and subproblem
+    /// 6's circle points there (starts for the next evaluation's roots
+    /// within `NEAR`).
+    last: Cell<Option<(f64, CirclePoints)>>,
+}
+
+/// A branch: the subproblem-6 angles and its Jacobian determinant.
+type Key = BranchKey<2>;
+
+/// What subproblem 6 solves at a trial `t`: the system, its right-hand
+/// side, the searched joint's turn and the vector it turns (`g = R6 r`
+/// over joint 6, `v = R3' h` over joint 3; zero, unused, over joints 4
+/// and 5).
+struct Sides {
+    system: Sinusoids,
+    d: [f64; 2],
+    k: Turn,
+    turned: Vector3<f64>,
+}
+
+/// What the residual and the finish read at `t` on one branch.
+struct Point {
+    /// Joints 3-6 as turns.
+    joints: [Turn; 4],
+    /// `th` of the pair.
+    pair: Turn,
+    /// `w` (see the module docs).
+    w: Vector3<f64>,
+}
+
+impl<'a> Problem<'a> {
+    fn new(s: &'a EndPairSearch, target: &Pose, form: Form) -> Problem<'a> {
+        let c = &s.chain.c;
+        let moved = *target * s.chain.home_inverse;
+        let goal = moved.transform_point(&c[5]);
+        Problem {
+            s,
+            form,
+            target: *target,
+            orientation: moved.rotation,
+            reach: moved.rotation.transpose() * s.h,
+            goal,
+            height: s.h.dot(&(goal - c[2])),
+            last: Cell::new(None),
+        }
+    }
+
+    /// Subproblem 6 at `t` (see the module docs): equation 1 the kept
+    /// component, equation 2 the height.
+    #[inline]
+    fn sides(&self, t: f64) -> Sides {
+        let (c, h) = (&self.s.chain.c, &self.s.chain.h);
+        let (axis, reach) = (&self.s.h, &self.reach);
+        let k = Turn::of_angle(t);
+        // q3 turning h back (kept along `kept`, height along c4 - c3), or
+        // q6 turning r (kept along `kept`, height along `arm`).
+        let third = |kept: &Vector3<f64>, arm: &Vector3<f64>| {
+            [Wave::new(kept, &-h[2], axis), Wave::new(arm, &-h[2], axis)]
+        };
+        let sixth = |kept: &Vector3<f64>, arm: &Vector3<f64>| {
+            [
+                negated(Wave::new(kept, &h[5], reach)),
+                Wave::new(arm, &h[5], reach),
+            ]
+        };
+        let (first, second, height, turned_by_k) = match self.form {
+            Form::Sixth => {
+                // g = R6 r; q3 turns h back, q5 turns g.
+                let g = turned(&h[5], reach, &k);
+                let second = [
+                    negated(Wave::new(&h[3], &h[4], &g)),
+                    Wave::new(&(c[4] - c[3]), &h[4], &g),
+                ];
+                let height = self.height - g.dot(&(c[5] - c[4]));
+                (third(&h[3], &(c[3] - c[2])), second, height, g)
+            }
+            Form::Third => {
+                // v = R3' h; q4 turns v back, q6 turns r.
+                let v = k.rotate_back(&h[2], axis);
+                let first = [
+                    Wave::new(&h[4], &-h[3], &v),
+                    Wave::new(&(c[4] - c[3]), &-h[3], &v),
+                ];
+                let second = sixth(&h[4], &(c[5] - c[4]));
+                (first, second, self.height - v.dot(&(c[3] - c[2])), v)
+            }
+            Form::Fifth => {
+                // R5 known: h4 seen after it, c5 - c4 likewise.
+                let kept = k.rotate_back(&h[4], &h[3]);
+                let arm = k.rotate_back(&h[4], &(c[4] - c[3])) + c[5] - c[4];
+                let first = third(&h[3], &(c[3] - c[2]));
+                (first, sixth(&kept, &arm), self.height, Vector3::zeros())
+            }
+            Form::Fourth => {
+                // R4 known: h5 seen before it, c5 - c4 likewise.
+                let kept = turned(&h[3], &h[4], &k);
+                let arm = c[3] - c[2] + turned(&h[3], &(c[4] - c[3]), &k);
+                let second = sixth(&h[4], &(c[5] - c[4]));
+                (third(&kept, &arm), second, self.height, Vector3::zeros())
+            }
+        };
+        Sides {
+            system: Sinusoids { first, second },
+            d: [0.0, height],
+            k,
+            turned: turned_by_k,
+        }
+    }
+
+    /// The branches at `t`: their keys and points.
+    fn branches(&self, t: f64) -> [Option<(Key, Point)>; 4] {
+        let v = self.sides(t);
+        let previous = self.last.get();
+        let previous = previous
+            .as_ref()
+            .filter(|(at, _)| (at - t).abs() <= NEAR)
+            .map(|(_, points)| points);
+        let (pairs, points) = v.system.exact_solutions_near(v.d, previous);
+        self.last.set(points.map(|points| (t, points)));
+        let system = &v.system;
+        let mut out = [None, None, None, None];
+        for (slot, pair) in out.iter_mut().zip(pairs.as_slice()) {
+            let (a, b) = (&pair.first, &pair.second);
+            let determinant = wave_slope(&system.first[0], a) * wave_slope(&system.second[1], b)
+                - wave_slope(&system.second[0], b) * wave_slope(&system.first[1], a);
+            let key = Key {
+                angles: [a.angle, b.angle],
+                fold: determinant,
+            };
+            *slot = Some((key, self.point(&v, a, b)));
+        }
+        out
+    }
+
+    /// Joints 3-6 from the subproblem-6 turns `a`, `b` (the middle joint
+    /// by subproblem 1), then `th` and `w` (see the module docs).
+    #[inline]
+    fn point(&self, v: &Sides, a: &Turn, b: &Turn) -> Point {
+        let (c, h) = (&self.s.chain.c, &self.s.chain.h);
+        let axis = &self.s.h;
+        let joints = match self.form {
+            Form::Sixth => {
+                // R4' (R3' h) = R5 g: R(h4, q4) (R5 g) = R3' h.
+                let up = a.rotate_back(&h[2], axis);
+                let down = turned(&h[4], &v.turned, b);
+                let (q4, _) = subproblem1_turn(&h[3], &down, &up);
+                [*a, q4, *b, v.k]
+            }
+            Form::Third => {
+                // R5' (R4' v) = R6 r: R(h5, q5) (R6 r) = R4' v.
+                let up = a.rotate_back(&h[3], &v.turned);
+                let down = turned(&h[5], &self.reach, b);
+                let (q5, _) = subproblem1_turn(&h[4], &down, &up);
+                [v.k, *a, q5, *b]
+            }
+            Form::Fifth => {
+                // R(h4, q4) (R5 R6 r) = R3' h.
+                let up = a.rotate_back(&h[2], axis);
+                let down = turned(&h[4], &turned(&h[5], &self.reach, b), &v.k);
+                let (q4, _) = subproblem1_turn(&h[3], &down, &up);
+                [*a, q4, v.k, *b]
+            }
+            Form::Fourth => {
+                // R(h5, q5) (R6 r) = R4' R3' h.
+                let up = v.k.rotate_back(&h[3], &a.rotate_back(&h[2], axis));
+                let down = turned(&h[5], &self.reach, b);
+                let (q5, _) = subproblem1_turn(&h[4], &down, &up);
+                [*a, v.k, q5, *b]
+            }
+        };
+        // R(h, th) n = R_O (R3 R4 R5 R6)' n.
+        let mut m = self.s.normal;
+        for (j, turn) in joints.iter().enumerate() {
+            m = turn.rotate_back(&h[j + 2], &m);
+        }
+        let (pair, _) = subproblem1_turn(axis, &self.s.normal, &(self.orientation * m));
+        // y = E3 E4 E5 c6.
+        let mut y = c[5];
+        for j in (2..5).rev() {
+            y = c[j] + turned(&h[j], &(y - c[j]), &joints[j - 2]);
+        }
+        let w = self.goal - c[0] - turned(axis, &(y - c[1]), &pair);
+        Point { joints, pair, w }
+    }
+
+    /// `|w_perp| - |L_perp|`.
+    #[inline]
+    fn residual_of(&self, point: &Point) -> f64 {
+        let axis = &self.s.h;
+        let w = &point.w;
+        (w - axis * axis.dot(w)).norm() - self.s.link_length
+    }
+
+    /// The branch nearest `key` at `t`, within [`LINK`].
+    fn nearest(&self, t: f64, key: &Key) -> Option<(Key, Point)> {
+        let mut best: Option<(f64, Key, Point)> = None;
+        for (k, point) in self.branches(t).into_iter().flatten() {
+            let d = k.gap(key);
+            if d < LINK && best.as_ref().is_none_or(|(e, _, _)| d < *e) {
+                best = Some((d, k, point));
+            }
+        }
+        best.map(|(_, k, point)| (k, point))
+    }
+
+    /// The joint values (chain order) at a root `t` of the branch `key`,
+    /// and whether the chain's forward kinematics reproduces the target to
+    /// [`EXACT_TOLERANCE`](super::EXACT_TOLERANCE); `None` if it misses by
+    /// more (`search2d::settle_root`).
+    fn finish(&self, t: f64, key: &Key) -> Option<([f64; 6], bool)> {
+        let (_, point) = self.nearest(t, key)?;
+        let q = self.configuration(&point);
+        settle_root(&self.s.chain, &self.s.home, q, &self.target)
+    }
+
+    /// Every joint from a branch's point: `q1` by subproblem 1
+    /// (`R1 L = w`), `q2 = s (th - q1)`.
+    fn configuration(&self, point: &Point) -> [f64; 6] {
+        let mut q = [0.0; 6];
+        let (first, _) = subproblem1(&self.s.h, &self.s.link, &point.w);
+        q[0] = first;
+        q[1] = wrap_angle(self.s.sign * (point.pair.angle - first));
+        for (slot, turn) in q[2..].iter_mut().zip(&point.joints) {
+            *slot = turn.angle;
+        }
+        q
+    }
+
+    /// Subproblem 6's `f` at `t` (no roots), `None` without a circle.
+    fn difference_at(&self, t: f64) -> Option<Trig2> {
+        let v = self.sides(t);
+        v.system.difference_polynomial(v.d)
+    }
+
+    /// A fold between `defined` and `undefined` located where the
+    /// discriminant of subproblem 6's `f` changes sign, as
+    /// `parallel_pair`'s: Illinois on the discriminant to
+    /// [`END_TOLERANCE`], the branch read at the bracket's end on the
+    /// defined side and checked gone (or folding: its Jacobian determinant
+    /// below `FOLDING` of the sample's) at the other. `None` when the
+    /// discriminant keeps its sign or the branch does not end there.
+    fn fold_by_discriminant(
+        &self,
+        defined: &(f64, f64, Key),
+        undefined: f64,
+    ) -> Option<(f64, f64, Key)> {
+        let start = self.difference_at(defined.0)?;
+        let shift = start.quarter_shift();
+        let at = |t: f64| self.difference_at(t).map(|f| f.discriminant_about(shift));
+        let (fa, fb) = (start.discriminant_about(shift), at(undefined)?);
+        let product = fa * fb;
+        if product.is_nan() || product >= 0.0 {
+            return None;
+        }
+        let ((a, _, _), (b, _, _)) = illinois(
+            (defined.0, fa, ()),
+            (undefined, fb, ()),
+            END_TOLERANCE,
+            |t, _| at(t).map(|f| (f, ())),
+        )?;
+        let (f, k) = self.residual(a, &defined.2)?;
+        if let Some((_, past)) = self.residual(b, &k) {
+            if past.fold.abs() >= FOLDING * defined.2.fold.abs() {
+                return None;
+            }
+        }
+        Some((a, f, k))
+    }
+}
+
+impl Residual<4> for Problem<'_> {
+    type Key = Key;
+
+    const ENDS: EndCheck = EndCheck::SignChangeOrDip;
+
+    fn sample(&self, t: f64) -> [Option<(f64, Key)>; 4] {
+        self.branches(t)
+            .map(|b| b.map(|(key, point)| (self.residual_of(&point), key)))
+    }
+
+    fn residual(&self, t: f64, key: &Key) -> Option<(f64, Key)> {
+        let (k, point) = self.nearest(t, key)?;
+        Some((self.residual_of(&point), k))
+    }
+
+    fn align(&self, previous: &[Option<(f64, Key)>; 4], current: &mut [Option<(f64, Key)>; 4]) {
+        align_nearest(previous, current, Key::gap, LINK);
+    }
+
+    fn same_branch(&self, a: &Key, b: &Key) -> bool {
+        a.gap(b) < LINK
+    }
+
+    /// A branch ends where two solutions of subproblem 6 merge: located on
+    /// the discriminant of its `f`, else where the squared Jacobian
+    /// determinant extrapolates to zero (`search::fold_by_extrapolation`).
+    fn branch_end(&self, defined: (f64, f64, Key), undefined: f64) -> (f64, f64, Key) {
+        if let Some(end) = self.fold_by_discriminant(&defined, undefined) {
+            return end;
+        }
+        let determinant = |k: &Key| k.fold * k.fold;
+        fold_by_extrapolation(self, defined, undefined, END_TOLERANCE, determinant).0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ik::analytic::structure::{ArmStructure, Motion};
+    use crate::ik::analytic::subproblems::rotation;
+    use crate::ik::analytic::test_random::{point, unit};
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    /// A random arm with axes 1-2 parallel (same or opposite direction).
+    fn random_arm(rng: &mut ChaCha8Rng) -> ArmStructure {
+        let points: Vec<_> = (0..6).map(|_| point(rng) * 2.0).collect();
+        let mut axes: Vec<_> = (0..6).map(|_| unit(rng)).collect();
+        axes[1] = if rng.gen_bool(0.5) { axes[0] } else { -axes[0] };
+        let home = Pose::new(
+            crate::math::Rotation3::from_euler_angles(0.3, -0.2, 1.1).into_inner(),
+            point(rng),
+        );
+        ArmStructure::from_lines(points, axes, vec![Motion::Rotation; 6], home)
+    }
+
+    /// The derivation itself, with plain matrices: at the generating
+    /// configuration both searches' two equations hold.
+    #[test]
+    fn the_decoupling_equations_hold_at_the_generating_configuration() {
+        let mut rng = ChaCha8Rng::seed_from_u64(12);
+        for _ in 0..200 {
+            let s = random_arm(&mut rng);
+            let (c, h) = (&s.points, &s.axes);
+            let q: [f64; 6] = std::array::from_fn(|_| rng.gen_range(-3.1..3.1));
+            let target = s.forward_kinematics(&q);
+            let moved = target * s.home.inverse();
+            let (r_o, x) = (moved.rotation, moved.transform_point(&c[5]));
+            let r = |j: usize| rotation(&h[j], q[j]);
+            let e = |j: usize, p: &Vector3<f64>| c[j] + r(j) * (p - c[j]);
+            let axis = h[0];
+            // Over joint 6: g = R6 R_O' h.
+            let g = r(5) * r_o.transpose() * axis;
+            let up = r(2).transpose() * axis;
+            assert!((h[3].dot(&up) - h[3].dot(&(r(4) * g))).abs() < 1e-12);
+            let height = axis.dot(&c[2])
+                + up.dot(&(c[3] - c[2]))
+                + (r(4) * g).dot(&(c[4] - c[3]))
+                + g.dot(&(c[5] - c[4]));
+            assert!((height - axis.dot(&x)).abs() < 1e-12);
+            assert!((axis.dot(&e(2, &e(3, &e(4, &c[5])))) - axis.dot(&x)).abs() < 1e-12);
+            // Over joint 3: v = R3' h, r = R_O' h.
+            let reach = r(5) * r_o.transpose() * axis;
+            let down = r(3).transpose() * up;
+            assert!((h[4].dot(&down) - h[4].dot(&reach)).abs() < 1e-12);
+            let height = axis.dot(&c[2])
+                + up.dot(&(c[3] - c[2]))
+                + down.dot(&(c[4] - c[3]))
+                + reach.dot(&(c[5] - c[4]));
+            assert!((height - axis.dot(&x)).abs() < 1e-12);
+        }
+    }
+
+    /// Form by form: at the generating value of the searched joint,
+    /// subproblem 6 has the generating pair among its solutions, and on
+    /// that branch the residual vanishes and every joint is read back.
+    #[test]
+    fn each_form_reads_back_the_generating_configuration() {
+        let mut rng = ChaCha8Rng::seed_from_u64(17);
+        for _ in 0..100 {
+            let s = random_arm(&mut rng);
+            let search = EndPairSearch::new(&Chain::of(&s).unwrap());
+            assert_eq!(search.searches, SEARCHES);
+            let q: [f64; 6] = std::array::from_fn(|_| rng.gen_range(-3.1..3.1));
+            let target = s.forward_kinematics(&q);
+            for form in PREFERENCE {
+                let (k, a, b) = form.joints();
+                let problem = Problem::new(&search, &target, form);
+                let branch = problem
+                    .branches(q[k])
+                    .into_iter()
+                    .flatten()
+                    .find(|(key, _)| {
+                        wrap_angle(key.angles[0] - q[a]).abs() < 1e-8
+                            && wrap_angle(key.angles[1] - q[b]).abs() < 1e-8
+                    });
+                let (_, at) = branch.unwrap_or_else(|| panic!("{form:?}: no branch"));
+                assert!(problem.residual_of(&at).abs() < 1e-9, "{form:?}");
+                let read = problem.configuration(&at);
+                for (x, y) in read.iter().zip(&q) {
+                    assert!(wrap_angle(x - y).abs() < 1e-8, "{form:?}: {read:?} {q:?}");
+                }
+            }
+        }
+    }
+
+    /// A search is dropped where its subproblem 6 would be degenerate.
+    #[test]
+    fn degenerate_forms_are_skipped() {
+        let mut rng = ChaCha8Rng::seed_from_u64(5);
+        let mut s = random_arm(&mut rng);
+        s.axes[5] = s.axes[4];
+        assert!(searchable(&s.axes));
+        let search = EndPairSearch::new(&Chain::of(&s).unwrap());
+        let forms = &search.forms[..search.searches];
+        assert_eq!(forms, [Form::Sixth, Form::Fifth]);
+        s.axes[2] = s.axes[0];
+        assert!(!searchable(&s.axes));
+    }
+}
