@@ -1092,11 +1092,14 @@ fn parallel_pair_detection_takes_only_its_class() {
         lines[3].1 = lines[2].1;
         assert_eq!(class_of(&lines, &mut rng), "three_parallel_2_3_4");
         // Axes 1-2-3 parallel: each pair has a parallel neighbour, so no
-        // search takes the arm: refused as no class.
+        // 1-D search takes the arm.
         let mut lines = parallel_pair_lines(&mut rng, 1);
         lines[0].1 = lines[1].1;
         let found = class_of(&lines, &mut rng);
-        assert!(found.contains("class other"), "{found}");
+        assert!(
+            found.contains("class unsearched_pairs_2d_search"),
+            "{found}"
+        );
         // Axes 1-2 and 5-6 parallel: the 1-2 search, over joint 6 only
         // (its search over joint 3 would turn axis 6 about itself).
         let mut lines = parallel_pair_lines(&mut rng, 0);
@@ -1105,11 +1108,14 @@ fn parallel_pair_detection_takes_only_its_class() {
             class_of(&lines, &mut rng),
             "one_pair_parallel_1_2_1d_search"
         );
-        // The pair on one line (a degenerate arm): refused as no class.
+        // The pair on one line (a degenerate arm): no 1-D search takes it.
         let mut lines = parallel_pair_lines(&mut rng, 1);
         lines[2].0 = lines[1].0 + lines[1].1 * 0.3;
         let found = class_of(&lines, &mut rng);
-        assert!(found.contains("class other"), "{found}");
+        assert!(
+            found.contains("class unsearched_pairs_2d_search"),
+            "{found}"
+        );
         // A spherical wrist with parallel 2-3 stays closed form.
         let lines = spherical_wrist_lines(&mut rng, Positioning::ParallelSecondThird);
         assert_eq!(class_of(&lines, &mut rng), "spherical_wrist_parallel_2_3");
@@ -1168,17 +1174,23 @@ fn parallel_end_pairs_are_solved_and_pairs_no_search_takes_are_refused_by_name()
     assert_eq!(s.class().as_str(), "one_pair_parallel_1_2_1d_search");
     let tally = check(&model, &mut s, 20, 82, &no_parameter);
     assert_all_recovered("parallel 1-2 and 5-6", &tally);
-    // Parallel 1-2-3: every pair has a parallel neighbour, no search takes
-    // it: refused with the class named.
+    // Parallel 1-2-3: every pair has a parallel neighbour, no 1-D search
+    // takes it: refused with the class named and the 2-D option offered;
+    // with that option, every exact solution reproduces the pose.
     lines[2].1 = lines[0].1;
     let model = model_from_lines("parallel123", &lines, random_home(&mut rng));
     let error = AnalyticSolver::new(&model, AnalyticOptions::default())
         .unwrap_err()
         .to_string();
     assert!(
-        error.contains("has no analytic solver: class other"),
+        error.contains("has no analytic solver: class unsearched_pairs_2d_search"),
         "{error}"
     );
+    assert!(error.contains("--search 2d"), "{error}");
+    let mut s = AnalyticSolver::new(&model, options).unwrap();
+    assert_eq!(s.class().as_str(), "unsearched_pairs_2d_search");
+    let tally = check(&model, &mut s, 5, 83, &no_parameter);
+    assert!(tally.solutions > 0, "no solution found on any of 5 poses");
 }
 
 #[test]

@@ -92,6 +92,12 @@ pub enum ArmClass {
     /// axes: a 2-D search, only with `SearchPolicy::TwoDimensions` (see
     /// `search2d`).
     General,
+    /// 6 rotation joints with special consecutive axes that no closed-form
+    /// class and no 1-D search takes (e.g. axes 1-2-3 parallel outside the
+    /// UR family, where every parallel pair has a parallel neighbour, or a
+    /// parallel pair on one line): the 2-D search of [`ArmClass::General`],
+    /// only with `SearchPolicy::TwoDimensions`.
+    UnsearchedPairs,
     /// Another number of joints, or prismatic joints where no class allows
     /// them.
     Other,
@@ -135,6 +141,7 @@ impl ArmClass {
                 (PairKind::Parallel, _) => "one_pair_parallel_5_6_1d_search",
             },
             ArmClass::General => "general_6r_2d_search",
+            ArmClass::UnsearchedPairs => "unsearched_pairs_2d_search",
             ArmClass::Other => "other",
         }
     }
@@ -214,6 +221,9 @@ impl ArmClass {
             }
             ArmClass::General => {
                 "no intersecting or parallel consecutive axes: general 6R, a 2-D search (a 16 x 16 grid over joints 1 and 2, each point polished by damped Gauss-Newton; milliseconds, may miss solutions): only with the search option `two_dimensions` (CLI: --search 2d)"
+            }
+            ArmClass::UnsearchedPairs => {
+                "intersecting or parallel consecutive axes that fit no closed-form class and no 1-D search (a parallel pair with a parallel neighbour outside the UR family, or on one line): the 2-D search of a general 6R arm, only with the search option `two_dimensions` (CLI: --search 2d)"
             }
             ArmClass::Other => "not a 6-joint arm of a known class: numeric solver only",
         }
@@ -421,7 +431,7 @@ fn one_pair(structure: &ArmStructure, reversed: &ArmStructure) -> Detected {
     // parallel pair on one line, or with a parallel neighbour, or at an end
     // with a degenerate subproblem 6 beyond it).
     Detected::Unsolvable(if any {
-        ArmClass::Other
+        ArmClass::UnsearchedPairs
     } else {
         ArmClass::General
     })

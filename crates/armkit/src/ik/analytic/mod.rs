@@ -613,14 +613,21 @@ fn plan(
         // The 2-D search needs no special pair: it takes the general arm and
         // the pairs no 1-D search handles.
         (
-            Detected::Unsolvable(ArmClass::General | ArmClass::OnePair { .. }),
+            Detected::Unsolvable(
+                ArmClass::General | ArmClass::UnsearchedPairs | ArmClass::OnePair { .. },
+            ),
             Some(Parameter::FixedJoint { .. }) | None,
         ) if search == SearchPolicy::TwoDimensions =>
         {
             let chain = chain_of(&arm, ChainEnd::Tip).ok_or_else(|| unsolvable(""))?;
             Ok((class, Plan::TwoDimensional(GridSearch::new(&chain))))
         }
-        (Detected::Unsolvable(ArmClass::General | ArmClass::OnePair { .. }), None) => {
+        (
+            Detected::Unsolvable(
+                ArmClass::General | ArmClass::UnsearchedPairs | ArmClass::OnePair { .. },
+            ),
+            None,
+        ) => {
             Err(unsolvable(
                 "; it needs the 2-D search: set AnalyticOptions::search = SearchPolicy::TwoDimensions (CLI: --search 2d)",
             ))
