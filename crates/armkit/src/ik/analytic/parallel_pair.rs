@@ -108,9 +108,9 @@ use super::search::{
 };
 use super::search2d::settle_root;
 use super::structure::GEOMETRY_TOLERANCE;
-use super::subproblem6::{CirclePoints, Sinusoids, Wave};
-use super::subproblems::{rotation, subproblem1, subproblem1_turn, Turn};
-use super::trig2::Trig2;
+use super::subproblem6::{CirclePoints, Eliminated, Sinusoids, Wave};
+use super::subproblems::{atan2, rotation, subproblem1, Turn};
+use super::trig2::{Trig2, TrigRoots};
 use crate::math::{wrap_angle, Matrix3, Pose, Vector3};
 use std::cell::Cell;
 
@@ -267,7 +267,13 @@ impl ParallelPairSearch {
 /// `R(k, t) v` for the turn `t` (Rodrigues, `k` a unit axis).
 #[inline]
 fn turned(k: &Vector3<f64>, v: &Vector3<f64>, t: &Turn) -> Vector3<f64> {
-    v * t.cos + k.cross(v) * t.sin + k * ((1.0 - t.cos) * k.dot(v))
+    turned_by(k, v, t.sin, t.cos)
+}
+
+/// `R(k, t) v` for the turn of sine `s` and cosine `c`.
+#[inline]
+fn turned_by(k: &Vector3<f64>, v: &Vector3<f64>, s: f64, c: f64) -> Vector3<f64> {
+    v * c + k.cross(v) * s + k * ((1.0 - c) * k.dot(v))
 }
 
 /// `E(t) y = c + R(k, t)(y - c)`, the joint's motion.
@@ -310,10 +316,107 @@ struct Problem<'a> {
     tail_goal: Vector3<f64>,
     /// `X = T home^-1 c6`.
     goal: Vector3<f64>,
+    /// The sides and subproblem 6 as functions of `t`.
+    sweep: Sweep,
+    /// Subproblem 6 with the unknown whose waves do not move with `t`
+    /// eliminated, when its block is well conditioned.
+    elimination: Option<Eliminated>,
     /// The searched joint's value at the last evaluation and subproblem
-    /// 6's circle points there (starts for the next evaluation's roots
-    /// within [`NEAR`]).
-    last: Cell<Option<(f64, CirclePoints)>>,
+    /// 6's roots there (starts for the next evaluation's within [`NEAR`]).
+    last: Cell<Option<(f64, Tracked)>>,
+}
+
+/// Subproblem 6's roots at one evaluation, as the next one tracks them.
+#[derive(Clone, Copy)]
+enum Tracked {
+    /// The null-space form's circle points.
+    Circle(CirclePoints),
+    /// The eliminated form's roots in the other unknown.
+    Roots(TrigRoots),
+}
+
+/// Values an evaluation reads, flattened: subproblem 6's four waves (cos
+/// part, sin part, constant), `d`, and the sides' vectors `left[0]`,
+/// `left[1]`, `right[0]`, `right[1]`.
+const FLAT: usize = 25;
+
+/// The sides and subproblem 6 of one search as functions of the searched
+/// joint's turn `t`: each value is affine in `(cos t, sin t)` (joint `k`
+/// turns `h` or the sides' vectors once, by Rodrigues, and the waves and
+/// `d` are linear in those), `a + b cos t + c sin t`, read once per solve
+/// at `t = 0`, `pi / 2`, `pi`.
+#[derive(Clone, Copy)]
+struct Sweep {
+    parts: [[f64; FLAT]; 3],
+}
+
+impl Sweep {
+    fn of(exact: impl Fn(&Turn) -> [f64; FLAT]) -> Sweep {
+        let turn = |angle, sin, cos| Turn { angle, sin, cos };
+        let zero = exact(&turn(0.0, 0.0, 1.0));
+        let quarter = exact(&turn(std::f64::consts::FRAC_PI_2, 1.0, 0.0));
+        let half = exact(&turn(std::f64::consts::PI, 0.0, -1.0));
+        let mut parts = [[0.0; FLAT]; 3];
+        for i in 0..FLAT {
+            let a = 0.5 * (zero[i] + half[i]);
+            parts[0][i] = a;
+            parts[1][i] = 0.5 * (zero[i] - half[i]);
+            parts[2][i] = quarter[i] - a;
+        }
+        Sweep { parts }
+    }
+
+    fn at(&self, t: &Turn) -> [f64; FLAT] {
+        let mut out = [0.0; FLAT];
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = self.parts[0][i] + self.parts[1][i] * t.cos + self.parts[2][i] * t.sin;
+        }
+        out
+    }
+}
+
+/// Subproblem 6 and the sides as [`Sweep`] stores them.
+fn flatten(v: &Sides, system: &Sinusoids) -> [f64; FLAT] {
+    let mut out = [0.0; FLAT];
+    let waves = [
+        system.first[0],
+        system.first[1],
+        system.second[0],
+        system.second[1],
+    ];
+    for (i, w) in waves.iter().enumerate() {
+        out[3 * i] = w.cos_part;
+        out[3 * i + 1] = w.sin_part;
+        out[3 * i + 2] = w.constant;
+    }
+    out[12] = v.d;
+    let vectors = [v.left[0], v.left[1], v.right[0], v.right[1]];
+    for (i, x) in vectors.iter().enumerate() {
+        out[13 + 3 * i..16 + 3 * i].copy_from_slice(x.as_slice());
+    }
+    out
+}
+
+/// [`flatten`]'s inverse, with the searched joint's turn.
+fn unflatten(flat: &[f64; FLAT], k: Turn) -> (Sides, Sinusoids) {
+    let wave = |i: usize| Wave {
+        cos_part: flat[3 * i],
+        sin_part: flat[3 * i + 1],
+        constant: flat[3 * i + 2],
+    };
+    let vector = |i: usize| Vector3::new(flat[13 + 3 * i], flat[14 + 3 * i], flat[15 + 3 * i]);
+    (
+        Sides {
+            k,
+            left: [vector(0), vector(1)],
+            right: [vector(2), vector(3)],
+            d: flat[12],
+        },
+        Sinusoids {
+            first: [wave(0), wave(1)],
+            second: [wave(2), wave(3)],
+        },
+    )
 }
 
 /// A branch: the subproblem-6 angles `(q_l, q_r)` and its Jacobian
@@ -326,7 +429,6 @@ type Key = BranchKey<2>;
 /// `g_r . R(h_r, q_r) u` likewise, `k` the searched joint's turn.
 struct Sides {
     k: Turn,
-    g: [Vector3<f64>; 2],
     left: [Vector3<f64>; 2],
     right: [Vector3<f64>; 2],
     /// The position equation's right-hand side.
@@ -338,8 +440,8 @@ struct Point {
     /// `q_l`, `q_r` as turns.
     left: Turn,
     right: Turn,
-    /// `th` of the pair.
-    pair: Turn,
+    /// `th` of the pair: its sine and cosine.
+    pair: (f64, f64),
     /// `w` (see the module docs).
     w: Vector3<f64>,
 }
@@ -348,15 +450,38 @@ impl<'a> Problem<'a> {
     fn new(s: &'a ParallelPairSearch, target: &Pose, form: Form) -> Problem<'a> {
         let (c, h) = (&s.chain.c, &s.chain.h);
         let moved = *target * s.chain.home_inverse;
-        Problem {
+        let mut problem = Problem {
             s,
             form,
             target: *target,
             orientation: moved.rotation,
             tail_goal: moved.rotation * h[5],
             goal: moved.transform_point(&c[5]),
+            sweep: Sweep {
+                parts: [[0.0; FLAT]; 3],
+            },
+            elimination: None,
             last: Cell::new(None),
-        }
+        };
+        problem.sweep = Sweep::of(|turn| {
+            let (sides, g) = problem.sides(turn);
+            flatten(&sides, &problem.system(&sides, &g))
+        });
+        // The unknown on the side away from `k` keeps its waves.
+        let fixed = match form.side {
+            Known::LeftInner | Known::LeftOuter => 1,
+            Known::RightInner | Known::RightOuter => 0,
+        };
+        let (_, system) = problem.at(0.0);
+        problem.elimination = system.eliminating(fixed);
+        problem
+    }
+
+    /// The sides and subproblem 6 at `t`, from the sweep.
+    #[inline]
+    fn at(&self, t: f64) -> (Sides, Sinusoids) {
+        let turn = Turn::of_angle(t);
+        unflatten(&self.sweep.at(&turn), turn)
     }
 
     /// The two sides at `t`. The known joint `k` turns the pair's `h`
@@ -364,12 +489,13 @@ impl<'a> Problem<'a> {
     /// constant `h . c_k - g . c_k` of `h . E_k^-1 y` or `h . E_k y`) or
     /// the vectors (outer: `R_k' R_O h6`, `E_k^-1 X` before, `R_k h6`,
     /// `E_k c6` after).
-    #[inline]
-    fn sides(&self, t: f64) -> Sides {
+    /// Also returns `g` (see [`Sides`]). Read at set-up only, by
+    /// [`Sweep`].
+    fn sides(&self, turn: &Turn) -> (Sides, [Vector3<f64>; 2]) {
         let Form { k, l, r, side } = self.form;
         let (c, h) = (&self.s.chain.c, &self.s.chain.h);
         let axis = self.s.h;
-        let turn = Turn::of_angle(t);
+        let turn = *turn;
         let mut g = [axis, axis];
         let mut offsets = [0.0, 0.0];
         let mut left = [self.tail_goal, self.goal];
@@ -397,44 +523,60 @@ impl<'a> Problem<'a> {
             }
         }
         let d = g[1].dot(&c[r]) + offsets[1] - g[0].dot(&c[l]) - offsets[0];
-        Sides {
+        let sides = Sides {
             k: turn,
-            g,
             left,
             right,
             d,
-        }
+        };
+        (sides, g)
     }
 
     /// Subproblem 6 of the two sides: `q_l` first, `q_r` second.
-    #[inline]
-    fn system(&self, v: &Sides) -> Sinusoids {
+    fn system(&self, v: &Sides, g: &[Vector3<f64>; 2]) -> Sinusoids {
         let Form { l, r, .. } = self.form;
         let (c, h) = (&self.s.chain.c, &self.s.chain.h);
         let (back, forth) = (-h[l], h[r]);
         Sinusoids {
             first: [
-                Wave::new(&v.g[0], &back, &v.left[0]),
-                Wave::new(&v.g[0], &back, &(v.left[1] - c[l])),
+                Wave::new(&g[0], &back, &v.left[0]),
+                Wave::new(&g[0], &back, &(v.left[1] - c[l])),
             ],
             second: [
-                negated(Wave::new(&v.g[1], &forth, &v.right[0])),
-                negated(Wave::new(&v.g[1], &forth, &(v.right[1] - c[r]))),
+                negated(Wave::new(&g[1], &forth, &v.right[0])),
+                negated(Wave::new(&g[1], &forth, &(v.right[1] - c[r]))),
             ],
         }
     }
 
     /// The branches at `t`: their keys and points.
     fn branches(&self, t: f64) -> [Option<(Key, Point)>; 4] {
-        let v = self.sides(t);
-        let system = self.system(&v);
+        let (v, system) = self.at(t);
         let previous = self.last.get();
         let previous = previous
             .as_ref()
             .filter(|(at, _)| (at - t).abs() <= NEAR)
-            .map(|(_, points)| points);
-        let (pairs, points) = system.exact_solutions_near([0.0, v.d], previous);
-        self.last.set(points.map(|points| (t, points)));
+            .map(|(_, tracked)| tracked);
+        let d = [0.0, v.d];
+        let (pairs, tracked) = match &self.elimination {
+            Some(eliminated) => {
+                let start = match previous {
+                    Some(Tracked::Roots(roots)) => Some(roots),
+                    _ => None,
+                };
+                let (pairs, roots) = system.exact_solutions_eliminated(d, eliminated, start);
+                (pairs, Some(Tracked::Roots(roots)))
+            }
+            None => {
+                let start = match previous {
+                    Some(Tracked::Circle(points)) => Some(points),
+                    _ => None,
+                };
+                let (pairs, points) = system.exact_solutions_near(d, start);
+                (pairs, points.map(Tracked::Circle))
+            }
+        };
+        self.last.set(tracked.map(|tracked| (t, tracked)));
         let mut out = [None, None, None, None];
         for (slot, pair) in out.iter_mut().zip(pairs.as_slice()) {
             let (a, b) = (&pair.first, &pair.second);
@@ -473,8 +615,19 @@ impl<'a> Problem<'a> {
             }
             Known::LeftOuter | Known::RightOuter => {}
         }
-        let (pair, _) = subproblem1_turn(axis, &after, &before);
-        let w = x - c[p] - turned(axis, &(y - c[p + 1]), &pair);
+        // Subproblem 1, `R(h, th) after = before`, as a direction.
+        let (ha, hb) = (axis.dot(&after), axis.dot(&before));
+        let (sin, cos) = (
+            axis.dot(&after.cross(&before)),
+            after.dot(&before) - ha * hb,
+        );
+        let length = (sin * sin + cos * cos).sqrt();
+        let pair = if length > 0.0 {
+            (sin / length, cos / length)
+        } else {
+            (0.0, 1.0)
+        };
+        let w = x - c[p] - turned_by(axis, &(y - c[p + 1]), pair.0, pair.1);
         Point {
             left: *left,
             right: *right,
@@ -524,8 +677,9 @@ impl<'a> Problem<'a> {
         q[l] = point.left.angle;
         q[r] = point.right.angle;
         let (first, _) = subproblem1(axis, &self.s.link, &point.w);
+        let pair = atan2(point.pair.0, point.pair.1);
         q[p] = first;
-        q[p + 1] = wrap_angle(self.s.sign * (point.pair.angle - first));
+        q[p + 1] = wrap_angle(self.s.sign * (pair - first));
         // R6 = Ra' R(h, -th) Rb' R_O.
         let mut before = Matrix3::<f64>::identity();
         for (j, value) in q.iter().enumerate().take(p) {
@@ -535,10 +689,8 @@ impl<'a> Problem<'a> {
         for (j, value) in q.iter().enumerate().take(5).skip(p + 2) {
             after *= rotation(&h[j], *value);
         }
-        let tail = after.transpose()
-            * rotation(axis, -point.pair.angle)
-            * before.transpose()
-            * self.orientation;
+        let tail =
+            after.transpose() * rotation(axis, -pair) * before.transpose() * self.orientation;
         let n = &self.s.tail_normal;
         q[5] = subproblem1(&h[5], n, &(tail * n)).0;
         q
@@ -548,8 +700,12 @@ impl<'a> Problem<'a> {
 impl Problem<'_> {
     /// Subproblem 6's `f` at `t` (no roots), `None` without a circle.
     fn difference_at(&self, t: f64) -> Option<Trig2> {
-        let v = self.sides(t);
-        self.system(&v).difference_polynomial([0.0, v.d])
+        let (v, system) = self.at(t);
+        let d = [0.0, v.d];
+        match &self.elimination {
+            Some(eliminated) => Some(system.eliminated_polynomial(d, eliminated)),
+            None => system.difference_polynomial(d),
+        }
     }
 
     /// A fold between `defined` and `undefined` located where the
