@@ -102,9 +102,14 @@
 //! assert!(solutions[0].q().iter().zip(&q).all(|(a, b)| (a - b).abs() < 1e-9));
 //! ```
 
+mod sloped;
+mod sweep;
+
+use self::sloped::{find_roots_sloped, Knot, Sloped};
+use self::sweep::{flatten, unflatten, Sweep};
 use super::chain::{Candidates, Chain};
 use super::search::{
-    align_nearest, find_roots, fold_by_extrapolation, illinois, BranchKey, EndCheck, Residual,
+    align_nearest, fold_by_extrapolation, illinois, BranchKey, EndCheck, Residual,
 };
 use super::search2d::settle_root;
 use super::structure::GEOMETRY_TOLERANCE;
@@ -115,7 +120,7 @@ use crate::math::{wrap_angle, Matrix3, Pose, Vector3};
 use std::cell::Cell;
 
 /// Samples per turn of the search.
-pub const SAMPLES: usize = 512;
+pub const SAMPLES: usize = 128;
 /// Largest joint-space step (rad, summed over the two subproblem-6 joints)
 /// between two samples (or a sample and a refinement point) of one branch.
 pub const LINK: f64 = 1.0;
@@ -245,7 +250,7 @@ impl ParallelPairSearch {
         let mut count = 0;
         for form in &self.forms[..self.searches] {
             let problem = Problem::new(self, target, *form);
-            find_roots::<_, 4, SAMPLES>(&problem, |t, key| {
+            find_roots_sloped::<_, 4, SAMPLES>(&problem, |t, key| {
                 let Some((q, exact)) = problem.finish(t, &key) else {
                     return;
                 };
@@ -298,6 +303,12 @@ fn negated(w: Wave) -> Wave {
     }
 }
 
+/// A wave's value at the turn `t`.
+#[inline]
+fn wave_value(w: &Wave, t: &Turn) -> f64 {
+    w.cos_part * t.cos + w.sin_part * t.sin + w.constant
+}
+
 /// `d/dt` of a wave at the turn `t`.
 #[inline]
 fn wave_slope(w: &Wave, t: &Turn) -> f64 {
@@ -324,6 +335,9 @@ struct Problem<'a> {
     /// The searched joint's value at the last evaluation and subproblem
     /// 6's roots there (starts for the next evaluation's within [`NEAR`]).
     last: Cell<Option<(f64, Tracked)>>,
+    /// Subproblem 6's roots at each sample of the search (starts for the
+    /// evaluations between samples, wherever the last one was).
+    grid: [Cell<Option<Tracked>>; SAMPLES],
 }
 
 /// Subproblem 6's roots at one evaluation, as the next one tracks them.
@@ -333,90 +347,6 @@ enum Tracked {
     Circle(CirclePoints),
     /// The eliminated form's roots in the other unknown.
     Roots(TrigRoots),
-}
-
-/// Values an evaluation reads, flattened: subproblem 6's four waves (cos
-/// part, sin part, constant), `d`, and the sides' vectors `left[0]`,
-/// `left[1]`, `right[0]`, `right[1]`.
-const FLAT: usize = 25;
-
-/// The sides and subproblem 6 of one search as functions of the searched
-/// joint's turn `t`: each value is affine in `(cos t, sin t)` (joint `k`
-/// turns `h` or the sides' vectors once, by Rodrigues, and the waves and
-/// `d` are linear in those), `a + b cos t + c sin t`, read once per solve
-/// at `t = 0`, `pi / 2`, `pi`.
-#[derive(Clone, Copy)]
-struct Sweep {
-    parts: [[f64; FLAT]; 3],
-}
-
-impl Sweep {
-    fn of(exact: impl Fn(&Turn) -> [f64; FLAT]) -> Sweep {
-        let turn = |angle, sin, cos| Turn { angle, sin, cos };
-        let zero = exact(&turn(0.0, 0.0, 1.0));
-        let quarter = exact(&turn(std::f64::consts::FRAC_PI_2, 1.0, 0.0));
-        let half = exact(&turn(std::f64::consts::PI, 0.0, -1.0));
-        let mut parts = [[0.0; FLAT]; 3];
-        for i in 0..FLAT {
-            let a = 0.5 * (zero[i] + half[i]);
-            parts[0][i] = a;
-            parts[1][i] = 0.5 * (zero[i] - half[i]);
-            parts[2][i] = quarter[i] - a;
-        }
-        Sweep { parts }
-    }
-
-    fn at(&self, t: &Turn) -> [f64; FLAT] {
-        let mut out = [0.0; FLAT];
-        for (i, o) in out.iter_mut().enumerate() {
-            *o = self.parts[0][i] + self.parts[1][i] * t.cos + self.parts[2][i] * t.sin;
-        }
-        out
-    }
-}
-
-/// Subproblem 6 and the sides as [`Sweep`] stores them.
-fn flatten(v: &Sides, system: &Sinusoids) -> [f64; FLAT] {
-    let mut out = [0.0; FLAT];
-    let waves = [
-        system.first[0],
-        system.first[1],
-        system.second[0],
-        system.second[1],
-    ];
-    for (i, w) in waves.iter().enumerate() {
-        out[3 * i] = w.cos_part;
-        out[3 * i + 1] = w.sin_part;
-        out[3 * i + 2] = w.constant;
-    }
-    out[12] = v.d;
-    let vectors = [v.left[0], v.left[1], v.right[0], v.right[1]];
-    for (i, x) in vectors.iter().enumerate() {
-        out[13 + 3 * i..16 + 3 * i].copy_from_slice(x.as_slice());
-    }
-    out
-}
-
-/// [`flatten`]'s inverse, with the searched joint's turn.
-fn unflatten(flat: &[f64; FLAT], k: Turn) -> (Sides, Sinusoids) {
-    let wave = |i: usize| Wave {
-        cos_part: flat[3 * i],
-        sin_part: flat[3 * i + 1],
-        constant: flat[3 * i + 2],
-    };
-    let vector = |i: usize| Vector3::new(flat[13 + 3 * i], flat[14 + 3 * i], flat[15 + 3 * i]);
-    (
-        Sides {
-            k,
-            left: [vector(0), vector(1)],
-            right: [vector(2), vector(3)],
-            d: flat[12],
-        },
-        Sinusoids {
-            first: [wave(0), wave(1)],
-            second: [wave(2), wave(3)],
-        },
-    )
 }
 
 /// A branch: the subproblem-6 angles `(q_l, q_r)` and its Jacobian
@@ -444,6 +374,11 @@ struct Point {
     pair: (f64, f64),
     /// `w` (see the module docs).
     w: Vector3<f64>,
+    /// `|w_perp| - |L_perp|` (m) and its derivative along the branch by
+    /// `t` (m/rad; not finite where the pair's angle or `w_perp` is
+    /// undefined).
+    residual: f64,
+    slope: f64,
 }
 
 impl<'a> Problem<'a> {
@@ -457,11 +392,10 @@ impl<'a> Problem<'a> {
             orientation: moved.rotation,
             tail_goal: moved.rotation * h[5],
             goal: moved.transform_point(&c[5]),
-            sweep: Sweep {
-                parts: [[0.0; FLAT]; 3],
-            },
+            sweep: Sweep::ZERO,
             elimination: None,
             last: Cell::new(None),
+            grid: std::array::from_fn(|_| Cell::new(None)),
         };
         problem.sweep = Sweep::of(|turn| {
             let (sides, g) = problem.sides(turn);
@@ -482,6 +416,12 @@ impl<'a> Problem<'a> {
     fn at(&self, t: f64) -> (Sides, Sinusoids) {
         let turn = Turn::of_angle(t);
         unflatten(&self.sweep.at(&turn), turn)
+    }
+
+    /// Their derivatives by `t` at the turn `turn`.
+    #[inline]
+    fn slope_at(&self, turn: Turn) -> (Sides, Sinusoids) {
+        unflatten(&self.sweep.slope_at(&turn), turn)
     }
 
     /// The two sides at `t`. The known joint `k` turns the pair's `h`
@@ -552,11 +492,22 @@ impl<'a> Problem<'a> {
     /// The branches at `t`: their keys and points.
     fn branches(&self, t: f64) -> [Option<(Key, Point)>; 4] {
         let (v, system) = self.at(t);
-        let previous = self.last.get();
-        let previous = previous
-            .as_ref()
-            .filter(|(at, _)| (at - t).abs() <= NEAR)
-            .map(|(_, tracked)| tracked);
+        // The nearest sample of the search, and whether `t` is one.
+        let step = std::f64::consts::TAU / SAMPLES as f64;
+        let index = ((t + std::f64::consts::PI) / step).round();
+        let sample = -std::f64::consts::PI + step * index;
+        let slot = self.grid.get(index as usize % SAMPLES);
+        let on_grid = (t - sample).abs() <= 1e-12;
+        let last = self.last.get();
+        let previous = match (last, slot.and_then(Cell::get)) {
+            (Some((at, tracked)), _) if (at - t).abs() <= (sample - t).abs().min(NEAR) => {
+                Some(tracked)
+            }
+            (_, Some(tracked)) if (sample - t).abs() <= NEAR && !on_grid => Some(tracked),
+            (Some((at, tracked)), _) if (at - t).abs() <= NEAR => Some(tracked),
+            _ => None,
+        };
+        let previous = previous.as_ref();
         let d = [0.0, v.d];
         let (pairs, tracked) = match &self.elimination {
             Some(eliminated) => {
@@ -577,41 +528,75 @@ impl<'a> Problem<'a> {
             }
         };
         self.last.set(tracked.map(|tracked| (t, tracked)));
+        if let (true, Some(slot)) = (on_grid, slot) {
+            slot.set(tracked);
+        }
+        let (dv, moving) = self.slope_at(v.k);
         let mut out = [None, None, None, None];
         for (slot, pair) in out.iter_mut().zip(pairs.as_slice()) {
             let (a, b) = (&pair.first, &pair.second);
-            let determinant = wave_slope(&system.first[0], a) * wave_slope(&system.second[1], b)
-                - wave_slope(&system.second[0], b) * wave_slope(&system.first[1], a);
+            // The branch's Jacobian by (q_l, q_r), and the equations'
+            // derivative by t: (q_l, q_r)' = -J^-1 F_t.
+            let j = [
+                [
+                    wave_slope(&system.first[0], a),
+                    wave_slope(&system.second[0], b),
+                ],
+                [
+                    wave_slope(&system.first[1], a),
+                    wave_slope(&system.second[1], b),
+                ],
+            ];
+            let determinant = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+            let f_t = [
+                wave_value(&moving.first[0], a) + wave_value(&moving.second[0], b),
+                wave_value(&moving.first[1], a) + wave_value(&moving.second[1], b) - dv.d,
+            ];
+            let rates = (
+                -(j[1][1] * f_t[0] - j[0][1] * f_t[1]) / determinant,
+                -(j[0][0] * f_t[1] - j[1][0] * f_t[0]) / determinant,
+            );
             let key = Key {
                 angles: [a.angle, b.angle],
                 fold: determinant,
             };
-            *slot = Some((key, self.point(&v, a, b)));
+            *slot = Some((key, self.point(&v, &dv, a, b, rates)));
         }
         out
     }
 
     /// The pair's angle `th` and `w` at `q_l`, `q_r` (see the module docs):
     /// `Rb' R_O h6`, `x = Eb^-1 X` from the left side, `Ra h6`,
-    /// `y = Ea c6` from the right, the known joint applied where inner.
+    /// `y = Ea c6` from the right, the known joint applied where inner;
+    /// with the residual and its derivative along the branch (`dv` the
+    /// sides' derivatives by `t`, `rates` those of `q_l`, `q_r`), each
+    /// vector's derivative carried beside it (`d/dq R(k, q) v = k x R v`).
     #[inline]
-    fn point(&self, v: &Sides, left: &Turn, right: &Turn) -> Point {
+    fn point(&self, v: &Sides, dv: &Sides, left: &Turn, right: &Turn, rates: (f64, f64)) -> Point {
         let Form { k, l, r, side } = self.form;
         let p = self.s.p;
         let (c, h) = (&self.s.chain.c, &self.s.chain.h);
         let axis = &self.s.h;
         let mut before = left.rotate_back(&h[l], &v.left[0]);
+        let mut d_before = left.rotate_back(&h[l], &dv.left[0]) - h[l].cross(&before) * rates.0;
         let mut x = moved_back(&c[l], &h[l], &v.left[1], left);
+        let mut dx = left.rotate_back(&h[l], &dv.left[1]) - h[l].cross(&(x - c[l])) * rates.0;
         let mut after = turned(&h[r], &v.right[0], right);
+        let mut d_after = turned(&h[r], &dv.right[0], right) + h[r].cross(&after) * rates.1;
         let mut y = moved(&c[r], &h[r], &v.right[1], right);
+        let mut dy = turned(&h[r], &dv.right[1], right) + h[r].cross(&(y - c[r])) * rates.1;
         match side {
             Known::LeftInner => {
                 before = v.k.rotate_back(&h[k], &before);
+                d_before = v.k.rotate_back(&h[k], &d_before) - h[k].cross(&before);
                 x = moved_back(&c[k], &h[k], &x, &v.k);
+                dx = v.k.rotate_back(&h[k], &dx) - h[k].cross(&(x - c[k]));
             }
             Known::RightInner => {
                 after = turned(&h[k], &after, &v.k);
+                d_after = turned(&h[k], &d_after, &v.k) + h[k].cross(&after);
                 y = moved(&c[k], &h[k], &y, &v.k);
+                dy = turned(&h[k], &dy, &v.k) + h[k].cross(&(y - c[k]));
             }
             Known::LeftOuter | Known::RightOuter => {}
         }
@@ -627,21 +612,28 @@ impl<'a> Problem<'a> {
         } else {
             (0.0, 1.0)
         };
-        let w = x - c[p] - turned_by(axis, &(y - c[p + 1]), pair.0, pair.1);
+        // th is the angle of before_perp less that of after_perp.
+        let d_pair = axis.dot(&before.cross(&d_before)) / (before.norm_squared() - hb * hb)
+            - axis.dot(&after.cross(&d_after)) / (after.norm_squared() - ha * ha);
+        let arm = turned_by(axis, &(y - c[p + 1]), pair.0, pair.1);
+        let w = x - c[p] - arm;
+        let dw = dx - axis.cross(&arm) * d_pair - turned_by(axis, &dy, pair.0, pair.1);
+        let across = w - axis * axis.dot(&w);
+        let length = across.norm();
         Point {
             left: *left,
             right: *right,
             pair,
             w,
+            residual: length - self.s.link_length,
+            slope: across.dot(&dw) / length,
         }
     }
 
     /// `|w_perp| - |L_perp|`.
     #[inline]
     fn residual_of(&self, point: &Point) -> f64 {
-        let axis = &self.s.h;
-        let w = &point.w;
-        (w - axis * axis.dot(w)).norm() - self.s.link_length
+        point.residual
     }
 
     /// The branch nearest `key` at `t`, within [`LINK`].
@@ -789,6 +781,29 @@ impl Residual<4> for Problem<'_> {
     }
 }
 
+impl Sloped<4> for Problem<'_> {
+    const LINK: f64 = LINK;
+
+    fn gap(a: &Key, b: &Key) -> f64 {
+        a.gap(b)
+    }
+
+    fn sample_sloped(&self, t: f64) -> [Option<(f64, (Key, f64))>; 4] {
+        self.branches(t)
+            .map(|b| b.map(|(key, point)| (point.residual, (key, point.slope))))
+    }
+
+    fn residual_sloped(&self, t: f64, key: &Key) -> Option<Knot<Key>> {
+        let (key, point) = self.nearest(t, key)?;
+        Some(Knot {
+            t,
+            f: point.residual,
+            g: point.slope,
+            key,
+        })
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -839,5 +854,54 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The residual's slope along each branch against central differences
+    /// (the branch followed by its key), every form.
+    #[test]
+    fn residual_slopes_match_finite_differences() {
+        let mut rng = ChaCha8Rng::seed_from_u64(23);
+        let mut checked = 0;
+        for layout in [ParallelLayout::SecondThird, ParallelLayout::ThirdFourth] {
+            for _ in 0..20 {
+                let p = layout.first();
+                let points: Vec<_> = (0..6).map(|_| point(&mut rng) * 2.0).collect();
+                let mut axes: Vec<_> = (0..6).map(|_| unit(&mut rng)).collect();
+                axes[p + 1] = axes[p];
+                let s = ArmStructure::from_lines(
+                    points,
+                    axes,
+                    vec![Motion::Rotation; 6],
+                    Pose::identity(),
+                );
+                let search = ParallelPairSearch::new(&Chain::of(&s).unwrap(), layout);
+                let q: [f64; 6] = std::array::from_fn(|_| rng.gen_range(-3.1..3.1));
+                let target = s.forward_kinematics(&q);
+                for form in search.forms {
+                    let problem = Problem::new(&search, &target, form);
+                    let t = rng.gen_range(-3.0..3.0);
+                    for (key, at) in problem.branches(t).into_iter().flatten() {
+                        let e = 1e-6;
+                        let (Some((fp, _)), Some((fm, _))) =
+                            (problem.residual(t + e, &key), problem.residual(t - e, &key))
+                        else {
+                            continue;
+                        };
+                        if key.fold.abs() < 1e-2 {
+                            continue; // near a fold the difference is not accurate
+                        }
+                        let difference = (fp - fm) / (2.0 * e);
+                        let tolerance = 1e-5 * (1.0 + difference.abs());
+                        assert!(
+                            (difference - at.slope).abs() < tolerance,
+                            "{form:?}: slope {} against {difference}",
+                            at.slope
+                        );
+                        checked += 1;
+                    }
+                }
+            }
+        }
+        assert!(checked > 50, "{checked}");
     }
 }
