@@ -24,15 +24,25 @@
 //! turning one fixed vector, `g . R(h_j, q_j) v` (`g` is `h`, or `h` turned
 //! by joint `k` when `k` lies between the pair and `j`): both equations are
 //! `wave_l(q_l) + wave_r(q_r) = d`, subproblem 6 ([`super::subproblem6`],
-//! its exact solutions only: up to 4 `(q_l, q_r)`, the branches). Then `th` follows by
+//! its exact solutions only: up to 4 `(q_l, q_r)`, the branches). Every
+//! wave and `d` is affine in `(cos t, sin t)`: read once per solve
+//! (`sweep`), so an evaluation starts from 25 values `a + b cos t + c sin t`.
+//! Joint `k` turns one side only, so the other unknown's 2 x 2 block of
+//! subproblem 6 is fixed per solve: it is inverted once and that unknown
+//! eliminated (`subproblem6::Eliminated`: a degree-2 trigonometric
+//! polynomial in the other angle directly; the null-space form when the
+//! block's condition exceeds 1e4). Then `th` follows by
 //! subproblem 1 (`R(h, th) Ra h6 = Rb' R_O h6`) and the pair must carry
 //! `y = Ea c6` onto `x = Eb^-1 X`:
 //! `x = c_p + R_p (c_{p+1} - c_p) + R(h, th) (y - c_{p+1})`, i.e.
 //! `w = x - c_p - R(h, th)(y - c_{p+1}) = R_p L`, `L = c_{p+1} - c_p`. The
 //! `h` components agree by the position equation; the lengths across `h`
 //! must too: the residual `f(t) = |w_perp| - |L_perp|` (m), smooth on each
-//! branch. Its roots are found by `search::find_roots` ([`SAMPLES`] = 512
-//! per turn, roots to 1e-13 rad); `q_p` by subproblem 1 (`R_p L = w`),
+//! branch, with its derivative along the branch (the branch's rates
+//! `(q_l, q_r)' = -J^-1 dF/dt` from subproblem 6's Jacobian, carried
+//! through every rotation). Its roots are found by the search with slopes
+//! of `sloped` ([`SAMPLES`] = 192 per turn, Hermite dip checks, Newton
+//! refinement to 1e-13 rad); `q_p` by subproblem 1 (`R_p L = w`),
 //! `q_{p+1} = s (th - q_p)`, the tail by subproblem 1 on
 //! `R6 = Ra' R(h, -th) Rb' R_O`.
 //!
@@ -41,27 +51,30 @@
 //! for the pair at 2-3, subproblem 6 on joints 1 and 5; joint 2 for the
 //! pair at 3-4, subproblem 6 on joints 1 and 5), skipped when one of those
 //! is parallel to the pair. A branch that lives only between two samples (a
-//! small loop of solutions) or two roots closer than a sample step are
-//! where a search misses; the second search sees them at other values of
-//! its joint. On 4 000 poses of 40 random arms (20 per layout) the union
-//! missed none at 512 samples per turn (3 at 384, 5 at 256; one search
-//! alone at 512 missed 15).
+//! small loop of solutions) and roots beside a fold are where a search
+//! misses; the second search sees them at other values of its joint (one
+//! search alone at 128 samples missed 39 of 8 000 poses of a unit test's
+//! random arms, both 0). On the 20 000 poses of
+//! `many_random_parallel_pair_arms_by_1d_search` the generating
+//! configuration is found on 19 999 at 192 samples per turn (19 996 at 128,
+//! 19 997 at 160; `search::find_roots` at 512 without slopes: 19 998).
 //!
 //! Branches are keyed by the subproblem-6 angles and the sign of the
 //! Jacobian determinant of its two equations (two solutions that merge as
 //! `t` moves have opposite signs), matched sample to sample within
-//! [`LINK`]. Subproblem 6's roots are tracked from the previous
-//! evaluation's (within `NEAR`; `Sinusoids::exact_solutions_near`:
-//! Newton on its `f`, accepted only when the quartic's discriminant
-//! certifies the same number of real roots and Newton finds that many
-//! distinct ones), isolated completely otherwise (near folds). A branch's
-//! end (a fold: two solutions of subproblem 6 merge) is located on the
-//! discriminant of `f` alone, by the Jacobian determinant where that does
-//! not apply (the circle of subproblem 6 vanishes). Cost: 10.9M
-//! instructions per solve (two searches, ~1 300 evaluations), down from
-//! 15.8M with every evaluation's roots isolated from scratch; 448 samples
-//! per turn would cut ~12 % more but missed 13 of 20 000 poses (2 at
-//! 512). Each root is checked by the chain's forward kinematics: exact
+//! [`LINK`]. Subproblem 6's roots are tracked from the last evaluation's
+//! or the nearest sample's (within `NEAR`; `Trig2::roots_near`: Newton
+//! on its `f`, accepted only when the quartic's discriminant certifies the
+//! same number of real roots and Newton finds that many distinct ones),
+//! isolated completely otherwise (near folds). A branch's end (a fold: two
+//! solutions of subproblem 6 merge) is located on the discriminant of `f`
+//! alone to 1e-9 rad (once for the two branches that merge there), by the
+//! Jacobian determinant where that does not apply. Cost: 4.6M
+//! instructions per solve (`parallel_pair_2_3_1d_search/distinct`, two
+//! searches, ~500 evaluations of ~7k instructions), down from 9.6M with
+//! `search::find_roots` at 512 samples and the null-space subproblem 6
+//! (3.9M at 128 samples, with 3 more misses in 20 000). Each root is
+//! checked by the chain's forward kinematics: exact
 //! when within 1e-10 m and rad (a root missing by more than 1e-12 is first
 //! polished by a few Gauss-Newton steps); roots missing by more than 1e-6
 //! are dropped.
@@ -120,7 +133,7 @@ use crate::math::{wrap_angle, Matrix3, Pose, Vector3};
 use std::cell::Cell;
 
 /// Samples per turn of the search.
-pub const SAMPLES: usize = 128;
+pub const SAMPLES: usize = 192;
 /// Largest joint-space step (rad, summed over the two subproblem-6 joints)
 /// between two samples (or a sample and a refinement point) of one branch.
 pub const LINK: f64 = 1.0;
@@ -338,6 +351,36 @@ struct Problem<'a> {
     /// Subproblem 6's roots at each sample of the search (starts for the
     /// evaluations between samples, wherever the last one was).
     grid: [Cell<Option<Tracked>>; SAMPLES],
+    /// The last few sign changes of the discriminant located
+    /// (`discriminant_change` of the interval): two branches that merge
+    /// end at the same place.
+    folds: Cell<[Option<FoldMemo>; 4]>,
+}
+
+/// The branches at one evaluation.
+type Branches = [Option<(Key, Point)>; 4];
+
+/// The branch of `branches` nearest `key`, within [`LINK`].
+fn nearest_among(branches: Branches, key: &Key) -> Option<(Key, Point)> {
+    let mut best: Option<(f64, Key, Point)> = None;
+    for (k, point) in branches.into_iter().flatten() {
+        let d = k.gap(key);
+        if d < LINK && best.as_ref().is_none_or(|(e, _, _)| d < *e) {
+            best = Some((d, k, point));
+        }
+    }
+    best.map(|(_, k, point)| (k, point))
+}
+
+/// A fold located between two samples: the interval (the branch's side
+/// first), where in it the discriminant changes sign, and the branches at
+/// the two ends of that bracket (read once for the two branches that
+/// merge there).
+#[derive(Clone, Copy)]
+struct FoldMemo {
+    interval: [f64; 2],
+    located: Option<(f64, f64)>,
+    ends: Option<(Branches, Branches)>,
 }
 
 /// Subproblem 6's roots at one evaluation, as the next one tracks them.
@@ -366,6 +409,7 @@ struct Sides {
 }
 
 /// What the residual and the finish read at `t` on one branch.
+#[derive(Clone, Copy)]
 struct Point {
     /// `q_l`, `q_r` as turns.
     left: Turn,
@@ -396,6 +440,7 @@ impl<'a> Problem<'a> {
             elimination: None,
             last: Cell::new(None),
             grid: std::array::from_fn(|_| Cell::new(None)),
+            folds: Cell::new([None; 4]),
         };
         problem.sweep = Sweep::of(|turn| {
             let (sides, g) = problem.sides(turn);
@@ -498,29 +543,38 @@ impl<'a> Problem<'a> {
         let sample = -std::f64::consts::PI + step * index;
         let slot = self.grid.get(index as usize % SAMPLES);
         let on_grid = (t - sample).abs() <= 1e-12;
-        let last = self.last.get();
-        let previous = match (last, slot.and_then(Cell::get)) {
-            (Some((at, tracked)), _) if (at - t).abs() <= (sample - t).abs().min(NEAR) => {
-                Some(tracked)
+        // Starts within NEAR, the nearer first: the last evaluation's
+        // roots and the nearest sample's (when the first does not certify:
+        // a fold between).
+        let mut starts = [None, None];
+        if let Some((at, tracked)) = self.last.get() {
+            if (at - t).abs() <= NEAR {
+                starts[0] = Some((at - t).abs()).zip(Some(tracked));
             }
-            (_, Some(tracked)) if (sample - t).abs() <= NEAR && !on_grid => Some(tracked),
-            (Some((at, tracked)), _) if (at - t).abs() <= NEAR => Some(tracked),
-            _ => None,
-        };
-        let previous = previous.as_ref();
+        }
+        if let (false, Some(tracked)) = (on_grid, slot.and_then(Cell::get)) {
+            if (sample - t).abs() <= NEAR {
+                starts[1] = Some((sample - t).abs()).zip(Some(tracked));
+            }
+        }
+        if let [Some((a, _)), Some((b, _))] = starts {
+            if b < a {
+                starts.swap(0, 1);
+            }
+        }
         let d = [0.0, v.d];
         let (pairs, tracked) = match &self.elimination {
             Some(eliminated) => {
-                let start = match previous {
-                    Some(Tracked::Roots(roots)) => Some(roots),
+                let start = starts.map(|s| match s {
+                    Some((_, Tracked::Roots(roots))) => Some(roots),
                     _ => None,
-                };
+                });
                 let (pairs, roots) = system.exact_solutions_eliminated(d, eliminated, start);
                 (pairs, Some(Tracked::Roots(roots)))
             }
             None => {
-                let start = match previous {
-                    Some(Tracked::Circle(points)) => Some(points),
+                let start = match starts.iter().flatten().next() {
+                    Some((_, Tracked::Circle(points))) => Some(points),
                     _ => None,
                 };
                 let (pairs, points) = system.exact_solutions_near(d, start);
@@ -638,14 +692,7 @@ impl<'a> Problem<'a> {
 
     /// The branch nearest `key` at `t`, within [`LINK`].
     fn nearest(&self, t: f64, key: &Key) -> Option<(Key, Point)> {
-        let mut best: Option<(f64, Key, Point)> = None;
-        for (k, point) in self.branches(t).into_iter().flatten() {
-            let d = k.gap(key);
-            if d < LINK && best.as_ref().is_none_or(|(e, _, _)| d < *e) {
-                best = Some((d, k, point));
-            }
-        }
-        best.map(|(_, k, point)| (k, point))
+        nearest_among(self.branches(t), key)
     }
 
     /// The joint values (chain order) at a root `t` of the branch `key`,
@@ -709,12 +756,11 @@ impl Problem<'_> {
     /// checked gone (or folding) at the other. The branch's last point; `None` when the
     /// discriminant does not change sign (the branch ends otherwise: the
     /// circle vanishes), the branch is not found there or does not end.
-    fn fold_by_discriminant(
-        &self,
-        defined: &(f64, f64, Key),
-        undefined: f64,
-    ) -> Option<(f64, f64, Key)> {
-        let start = self.difference_at(defined.0)?;
+    /// Where the discriminant of subproblem 6's `f` changes sign between
+    /// `defined` and `undefined` (see [`Problem::fold_by_discriminant`]):
+    /// the bracket's ends on either side, within [`END_TOLERANCE`].
+    fn discriminant_change(&self, defined: f64, undefined: f64) -> Option<(f64, f64)> {
+        let start = self.difference_at(defined)?;
         let shift = start.quarter_shift();
         let at = |t: f64| self.difference_at(t).map(|f| f.discriminant_about(shift));
         let (fa, fb) = (start.discriminant_about(shift), at(undefined)?);
@@ -723,19 +769,60 @@ impl Problem<'_> {
             return None;
         }
         let ((a, _, _), (b, _, _)) = illinois(
-            (defined.0, fa, ()),
+            (defined, fa, ()),
             (undefined, fb, ()),
             END_TOLERANCE,
             |t, _| at(t).map(|f| (f, ())),
         )?;
-        let (f, k) = self.residual(a, &defined.2)?;
+        Some((a, b))
+    }
+
+    fn fold_by_discriminant(
+        &self,
+        defined: &(f64, f64, Key),
+        undefined: f64,
+    ) -> Option<(f64, f64, Key)> {
+        // The branch that merges with this one there was located before,
+        // or the fold is located now (and kept for it).
+        let interval = [defined.0, undefined];
+        let mut folds = self.folds.get();
+        let slot = match folds
+            .iter()
+            .position(|m| m.as_ref().is_some_and(|m| m.interval == interval))
+        {
+            Some(i) => i,
+            None => {
+                folds.rotate_right(1);
+                folds[0] = Some(FoldMemo {
+                    interval,
+                    located: self.discriminant_change(defined.0, undefined),
+                    ends: None,
+                });
+                0
+            }
+        };
+        let memo = folds[slot].as_mut()?;
+        let located = memo.located;
+        let ends = match (located, memo.ends) {
+            (None, _) => None,
+            (Some(_), Some(ends)) => Some(ends),
+            (Some((a, b)), None) => {
+                let ends = (self.branches(a), self.branches(b));
+                memo.ends = Some(ends);
+                Some(ends)
+            }
+        };
+        self.folds.set(folds);
+        let ((a, _), (at_a, at_b)) = located.zip(ends)?;
+        let (k, point) = nearest_among(at_a, &defined.2)?;
+        let f = point.residual;
         // Past the fold the branch is gone, or lingers as the double root
         // of `f` that round-off lets through (within `TANGENT_TOLERANCE`),
         // its Jacobian determinant near zero (it falls as the square root
         // of the distance to the fold: ~3e-4 of a sample's at 1e-9 rad
         // from it); a branch going on at its own size there means the sign
         // change was another pair's fold.
-        if let Some((_, past)) = self.residual(b, &k) {
+        if let Some((past, _)) = nearest_among(at_b, &k) {
             if past.fold.abs() >= FOLDING * defined.2.fold.abs() {
                 return None;
             }

@@ -106,18 +106,21 @@ impl Sinusoids {
     /// system with this one's block): `f`'s roots in the other unknown
     /// tracked from `previous` (its roots in a nearby system, the same
     /// certification) or isolated from scratch. Also returns every root
-    /// of `f` (exact or not), for the next call.
+    /// of `f` (exact or not), for the next call. `previous` holds up to
+    /// two sets of starts, tried in order.
     pub(crate) fn exact_solutions_eliminated(
         &self,
         d: [f64; 2],
         eliminated: &Eliminated,
-        previous: Option<&TrigRoots>,
+        previous: [Option<TrigRoots>; 2],
     ) -> (TurnPairs, TrigRoots) {
         let (m, e) = self.linear(d);
         let scale = equations_scale(&m, &e);
         let (u, w, f) = self.eliminated(&e, eliminated);
         let roots = previous
-            .and_then(|p| f.roots_near(p))
+            .iter()
+            .flatten()
+            .find_map(|p| f.roots_near(p))
             .unwrap_or_else(|| f.roots());
         let mut out = TurnPairs::EMPTY;
         for root in roots.as_slice() {
