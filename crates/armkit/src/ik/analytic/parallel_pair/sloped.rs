@@ -41,12 +41,14 @@ pub(super) trait Sloped<const B: usize>: Residual<B> {
     fn gap(a: &Self::Key, b: &Self::Key) -> f64;
 
     /// Every branch at `t`: its value, and its key with the slope `df/dt`.
-    #[allow(clippy::type_complexity)]
-    fn sample_sloped(&self, t: f64) -> [Option<(f64, (Self::Key, f64))>; B];
+    fn sample_sloped(&self, t: f64) -> Samples<Self::Key, B>;
 
     /// The branch named `key` at `t`: value, slope, key.
     fn residual_sloped(&self, t: f64, key: &Self::Key) -> Option<Knot<Self::Key>>;
 }
+
+/// Every branch at one sample: its value, and its key with the slope.
+pub(super) type Samples<K, const B: usize> = [Option<(f64, (K, f64))>; B];
 
 /// A point of a branch with its slope.
 #[derive(Clone, Copy, Debug)]
@@ -76,8 +78,7 @@ pub(super) fn find_roots_sloped<R: Sloped<B>, const B: usize, const N: usize>(
 ) {
     let step = TAU / N as f64;
     let mut samples = [[None; B]; N];
-    let align = |previous: &[Option<(f64, (R::Key, f64))>; B],
-                 current: &mut [Option<(f64, (R::Key, f64))>; B]| {
+    let align = |previous: &Samples<R::Key, B>, current: &mut Samples<R::Key, B>| {
         crate::ik::analytic::search::align_nearest(
             previous,
             current,
@@ -237,7 +238,7 @@ fn hermite_minimum<K>(a: &Knot<K>, b: &Knot<K>, sign: f64) -> Option<f64> {
     // A minimum: p' = 0 with p'' = 2 A u + B = +sqrt(B^2 - 4 A C) > 0,
     // u = (-B + sqrt) / 2A, written without cancellation.
     let disc = qb * qb - 4.0 * qa * qc;
-    if !(disc >= 0.0) {
+    if disc.is_nan() || disc < 0.0 {
         return None;
     }
     let root = disc.sqrt();

@@ -49,8 +49,8 @@ impl Sinusoids {
         let [[a, b], [c, d]] = self.block(unknown);
         let det = a * d - b * c;
         let size = a * a + b * b + c * c + d * d;
-        // Written so that NaN refuses too.
-        if !(det.abs() * ELIMINATION_CONDITION > size) {
+        let conditioned = det.abs() * ELIMINATION_CONDITION > size;
+        if !conditioned {
             return None;
         }
         Some(Eliminated {
