@@ -24,15 +24,25 @@
 //! turning one fixed vector, `g . R(h_j, q_j) v` (`g` is `h`, or `h` turned
 //! by joint `k` when `k` lies between the pair and `j`): both equations are
 //! `wave_l(q_l) + wave_r(q_r) = d`, subproblem 6 ([`super::subproblem6`],
-//! its exact solutions only: up to 4 `(q_l, q_r)`, the branches). Then `th` follows by
+//! its exact solutions only: up to 4 `(q_l, q_r)`, the branches). Every
+//! wave and `d` is affine in `(cos t, sin t)`: read once per solve
+//! (`sweep`), so an evaluation starts from 25 values `a + b cos t + c sin t`.
+//! Joint `k` turns one side only, so the other unknown's 2 x 2 block of
+//! subproblem 6 is fixed per solve: it is inverted once and that unknown
+//! eliminated (`subproblem6::Eliminated`: a degree-2 trigonometric
+//! polynomial in the other angle directly; the null-space form when the
+//! block's condition exceeds 1e4). Then `th` follows by
 //! subproblem 1 (`R(h, th) Ra h6 = Rb' R_O h6`) and the pair must carry
 //! `y = Ea c6` onto `x = Eb^-1 X`:
 //! `x = c_p + R_p (c_{p+1} - c_p) + R(h, th) (y - c_{p+1})`, i.e.
 //! `w = x - c_p - R(h, th)(y - c_{p+1}) = R_p L`, `L = c_{p+1} - c_p`. The
 //! `h` components agree by the position equation; the lengths across `h`
 //! must too: the residual `f(t) = |w_perp| - |L_perp|` (m), smooth on each
-//! branch. Its roots are found by `search::find_roots` ([`SAMPLES`] = 512
-//! per turn, roots to 1e-13 rad); `q_p` by subproblem 1 (`R_p L = w`),
+//! branch, with its derivative along the branch (the branch's rates
+//! `(q_l, q_r)' = -J^-1 dF/dt` from subproblem 6's Jacobian, carried
+//! through every rotation). Its roots are found by the search with slopes
+//! of `sloped` ([`SAMPLES`] = 192 per turn, Hermite dip checks, Newton
+//! refinement to 1e-13 rad); `q_p` by subproblem 1 (`R_p L = w`),
 //! `q_{p+1} = s (th - q_p)`, the tail by subproblem 1 on
 //! `R6 = Ra' R(h, -th) Rb' R_O`.
 //!
@@ -41,27 +51,30 @@
 //! for the pair at 2-3, subproblem 6 on joints 1 and 5; joint 2 for the
 //! pair at 3-4, subproblem 6 on joints 1 and 5), skipped when one of those
 //! is parallel to the pair. A branch that lives only between two samples (a
-//! small loop of solutions) or two roots closer than a sample step are
-//! where a search misses; the second search sees them at other values of
-//! its joint. On 4 000 poses of 40 random arms (20 per layout) the union
-//! missed none at 512 samples per turn (3 at 384, 5 at 256; one search
-//! alone at 512 missed 15).
+//! small loop of solutions) and roots beside a fold are where a search
+//! misses; the second search sees them at other values of its joint (one
+//! search alone at 128 samples missed 39 of 8 000 poses of a unit test's
+//! random arms, both 0). On the 20 000 poses of
+//! `many_random_parallel_pair_arms_by_1d_search` the generating
+//! configuration is found on 19 999 at 192 samples per turn (19 996 at 128,
+//! 19 997 at 160; `search::find_roots` at 512 without slopes: 19 998).
 //!
 //! Branches are keyed by the subproblem-6 angles and the sign of the
 //! Jacobian determinant of its two equations (two solutions that merge as
 //! `t` moves have opposite signs), matched sample to sample within
-//! [`LINK`]. Subproblem 6's roots are tracked from the previous
-//! evaluation's (within `NEAR`; `Sinusoids::exact_solutions_near`:
-//! Newton on its `f`, accepted only when the quartic's discriminant
-//! certifies the same number of real roots and Newton finds that many
-//! distinct ones), isolated completely otherwise (near folds). A branch's
-//! end (a fold: two solutions of subproblem 6 merge) is located on the
-//! discriminant of `f` alone, by the Jacobian determinant where that does
-//! not apply (the circle of subproblem 6 vanishes). Cost: 10.9M
-//! instructions per solve (two searches, ~1 300 evaluations), down from
-//! 15.8M with every evaluation's roots isolated from scratch; 448 samples
-//! per turn would cut ~12 % more but missed 13 of 20 000 poses (2 at
-//! 512). Each root is checked by the chain's forward kinematics: exact
+//! [`LINK`]. Subproblem 6's roots are tracked from the last evaluation's
+//! or the nearest sample's (within `NEAR`; `Trig2::roots_near`: Newton
+//! on its `f`, accepted only when the quartic's discriminant certifies the
+//! same number of real roots and Newton finds that many distinct ones),
+//! isolated completely otherwise (near folds). A branch's end (a fold: two
+//! solutions of subproblem 6 merge) is located on the discriminant of `f`
+//! alone to 1e-9 rad (once for the two branches that merge there), by the
+//! Jacobian determinant where that does not apply. Cost: 4.6M
+//! instructions per solve (`parallel_pair_2_3_1d_search/distinct`, two
+//! searches, ~500 evaluations of ~7k instructions), down from 9.6M with
+//! `search::find_roots` at 512 samples and the null-space subproblem 6
+//! (3.9M at 128 samples, with 3 more misses in 20 000). Each root is
+//! checked by the chain's forward kinematics: exact
 //! when within 1e-10 m and rad (a root missing by more than 1e-12 is first
 //! polished by a few Gauss-Newton steps); roots missing by more than 1e-6
 //! are dropped.
@@ -102,20 +115,27 @@
 //! assert!(solutions[0].q().iter().zip(&q).all(|(a, b)| (a - b).abs() < 1e-9));
 //! ```
 
+mod branches;
+mod ends;
+mod sloped;
+mod sweep;
+
+use self::sloped::{find_roots_sloped, Knot, Samples, Sloped};
+use self::sweep::{flatten, unflatten, Sweep};
 use super::chain::{Candidates, Chain};
 use super::search::{
-    align_nearest, find_roots, fold_by_extrapolation, illinois, BranchKey, EndCheck, Residual,
+    align_nearest, fold_by_extrapolation, illinois, BranchKey, EndCheck, Residual,
 };
 use super::search2d::settle_root;
 use super::structure::GEOMETRY_TOLERANCE;
-use super::subproblem6::{CirclePoints, Sinusoids, Wave};
-use super::subproblems::{rotation, subproblem1, subproblem1_turn, Turn};
-use super::trig2::Trig2;
+use super::subproblem6::{CirclePoints, Eliminated, Sinusoids, Wave};
+use super::subproblems::{atan2, rotation, subproblem1, Turn};
+use super::trig2::{Trig2, TrigRoots};
 use crate::math::{wrap_angle, Matrix3, Pose, Vector3};
 use std::cell::Cell;
 
 /// Samples per turn of the search.
-pub const SAMPLES: usize = 512;
+pub const SAMPLES: usize = 192;
 /// Largest joint-space step (rad, summed over the two subproblem-6 joints)
 /// between two samples (or a sample and a refinement point) of one branch.
 pub const LINK: f64 = 1.0;
@@ -245,7 +265,7 @@ impl ParallelPairSearch {
         let mut count = 0;
         for form in &self.forms[..self.searches] {
             let problem = Problem::new(self, target, *form);
-            find_roots::<_, 4, SAMPLES>(&problem, |t, key| {
+            find_roots_sloped::<_, 4, SAMPLES>(&problem, |t, key| {
                 let Some((q, exact)) = problem.finish(t, &key) else {
                     return;
                 };
@@ -267,7 +287,13 @@ impl ParallelPairSearch {
 /// `R(k, t) v` for the turn `t` (Rodrigues, `k` a unit axis).
 #[inline]
 pub(super) fn turned(k: &Vector3<f64>, v: &Vector3<f64>, t: &Turn) -> Vector3<f64> {
-    v * t.cos + k.cross(v) * t.sin + k * ((1.0 - t.cos) * k.dot(v))
+    turned_by(k, v, t.sin, t.cos)
+}
+
+/// `R(k, t) v` for the turn of sine `s` and cosine `c`.
+#[inline]
+fn turned_by(k: &Vector3<f64>, v: &Vector3<f64>, s: f64, c: f64) -> Vector3<f64> {
+    v * c + k.cross(v) * s + k * ((1.0 - c) * k.dot(v))
 }
 
 /// `E(t) y = c + R(k, t)(y - c)`, the joint's motion.
@@ -292,6 +318,12 @@ pub(super) fn negated(w: Wave) -> Wave {
     }
 }
 
+/// A wave's value at the turn `t`.
+#[inline]
+fn wave_value(w: &Wave, t: &Turn) -> f64 {
+    w.cos_part * t.cos + w.sin_part * t.sin + w.constant
+}
+
 /// `d/dt` of a wave at the turn `t`.
 #[inline]
 pub(super) fn wave_slope(w: &Wave, t: &Turn) -> f64 {
@@ -310,10 +342,56 @@ struct Problem<'a> {
     tail_goal: Vector3<f64>,
     /// `X = T home^-1 c6`.
     goal: Vector3<f64>,
+    /// The sides and subproblem 6 as functions of `t`.
+    sweep: Sweep,
+    /// Subproblem 6 with the unknown whose waves do not move with `t`
+    /// eliminated, when its block is well conditioned.
+    elimination: Option<Eliminated>,
     /// The searched joint's value at the last evaluation and subproblem
-    /// 6's circle points there (starts for the next evaluation's roots
-    /// within [`NEAR`]).
-    last: Cell<Option<(f64, CirclePoints)>>,
+    /// 6's roots there (starts for the next evaluation's within [`NEAR`]).
+    last: Cell<Option<(f64, Tracked)>>,
+    /// Subproblem 6's roots at each sample of the search (starts for the
+    /// evaluations between samples, wherever the last one was).
+    grid: [Cell<Option<Tracked>>; SAMPLES],
+    /// The last few sign changes of the discriminant located
+    /// (`discriminant_change` of the interval): two branches that merge
+    /// end at the same place.
+    folds: Cell<[Option<FoldMemo>; 4]>,
+}
+
+/// The branches at one evaluation.
+type Branches = [Option<(Key, Point)>; 4];
+
+/// The branch of `branches` nearest `key`, within [`LINK`].
+fn nearest_among(branches: Branches, key: &Key) -> Option<(Key, Point)> {
+    let mut best: Option<(f64, Key, Point)> = None;
+    for (k, point) in branches.into_iter().flatten() {
+        let d = k.gap(key);
+        if d < LINK && best.as_ref().is_none_or(|(e, _, _)| d < *e) {
+            best = Some((d, k, point));
+        }
+    }
+    best.map(|(_, k, point)| (k, point))
+}
+
+/// A fold located between two samples: the interval (the branch's side
+/// first), where in it the discriminant changes sign, and the branches at
+/// the two ends of that bracket (read once for the two branches that
+/// merge there).
+#[derive(Clone, Copy)]
+struct FoldMemo {
+    interval: [f64; 2],
+    located: Option<(f64, f64)>,
+    ends: Option<(Branches, Branches)>,
+}
+
+/// Subproblem 6's roots at one evaluation, as the next one tracks them.
+#[derive(Clone, Copy)]
+enum Tracked {
+    /// The null-space form's circle points.
+    Circle(CirclePoints),
+    /// The eliminated form's roots in the other unknown.
+    Roots(TrigRoots),
 }
 
 /// A branch: the subproblem-6 angles `(q_l, q_r)` and its Jacobian
@@ -326,7 +404,6 @@ type Key = BranchKey<2>;
 /// `g_r . R(h_r, q_r) u` likewise, `k` the searched joint's turn.
 struct Sides {
     k: Turn,
-    g: [Vector3<f64>; 2],
     left: [Vector3<f64>; 2],
     right: [Vector3<f64>; 2],
     /// The position equation's right-hand side.
@@ -334,29 +411,64 @@ struct Sides {
 }
 
 /// What the residual and the finish read at `t` on one branch.
+#[derive(Clone, Copy)]
 struct Point {
     /// `q_l`, `q_r` as turns.
     left: Turn,
     right: Turn,
-    /// `th` of the pair.
-    pair: Turn,
+    /// `th` of the pair: its sine and cosine.
+    pair: (f64, f64),
     /// `w` (see the module docs).
     w: Vector3<f64>,
+    /// `|w_perp| - |L_perp|` (m) and its derivative along the branch by
+    /// `t` (m/rad; not finite where the pair's angle or `w_perp` is
+    /// undefined).
+    residual: f64,
+    slope: f64,
 }
 
 impl<'a> Problem<'a> {
     fn new(s: &'a ParallelPairSearch, target: &Pose, form: Form) -> Problem<'a> {
         let (c, h) = (&s.chain.c, &s.chain.h);
         let moved = *target * s.chain.home_inverse;
-        Problem {
+        let mut problem = Problem {
             s,
             form,
             target: *target,
             orientation: moved.rotation,
             tail_goal: moved.rotation * h[5],
             goal: moved.transform_point(&c[5]),
+            sweep: Sweep::ZERO,
+            elimination: None,
             last: Cell::new(None),
-        }
+            grid: std::array::from_fn(|_| Cell::new(None)),
+            folds: Cell::new([None; 4]),
+        };
+        problem.sweep = Sweep::of(|turn| {
+            let (sides, g) = problem.sides(turn);
+            flatten(&sides, &problem.system(&sides, &g))
+        });
+        // The unknown on the side away from `k` keeps its waves.
+        let fixed = match form.side {
+            Known::LeftInner | Known::LeftOuter => 1,
+            Known::RightInner | Known::RightOuter => 0,
+        };
+        let (_, system) = problem.at(0.0);
+        problem.elimination = system.eliminating(fixed);
+        problem
+    }
+
+    /// The sides and subproblem 6 at `t`, from the sweep.
+    #[inline]
+    fn at(&self, t: f64) -> (Sides, Sinusoids) {
+        let turn = Turn::of_angle(t);
+        unflatten(&self.sweep.at(&turn), turn)
+    }
+
+    /// Their derivatives by `t` at the turn `turn`.
+    #[inline]
+    fn slope_at(&self, turn: Turn) -> (Sides, Sinusoids) {
+        unflatten(&self.sweep.slope_at(&turn), turn)
     }
 
     /// The two sides at `t`. The known joint `k` turns the pair's `h`
@@ -364,12 +476,13 @@ impl<'a> Problem<'a> {
     /// constant `h . c_k - g . c_k` of `h . E_k^-1 y` or `h . E_k y`) or
     /// the vectors (outer: `R_k' R_O h6`, `E_k^-1 X` before, `R_k h6`,
     /// `E_k c6` after).
-    #[inline]
-    fn sides(&self, t: f64) -> Sides {
+    /// Also returns `g` (see [`Sides`]). Read at set-up only, by
+    /// [`Sweep`].
+    fn sides(&self, turn: &Turn) -> (Sides, [Vector3<f64>; 2]) {
         let Form { k, l, r, side } = self.form;
         let (c, h) = (&self.s.chain.c, &self.s.chain.h);
         let axis = self.s.h;
-        let turn = Turn::of_angle(t);
+        let turn = *turn;
         let mut g = [axis, axis];
         let mut offsets = [0.0, 0.0];
         let mut left = [self.tail_goal, self.goal];
@@ -397,110 +510,41 @@ impl<'a> Problem<'a> {
             }
         }
         let d = g[1].dot(&c[r]) + offsets[1] - g[0].dot(&c[l]) - offsets[0];
-        Sides {
+        let sides = Sides {
             k: turn,
-            g,
             left,
             right,
             d,
-        }
+        };
+        (sides, g)
     }
 
     /// Subproblem 6 of the two sides: `q_l` first, `q_r` second.
-    #[inline]
-    fn system(&self, v: &Sides) -> Sinusoids {
+    fn system(&self, v: &Sides, g: &[Vector3<f64>; 2]) -> Sinusoids {
         let Form { l, r, .. } = self.form;
         let (c, h) = (&self.s.chain.c, &self.s.chain.h);
         let (back, forth) = (-h[l], h[r]);
         Sinusoids {
             first: [
-                Wave::new(&v.g[0], &back, &v.left[0]),
-                Wave::new(&v.g[0], &back, &(v.left[1] - c[l])),
+                Wave::new(&g[0], &back, &v.left[0]),
+                Wave::new(&g[0], &back, &(v.left[1] - c[l])),
             ],
             second: [
-                negated(Wave::new(&v.g[1], &forth, &v.right[0])),
-                negated(Wave::new(&v.g[1], &forth, &(v.right[1] - c[r]))),
+                negated(Wave::new(&g[1], &forth, &v.right[0])),
+                negated(Wave::new(&g[1], &forth, &(v.right[1] - c[r]))),
             ],
-        }
-    }
-
-    /// The branches at `t`: their keys and points.
-    fn branches(&self, t: f64) -> [Option<(Key, Point)>; 4] {
-        let v = self.sides(t);
-        let system = self.system(&v);
-        let previous = self.last.get();
-        let previous = previous
-            .as_ref()
-            .filter(|(at, _)| (at - t).abs() <= NEAR)
-            .map(|(_, points)| points);
-        let (pairs, points) = system.exact_solutions_near([0.0, v.d], previous);
-        self.last.set(points.map(|points| (t, points)));
-        let mut out = [None, None, None, None];
-        for (slot, pair) in out.iter_mut().zip(pairs.as_slice()) {
-            let (a, b) = (&pair.first, &pair.second);
-            let determinant = wave_slope(&system.first[0], a) * wave_slope(&system.second[1], b)
-                - wave_slope(&system.second[0], b) * wave_slope(&system.first[1], a);
-            let key = Key {
-                angles: [a.angle, b.angle],
-                fold: determinant,
-            };
-            *slot = Some((key, self.point(&v, a, b)));
-        }
-        out
-    }
-
-    /// The pair's angle `th` and `w` at `q_l`, `q_r` (see the module docs):
-    /// `Rb' R_O h6`, `x = Eb^-1 X` from the left side, `Ra h6`,
-    /// `y = Ea c6` from the right, the known joint applied where inner.
-    #[inline]
-    fn point(&self, v: &Sides, left: &Turn, right: &Turn) -> Point {
-        let Form { k, l, r, side } = self.form;
-        let p = self.s.p;
-        let (c, h) = (&self.s.chain.c, &self.s.chain.h);
-        let axis = &self.s.h;
-        let mut before = left.rotate_back(&h[l], &v.left[0]);
-        let mut x = moved_back(&c[l], &h[l], &v.left[1], left);
-        let mut after = turned(&h[r], &v.right[0], right);
-        let mut y = moved(&c[r], &h[r], &v.right[1], right);
-        match side {
-            Known::LeftInner => {
-                before = v.k.rotate_back(&h[k], &before);
-                x = moved_back(&c[k], &h[k], &x, &v.k);
-            }
-            Known::RightInner => {
-                after = turned(&h[k], &after, &v.k);
-                y = moved(&c[k], &h[k], &y, &v.k);
-            }
-            Known::LeftOuter | Known::RightOuter => {}
-        }
-        let (pair, _) = subproblem1_turn(axis, &after, &before);
-        let w = x - c[p] - turned(axis, &(y - c[p + 1]), &pair);
-        Point {
-            left: *left,
-            right: *right,
-            pair,
-            w,
         }
     }
 
     /// `|w_perp| - |L_perp|`.
     #[inline]
     fn residual_of(&self, point: &Point) -> f64 {
-        let axis = &self.s.h;
-        let w = &point.w;
-        (w - axis * axis.dot(w)).norm() - self.s.link_length
+        point.residual
     }
 
     /// The branch nearest `key` at `t`, within [`LINK`].
     fn nearest(&self, t: f64, key: &Key) -> Option<(Key, Point)> {
-        let mut best: Option<(f64, Key, Point)> = None;
-        for (k, point) in self.branches(t).into_iter().flatten() {
-            let d = k.gap(key);
-            if d < LINK && best.as_ref().is_none_or(|(e, _, _)| d < *e) {
-                best = Some((d, k, point));
-            }
-        }
-        best.map(|(_, k, point)| (k, point))
+        nearest_among(self.branches(t), key)
     }
 
     /// The joint values (chain order) at a root `t` of the branch `key`,
@@ -524,8 +568,9 @@ impl<'a> Problem<'a> {
         q[l] = point.left.angle;
         q[r] = point.right.angle;
         let (first, _) = subproblem1(axis, &self.s.link, &point.w);
+        let pair = atan2(point.pair.0, point.pair.1);
         q[p] = first;
-        q[p + 1] = wrap_angle(self.s.sign * (point.pair.angle - first));
+        q[p + 1] = wrap_angle(self.s.sign * (pair - first));
         // R6 = Ra' R(h, -th) Rb' R_O.
         let mut before = Matrix3::<f64>::identity();
         for (j, value) in q.iter().enumerate().take(p) {
@@ -535,101 +580,11 @@ impl<'a> Problem<'a> {
         for (j, value) in q.iter().enumerate().take(5).skip(p + 2) {
             after *= rotation(&h[j], *value);
         }
-        let tail = after.transpose()
-            * rotation(axis, -point.pair.angle)
-            * before.transpose()
-            * self.orientation;
+        let tail =
+            after.transpose() * rotation(axis, -pair) * before.transpose() * self.orientation;
         let n = &self.s.tail_normal;
         q[5] = subproblem1(&h[5], n, &(tail * n)).0;
         q
-    }
-}
-
-impl Problem<'_> {
-    /// Subproblem 6's `f` at `t` (no roots), `None` without a circle.
-    fn difference_at(&self, t: f64) -> Option<Trig2> {
-        let v = self.sides(t);
-        self.system(&v).difference_polynomial([0.0, v.d])
-    }
-
-    /// A fold between `defined` and `undefined` located where the
-    /// discriminant of subproblem 6's `f` changes sign (two of its roots
-    /// merge there; the sign does not depend on how `f`'s circle is
-    /// parametrized): Illinois regula falsi on the discriminant, which
-    /// needs `f`'s coefficients only (no roots), to [`END_TOLERANCE`]; then
-    /// the branch read at the bracket's end on the defined side, and
-    /// checked gone (or folding) at the other. The branch's last point; `None` when the
-    /// discriminant does not change sign (the branch ends otherwise: the
-    /// circle vanishes), the branch is not found there or does not end.
-    fn fold_by_discriminant(
-        &self,
-        defined: &(f64, f64, Key),
-        undefined: f64,
-    ) -> Option<(f64, f64, Key)> {
-        let start = self.difference_at(defined.0)?;
-        let shift = start.quarter_shift();
-        let at = |t: f64| self.difference_at(t).map(|f| f.discriminant_about(shift));
-        let (fa, fb) = (start.discriminant_about(shift), at(undefined)?);
-        let product = fa * fb;
-        if product.is_nan() || product >= 0.0 {
-            return None;
-        }
-        let ((a, _, _), (b, _, _)) = illinois(
-            (defined.0, fa, ()),
-            (undefined, fb, ()),
-            END_TOLERANCE,
-            |t, _| at(t).map(|f| (f, ())),
-        )?;
-        let (f, k) = self.residual(a, &defined.2)?;
-        // Past the fold the branch is gone, or lingers as the double root
-        // of `f` that round-off lets through (within `TANGENT_TOLERANCE`),
-        // its Jacobian determinant near zero (it falls as the square root
-        // of the distance to the fold: ~3e-4 of a sample's at 1e-9 rad
-        // from it); a branch going on at its own size there means the sign
-        // change was another pair's fold.
-        if let Some((_, past)) = self.residual(b, &k) {
-            if past.fold.abs() >= FOLDING * defined.2.fold.abs() {
-                return None;
-            }
-        }
-        Some((a, f, k))
-    }
-}
-
-impl Residual<4> for Problem<'_> {
-    type Key = Key;
-
-    const ENDS: EndCheck = EndCheck::SignChangeOrDip;
-
-    fn sample(&self, t: f64) -> [Option<(f64, Key)>; 4] {
-        self.branches(t)
-            .map(|b| b.map(|(key, point)| (self.residual_of(&point), key)))
-    }
-
-    fn residual(&self, t: f64, key: &Key) -> Option<(f64, Key)> {
-        let (k, point) = self.nearest(t, key)?;
-        Some((self.residual_of(&point), k))
-    }
-
-    fn align(&self, previous: &[Option<(f64, Key)>; 4], current: &mut [Option<(f64, Key)>; 4]) {
-        align_nearest(previous, current, Key::gap, LINK);
-    }
-
-    fn same_branch(&self, a: &Key, b: &Key) -> bool {
-        a.gap(b) < LINK
-    }
-
-    /// The end of a branch is where two solutions of subproblem 6 merge:
-    /// first located on the discriminant of its `f`
-    /// ([`Problem::fold_by_discriminant`]); where that does not apply, where
-    /// the squared Jacobian determinant extrapolates to zero
-    /// (`search::fold_by_extrapolation`, to [`END_TOLERANCE`]).
-    fn branch_end(&self, defined: (f64, f64, Key), undefined: f64) -> (f64, f64, Key) {
-        if let Some(end) = self.fold_by_discriminant(&defined, undefined) {
-            return end;
-        }
-        let determinant = |k: &Key| k.fold * k.fold;
-        fold_by_extrapolation(self, defined, undefined, END_TOLERANCE, determinant).0
     }
 }
 
@@ -683,5 +638,54 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The residual's slope along each branch against central differences
+    /// (the branch followed by its key), every form.
+    #[test]
+    fn residual_slopes_match_finite_differences() {
+        let mut rng = ChaCha8Rng::seed_from_u64(23);
+        let mut checked = 0;
+        for layout in [ParallelLayout::SecondThird, ParallelLayout::ThirdFourth] {
+            for _ in 0..20 {
+                let p = layout.first();
+                let points: Vec<_> = (0..6).map(|_| point(&mut rng) * 2.0).collect();
+                let mut axes: Vec<_> = (0..6).map(|_| unit(&mut rng)).collect();
+                axes[p + 1] = axes[p];
+                let s = ArmStructure::from_lines(
+                    points,
+                    axes,
+                    vec![Motion::Rotation; 6],
+                    Pose::identity(),
+                );
+                let search = ParallelPairSearch::new(&Chain::of(&s).unwrap(), layout);
+                let q: [f64; 6] = std::array::from_fn(|_| rng.gen_range(-3.1..3.1));
+                let target = s.forward_kinematics(&q);
+                for form in search.forms {
+                    let problem = Problem::new(&search, &target, form);
+                    let t = rng.gen_range(-3.0..3.0);
+                    for (key, at) in problem.branches(t).into_iter().flatten() {
+                        let e = 1e-6;
+                        let (Some((fp, _)), Some((fm, _))) =
+                            (problem.residual(t + e, &key), problem.residual(t - e, &key))
+                        else {
+                            continue;
+                        };
+                        if key.fold.abs() < 1e-2 {
+                            continue; // near a fold the difference is not accurate
+                        }
+                        let difference = (fp - fm) / (2.0 * e);
+                        let tolerance = 1e-5 * (1.0 + difference.abs());
+                        assert!(
+                            (difference - at.slope).abs() < tolerance,
+                            "{form:?}: slope {} against {difference}",
+                            at.slope
+                        );
+                        checked += 1;
+                    }
+                }
+            }
+        }
+        assert!(checked > 50, "{checked}");
     }
 }

@@ -54,6 +54,10 @@
 //! assert!(pairs.as_slice().iter().any(|(a, b)| (a - t1).abs() < 1e-9 && (b - t2).abs() < 1e-9));
 //! ```
 
+mod eliminated;
+
+pub(crate) use eliminated::Eliminated;
+
 use super::subproblems::{Turn, RELATIVE_TOLERANCE};
 use super::trig2::{Trig2, TrigRoots};
 use crate::math::Vector3;
@@ -146,6 +150,16 @@ pub(crate) struct TurnPairs {
 }
 
 impl TurnPairs {
+    /// No pair.
+    const EMPTY: TurnPairs = TurnPairs {
+        items: [TurnPair {
+            first: Turn::ZERO,
+            second: Turn::ZERO,
+            exact: false,
+        }; 4],
+        count: 0,
+    };
+
     pub(crate) fn as_slice(&self) -> &[TurnPair] {
         &self.items[..self.count]
     }
@@ -259,20 +273,8 @@ impl Sinusoids {
         previous: Option<&CirclePoints>,
     ) -> (TurnPairs, Option<CirclePoints>) {
         let (m, e) = self.linear(d);
-        let scale = dot4(&m[0], &m[0])
-            .sqrt()
-            .max(dot4(&m[1], &m[1]).sqrt())
-            .max(e[0].abs())
-            .max(e[1].abs())
-            .max(f64::MIN_POSITIVE);
-        let mut out = TurnPairs {
-            items: [TurnPair {
-                first: Turn::of_direction(0.0, 1.0),
-                second: Turn::of_direction(0.0, 1.0),
-                exact: false,
-            }; 4],
-            count: 0,
-        };
+        let scale = equations_scale(&m, &e);
+        let mut out = TurnPairs::EMPTY;
         let Some(space) = Solutions::of(&m, &e) else {
             return (out, None);
         };
@@ -318,20 +320,8 @@ impl Sinusoids {
     /// Every solution, or the least-squares pair (see the module docs).
     pub(crate) fn solve(&self, d: [f64; 2]) -> TurnPairs {
         let (m, e) = self.linear(d);
-        let scale = dot4(&m[0], &m[0])
-            .sqrt()
-            .max(dot4(&m[1], &m[1]).sqrt())
-            .max(e[0].abs())
-            .max(e[1].abs())
-            .max(f64::MIN_POSITIVE);
-        let mut out = TurnPairs {
-            items: [TurnPair {
-                first: Turn::of_direction(0.0, 1.0),
-                second: Turn::of_direction(0.0, 1.0),
-                exact: false,
-            }; 4],
-            count: 0,
-        };
+        let scale = equations_scale(&m, &e);
+        let mut out = TurnPairs::EMPTY;
         let Some(space) = Solutions::of(&m, &e) else {
             let x0 = Solutions::rank_one(&m, &e);
             out.push(least_squares(&m, &e, scale, &with_axis_starts(&[x0])));
@@ -381,6 +371,17 @@ impl Sinusoids {
             exact,
         }
     }
+}
+
+/// The size the equations' residual is measured against: the larger row of
+/// `M`, or of `e`.
+fn equations_scale(m: &[Vector4; 2], e: &[f64; 2]) -> f64 {
+    dot4(&m[0], &m[0])
+        .sqrt()
+        .max(dot4(&m[1], &m[1]).sqrt())
+        .max(e[0].abs())
+        .max(e[1].abs())
+        .max(f64::MIN_POSITIVE)
 }
 
 /// `starts` and the four points `t1 = t2 = 0, pi/2, pi, -pi/2`, at most 8.
