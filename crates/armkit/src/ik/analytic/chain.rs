@@ -8,6 +8,9 @@ use crate::math::{sin_cos_slice, Matrix3, Pose, Vector3};
 /// Most candidate solutions one solve produces (8 for every class here;
 /// room for tangent duplicates).
 pub(crate) const MAX_CANDIDATES: usize = 32;
+/// Largest difference (rad, every joint, modulo 2 pi) of two roots of one
+/// solve found by different searches that are the same solution.
+pub(crate) const SAME_SOLUTION: f64 = 1e-9;
 /// Most joints of an arm the analytic solvers handle (7-DOF arms).
 pub(crate) const MAX_JOINTS: usize = 7;
 
@@ -83,6 +86,23 @@ impl Candidates {
             }
             item.exact = exact;
             self.len += 1;
+        }
+    }
+
+    /// [`Candidates::push`] unless a candidate held already has each of
+    /// the first `values.len()` joints within [`SAME_SOLUTION`] of it
+    /// (modulo 2 pi): how the roots of several searches of one solve are
+    /// merged.
+    #[inline]
+    pub(crate) fn push_distinct(&mut self, values: &[f64], exact: bool) {
+        let repeated = self.as_slice().iter().any(|held| {
+            held.q
+                .iter()
+                .zip(values)
+                .all(|(a, b)| wrap_angle(a - b).abs() < SAME_SOLUTION)
+        });
+        if !repeated {
+            self.push(values, exact);
         }
     }
 

@@ -109,7 +109,7 @@
 //! ```
 
 use super::chain::{Candidates, Chain};
-use super::parallel_pair::{negated, turned, wave_slope, END_TOLERANCE, FOLDING, LINK, NEAR};
+use super::parallel_pair::{negated, wave_slope, END_TOLERANCE, FOLDING, LINK, NEAR};
 use super::search::{
     align_nearest, find_roots, fold_by_extrapolation, illinois, BranchKey, EndCheck, Residual,
 };
@@ -229,24 +229,13 @@ impl EndPairSearch {
 
     /// Every solution found for `target` (the chain's end-effector pose).
     pub(crate) fn solve(&self, target: &Pose, out: &mut Candidates) {
-        let mut kept: [[f64; 6]; 32] = [[0.0; 6]; 32];
-        let mut count = 0;
         for form in &self.forms[..self.searches] {
             let problem = Problem::new(self, target, *form);
             find_roots::<_, 4, SAMPLES>(&problem, |t, key| {
                 let Some((q, exact)) = problem.finish(t, &key) else {
                     return;
                 };
-                let duplicate = kept[..count].iter().any(|p| {
-                    p.iter()
-                        .zip(&q)
-                        .all(|(a, b)| wrap_angle(a - b).abs() < 1e-9)
-                });
-                if !duplicate && count < kept.len() {
-                    kept[count] = q;
-                    count += 1;
-                    out.push(&q, exact);
-                }
+                out.push_distinct(&q, exact);
             });
         }
     }
@@ -334,7 +323,7 @@ impl<'a> Problem<'a> {
         let (first, second, height, turned_by_k) = match self.form {
             Form::Sixth => {
                 // g = R6 r; q3 turns h back, q5 turns g.
-                let g = turned(&h[5], reach, &k);
+                let g = k.rotate(&h[5], reach);
                 let second = [
                     negated(Wave::new(&h[3], &h[4], &g)),
                     Wave::new(&(c[4] - c[3]), &h[4], &g),
@@ -361,8 +350,8 @@ impl<'a> Problem<'a> {
             }
             Form::Fourth => {
                 // R4 known: h5 seen before it, c5 - c4 likewise.
-                let kept = turned(&h[3], &h[4], &k);
-                let arm = c[3] - c[2] + turned(&h[3], &(c[4] - c[3]), &k);
+                let kept = k.rotate(&h[3], &h[4]);
+                let arm = c[3] - c[2] + k.rotate(&h[3], &(c[4] - c[3]));
                 let second = sixth(&h[4], &(c[5] - c[4]));
                 (third(&kept, &arm), second, self.height, Vector3::zeros())
             }
@@ -410,28 +399,28 @@ impl<'a> Problem<'a> {
             Form::Sixth => {
                 // R4' (R3' h) = R5 g: R(h4, q4) (R5 g) = R3' h.
                 let up = a.rotate_back(&h[2], axis);
-                let down = turned(&h[4], &v.turned, b);
+                let down = b.rotate(&h[4], &v.turned);
                 let (q4, _) = subproblem1_turn(&h[3], &down, &up);
                 [*a, q4, *b, v.k]
             }
             Form::Third => {
                 // R5' (R4' v) = R6 r: R(h5, q5) (R6 r) = R4' v.
                 let up = a.rotate_back(&h[3], &v.turned);
-                let down = turned(&h[5], &self.reach, b);
+                let down = b.rotate(&h[5], &self.reach);
                 let (q5, _) = subproblem1_turn(&h[4], &down, &up);
                 [v.k, *a, q5, *b]
             }
             Form::Fifth => {
                 // R(h4, q4) (R5 R6 r) = R3' h.
                 let up = a.rotate_back(&h[2], axis);
-                let down = turned(&h[4], &turned(&h[5], &self.reach, b), &v.k);
+                let down = v.k.rotate(&h[4], &b.rotate(&h[5], &self.reach));
                 let (q4, _) = subproblem1_turn(&h[3], &down, &up);
                 [*a, q4, v.k, *b]
             }
             Form::Fourth => {
                 // R(h5, q5) (R6 r) = R4' R3' h.
                 let up = v.k.rotate_back(&h[3], &a.rotate_back(&h[2], axis));
-                let down = turned(&h[5], &self.reach, b);
+                let down = b.rotate(&h[5], &self.reach);
                 let (q5, _) = subproblem1_turn(&h[4], &down, &up);
                 [*a, v.k, q5, *b]
             }
@@ -445,9 +434,9 @@ impl<'a> Problem<'a> {
         // y = E3 E4 E5 c6.
         let mut y = c[5];
         for j in (2..5).rev() {
-            y = c[j] + turned(&h[j], &(y - c[j]), &joints[j - 2]);
+            y = c[j] + joints[j - 2].rotate(&h[j], &(y - c[j]));
         }
-        let w = self.goal - c[0] - turned(axis, &(y - c[1]), &pair);
+        let w = self.goal - c[0] - pair.rotate(axis, &(y - c[1]));
         Point { joints, pair, w }
     }
 

@@ -129,7 +129,7 @@ use super::search::{
 use super::search2d::settle_root;
 use super::structure::GEOMETRY_TOLERANCE;
 use super::subproblem6::{CirclePoints, Eliminated, Sinusoids, Wave};
-use super::subproblems::{atan2, rotation, subproblem1, Turn};
+use super::subproblems::{atan2, rotate_by, rotation, subproblem1, Turn};
 use super::trig2::{Trig2, TrigRoots};
 use crate::math::{wrap_angle, Matrix3, Pose, Vector3};
 use std::cell::Cell;
@@ -261,45 +261,22 @@ impl ParallelPairSearch {
 
     /// Every solution found for `target` (the chain's end-effector pose).
     pub(crate) fn solve(&self, target: &Pose, out: &mut Candidates) {
-        let mut kept: [[f64; 6]; 32] = [[0.0; 6]; 32];
-        let mut count = 0;
         for form in &self.forms[..self.searches] {
             let problem = Problem::new(self, target, *form);
             find_roots_sloped::<_, 4, SAMPLES>(&problem, |t, key| {
                 let Some((q, exact)) = problem.finish(t, &key) else {
                     return;
                 };
-                let duplicate = kept[..count].iter().any(|p| {
-                    p.iter()
-                        .zip(&q)
-                        .all(|(a, b)| wrap_angle(a - b).abs() < 1e-9)
-                });
-                if !duplicate && count < kept.len() {
-                    kept[count] = q;
-                    count += 1;
-                    out.push(&q, exact);
-                }
+                out.push_distinct(&q, exact);
             });
         }
     }
 }
 
-/// `R(k, t) v` for the turn `t` (Rodrigues, `k` a unit axis).
-#[inline]
-pub(super) fn turned(k: &Vector3<f64>, v: &Vector3<f64>, t: &Turn) -> Vector3<f64> {
-    turned_by(k, v, t.sin, t.cos)
-}
-
-/// `R(k, t) v` for the turn of sine `s` and cosine `c`.
-#[inline]
-fn turned_by(k: &Vector3<f64>, v: &Vector3<f64>, s: f64, c: f64) -> Vector3<f64> {
-    v * c + k.cross(v) * s + k * ((1.0 - c) * k.dot(v))
-}
-
 /// `E(t) y = c + R(k, t)(y - c)`, the joint's motion.
 #[inline]
 fn moved(c: &Vector3<f64>, k: &Vector3<f64>, y: &Vector3<f64>, t: &Turn) -> Vector3<f64> {
-    c + turned(k, &(y - c), t)
+    c + t.rotate(k, &(y - c))
 }
 
 /// `E(t)^-1 y = c + R(k, t)' (y - c)`.
@@ -489,7 +466,7 @@ impl<'a> Problem<'a> {
         let mut right = [h[5], c[5]];
         match side {
             Known::LeftInner => {
-                g[0] = turned(&h[k], &axis, &turn);
+                g[0] = turn.rotate(&h[k], &axis);
                 offsets[0] = (axis - g[0]).dot(&c[k]);
             }
             Known::LeftOuter => {
@@ -503,10 +480,7 @@ impl<'a> Problem<'a> {
                 offsets[1] = (axis - g[1]).dot(&c[k]);
             }
             Known::RightOuter => {
-                right = [
-                    turned(&h[k], &h[5], &turn),
-                    moved(&c[k], &h[k], &c[5], &turn),
-                ];
+                right = [turn.rotate(&h[k], &h[5]), moved(&c[k], &h[k], &c[5], &turn)];
             }
         }
         let d = g[1].dot(&c[r]) + offsets[1] - g[0].dot(&c[l]) - offsets[0];

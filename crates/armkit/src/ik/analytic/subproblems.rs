@@ -303,12 +303,25 @@ impl Turn {
         }
     }
 
-    /// `R(k, t)' v = R(k, -t) v` (Rodrigues, `k` a unit axis) without
-    /// building the matrix: `cos t v - sin t k x v + (1 - cos t)(k . v) k`.
+    /// `R(k, t) v` (Rodrigues, `k` a unit axis) without building the
+    /// matrix ([`rotate_by`]).
+    #[inline]
+    pub(crate) fn rotate(&self, k: &Vector3<f64>, v: &Vector3<f64>) -> Vector3<f64> {
+        rotate_by(k, v, self.sin, self.cos)
+    }
+
+    /// `R(k, t)' v = R(k, -t) v` ([`rotate_by`] with the sine negated).
     #[inline]
     pub(crate) fn rotate_back(&self, k: &Vector3<f64>, v: &Vector3<f64>) -> Vector3<f64> {
-        v * self.cos - k.cross(v) * self.sin + k * ((1.0 - self.cos) * k.dot(v))
+        rotate_by(k, v, -self.sin, self.cos)
     }
+}
+
+/// `R(k, t) v` for the turn of sine `s` and cosine `c` about the unit axis
+/// `k` (Rodrigues, no matrix): `c v + s k x v + (1 - c)(k . v) k`.
+#[inline]
+pub(crate) fn rotate_by(k: &Vector3<f64>, v: &Vector3<f64>, s: f64, c: f64) -> Vector3<f64> {
+    v * c + k.cross(v) * s + k * ((1.0 - c) * k.dot(v))
 }
 
 /// Up to two [`Turn`]s with a flag, as [`Angles`].

@@ -113,10 +113,10 @@ impl Problem<'_> {
         let mut d_before = left.rotate_back(&h[l], &dv.left[0]) - h[l].cross(&before) * rates.0;
         let mut x = moved_back(&c[l], &h[l], &v.left[1], left);
         let mut dx = left.rotate_back(&h[l], &dv.left[1]) - h[l].cross(&(x - c[l])) * rates.0;
-        let mut after = turned(&h[r], &v.right[0], right);
-        let mut d_after = turned(&h[r], &dv.right[0], right) + h[r].cross(&after) * rates.1;
+        let mut after = right.rotate(&h[r], &v.right[0]);
+        let mut d_after = right.rotate(&h[r], &dv.right[0]) + h[r].cross(&after) * rates.1;
         let mut y = moved(&c[r], &h[r], &v.right[1], right);
-        let mut dy = turned(&h[r], &dv.right[1], right) + h[r].cross(&(y - c[r])) * rates.1;
+        let mut dy = right.rotate(&h[r], &dv.right[1]) + h[r].cross(&(y - c[r])) * rates.1;
         match side {
             Known::LeftInner => {
                 before = v.k.rotate_back(&h[k], &before);
@@ -125,10 +125,10 @@ impl Problem<'_> {
                 dx = v.k.rotate_back(&h[k], &dx) - h[k].cross(&(x - c[k]));
             }
             Known::RightInner => {
-                after = turned(&h[k], &after, &v.k);
-                d_after = turned(&h[k], &d_after, &v.k) + h[k].cross(&after);
+                after = v.k.rotate(&h[k], &after);
+                d_after = v.k.rotate(&h[k], &d_after) + h[k].cross(&after);
                 y = moved(&c[k], &h[k], &y, &v.k);
-                dy = turned(&h[k], &dy, &v.k) + h[k].cross(&(y - c[k]));
+                dy = v.k.rotate(&h[k], &dy) + h[k].cross(&(y - c[k]));
             }
             Known::LeftOuter | Known::RightOuter => {}
         }
@@ -147,9 +147,9 @@ impl Problem<'_> {
         // th is the angle of before_perp less that of after_perp.
         let d_pair = axis.dot(&before.cross(&d_before)) / (before.norm_squared() - hb * hb)
             - axis.dot(&after.cross(&d_after)) / (after.norm_squared() - ha * ha);
-        let arm = turned_by(axis, &(y - c[p + 1]), pair.0, pair.1);
+        let arm = rotate_by(axis, &(y - c[p + 1]), pair.0, pair.1);
         let w = x - c[p] - arm;
-        let dw = dx - axis.cross(&arm) * d_pair - turned_by(axis, &dy, pair.0, pair.1);
+        let dw = dx - axis.cross(&arm) * d_pair - rotate_by(axis, &dy, pair.0, pair.1);
         let across = w - axis * axis.dot(&w);
         let length = across.norm();
         Point {
