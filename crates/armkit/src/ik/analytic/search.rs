@@ -226,6 +226,13 @@ pub(crate) trait Residual<const B: usize> {
     fn same_branch(&self, _a: &Self::Key, _b: &Self::Key) -> bool {
         true
     }
+
+    /// True when the root inside the bracket `lo`, `hi` (a sign change of
+    /// one branch) is known already (found by another search of the same
+    /// problem): it is then not refined again. Default: never.
+    fn known_root(&self, _lo: &Point<Self::Key>, _hi: &Point<Self::Key>) -> bool {
+        false
+    }
 }
 
 /// What [`find_roots`] looks for between a sample and the end of its
@@ -269,7 +276,7 @@ pub(crate) fn find_roots<R: Residual<B>, const B: usize, const N: usize>(
         _ => true,
     };
     let mut bracket = |lo: Point<R::Key>, hi: Point<R::Key>| {
-        if lo.1 == 0.0 || lo.1.signum() != hi.1.signum() {
+        if (lo.1 == 0.0 || lo.1.signum() != hi.1.signum()) && !p.known_root(&lo, &hi) {
             if let Some((root, key)) = refine(p, lo, hi) {
                 found(root, key);
             }
@@ -635,7 +642,7 @@ impl<const N: usize> BranchKey<N> {
 
 /// `|wrap_angle(x - y)|` for `x`, `y` in `[-pi, pi]` (no rounding call).
 #[inline]
-fn angle_between(x: f64, y: f64) -> f64 {
+pub(crate) fn angle_between(x: f64, y: f64) -> f64 {
     let d = (x - y).abs();
     if d > std::f64::consts::PI {
         std::f64::consts::TAU - d
