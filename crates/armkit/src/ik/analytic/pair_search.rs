@@ -58,7 +58,7 @@
 use super::chain::{Candidates, Chain};
 use super::search::{
     align_nearest, angle_between, find_roots, fold_by_extrapolation, illinois, BranchKey, EndCheck,
-    Point, Residual,
+    Point, Residual, Sampling,
 };
 use super::search2d::settle_root;
 use super::subproblems::{rotation, subproblem1, Spoke, Turn};
@@ -346,7 +346,14 @@ impl<'a> Problem<'a> {
         let slot = slot.rem_euclid(SAMPLES as i64) as usize;
         let mut tracks = self.tracks.borrow_mut();
         let mut previous: Option<(f64, TrigRoots)> = None;
-        for (at, roots) in [self.last.get(), tracks[slot]].into_iter().flatten() {
+        let beside = |k: usize| tracks[k % SAMPLES];
+        let starts = [
+            self.last.get(),
+            tracks[slot],
+            beside(slot + SAMPLES - 1),
+            beside(slot + 1),
+        ];
+        for (at, roots) in starts.into_iter().flatten() {
             let d = (at - t.angle).abs();
             if d <= NEAR && previous.is_none_or(|(e, _)| d < e) {
                 previous = Some((d, roots));
@@ -544,6 +551,8 @@ impl Residual<4> for Problem<'_> {
     type Key = Key;
 
     const ENDS: EndCheck = EndCheck::SignChangeOrDip;
+
+    const SAMPLING: Sampling = Sampling::Refined;
 
     fn sample(&self, t: f64) -> [Option<(f64, Key)>; 4] {
         let turn = Turn::of_angle(t);

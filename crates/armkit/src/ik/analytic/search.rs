@@ -210,6 +210,9 @@ pub(crate) trait Residual<const B: usize> {
     /// What is looked for between a sample and the end of its branch.
     const ENDS: EndCheck = EndCheck::SignChange;
 
+    /// Where the samples go (default: evenly spaced).
+    const SAMPLING: Sampling = Sampling::Even;
+
     /// The last point of the branch between `defined`, where it exists,
     /// and `undefined`, where it does not. Default: bisection to
     /// [`ROOT_TOLERANCE`], following the branch's key.
@@ -260,17 +263,25 @@ pub(crate) fn find_roots<R: Residual<B>, const B: usize, const N: usize>(
 ) {
     use std::f64::consts::{PI, TAU};
     let step = TAU / N as f64;
+    let mut times = [0.0; N];
     let mut samples = [[None; B]; N];
-    for k in 0..N {
-        let mut current = p.sample(-PI + step * k as f64);
-        if k > 0 {
-            p.align(&samples[k - 1], &mut current);
+    let n = match R::SAMPLING {
+        Sampling::Even => {
+            for (k, (t, sample)) in times.iter_mut().zip(samples.iter_mut()).enumerate() {
+                *t = -PI + step * k as f64;
+                *sample = p.sample(*t);
+            }
+            N
         }
-        samples[k] = current;
+        Sampling::Refined => refined_samples(p, &mut times, &mut samples),
+    };
+    for k in 1..n {
+        let (before, current) = samples.split_at_mut(k);
+        p.align(&before[k - 1], &mut current[0]);
     }
-    // Sample N is sample 0 again, aligned to the last.
+    // Sample n is sample 0 again (at pi), aligned to the last.
     let mut wrapped = samples[0];
-    p.align(&samples[N - 1], &mut wrapped);
+    p.align(&samples[n - 1], &mut wrapped);
     let linked = |a: &Option<(f64, R::Key)>, b: &Option<(f64, R::Key)>| match (a, b) {
         (Some((_, ka)), Some((_, kb))) => p.same_branch(ka, kb),
         _ => true,
@@ -282,21 +293,31 @@ pub(crate) fn find_roots<R: Residual<B>, const B: usize, const N: usize>(
             }
         }
     };
+    // The angle of sample k (k = n: sample 0 a turn on; k < 0: a turn back).
+    let time = |k: isize| -> f64 {
+        if k < 0 {
+            times[(k + n as isize) as usize] - TAU
+        } else if k as usize >= n {
+            times[k as usize - n] + TAU
+        } else {
+            times[k as usize]
+        }
+    };
     for branch in 0..B {
         let at = |k: usize| {
-            if k == N {
+            if k == n {
                 wrapped[branch]
             } else {
                 samples[k][branch]
             }
         };
         // The sample before sample 0 is the last one of the turn.
-        let mut before = at(N - 1);
-        for k in 1..=N {
+        let mut before = at(n - 1);
+        for k in 1..=n {
             let previous = at(k - 1);
             let value = at(k);
-            let t = -PI + step * k as f64;
-            let ta = t - step;
+            let t = time(k as isize);
+            let ta = time(k as isize - 1);
             match (previous, value) {
                 (Some((fa, ka)), Some((fb, kb))) if p.same_branch(&ka, &kb) => {
                     bracket((ta, fa, ka), (t, fb, kb));
@@ -317,19 +338,19 @@ pub(crate) fn find_roots<R: Residual<B>, const B: usize, const N: usize>(
             // |f| has a local minimum at the previous sample without a sign
             // change: two roots may hide in the two intervals around it.
             if let (Some((f0, k0)), Some((f1, key)), Some((f2, k2))) = (before, previous, value) {
+                let a = time(k as isize - 2);
                 if linked(&before, &previous)
                     && linked(&previous, &value)
                     && f0.signum() == f1.signum()
                     && f1.signum() == f2.signum()
                     && f1.abs() < f0.abs()
                     && f1.abs() < f2.abs()
-                    && parabola_nears_zero(f0, f1, f2)
+                    && parabola_nears_zero([a, ta, t], [f0, f1, f2])
                 {
-                    let (a, b) = (ta - step, t);
-                    if let Some(middle) = minimize(p, key, f1.signum(), a, b) {
+                    if let Some(middle) = minimize(p, key, f1.signum(), a, t) {
                         if middle.1.signum() != f1.signum() {
                             bracket((a, f0, k0), middle);
-                            bracket(middle, (b, f2, k2));
+                            bracket(middle, (t, f2, k2));
                         }
                     }
                 }
@@ -337,6 +358,101 @@ pub(crate) fn find_roots<R: Residual<B>, const B: usize, const N: usize>(
             before = previous;
         }
     }
+}
+
+/// How [`find_roots`] places its samples.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Sampling {
+    /// `N` evenly spaced over the turn.
+    Even,
+    /// Every other one of those first (`N / 2`, a coarse pass), then the
+    /// ones between two coarse samples only where the residual may hide
+    /// roots the coarse pass cannot see ([`needs_midpoint`]): a branch
+    /// ending or a sign change between them, or a local minimum of `|f|`
+    /// at either. Elsewhere each branch is monotone-looking and clear of
+    /// zero at both samples, where the finer samples find nothing more.
+    Refined,
+}
+
+/// The samples of [`Sampling::Refined`] (see there) in `times`,
+/// `samples` (unaligned, ascending); returns how many.
+fn refined_samples<R: Residual<B>, const B: usize, const N: usize>(
+    p: &R,
+    times: &mut [f64; N],
+    samples: &mut [[Option<(f64, R::Key)>; B]; N],
+) -> usize {
+    use std::f64::consts::{PI, TAU};
+    let step = TAU / N as f64;
+    let m = N / 2;
+    // The coarse pass, aligned (for the decisions only) into the first half
+    // of `samples`... kept apart: the final list interleaves.
+    let mut coarse = [[None; B]; N];
+    for j in 0..m {
+        let mut current = p.sample(-PI + 2.0 * step * j as f64);
+        if j > 0 {
+            p.align(&coarse[j - 1], &mut current);
+        }
+        coarse[j] = current;
+    }
+    let mut wrapped = coarse[0];
+    p.align(&coarse[m - 1], &mut wrapped);
+    let get = |j: usize| if j == m { &wrapped } else { &coarse[j] };
+    let mut n = 0;
+    for j in 0..m {
+        times[n] = -PI + 2.0 * step * j as f64;
+        samples[n] = coarse[j];
+        n += 1;
+        // Neighbours a turn round where needed (the alignment across the
+        // wrap is only approximate there: decide generously).
+        let before = if j == 0 {
+            &coarse[m - 1]
+        } else {
+            &coarse[j - 1]
+        };
+        let after = if j + 2 <= m { get(j + 2) } else { &coarse[1] };
+        if needs_midpoint(p, before, &coarse[j], get(j + 1), after) && n < N {
+            let t = -PI + step * (2 * j + 1) as f64;
+            times[n] = t;
+            samples[n] = p.sample(t);
+            n += 1;
+        }
+    }
+    n
+}
+
+/// True when the coarse interval between samples `a` and `b` (aligned:
+/// same slot, same branch) must get its midpoint: a branch present at one
+/// end only or changing between them, a sign change, or a local minimum
+/// of `|f|` at `a` or `b` (against `before` and `after`, the coarse
+/// samples around them).
+fn needs_midpoint<R: Residual<B>, const B: usize>(
+    p: &R,
+    before: &[Option<(f64, R::Key)>; B],
+    a: &[Option<(f64, R::Key)>; B],
+    b: &[Option<(f64, R::Key)>; B],
+    after: &[Option<(f64, R::Key)>; B],
+) -> bool {
+    let magnitude = |x: &Option<(f64, R::Key)>| x.map_or(f64::INFINITY, |(f, _)| f.abs());
+    for i in 0..B {
+        match (&a[i], &b[i]) {
+            (None, None) => continue,
+            (Some((fa, ka)), Some((fb, kb))) => {
+                if !p.same_branch(ka, kb) || fa.signum() != fb.signum() || *fa == 0.0 {
+                    return true;
+                }
+                let (ma, mb) = (fa.abs(), fb.abs());
+                // A minimum at `a` (below `b` and the sample before it) or
+                // at `b` (below `a` and the sample after it).
+                if (ma <= mb && ma <= magnitude(&before[i]))
+                    || (mb <= ma && mb <= magnitude(&after[i]))
+                {
+                    return true;
+                }
+            }
+            _ => return true,
+        }
+    }
+    false
 }
 
 /// A branch's piece between a sample and the branch's end: a sign change
@@ -401,17 +517,31 @@ fn end_bracket<R: Residual<B>, const B: usize>(
     }
 }
 
-/// True when the parabola through three equally spaced samples of the
-/// same sign, smallest in the middle, dips below a quarter of the middle
-/// sample's magnitude (or through zero): only then can two roots hide there.
-fn parabola_nears_zero(f0: f64, f1: f64, f2: f64) -> bool {
-    let s = f1.signum();
-    let (g0, g1, g2) = (s * f0, s * f1, s * f2);
-    let curvature = g0 - 2.0 * g1 + g2;
-    if curvature <= 0.0 {
-        return true;
-    }
-    let vertex = g1 - (g2 - g0) * (g2 - g0) / (8.0 * curvature);
+/// True when the parabola through three samples `f` at `t` (ascending)
+/// of the same sign, smallest in the middle, dips below a quarter of the
+/// middle sample's magnitude (or through zero): only then can two roots
+/// hide there.
+fn parabola_nears_zero(t: [f64; 3], f: [f64; 3]) -> bool {
+    let s = f[1].signum();
+    let (g0, g1, g2) = (s * f[0], s * f[1], s * f[2]);
+    let (h0, h1) = (t[1] - t[0], t[2] - t[1]);
+    let vertex = if h0 == h1 {
+        // Evenly spaced.
+        let curvature = g0 - 2.0 * g1 + g2;
+        if curvature <= 0.0 {
+            return true;
+        }
+        g1 - (g2 - g0) * (g2 - g0) / (8.0 * curvature)
+    } else {
+        // g1 + b x + c x^2 about t[1].
+        let (d01, d12) = ((g1 - g0) / h0, (g2 - g1) / h1);
+        let c = (d12 - d01) / (h0 + h1);
+        if c <= 0.0 {
+            return true;
+        }
+        let b = d01 + c * h0;
+        g1 - b * b / (4.0 * c)
+    };
     vertex < 0.25 * g1
 }
 
