@@ -67,8 +67,12 @@ use super::trig2::{Precision, Trig2, TrigRoots};
 use crate::math::{wrap_angle, Matrix3, Pose, Vector3};
 use std::cell::{Cell, RefCell};
 
-/// Samples per turn of each search.
+/// Samples per turn of each search where the residual needs them all
+/// (near folds, sign changes and minima of `|f|`); a coarse pass takes one
+/// in `2^REFINEMENTS` (`search::Sampling::Refined`).
 pub const SAMPLES: usize = 256;
+/// Halvings from the coarse pass's step to the finest.
+pub const REFINEMENTS: u32 = 1;
 /// Largest joint-space step (rad, summed over the three placing joints)
 /// between two samples (or a sample and a refinement point) of one branch.
 pub const LINK: f64 = 1.0;
@@ -345,21 +349,26 @@ impl<'a> Problem<'a> {
         let slot = ((t.angle + PI) * (SAMPLES as f64 / TAU)).round() as i64;
         let slot = slot.rem_euclid(SAMPLES as i64) as usize;
         let mut tracks = self.tracks.borrow_mut();
-        let mut previous: Option<(f64, TrigRoots)> = None;
-        let beside = |k: usize| tracks[k % SAMPLES];
-        let starts = [
-            self.last.get(),
-            tracks[slot],
-            beside(slot + SAMPLES - 1),
-            beside(slot + 1),
-        ];
-        for (at, roots) in starts.into_iter().flatten() {
-            let d = (at - t.angle).abs();
-            if d <= NEAR && previous.is_none_or(|(e, _)| d < e) {
-                previous = Some((d, roots));
+        // The nearest start within NEAR: the last evaluation or one read
+        // at the sample slots around (up to 2 coarse steps apart).
+        let mut previous: Option<(f64, TrigRoots)> = self
+            .last
+            .get()
+            .map(|(at, roots)| ((at - t.angle).abs(), roots));
+        let reach = 1usize << REFINEMENTS;
+        for k in slot + SAMPLES - reach..=slot + SAMPLES + reach {
+            if let Some((at, roots)) = &tracks[k % SAMPLES] {
+                let d = (at - t.angle).abs();
+                if previous.is_none_or(|(e, _)| d < e) {
+                    previous = Some((d, *roots));
+                }
             }
         }
-        let found = self.placements_from(t, previous.as_ref().map(|(_, roots)| roots), precision);
+        let start = previous
+            .as_ref()
+            .filter(|(d, _)| *d <= NEAR)
+            .map(|(_, roots)| roots);
+        let found = self.placements_from(t, start, precision);
         let latest = found.roots.map(|roots| (t.angle, roots));
         self.last.set(latest);
         if latest.is_some() {
@@ -552,7 +561,9 @@ impl Residual<4> for Problem<'_> {
 
     const ENDS: EndCheck = EndCheck::SignChangeOrDip;
 
-    const SAMPLING: Sampling = Sampling::Refined;
+    const SAMPLING: Sampling = Sampling::Refined {
+        levels: REFINEMENTS,
+    };
 
     fn sample(&self, t: f64) -> [Option<(f64, Key)>; 4] {
         let turn = Turn::of_angle(t);
@@ -725,7 +736,7 @@ mod tests {
                     for (k, (f, fine)) in runs.iter().enumerate() {
                         let mut out = Candidates::new();
                         if *fine {
-                            search.solve_by::<256>(f, &target, &mut out);
+                            search.solve_by::<SAMPLES>(f, &target, &mut out);
                         } else {
                             search.solve_by::<128>(f, &target, &mut out);
                         }

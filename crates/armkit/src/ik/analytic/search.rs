@@ -273,7 +273,7 @@ pub(crate) fn find_roots<R: Residual<B>, const B: usize, const N: usize>(
             }
             N
         }
-        Sampling::Refined => refined_samples(p, &mut times, &mut samples),
+        Sampling::Refined { levels } => refined_samples(p, levels, &mut times, &mut samples),
     };
     for k in 1..n {
         let (before, current) = samples.split_at_mut(k);
@@ -365,57 +365,88 @@ pub(crate) fn find_roots<R: Residual<B>, const B: usize, const N: usize>(
 pub(crate) enum Sampling {
     /// `N` evenly spaced over the turn.
     Even,
-    /// Every other one of those first (`N / 2`, a coarse pass), then the
-    /// ones between two coarse samples only where the residual may hide
-    /// roots the coarse pass cannot see ([`needs_midpoint`]): a branch
-    /// ending or a sign change between them, or a local minimum of `|f|`
-    /// at either. Elsewhere each branch is monotone-looking and clear of
-    /// zero at both samples, where the finer samples find nothing more.
-    Refined,
+    /// One in `2^levels` of those first (a coarse pass), then, `levels`
+    /// times, the midpoint of each interval only where the residual may
+    /// hide roots the coarser samples cannot see ([`needs_midpoint`]): a
+    /// branch ending or changing between them, a sign change, or a local
+    /// minimum of `|f|` at either end. Elsewhere each branch is clear of
+    /// zero and monotone-looking there, where finer samples find nothing
+    /// more.
+    Refined {
+        /// Halvings of the coarse step down to `2 pi / N`.
+        levels: u32,
+    },
 }
 
 /// The samples of [`Sampling::Refined`] (see there) in `times`,
-/// `samples` (unaligned, ascending); returns how many.
+/// `samples` (ascending; aligned, though [`find_roots`] aligns again);
+/// returns how many.
 fn refined_samples<R: Residual<B>, const B: usize, const N: usize>(
     p: &R,
+    levels: u32,
     times: &mut [f64; N],
     samples: &mut [[Option<(f64, R::Key)>; B]; N],
 ) -> usize {
     use std::f64::consts::{PI, TAU};
     let step = TAU / N as f64;
-    let m = N / 2;
-    // The coarse pass, aligned (for the decisions only) into the first half
-    // of `samples`... kept apart: the final list interleaves.
-    let mut coarse = [[None; B]; N];
-    for j in 0..m {
-        let mut current = p.sample(-PI + 2.0 * step * j as f64);
-        if j > 0 {
-            p.align(&coarse[j - 1], &mut current);
-        }
-        coarse[j] = current;
-    }
-    let mut wrapped = coarse[0];
-    p.align(&coarse[m - 1], &mut wrapped);
-    let get = |j: usize| if j == m { &wrapped } else { &coarse[j] };
+    let stride = 1usize << levels.min(N.trailing_zeros());
+    // Sample positions as multiples of the fine step.
+    let mut index = [0usize; N];
     let mut n = 0;
-    for j in 0..m {
-        times[n] = -PI + 2.0 * step * j as f64;
-        samples[n] = coarse[j];
+    for k in (0..N).step_by(stride) {
+        index[n] = k;
+        samples[n] = p.sample(-PI + step * k as f64);
         n += 1;
-        // Neighbours a turn round where needed (the alignment across the
-        // wrap is only approximate there: decide generously).
-        let before = if j == 0 {
-            &coarse[m - 1]
-        } else {
-            &coarse[j - 1]
-        };
-        let after = if j + 2 <= m { get(j + 2) } else { &coarse[1] };
-        if needs_midpoint(p, before, &coarse[j], get(j + 1), after) && n < N {
-            let t = -PI + step * (2 * j + 1) as f64;
-            times[n] = t;
-            samples[n] = p.sample(t);
-            n += 1;
+    }
+    let mut next_index = [0usize; N];
+    let mut next = [[None; B]; N];
+    let mut gap = stride;
+    while gap > 1 && n > 2 {
+        for k in 1..n {
+            let (done, rest) = samples.split_at_mut(k);
+            p.align(&done[k - 1], &mut rest[0]);
         }
+        // The neighbours across the wrap, aligned to the sample beside them.
+        let mut wrapped = samples[0];
+        p.align(&samples[n - 1], &mut wrapped);
+        let mut last_before_first = samples[n - 1];
+        p.align(&samples[0], &mut last_before_first);
+        let mut second_after_wrapped = samples[1];
+        p.align(&wrapped, &mut second_after_wrapped);
+        let mut m = 0;
+        for j in 0..n {
+            next_index[m] = index[j];
+            next[m] = samples[j];
+            m += 1;
+            let end = if j + 1 < n { index[j + 1] } else { N };
+            if end - index[j] < 2 || m >= N {
+                continue;
+            }
+            let before = if j == 0 {
+                &last_before_first
+            } else {
+                &samples[j - 1]
+            };
+            let b = if j + 1 < n { &samples[j + 1] } else { &wrapped };
+            let after = match j + 2 {
+                k if k < n => &samples[k],
+                k if k == n => &wrapped,
+                _ => &second_after_wrapped,
+            };
+            if needs_midpoint(p, before, &samples[j], b, after) {
+                let k = index[j] + (end - index[j]) / 2;
+                next_index[m] = k;
+                next[m] = p.sample(-PI + step * k as f64);
+                m += 1;
+            }
+        }
+        index = next_index;
+        *samples = next;
+        n = m;
+        gap /= 2;
+    }
+    for (t, k) in times.iter_mut().zip(&index[..n]) {
+        *t = -PI + step * *k as f64;
     }
     n
 }
