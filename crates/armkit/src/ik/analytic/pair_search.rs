@@ -11,7 +11,8 @@
 //! `R5 R6`; since `R5 R6 h6 = R5 h6` and a turn about `h5` keeps the `h5`
 //! component, `G` is reachable only if `h5 . G h6 = h5 . h6`: the scalar
 //! residual `f(t1)`, smooth in `t1` on each branch. Its roots are found by
-//! `search::find_roots` ([`SAMPLES`] = 256 samples per turn, roots to 1e-13 rad);
+//! `search::find_roots` (128 samples per turn, refined to [`SAMPLES`] = 256
+//! per turn where needed, roots to 1e-13 rad: see Cost below);
 //! joints 5 and 6 then follow by subproblem 1 each (`R5 h6 = G h6`,
 //! `R6 h5 = R5' G h5`).
 //!
@@ -43,16 +44,30 @@
 //! the chain's forward kinematics: exact when within 1e-10 m and rad; roots
 //! that miss by more than 1e-6 are dropped.
 //!
-//! Cost (an evaluation is one placing step, a quartic's roots): 512
-//! samples per solve plus ~150 evaluations refining roots and reading
-//! branch ends. The placing quartic's roots are tracked from the last
-//! evaluation's (within `NEAR`) by Newton, deflated by the roots found
+//! Cost (an evaluation is one placing step, a quartic's roots; figures of
+//! the `one_pair_5_6_1d_search/distinct` bench, 3.4M instructions per
+//! solve, 4.5M before the three savings below): each search samples 128
+//! points per turn, then the midpoint of each interval where a branch ends
+//! or changes, the residual changes sign or `|f|` has a local minimum at
+//! either end (`search::Sampling::Refined`, [`REFINEMENTS`] = 1): ~290
+//! samples per solve (512 evenly spaced before, with the same recall on
+//! 26 000 random poses; a second halving, 64 per turn first, saved 8 %
+//! more but lost a pose). Samples' placing roots stop at 1e-10 rad
+//! (`trig2::Precision::Sampling`), those of refinements at 1e-13. The
+//! second search does not refine a root the first found exactly
+//! (`Residual::known_root`). Then ~160 evaluations refine roots and read
+//! branch ends (a third of the cost: ~100 of them need the full isolation
+//! of the placing quartic, near folds), and ~7 roots are completed and
+//! checked by forward kinematics. The placing quartic's roots are tracked
+//! from the nearest evaluation's (the last, or one at a sample slot
+//! nearby, within `NEAR`) by Newton, deflated by the roots found
 //! (`Trig2::roots_near`: accepted only when the quartic's discriminant
 //! certifies the same number of real roots and Newton finds that many
-//! distinct ones), the full isolation otherwise (near folds). A fold is
-//! located where the placing quartic's discriminant changes sign, by
-//! Illinois on the discriminant alone (the polynomial's coefficients, no
-//! roots); the partner branch merging there is read at the same place.
+//! distinct ones), the full isolation otherwise (near folds; accepting a
+//! changed count by Newton from arc midpoints cost more than it saved). A
+//! fold is located where the placing quartic's discriminant changes sign,
+//! by Illinois on the discriminant alone (the polynomial's coefficients,
+//! no roots); the partner branch merging there is read at the same place.
 //! The residual is formed from the placements' sines and cosines.
 
 use super::chain::{Candidates, Chain};
@@ -681,9 +696,10 @@ mod tests {
     /// Diagnostic (not a check): how many of 2 000 random poses per layout
     /// (20 random arms each) both searches, each alone, and both with 128
     /// samples per turn recover; each pose missed by both at 256 is
-    /// described (`describe`). Found (seed 5): both 1999, 2000, 1998;
-    /// first alone 1980, 1974, 1981; second alone 1978, 1993, 1969; both
-    /// at 128 samples 1995, 1996, 2000. The misses are near-double roots
+    /// described (`describe`). Found (seed 5, refined sampling): both
+    /// 1999, 2000, 1998 (the same with 256 evenly spaced); first alone
+    /// 1980, 1974, 1980; second alone 1978, 1993, 1969; both at 128 per
+    /// turn (64 coarse) 1995, 1995, 2000. The misses are near-double roots
     /// (two solutions close together, near a singular configuration: the
     /// residual only touches zero, or crosses it three times within a
     /// step) and roots near a fold or on a branch shorter than a sample

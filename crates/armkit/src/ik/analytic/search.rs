@@ -14,7 +14,9 @@
 //!
 //! Search ([`SAMPLES`], [`ROOT_TOLERANCE`]): `f_b` is sampled on
 //! [`SAMPLES`] evenly spaced `t1` over one turn (the number is the
-//! caller's, a const parameter of `find_roots`); every sign change between
+//! caller's, a const parameter of `find_roots`; a residual may ask for
+//! `Sampling::Refined` instead: a coarse pass, then midpoints only where
+//! roots may hide, as the one-pair search does); every sign change between
 //! neighbouring samples (or between a sample and the end of the branch,
 //! where subproblem 4's two solutions merge, found by bisection) is refined
 //! by the Illinois variant of regula falsi until the bracket is narrower
