@@ -253,6 +253,10 @@ pub(crate) enum EndCheck {
     SignChangeOrDip,
 }
 
+/// Every branch's residual and key at one sample (`None` where a branch
+/// does not exist).
+type Sample<K, const B: usize> = [Option<(f64, K)>; B];
+
 /// A point of a branch: angle, residual, key.
 pub(crate) type Point<K> = (f64, f64, K);
 
@@ -387,7 +391,7 @@ fn refined_samples<R: Residual<B>, const B: usize, const N: usize>(
     p: &R,
     levels: u32,
     times: &mut [f64; N],
-    samples: &mut [[Option<(f64, R::Key)>; B]; N],
+    samples: &mut [Sample<R::Key, B>; N],
 ) -> usize {
     use std::f64::consts::{PI, TAU};
     let step = TAU / N as f64;
@@ -460,10 +464,10 @@ fn refined_samples<R: Residual<B>, const B: usize, const N: usize>(
 /// samples around them).
 fn needs_midpoint<R: Residual<B>, const B: usize>(
     p: &R,
-    before: &[Option<(f64, R::Key)>; B],
-    a: &[Option<(f64, R::Key)>; B],
-    b: &[Option<(f64, R::Key)>; B],
-    after: &[Option<(f64, R::Key)>; B],
+    before: &Sample<R::Key, B>,
+    a: &Sample<R::Key, B>,
+    b: &Sample<R::Key, B>,
+    after: &Sample<R::Key, B>,
 ) -> bool {
     let magnitude = |x: &Option<(f64, R::Key)>| x.map_or(f64::INFINITY, |(f, _)| f.abs());
     for i in 0..B {
