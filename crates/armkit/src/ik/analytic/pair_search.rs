@@ -222,8 +222,10 @@ impl PairSearch {
             items: [([0.0; 6], false); 32],
             count: 0,
         });
+        let tracks = RefCell::new([None; SAMPLES]);
         for form in forms {
-            let problem = Problem::new(self, target, *form, &kept);
+            tracks.borrow_mut().fill(None);
+            let problem = Problem::new(self, target, *form, &kept, &tracks);
             let cb = |t: f64, key: Key| {
                 let Some((q, exact)) = problem.finish(t, &key) else {
                     return;
@@ -263,6 +265,10 @@ fn turn(k: &Vector3<f64>, v: &Vector3<f64>, s: f64, c: f64) -> Vector3<f64> {
     v * c + k.cross(v) * s + k * (k.dot(v) * (1.0 - c))
 }
 
+/// The placing roots last read near each sample slot (see
+/// [`Problem::placements`]).
+type Tracks = [Option<(f64, TrigRoots)>; SAMPLES];
+
 /// The solutions found so far in one solve (chain order, whether exact).
 struct Kept {
     items: [([f64; 6], bool); 32],
@@ -297,7 +303,7 @@ struct Problem<'a> {
     /// The placing roots last read near each sample (slot `k` for
     /// `t = -pi + k 2 pi / SAMPLES`): starts for evaluations far from the
     /// last one (a root refined after the whole turn was sampled).
-    tracks: RefCell<[Option<(f64, TrigRoots)>; SAMPLES]>,
+    tracks: &'a RefCell<Tracks>,
     /// The solutions found so far by this solve's searches.
     kept: &'a RefCell<Kept>,
 }
@@ -327,6 +333,7 @@ impl<'a> Problem<'a> {
         target: &Pose,
         form: Searched,
         kept: &'a RefCell<Kept>,
+        tracks: &'a RefCell<Tracks>,
     ) -> Problem<'a> {
         let (c, h) = (&s.chain.c, &s.chain.h);
         let moved = *target * s.chain.home_inverse;
@@ -352,7 +359,7 @@ impl<'a> Problem<'a> {
             back,
             last: Cell::new(None),
             folds: Cell::new([None; FOLDS]),
-            tracks: RefCell::new([None; SAMPLES]),
+            tracks,
             kept,
         }
     }
@@ -778,7 +785,8 @@ mod tests {
             items: [([0.0; 6], false); 32],
             count: 0,
         });
-        let problem = Problem::new(s, target, form, &kept);
+        let tracks = RefCell::new([None; SAMPLES]);
+        let problem = Problem::new(s, target, form, &kept, &tracks);
         let (searched, placing, _) = form.joints();
         let t = q[searched];
         let found = problem.placements(&Turn::of_angle(t), Precision::Full);

@@ -396,18 +396,27 @@ fn refined_samples<R: Residual<B>, const B: usize, const N: usize>(
     use std::f64::consts::{PI, TAU};
     let step = TAU / N as f64;
     let stride = 1usize << levels.min(N.trailing_zeros());
-    // Sample positions as multiples of the fine step.
+    // Sample positions as multiples of the fine step; each level reads
+    // one buffer and writes the other (the last level `samples`).
     let mut index = [0usize; N];
+    let mut next_index = [0usize; N];
+    let mut own = [[None; B]; N];
+    let halvings = stride.trailing_zeros();
+    let (mut current, mut next) = if halvings % 2 == 1 {
+        (&mut own, samples)
+    } else {
+        (samples, &mut own)
+    };
     let mut n = 0;
     for k in (0..N).step_by(stride) {
         index[n] = k;
-        samples[n] = p.sample(-PI + step * k as f64);
+        current[n] = p.sample(-PI + step * k as f64);
         n += 1;
     }
-    let mut next_index = [0usize; N];
-    let mut next = [[None; B]; N];
     let mut gap = stride;
+    let mut swaps = 0;
     while gap > 1 && n > 2 {
+        let samples = &mut *current;
         for k in 1..n {
             let (done, rest) = samples.split_at_mut(k);
             p.align(&done[k - 1], &mut rest[0]);
@@ -446,10 +455,15 @@ fn refined_samples<R: Residual<B>, const B: usize, const N: usize>(
                 m += 1;
             }
         }
-        index = next_index;
-        *samples = next;
+        std::mem::swap(&mut index, &mut next_index);
+        std::mem::swap(&mut current, &mut next);
+        swaps += 1;
         n = m;
         gap /= 2;
+    }
+    // Stopped early (too few samples): the result is in the other buffer.
+    if swaps % 2 != halvings % 2 {
+        next[..n].copy_from_slice(&current[..n]);
     }
     for (t, k) in times.iter_mut().zip(&index[..n]) {
         *t = -PI + step * *k as f64;
