@@ -913,10 +913,10 @@ fn random_search_arms(
     tally
 }
 
-#[test]
-fn random_one_pair_arms_by_1d_search() {
-    // The pair at 5-6, 4-5 and 3-4 as built, 1-2 and 2-3 on the reversed
-    // lines.
+/// Every intersecting-pair layout (5-6, 4-5 and 3-4 as built, 1-2 and 2-3
+/// on the reversed lines) on `arms` arms x `poses` poses; the recovery
+/// over all.
+fn one_pair_tally(seed: u64, arms: u64, poses: usize) -> Tally {
     let cases = [
         (4, false, "one_pair_intersecting_5_6_1d_search"),
         (4, true, "one_pair_intersecting_1_2_1d_search"),
@@ -939,17 +939,40 @@ fn random_one_pair_arms_by_1d_search() {
             lines
         };
         let tally = random_search_arms(
-            70 + i as u64,
-            10,
-            POSES / 10,
+            seed + i as u64,
+            arms,
+            poses,
             &lines,
             class,
             AnalyticOptions::default(),
         );
         total.poses += tally.poses;
         total.recovered += tally.recovered;
+        total.solutions += tally.solutions;
+        total.worst_error = total.worst_error.max(tally.worst_error);
     }
-    assert_search_recovered("one-pair arms", &total);
+    println!(
+        "one-pair arms: generating configuration on {}/{} poses, {:.2} solutions per pose, worst FK error {:.1e}",
+        total.recovered,
+        total.poses,
+        total.solutions as f64 / total.poses as f64,
+        total.worst_error
+    );
+    total
+}
+
+#[test]
+fn random_one_pair_arms_by_1d_search() {
+    let tally = one_pair_tally(70, 10, POSES / 10);
+    assert_search_recovered("one-pair arms", &tally);
+}
+
+/// 20 000 poses: 40 arms x 100 poses for each of the five layouts.
+#[test]
+#[ignore = "slow: cargo test --release --test ik_analytic -- --ignored --nocapture"]
+fn many_random_one_pair_arms_by_1d_search() {
+    let tally = one_pair_tally(410, 40, 100);
+    assert_search_recovered("one-pair arms", &tally);
 }
 
 /// Lines of a random 6R arm whose only special pair is axes `first`,

@@ -14,7 +14,9 @@
 //!
 //! Search ([`SAMPLES`], [`ROOT_TOLERANCE`]): `f_b` is sampled on
 //! [`SAMPLES`] evenly spaced `t1` over one turn (the number is the
-//! caller's, a const parameter of `find_roots`); every sign change between
+//! caller's, a const parameter of `find_roots`; a residual may ask for
+//! `Sampling::Refined` instead: a coarse pass, then midpoints only where
+//! roots may hide, as the one-pair search does); every sign change between
 //! neighbouring samples (or between a sample and the end of the branch,
 //! where subproblem 4's two solutions merge, found by bisection) is refined
 //! by the Illinois variant of regula falsi until the bracket is narrower
@@ -210,6 +212,9 @@ pub(crate) trait Residual<const B: usize> {
     /// What is looked for between a sample and the end of its branch.
     const ENDS: EndCheck = EndCheck::SignChange;
 
+    /// Where the samples go (default: evenly spaced).
+    const SAMPLING: Sampling = Sampling::Even;
+
     /// The last point of the branch between `defined`, where it exists,
     /// and `undefined`, where it does not. Default: bisection to
     /// [`ROOT_TOLERANCE`], following the branch's key.
@@ -226,6 +231,13 @@ pub(crate) trait Residual<const B: usize> {
     fn same_branch(&self, _a: &Self::Key, _b: &Self::Key) -> bool {
         true
     }
+
+    /// True when the root inside the bracket `lo`, `hi` (a sign change of
+    /// one branch) is known already (found by another search of the same
+    /// problem): it is then not refined again. Default: never.
+    fn known_root(&self, _lo: &Point<Self::Key>, _hi: &Point<Self::Key>) -> bool {
+        false
+    }
 }
 
 /// What [`find_roots`] looks for between a sample and the end of its
@@ -241,6 +253,10 @@ pub(crate) enum EndCheck {
     SignChangeOrDip,
 }
 
+/// Every branch's residual and key at one sample (`None` where a branch
+/// does not exist).
+type Sample<K, const B: usize> = [Option<(f64, K)>; B];
+
 /// A point of a branch: angle, residual, key.
 pub(crate) type Point<K> = (f64, f64, K);
 
@@ -253,43 +269,61 @@ pub(crate) fn find_roots<R: Residual<B>, const B: usize, const N: usize>(
 ) {
     use std::f64::consts::{PI, TAU};
     let step = TAU / N as f64;
+    let mut times = [0.0; N];
     let mut samples = [[None; B]; N];
-    for k in 0..N {
-        let mut current = p.sample(-PI + step * k as f64);
-        if k > 0 {
-            p.align(&samples[k - 1], &mut current);
+    let n = match R::SAMPLING {
+        Sampling::Even => {
+            for (k, (t, sample)) in times.iter_mut().zip(samples.iter_mut()).enumerate() {
+                *t = -PI + step * k as f64;
+                *sample = p.sample(*t);
+            }
+            N
         }
-        samples[k] = current;
+        Sampling::Refined { levels } => refined_samples(p, levels, &mut times, &mut samples),
+    };
+    for k in 1..n {
+        let (before, current) = samples.split_at_mut(k);
+        p.align(&before[k - 1], &mut current[0]);
     }
-    // Sample N is sample 0 again, aligned to the last.
+    // Sample n is sample 0 again (at pi), aligned to the last.
     let mut wrapped = samples[0];
-    p.align(&samples[N - 1], &mut wrapped);
+    p.align(&samples[n - 1], &mut wrapped);
     let linked = |a: &Option<(f64, R::Key)>, b: &Option<(f64, R::Key)>| match (a, b) {
         (Some((_, ka)), Some((_, kb))) => p.same_branch(ka, kb),
         _ => true,
     };
     let mut bracket = |lo: Point<R::Key>, hi: Point<R::Key>| {
-        if lo.1 == 0.0 || lo.1.signum() != hi.1.signum() {
+        if (lo.1 == 0.0 || lo.1.signum() != hi.1.signum()) && !p.known_root(&lo, &hi) {
             if let Some((root, key)) = refine(p, lo, hi) {
                 found(root, key);
             }
         }
     };
+    // The angle of sample k (k = n: sample 0 a turn on; k < 0: a turn back).
+    let time = |k: isize| -> f64 {
+        if k < 0 {
+            times[(k + n as isize) as usize] - TAU
+        } else if k as usize >= n {
+            times[k as usize - n] + TAU
+        } else {
+            times[k as usize]
+        }
+    };
     for branch in 0..B {
         let at = |k: usize| {
-            if k == N {
+            if k == n {
                 wrapped[branch]
             } else {
                 samples[k][branch]
             }
         };
         // The sample before sample 0 is the last one of the turn.
-        let mut before = at(N - 1);
-        for k in 1..=N {
+        let mut before = at(n - 1);
+        for k in 1..=n {
             let previous = at(k - 1);
             let value = at(k);
-            let t = -PI + step * k as f64;
-            let ta = t - step;
+            let t = time(k as isize);
+            let ta = time(k as isize - 1);
             match (previous, value) {
                 (Some((fa, ka)), Some((fb, kb))) if p.same_branch(&ka, &kb) => {
                     bracket((ta, fa, ka), (t, fb, kb));
@@ -310,19 +344,19 @@ pub(crate) fn find_roots<R: Residual<B>, const B: usize, const N: usize>(
             // |f| has a local minimum at the previous sample without a sign
             // change: two roots may hide in the two intervals around it.
             if let (Some((f0, k0)), Some((f1, key)), Some((f2, k2))) = (before, previous, value) {
+                let a = time(k as isize - 2);
                 if linked(&before, &previous)
                     && linked(&previous, &value)
                     && f0.signum() == f1.signum()
                     && f1.signum() == f2.signum()
                     && f1.abs() < f0.abs()
                     && f1.abs() < f2.abs()
-                    && parabola_nears_zero(f0, f1, f2)
+                    && parabola_nears_zero([a, ta, t], [f0, f1, f2])
                 {
-                    let (a, b) = (ta - step, t);
-                    if let Some(middle) = minimize(p, key, f1.signum(), a, b) {
+                    if let Some(middle) = minimize(p, key, f1.signum(), a, t) {
                         if middle.1.signum() != f1.signum() {
                             bracket((a, f0, k0), middle);
-                            bracket(middle, (b, f2, k2));
+                            bracket(middle, (t, f2, k2));
                         }
                     }
                 }
@@ -330,6 +364,146 @@ pub(crate) fn find_roots<R: Residual<B>, const B: usize, const N: usize>(
             before = previous;
         }
     }
+}
+
+/// How [`find_roots`] places its samples.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Sampling {
+    /// `N` evenly spaced over the turn.
+    Even,
+    /// One in `2^levels` of those first (a coarse pass), then, `levels`
+    /// times, the midpoint of each interval only where the residual may
+    /// hide roots the coarser samples cannot see ([`needs_midpoint`]): a
+    /// branch ending or changing between them, a sign change, or a local
+    /// minimum of `|f|` at either end. Elsewhere each branch is clear of
+    /// zero and monotone-looking there, where finer samples find nothing
+    /// more.
+    Refined {
+        /// Halvings of the coarse step down to `2 pi / N`.
+        levels: u32,
+    },
+}
+
+/// The samples of [`Sampling::Refined`] (see there) in `times`,
+/// `samples` (ascending; aligned, though [`find_roots`] aligns again);
+/// returns how many.
+fn refined_samples<R: Residual<B>, const B: usize, const N: usize>(
+    p: &R,
+    levels: u32,
+    times: &mut [f64; N],
+    samples: &mut [Sample<R::Key, B>; N],
+) -> usize {
+    use std::f64::consts::{PI, TAU};
+    let step = TAU / N as f64;
+    let stride = 1usize << levels.min(N.trailing_zeros());
+    // Sample positions as multiples of the fine step; each level reads
+    // one buffer and writes the other (the last level `samples`).
+    let mut index = [0usize; N];
+    let mut next_index = [0usize; N];
+    let mut own = [[None; B]; N];
+    let halvings = stride.trailing_zeros();
+    let (mut current, mut next) = if halvings % 2 == 1 {
+        (&mut own, samples)
+    } else {
+        (samples, &mut own)
+    };
+    let mut n = 0;
+    for k in (0..N).step_by(stride) {
+        index[n] = k;
+        current[n] = p.sample(-PI + step * k as f64);
+        n += 1;
+    }
+    let mut gap = stride;
+    let mut swaps = 0;
+    while gap > 1 && n > 2 {
+        let samples = &mut *current;
+        for k in 1..n {
+            let (done, rest) = samples.split_at_mut(k);
+            p.align(&done[k - 1], &mut rest[0]);
+        }
+        // The neighbours across the wrap, aligned to the sample beside them.
+        let mut wrapped = samples[0];
+        p.align(&samples[n - 1], &mut wrapped);
+        let mut last_before_first = samples[n - 1];
+        p.align(&samples[0], &mut last_before_first);
+        let mut second_after_wrapped = samples[1];
+        p.align(&wrapped, &mut second_after_wrapped);
+        let mut m = 0;
+        for j in 0..n {
+            next_index[m] = index[j];
+            next[m] = samples[j];
+            m += 1;
+            let end = if j + 1 < n { index[j + 1] } else { N };
+            if end - index[j] < 2 || m >= N {
+                continue;
+            }
+            let before = if j == 0 {
+                &last_before_first
+            } else {
+                &samples[j - 1]
+            };
+            let b = if j + 1 < n { &samples[j + 1] } else { &wrapped };
+            let after = match j + 2 {
+                k if k < n => &samples[k],
+                k if k == n => &wrapped,
+                _ => &second_after_wrapped,
+            };
+            if needs_midpoint(p, before, &samples[j], b, after) {
+                let k = index[j] + (end - index[j]) / 2;
+                next_index[m] = k;
+                next[m] = p.sample(-PI + step * k as f64);
+                m += 1;
+            }
+        }
+        std::mem::swap(&mut index, &mut next_index);
+        std::mem::swap(&mut current, &mut next);
+        swaps += 1;
+        n = m;
+        gap /= 2;
+    }
+    // Stopped early (too few samples): the result is in the other buffer.
+    if swaps % 2 != halvings % 2 {
+        next[..n].copy_from_slice(&current[..n]);
+    }
+    for (t, k) in times.iter_mut().zip(&index[..n]) {
+        *t = -PI + step * *k as f64;
+    }
+    n
+}
+
+/// True when the coarse interval between samples `a` and `b` (aligned:
+/// same slot, same branch) must get its midpoint: a branch present at one
+/// end only or changing between them, a sign change, or a local minimum
+/// of `|f|` at `a` or `b` (against `before` and `after`, the coarse
+/// samples around them).
+fn needs_midpoint<R: Residual<B>, const B: usize>(
+    p: &R,
+    before: &Sample<R::Key, B>,
+    a: &Sample<R::Key, B>,
+    b: &Sample<R::Key, B>,
+    after: &Sample<R::Key, B>,
+) -> bool {
+    let magnitude = |x: &Option<(f64, R::Key)>| x.map_or(f64::INFINITY, |(f, _)| f.abs());
+    for i in 0..B {
+        match (&a[i], &b[i]) {
+            (None, None) => continue,
+            (Some((fa, ka)), Some((fb, kb))) => {
+                if !p.same_branch(ka, kb) || fa.signum() != fb.signum() || *fa == 0.0 {
+                    return true;
+                }
+                let (ma, mb) = (fa.abs(), fb.abs());
+                // A minimum at `a` (below `b` and the sample before it) or
+                // at `b` (below `a` and the sample after it).
+                if (ma <= mb && ma <= magnitude(&before[i]))
+                    || (mb <= ma && mb <= magnitude(&after[i]))
+                {
+                    return true;
+                }
+            }
+            _ => return true,
+        }
+    }
+    false
 }
 
 /// A branch's piece between a sample and the branch's end: a sign change
@@ -394,17 +568,31 @@ fn end_bracket<R: Residual<B>, const B: usize>(
     }
 }
 
-/// True when the parabola through three equally spaced samples of the
-/// same sign, smallest in the middle, dips below a quarter of the middle
-/// sample's magnitude (or through zero): only then can two roots hide there.
-fn parabola_nears_zero(f0: f64, f1: f64, f2: f64) -> bool {
-    let s = f1.signum();
-    let (g0, g1, g2) = (s * f0, s * f1, s * f2);
-    let curvature = g0 - 2.0 * g1 + g2;
-    if curvature <= 0.0 {
-        return true;
-    }
-    let vertex = g1 - (g2 - g0) * (g2 - g0) / (8.0 * curvature);
+/// True when the parabola through three samples `f` at `t` (ascending)
+/// of the same sign, smallest in the middle, dips below a quarter of the
+/// middle sample's magnitude (or through zero): only then can two roots
+/// hide there.
+fn parabola_nears_zero(t: [f64; 3], f: [f64; 3]) -> bool {
+    let s = f[1].signum();
+    let (g0, g1, g2) = (s * f[0], s * f[1], s * f[2]);
+    let (h0, h1) = (t[1] - t[0], t[2] - t[1]);
+    let vertex = if h0 == h1 {
+        // Evenly spaced.
+        let curvature = g0 - 2.0 * g1 + g2;
+        if curvature <= 0.0 {
+            return true;
+        }
+        g1 - (g2 - g0) * (g2 - g0) / (8.0 * curvature)
+    } else {
+        // g1 + b x + c x^2 about t[1].
+        let (d01, d12) = ((g1 - g0) / h0, (g2 - g1) / h1);
+        let c = (d12 - d01) / (h0 + h1);
+        if c <= 0.0 {
+            return true;
+        }
+        let b = d01 + c * h0;
+        g1 - b * b / (4.0 * c)
+    };
     vertex < 0.25 * g1
 }
 
@@ -635,7 +823,7 @@ impl<const N: usize> BranchKey<N> {
 
 /// `|wrap_angle(x - y)|` for `x`, `y` in `[-pi, pi]` (no rounding call).
 #[inline]
-fn angle_between(x: f64, y: f64) -> f64 {
+pub(crate) fn angle_between(x: f64, y: f64) -> f64 {
     let d = (x - y).abs();
     if d > std::f64::consts::PI {
         std::f64::consts::TAU - d

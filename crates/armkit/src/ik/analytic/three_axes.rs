@@ -20,7 +20,7 @@
 //! by subproblem 1.
 
 use super::subproblems::{subproblem1_turn, Spoke, Turn};
-use super::trig2::{Trig2, TrigRoots};
+use super::trig2::{Precision, Trig2, TrigRoots};
 use crate::math::Vector3;
 use nalgebra::{Matrix2, Vector2};
 
@@ -127,7 +127,7 @@ impl ThreeAxes {
     /// out of reach, or for a degenerate pair of circles).
     #[cfg(test)]
     pub(crate) fn solve(&self, goal: &Vector3<f64>) -> Placements {
-        self.solve_about(&self.c[0], &self.h[0], goal, None)
+        self.solve_about(&self.c[0], &self.h[0], goal, None, Precision::Full)
     }
 
     /// [`ThreeAxes::solve`] for a goal near one solved before, whose
@@ -138,8 +138,9 @@ impl ThreeAxes {
         &self,
         goal: &Vector3<f64>,
         previous: Option<&TrigRoots>,
+        precision: Precision,
     ) -> Placements {
-        self.solve_about(&self.c[0], &self.h[0], goal, previous)
+        self.solve_about(&self.c[0], &self.h[0], goal, previous, precision)
     }
 
     /// [`ThreeAxes::solve`] with the outermost axis `a` on the line
@@ -153,6 +154,7 @@ impl ThreeAxes {
         h_a: &Vector3<f64>,
         goal: &Vector3<f64>,
         previous: Option<&TrigRoots>,
+        precision: Precision,
     ) -> Placements {
         let mut out = Placements {
             items: [[0.0; 3]; 4],
@@ -165,7 +167,7 @@ impl ThreeAxes {
             return out;
         };
         let found = previous
-            .and_then(|previous| k.roots_near(previous))
+            .and_then(|previous| k.roots_near_to(previous, precision))
             .unwrap_or_else(|| k.roots());
         for root in found.as_slice() {
             // The other angle of `|P x + m| = 1`.
@@ -291,10 +293,13 @@ mod tests {
                 [unit(&mut rng), h[1], h[2]],
                 &w,
             );
-            assert_eq!(moved.solve_about(&c[0], &h[0], &goal, None), found);
+            assert_eq!(
+                moved.solve_about(&c[0], &h[0], &goal, None, Precision::Full),
+                found
+            );
             // Tracked from a nearby goal's roots: the same placements.
             let nearby = solver.solve(&(goal + point(&mut rng) * 0.01));
-            let tracked = solver.solve_near(&goal, nearby.roots.as_ref());
+            let tracked = solver.solve_near(&goal, nearby.roots.as_ref(), Precision::Full);
             // (Near a fold, where two solutions nearly merge, both are
             // ill-conditioned: the same to the tolerance of the
             // generating angles below, and both carry `w` onto the goal.)

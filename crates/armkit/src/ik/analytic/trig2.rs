@@ -36,6 +36,22 @@ const DISTINCT: f64 = 1e-9;
 /// Newton step (rad) after which a tracked root counts as converged.
 const CONVERGED: f64 = 1e-13;
 
+/// How far [`Trig2::roots_near`]'s Newton iterations go.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Precision {
+    /// Until a step is below 1e-13 rad (the error after it is of its
+    /// square): roots to the last bits.
+    Full,
+    /// Until the error after a step, predicted from the last two steps
+    /// (Newton's error squares each step: `e_next ~ s^3 / s_previous^2`
+    /// for steps `s`), is below [`SAMPLING_ERROR`]: one or two steps
+    /// fewer, for a search's samples (signs and branch keys only).
+    Sampling,
+}
+
+/// Root error (rad) [`Precision::Sampling`] stops at.
+pub const SAMPLING_ERROR: f64 = 1e-10;
+
 /// Size (relative to the sum of its terms' magnitudes) below which the
 /// quartic at one of its critical points counts as zero: a double root.
 /// Near-double roots whose quartic value is above it but which have no
@@ -211,6 +227,15 @@ impl Trig2 {
     /// whatever order). `None` otherwise (a fold between the two: roots
     /// appear or merge), where [`Trig2::roots`] is the answer.
     pub(crate) fn roots_near(&self, previous: &TrigRoots) -> Option<TrigRoots> {
+        self.roots_near_to(previous, Precision::Full)
+    }
+
+    /// [`Trig2::roots_near`] with Newton stopped at `precision`.
+    pub(crate) fn roots_near_to(
+        &self,
+        previous: &TrigRoots,
+        precision: Precision,
+    ) -> Option<TrigRoots> {
         if self.real_root_count()? != previous.count {
             return None;
         }
@@ -219,7 +244,7 @@ impl Trig2 {
             count: 0,
         };
         for start in previous.as_slice() {
-            let root = self.newton_from(start, out.as_slice())?;
+            let root = self.newton_from(start, out.as_slice(), precision)?;
             // The chord between two unit directions, about their angle.
             if out
                 .as_slice()
@@ -323,9 +348,10 @@ impl Trig2 {
     /// carried along (a small step's by its Taylor series); `None` when it
     /// does not converge within 10 steps or wanders off by more than 1
     /// rad.
-    fn newton_from(&self, start: &Turn, found: &[Turn]) -> Option<Turn> {
+    fn newton_from(&self, start: &Turn, found: &[Turn], precision: Precision) -> Option<Turn> {
         let (mut s, mut c) = (start.sin, start.cos);
         let mut moved = 0.0_f64;
+        let mut previous_step = f64::NAN; // no step yet: not converging
         for _ in 0..10 {
             let (value, slope) = self.value_and_slope(s, c);
             // Maehly's deflation: Newton on f / prod sin((phi - r) / 2)
@@ -358,11 +384,27 @@ impl Trig2 {
             };
             (s, c) = (s * dc + c * ds, c * dc - s * ds);
             moved += step;
-            if step.abs() < CONVERGED {
+            let converged = match precision {
+                Precision::Full => step.abs() < CONVERGED,
+                // Converging (steps shrinking fast) and the next error
+                // predicted below the bound.
+                Precision::Sampling => {
+                    step.abs() < CONVERGED
+                        || (step.abs() < 0.1 * previous_step.abs()
+                            && step.abs().powi(3) < SAMPLING_ERROR * previous_step * previous_step)
+                }
+            };
+            previous_step = step;
+            if converged {
                 // A root of f itself (not a point the deflation stalls at
-                // beside a root found before), not far from the start.
+                // beside a root found before: there the plain Newton step
+                // differs from the deflated one), not far from the start.
                 let plain = (value / slope).abs();
-                if plain.is_nan() || plain >= CONVERGED || moved.abs() > 1.0 {
+                let bound = match precision {
+                    Precision::Full => CONVERGED,
+                    Precision::Sampling => 2.0 * step.abs() + CONVERGED,
+                };
+                if plain.is_nan() || plain >= bound || moved.abs() > 1.0 {
                     return None;
                 }
                 // `start.angle` is in [-pi, pi] and `|moved| <= 1`.
