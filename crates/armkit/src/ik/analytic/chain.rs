@@ -3,7 +3,7 @@
 //! solutions' check (nothing here allocates after set-up).
 
 use super::structure::{ArmStructure, Motion};
-use crate::math::{sin_cos_slice, Matrix3, Pose, Vector3};
+use crate::math::{sin_cos_slice, wrap_angle, Matrix3, Pose, Vector3};
 
 /// Most candidate solutions one solve produces (8 for every class here;
 /// room for tangent duplicates).

@@ -70,13 +70,13 @@
 //! no roots); the partner branch merging there is read at the same place.
 //! The residual is formed from the placements' sines and cosines.
 
-use super::chain::{Candidates, Chain};
+use super::chain::{Candidates, Chain, SAME_SOLUTION};
 use super::search::{
     align_nearest, angle_between, find_roots, fold_by_extrapolation, illinois, BranchKey, EndCheck,
     Point, Residual, Sampling,
 };
 use super::search2d::settle_root;
-use super::subproblems::{rotation, subproblem1, Spoke, Turn};
+use super::subproblems::{rotate_by, rotation, subproblem1, Spoke, Turn};
 use super::three_axes::{Placements, ThreeAxes};
 use super::trig2::{Precision, Trig2, TrigRoots};
 use crate::math::{wrap_angle, Matrix3, Pose, Vector3};
@@ -235,7 +235,7 @@ impl PairSearch {
                 let duplicate = kept.items[..count].iter().any(|(p, _)| {
                     p.iter()
                         .zip(&q)
-                        .all(|(a, b)| wrap_angle(a - b).abs() < 1e-9)
+                        .all(|(a, b)| wrap_angle(a - b).abs() < SAME_SOLUTION)
                 });
                 if !duplicate && count < kept.items.len() {
                     kept.items[count] = (q, exact);
@@ -257,12 +257,6 @@ impl PairLayout {
             PairLayout::Middle => [Searched::MiddleFirst, Searched::MiddleSixth],
         }
     }
-}
-
-/// Turns `v` about the unit axis `k` by the angle of `(s, c)` (Rodrigues).
-#[inline]
-fn turn(k: &Vector3<f64>, v: &Vector3<f64>, s: f64, c: f64) -> Vector3<f64> {
-    v * c + k.cross(v) * s + k * (k.dot(v) * (1.0 - c))
 }
 
 /// The placing roots last read near each sample slot (see
@@ -493,11 +487,11 @@ impl<'a> Problem<'a> {
         let h = &self.s.chain.h;
         let mut hi = h[i];
         for k in (0..i).rev() {
-            hi = turn(&h[k], &hi, q[k].sin, q[k].cos);
+            hi = rotate_by(&h[k], &hi, q[k].sin, q[k].cos);
         }
         let mut hj = h[j];
         for k in j + 1..6 {
-            hj = turn(&h[k], &hj, -q[k].sin, q[k].cos);
+            hj = rotate_by(&h[k], &hj, -q[k].sin, q[k].cos);
         }
         hi.dot(&(self.orientation * hj)) - self.s.pair_cosine
     }
