@@ -111,7 +111,8 @@
 use super::chain::{Candidates, Chain};
 use super::parallel_pair::{negated, wave_slope, END_TOLERANCE, FOLDING, LINK, NEAR};
 use super::search::{
-    align_nearest, find_roots, fold_by_extrapolation, illinois, BranchKey, EndCheck, Residual,
+    align_nearest, discriminant_sign_change, find_roots, fold_by_extrapolation, BranchKey,
+    EndCheck, Residual,
 };
 use super::search2d::settle_root;
 use super::structure::GEOMETRY_TOLERANCE;
@@ -501,20 +502,9 @@ impl<'a> Problem<'a> {
         defined: &(f64, f64, Key),
         undefined: f64,
     ) -> Option<(f64, f64, Key)> {
-        let start = self.difference_at(defined.0)?;
-        let shift = start.quarter_shift();
-        let at = |t: f64| self.difference_at(t).map(|f| f.discriminant_about(shift));
-        let (fa, fb) = (start.discriminant_about(shift), at(undefined)?);
-        let product = fa * fb;
-        if product.is_nan() || product >= 0.0 {
-            return None;
-        }
-        let ((a, _, _), (b, _, _)) = illinois(
-            (defined.0, fa, ()),
-            (undefined, fb, ()),
-            END_TOLERANCE,
-            |t, _| at(t).map(|f| (f, ())),
-        )?;
+        let (a, b) = discriminant_sign_change(defined.0, undefined, END_TOLERANCE, |t| {
+            self.difference_at(t)
+        })?;
         let (f, k) = self.residual(a, &defined.2)?;
         if let Some((_, past)) = self.residual(b, &k) {
             if past.fold.abs() >= FOLDING * defined.2.fold.abs() {

@@ -72,8 +72,8 @@
 
 use super::chain::{Candidates, Chain, SAME_SOLUTION};
 use super::search::{
-    align_nearest, angle_between, find_roots, fold_by_extrapolation, illinois, BranchKey, EndCheck,
-    Point, Residual, Sampling,
+    align_nearest, angle_between, discriminant_sign_change, find_roots, fold_by_extrapolation,
+    BranchKey, EndCheck, Point, Residual, Sampling,
 };
 use super::search2d::settle_root;
 use super::subproblems::{rotate_by, rotation, subproblem1, Spoke, Turn};
@@ -550,23 +550,9 @@ impl Problem<'_> {
         defined: &(f64, f64, Key),
         undefined: f64,
     ) -> Option<((f64, f64, Key), f64)> {
-        let start = self.placing_polynomial(&Turn::of_angle(defined.0))?;
-        let shift = start.quarter_shift();
-        let at = |t: f64| {
+        let (a, b) = discriminant_sign_change(defined.0, undefined, END_TOLERANCE, |t| {
             self.placing_polynomial(&Turn::of_angle(t))
-                .map(|k| k.discriminant_about(shift))
-        };
-        let (fa, fb) = (start.discriminant_about(shift), at(undefined)?);
-        let product = fa * fb;
-        if product.is_nan() || product >= 0.0 {
-            return None;
-        }
-        let ((a, _, _), (b, _, _)) = illinois(
-            (defined.0, fa, ()),
-            (undefined, fb, ()),
-            END_TOLERANCE,
-            |t, _| at(t).map(|f| (f, ())),
-        )?;
+        })?;
         let (f, k) = self.residual(a, &defined.2)?;
         Some(((a, f, k), b))
     }

@@ -124,7 +124,7 @@ use self::sloped::{find_roots_sloped, Knot, Samples, Sloped};
 use self::sweep::{flatten, unflatten, Sweep};
 use super::chain::{Candidates, Chain};
 use super::search::{
-    align_nearest, fold_by_extrapolation, illinois, BranchKey, EndCheck, Residual,
+    align_nearest, discriminant_sign_change, fold_by_extrapolation, BranchKey, EndCheck, Residual,
 };
 use super::search2d::settle_root;
 use super::structure::GEOMETRY_TOLERANCE;

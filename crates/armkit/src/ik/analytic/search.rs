@@ -31,6 +31,7 @@
 
 use super::chain::Chain;
 use super::subproblems::{subproblem1, Sinusoid, Spoke, Turn, Turns};
+use super::trig2::Trig2;
 use crate::math::Vector3;
 
 /// Samples of `t1` over one turn.
@@ -692,6 +693,35 @@ fn refine<R: Residual<B>, const B: usize>(
     } else {
         (b.0, b.2)
     })
+}
+
+/// Where the discriminant of the degree-2 trigonometric polynomial
+/// `polynomial(t)` changes sign between `defined` and `undefined`: two of
+/// its roots merge there (a fold of the branches they carry). Located by
+/// [`illinois`] to `width` (rad) on the discriminant alone (the
+/// polynomial's coefficients, no roots), taken about one quarter shift
+/// (`Trig2::quarter_shift` at `defined`) so that its sign means the same at
+/// every trial. The bracket's ends, `defined`'s side first; `None` when
+/// the sign does not change or `polynomial` is undefined at a trial.
+pub(crate) fn discriminant_sign_change(
+    defined: f64,
+    undefined: f64,
+    width: f64,
+    polynomial: impl Fn(f64) -> Option<Trig2>,
+) -> Option<(f64, f64)> {
+    let start = polynomial(defined)?;
+    let shift = start.quarter_shift();
+    let at = |t: f64| polynomial(t).map(|f| f.discriminant_about(shift));
+    let (fa, fb) = (start.discriminant_about(shift), at(undefined)?);
+    let product = fa * fb;
+    if product.is_nan() || product >= 0.0 {
+        return None;
+    }
+    let ((a, _, _), (b, _, _)) =
+        illinois((defined, fa, ()), (undefined, fb, ()), width, |t, _| {
+            at(t).map(|f| (f, ()))
+        })?;
+    Some((a, b))
 }
 
 /// The Illinois variant of regula falsi: shrinks the bracket `a`, `b`

@@ -23,27 +23,6 @@ impl Problem<'_> {
     /// checked gone (or folding) at the other. The branch's last point; `None` when the
     /// discriminant does not change sign (the branch ends otherwise: the
     /// circle vanishes), the branch is not found there or does not end.
-    /// Where the discriminant of subproblem 6's `f` changes sign between
-    /// `defined` and `undefined` (see [`Problem::fold_by_discriminant`]):
-    /// the bracket's ends on either side, within [`END_TOLERANCE`].
-    pub(super) fn discriminant_change(&self, defined: f64, undefined: f64) -> Option<(f64, f64)> {
-        let start = self.difference_at(defined)?;
-        let shift = start.quarter_shift();
-        let at = |t: f64| self.difference_at(t).map(|f| f.discriminant_about(shift));
-        let (fa, fb) = (start.discriminant_about(shift), at(undefined)?);
-        let product = fa * fb;
-        if product.is_nan() || product >= 0.0 {
-            return None;
-        }
-        let ((a, _, _), (b, _, _)) = illinois(
-            (defined, fa, ()),
-            (undefined, fb, ()),
-            END_TOLERANCE,
-            |t, _| at(t).map(|f| (f, ())),
-        )?;
-        Some((a, b))
-    }
-
     pub(super) fn fold_by_discriminant(
         &self,
         defined: &(f64, f64, Key),
@@ -62,7 +41,9 @@ impl Problem<'_> {
                 folds.rotate_right(1);
                 folds[0] = Some(FoldMemo {
                     interval,
-                    located: self.discriminant_change(defined.0, undefined),
+                    located: discriminant_sign_change(defined.0, undefined, END_TOLERANCE, |t| {
+                        self.difference_at(t)
+                    }),
                     ends: None,
                 });
                 0
