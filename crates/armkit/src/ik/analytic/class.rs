@@ -175,37 +175,37 @@ impl ArmClass {
                 kind: PairKind::Intersecting,
                 first: 1 | 5,
             } => {
-                "one intersecting pair of consecutive axes at an end, no closed-form class: 1-D search over the joint at the other end and over a second joint (256 samples per turn each, merged; the three joints between in closed form by a quartic, roots to 1e-13 rad), up to 16 solutions"
+                "one intersecting pair of consecutive axes at an end, no closed-form class: 1-D search over the joint at the other end and over a second joint (128 samples per turn, refined to 256 where a branch ends, changes or nears zero each, merged; the three joints between in closed form by a quartic, roots to 1e-13 rad), up to 16 solutions"
             }
             ArmClass::OnePair {
                 kind: PairKind::Intersecting,
                 first: 2 | 4,
             } => {
-                "one intersecting pair of consecutive axes next to an end joint, no closed-form class: 1-D search over that end joint and over a second joint (256 samples per turn each, merged; the other three joints in closed form by a quartic, roots to 1e-13 rad), up to 16 solutions"
+                "one intersecting pair of consecutive axes next to an end joint, no closed-form class: 1-D search over that end joint and over a second joint (128 samples per turn, refined to 256 where a branch ends, changes or nears zero each, merged; the other three joints in closed form by a quartic, roots to 1e-13 rad), up to 16 solutions"
             }
             ArmClass::OnePair {
                 kind: PairKind::Intersecting,
                 ..
             } => {
-                "one intersecting pair, axes 3 and 4, no closed-form class: 1-D search over joint 1 and over joint 6 (256 samples per turn; joint 2 moved by the searched joint and joints 5, 6, or joint 5 moved and joints 1, 2, place the pair's point in closed form by a quartic; roots to 1e-13 rad), up to 16 solutions"
+                "one intersecting pair, axes 3 and 4, no closed-form class: 1-D search over joint 1 and over joint 6 (128 samples per turn, refined to 256 where a branch ends, changes or nears zero; joint 2 moved by the searched joint and joints 5, 6, or joint 5 moved and joints 1, 2, place the pair's point in closed form by a quartic; roots to 1e-13 rad), up to 16 solutions"
             }
             ArmClass::OnePair {
                 kind: PairKind::Parallel,
                 first: 2,
             } => {
-                "parallel axes 2 and 3, no intersecting pair, no closed-form class: 1-D search over joint 5 and again over joint 4, merged (512 samples per turn each; joints 1 and 4, or 1 and 5, by subproblem 6, the pair and joint 6 by subproblem 1; roots to 1e-13 rad), up to 16 solutions"
+                "parallel axes 2 and 3, no intersecting pair, no closed-form class: 1-D search over joint 5 and again over joint 4, merged (192 samples per turn each, with the residual's slope; joints 1 and 4, or 1 and 5, by subproblem 6, the pair and joint 6 by subproblem 1; roots to 1e-13 rad), up to 16 solutions"
             }
             ArmClass::OnePair {
                 kind: PairKind::Parallel,
                 first: 3,
             } => {
-                "parallel axes 3 and 4, no intersecting pair, no closed-form class: 1-D search over joint 1 and again over joint 2, merged (512 samples per turn each; joints 2 and 5, or 1 and 5, by subproblem 6, the pair and joint 6 by subproblem 1; roots to 1e-13 rad), up to 16 solutions"
+                "parallel axes 3 and 4, no intersecting pair, no closed-form class: 1-D search over joint 1 and again over joint 2, merged (192 samples per turn each, with the residual's slope; joints 2 and 5, or 1 and 5, by subproblem 6, the pair and joint 6 by subproblem 1; roots to 1e-13 rad), up to 16 solutions"
             }
             ArmClass::OnePair {
                 kind: PairKind::Parallel,
                 first: 4,
             } => {
-                "parallel axes 4 and 5, no intersecting pair, no closed-form class: 1-D search on the reversed chain over joint 2 and again over joint 3, merged (512 samples per turn each; joints 6 and 3, or 6 and 2, by subproblem 6, the pair and joint 1 by subproblem 1; roots to 1e-13 rad), up to 16 solutions"
+                "parallel axes 4 and 5, no intersecting pair, no closed-form class: 1-D search on the reversed chain over joint 2 and again over joint 3, merged (192 samples per turn each, with the residual's slope; joints 6 and 3, or 6 and 2, by subproblem 6, the pair and joint 1 by subproblem 1; roots to 1e-13 rad), up to 16 solutions"
             }
             ArmClass::OnePair {
                 kind: PairKind::Parallel,
