@@ -109,11 +109,10 @@
 //! ```
 
 use super::chain::{Candidates, Chain};
-use super::parallel_pair::{negated, wave_slope, END_TOLERANCE, FOLDING, LINK, NEAR};
-use super::search::{
-    align_nearest, discriminant_sign_change, find_roots, fold_by_extrapolation, BranchKey,
-    EndCheck, Residual,
+use super::parallel_pair::{
+    nearest_among, negated, no_folds, wave_slope, Branches, Folds, PairBranches, NEAR,
 };
+use super::search::{find_roots, BranchKey};
 use super::search2d::settle_root;
 use super::structure::GEOMETRY_TOLERANCE;
 use super::subproblem6::{CirclePoints, Sinusoids, Wave};
@@ -260,6 +259,9 @@ struct Problem<'a> {
     /// 6's circle points there (starts for the next evaluation's roots
     /// within `NEAR`).
     last: Cell<Option<(f64, CirclePoints)>>,
+    /// The last few folds located (two branches that merge end at the
+    /// same place).
+    folds: Folds<Point>,
 }
 
 /// A branch: the subproblem-6 angles and its Jacobian determinant.
@@ -277,6 +279,7 @@ struct Sides {
 }
 
 /// What the residual and the finish read at `t` on one branch.
+#[derive(Clone, Copy)]
 struct Point {
     /// Joints 3-6 as turns.
     joints: [Turn; 4],
@@ -300,6 +303,7 @@ impl<'a> Problem<'a> {
             goal,
             height: s.h.dot(&(goal - c[2])),
             last: Cell::new(None),
+            folds: no_folds(),
         }
     }
 
@@ -366,7 +370,7 @@ impl<'a> Problem<'a> {
     }
 
     /// The branches at `t`: their keys and points.
-    fn branches(&self, t: f64) -> [Option<(Key, Point)>; 4] {
+    fn branches(&self, t: f64) -> Branches<Point> {
         let v = self.sides(t);
         let previous = self.last.get();
         let previous = previous
@@ -441,32 +445,12 @@ impl<'a> Problem<'a> {
         Point { joints, pair, w }
     }
 
-    /// `|w_perp| - |L_perp|`.
-    #[inline]
-    fn residual_of(&self, point: &Point) -> f64 {
-        let axis = &self.s.h;
-        let w = &point.w;
-        (w - axis * axis.dot(w)).norm() - self.s.link_length
-    }
-
-    /// The branch nearest `key` at `t`, within [`LINK`].
-    fn nearest(&self, t: f64, key: &Key) -> Option<(Key, Point)> {
-        let mut best: Option<(f64, Key, Point)> = None;
-        for (k, point) in self.branches(t).into_iter().flatten() {
-            let d = k.gap(key);
-            if d < LINK && best.as_ref().is_none_or(|(e, _, _)| d < *e) {
-                best = Some((d, k, point));
-            }
-        }
-        best.map(|(_, k, point)| (k, point))
-    }
-
     /// The joint values (chain order) at a root `t` of the branch `key`,
     /// and whether the chain's forward kinematics reproduces the target to
     /// [`EXACT_TOLERANCE`](super::EXACT_TOLERANCE); `None` if it misses by
     /// more (`search2d::settle_root`).
     fn finish(&self, t: f64, key: &Key) -> Option<([f64; 6], bool)> {
-        let (_, point) = self.nearest(t, key)?;
+        let (_, point) = nearest_among(self.branches(t), key)?;
         let q = self.configuration(&point);
         settle_root(&self.s.chain, &self.s.home, q, &self.target)
     }
@@ -483,70 +467,30 @@ impl<'a> Problem<'a> {
         }
         q
     }
+}
 
-    /// Subproblem 6's `f` at `t` (no roots), `None` without a circle.
+impl PairBranches for Problem<'_> {
+    type Point = Point;
+
+    fn branches(&self, t: f64) -> Branches<Point> {
+        self.branches(t)
+    }
+
+    /// `|w_perp| - |L_perp|`.
+    #[inline]
+    fn residual_of(&self, point: &Point) -> f64 {
+        let axis = &self.s.h;
+        let w = &point.w;
+        (w - axis * axis.dot(w)).norm() - self.s.link_length
+    }
+
     fn difference_at(&self, t: f64) -> Option<Trig2> {
         let v = self.sides(t);
         v.system.difference_polynomial(v.d)
     }
 
-    /// A fold between `defined` and `undefined` located where the
-    /// discriminant of subproblem 6's `f` changes sign, as
-    /// `parallel_pair`'s: Illinois on the discriminant to
-    /// [`END_TOLERANCE`], the branch read at the bracket's end on the
-    /// defined side and checked gone (or folding: its Jacobian determinant
-    /// below `FOLDING` of the sample's) at the other. `None` when the
-    /// discriminant keeps its sign or the branch does not end there.
-    fn fold_by_discriminant(
-        &self,
-        defined: &(f64, f64, Key),
-        undefined: f64,
-    ) -> Option<(f64, f64, Key)> {
-        let (a, b) = discriminant_sign_change(defined.0, undefined, END_TOLERANCE, |t| {
-            self.difference_at(t)
-        })?;
-        let (f, k) = self.residual(a, &defined.2)?;
-        if let Some((_, past)) = self.residual(b, &k) {
-            if past.fold.abs() >= FOLDING * defined.2.fold.abs() {
-                return None;
-            }
-        }
-        Some((a, f, k))
-    }
-}
-
-impl Residual<4> for Problem<'_> {
-    type Key = Key;
-
-    const ENDS: EndCheck = EndCheck::SignChangeOrDip;
-
-    fn sample(&self, t: f64) -> [Option<(f64, Key)>; 4] {
-        self.branches(t)
-            .map(|b| b.map(|(key, point)| (self.residual_of(&point), key)))
-    }
-
-    fn residual(&self, t: f64, key: &Key) -> Option<(f64, Key)> {
-        let (k, point) = self.nearest(t, key)?;
-        Some((self.residual_of(&point), k))
-    }
-
-    fn align(&self, previous: &[Option<(f64, Key)>; 4], current: &mut [Option<(f64, Key)>; 4]) {
-        align_nearest(previous, current, Key::gap, LINK);
-    }
-
-    fn same_branch(&self, a: &Key, b: &Key) -> bool {
-        a.gap(b) < LINK
-    }
-
-    /// A branch ends where two solutions of subproblem 6 merge: located on
-    /// the discriminant of its `f`, else where the squared Jacobian
-    /// determinant extrapolates to zero (`search::fold_by_extrapolation`).
-    fn branch_end(&self, defined: (f64, f64, Key), undefined: f64) -> (f64, f64, Key) {
-        if let Some(end) = self.fold_by_discriminant(&defined, undefined) {
-            return end;
-        }
-        let determinant = |k: &Key| k.fold * k.fold;
-        fold_by_extrapolation(self, defined, undefined, END_TOLERANCE, determinant).0
+    fn folds(&self) -> &Folds<Point> {
+        &self.folds
     }
 }
 

@@ -117,6 +117,8 @@
 
 mod branches;
 mod ends;
+
+pub(super) use self::ends::{nearest_among, no_folds, Branches, Folds, PairBranches};
 mod sloped;
 mod sweep;
 
@@ -330,36 +332,9 @@ struct Problem<'a> {
     /// Subproblem 6's roots at each sample of the search (starts for the
     /// evaluations between samples, wherever the last one was).
     grid: [Cell<Option<Tracked>>; SAMPLES],
-    /// The last few sign changes of the discriminant located
-    /// (`discriminant_change` of the interval): two branches that merge
-    /// end at the same place.
-    folds: Cell<[Option<FoldMemo>; 4]>,
-}
-
-/// The branches at one evaluation.
-type Branches = [Option<(Key, Point)>; 4];
-
-/// The branch of `branches` nearest `key`, within [`LINK`].
-fn nearest_among(branches: Branches, key: &Key) -> Option<(Key, Point)> {
-    let mut best: Option<(f64, Key, Point)> = None;
-    for (k, point) in branches.into_iter().flatten() {
-        let d = k.gap(key);
-        if d < LINK && best.as_ref().is_none_or(|(e, _, _)| d < *e) {
-            best = Some((d, k, point));
-        }
-    }
-    best.map(|(_, k, point)| (k, point))
-}
-
-/// A fold located between two samples: the interval (the branch's side
-/// first), where in it the discriminant changes sign, and the branches at
-/// the two ends of that bracket (read once for the two branches that
-/// merge there).
-#[derive(Clone, Copy)]
-struct FoldMemo {
-    interval: [f64; 2],
-    located: Option<(f64, f64)>,
-    ends: Option<(Branches, Branches)>,
+    /// The last few folds located (two branches that merge end at the
+    /// same place).
+    folds: Folds<Point>,
 }
 
 /// Subproblem 6's roots at one evaluation, as the next one tracks them.
@@ -419,7 +394,7 @@ impl<'a> Problem<'a> {
             elimination: None,
             last: Cell::new(None),
             grid: std::array::from_fn(|_| Cell::new(None)),
-            folds: Cell::new([None; 4]),
+            folds: no_folds(),
         };
         problem.sweep = Sweep::of(|turn| {
             let (sides, g) = problem.sides(turn);
@@ -508,12 +483,6 @@ impl<'a> Problem<'a> {
                 negated(Wave::new(&g[1], &forth, &(v.right[1] - c[r]))),
             ],
         }
-    }
-
-    /// `|w_perp| - |L_perp|`.
-    #[inline]
-    fn residual_of(&self, point: &Point) -> f64 {
-        point.residual
     }
 
     /// The branch nearest `key` at `t`, within [`LINK`].
