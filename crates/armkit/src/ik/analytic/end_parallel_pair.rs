@@ -110,19 +110,19 @@
 
 use super::chain::{Candidates, Chain};
 use super::parallel_pair::{
-    nearest_among, negated, no_folds, wave_slope, Branches, Folds, PairBranches, NEAR,
+    branch_rates, find_roots_sloped, nearest_among, negated, no_folds, read_system, write_system,
+    Branches, Folds, PairBranches, Sweep, Tracker,
 };
-use super::search::{find_roots, BranchKey};
+use super::search::BranchKey;
 use super::search2d::settle_root;
 use super::structure::GEOMETRY_TOLERANCE;
-use super::subproblem6::{CirclePoints, Sinusoids, Wave};
+use super::subproblem6::{Sinusoids, Wave};
 use super::subproblems::{subproblem1, subproblem1_turn, Turn};
 use super::trig2::Trig2;
 use crate::math::{wrap_angle, Matrix3, Pose, Vector3};
-use std::cell::Cell;
 
 /// Samples per turn of each search.
-pub const SAMPLES: usize = 512;
+pub const SAMPLES: usize = 192;
 /// Searches per solve (the first usable of [`PREFERENCE`]), merged.
 pub const SEARCHES: usize = 3;
 /// The searches in the order they are taken.
@@ -231,7 +231,7 @@ impl EndPairSearch {
     pub(crate) fn solve(&self, target: &Pose, out: &mut Candidates) {
         for form in &self.forms[..self.searches] {
             let problem = Problem::new(self, target, *form);
-            find_roots::<_, 4, SAMPLES>(&problem, |t, key| {
+            find_roots_sloped::<_, 4, SAMPLES>(&problem, |t, key| {
                 let Some((q, exact)) = problem.finish(t, &key) else {
                     return;
                 };
@@ -255,10 +255,11 @@ struct Problem<'a> {
     goal: Vector3<f64>,
     /// `h . X - h . c3`.
     height: f64,
-    /// The searched joint's value at the last evaluation and subproblem
-    /// 6's circle points there (starts for the next evaluation's roots
-    /// within `NEAR`).
-    last: Cell<Option<(f64, CirclePoints)>>,
+    /// Subproblem 6 and the turned vector as functions of `t`.
+    sweep: Sweep<FLAT>,
+    /// Subproblem 6 at the evaluations, with the unknown whose waves do
+    /// not move with `t` eliminated where its block is well conditioned.
+    tracker: Tracker<SAMPLES>,
     /// The last few folds located (two branches that merge end at the
     /// same place).
     folds: Folds<Point>,
@@ -267,10 +268,14 @@ struct Problem<'a> {
 /// A branch: the subproblem-6 angles and its Jacobian determinant.
 type Key = BranchKey<2>;
 
+/// Values an evaluation reads from the sweep: subproblem 6's four waves
+/// (cos part, sin part, constant), the height, the turned vector.
+const FLAT: usize = 16;
+
 /// What subproblem 6 solves at a trial `t`: the system, its right-hand
 /// side, the searched joint's turn and the vector it turns (`g = R6 r`
 /// over joint 6, `v = R3' h` over joint 3; zero, unused, over joints 4
-/// and 5).
+/// and 5). Read from the sweep, also as derivatives by `t`.
 struct Sides {
     system: Sinusoids,
     d: [f64; 2],
@@ -287,6 +292,55 @@ struct Point {
     pair: Turn,
     /// `w` (see the module docs).
     w: Vector3<f64>,
+    /// `|w_perp| - |L_perp|` (m) and its derivative along the branch by
+    /// `t` (m/rad; not finite where an angle read by subproblem 1 or
+    /// `w_perp` is undefined).
+    residual: f64,
+    slope: f64,
+}
+
+/// `R(k, q) v` and its derivative by `t` (`dv` that of `v`, `rate` that of
+/// `q`): `R dv + k x (R v) rate`.
+#[inline]
+fn turned(
+    k: &Vector3<f64>,
+    v: &Vector3<f64>,
+    dv: &Vector3<f64>,
+    q: &Turn,
+    rate: f64,
+) -> (Vector3<f64>, Vector3<f64>) {
+    let u = q.rotate(k, v);
+    (u, q.rotate(k, dv) + k.cross(&u) * rate)
+}
+
+/// `R(k, q)' v` and its derivative by `t`: `R' dv - k x (R' v) rate`.
+#[inline]
+fn turned_back(
+    k: &Vector3<f64>,
+    v: &Vector3<f64>,
+    dv: &Vector3<f64>,
+    q: &Turn,
+    rate: f64,
+) -> (Vector3<f64>, Vector3<f64>) {
+    let u = q.rotate_back(k, v);
+    (u, q.rotate_back(k, dv) - k.cross(&u) * rate)
+}
+
+/// The rate of the angle `q` of subproblem 1 `R(k, q) from = to` (the
+/// angle of `to` across `k` less that of `from`), from the vectors' rates.
+#[inline]
+fn angle_rate(
+    k: &Vector3<f64>,
+    from: &Vector3<f64>,
+    d_from: &Vector3<f64>,
+    to: &Vector3<f64>,
+    d_to: &Vector3<f64>,
+) -> f64 {
+    let across = |u: &Vector3<f64>| {
+        let along = k.dot(u);
+        u.norm_squared() - along * along
+    };
+    k.dot(&to.cross(d_to)) / across(to) - k.dot(&from.cross(d_from)) / across(from)
 }
 
 impl<'a> Problem<'a> {
@@ -294,7 +348,7 @@ impl<'a> Problem<'a> {
         let c = &s.chain.c;
         let moved = *target * s.chain.home_inverse;
         let goal = moved.transform_point(&c[5]);
-        Problem {
+        let mut problem = Problem {
             s,
             form,
             target: *target,
@@ -302,18 +356,46 @@ impl<'a> Problem<'a> {
             reach: moved.rotation.transpose() * s.h,
             goal,
             height: s.h.dot(&(goal - c[2])),
-            last: Cell::new(None),
+            sweep: Sweep::ZERO,
+            tracker: Tracker::new(),
             folds: no_folds(),
-        }
+        };
+        problem.sweep = Sweep::of(|turn| {
+            let v = problem.sides(turn);
+            let mut flat = [0.0; FLAT];
+            write_system(&v.system, &mut flat[..12]);
+            flat[12] = v.d[1];
+            flat[13..].copy_from_slice(v.turned.as_slice());
+            flat
+        });
+        // The unknown whose waves joint `k` does not turn.
+        let fixed = match form {
+            Form::Sixth | Form::Fifth => 0,
+            Form::Third | Form::Fourth => 1,
+        };
+        let v = problem.at(&Turn::of_angle(0.0));
+        problem.tracker.eliminate(&v.system, fixed);
+        problem
     }
 
-    /// Subproblem 6 at `t` (see the module docs): equation 1 the kept
-    /// component, equation 2 the height.
+    /// The sides at the turn `k` from the sweep.
     #[inline]
-    fn sides(&self, t: f64) -> Sides {
+    fn at(&self, k: &Turn) -> Sides {
+        unflatten(&self.sweep.at(k), *k)
+    }
+
+    /// Their derivatives by `t` at the turn `k`.
+    #[inline]
+    fn slope_at(&self, k: &Turn) -> Sides {
+        unflatten(&self.sweep.slope_at(k), *k)
+    }
+
+    /// Subproblem 6 at the turn `k` (see the module docs): equation 1 the
+    /// kept component, equation 2 the height. Read at set-up only, by
+    /// [`Sweep`].
+    fn sides(&self, k: &Turn) -> Sides {
         let (c, h) = (&self.s.chain.c, &self.s.chain.h);
         let (axis, reach) = (&self.s.h, &self.reach);
-        let k = Turn::of_angle(t);
         // q3 turning h back (kept along `kept`, height along c4 - c3), or
         // q6 turning r (kept along `kept`, height along `arm`).
         let third = |kept: &Vector3<f64>, arm: &Vector3<f64>| {
@@ -364,85 +446,102 @@ impl<'a> Problem<'a> {
         Sides {
             system: Sinusoids { first, second },
             d: [0.0, height],
-            k,
+            k: *k,
             turned: turned_by_k,
         }
     }
 
     /// The branches at `t`: their keys and points.
     fn branches(&self, t: f64) -> Branches<Point> {
-        let v = self.sides(t);
-        let previous = self.last.get();
-        let previous = previous
-            .as_ref()
-            .filter(|(at, _)| (at - t).abs() <= NEAR)
-            .map(|(_, points)| points);
-        let (pairs, points) = v.system.exact_solutions_near(v.d, previous);
-        self.last.set(points.map(|points| (t, points)));
-        let system = &v.system;
+        let k = Turn::of_angle(t);
+        let v = self.at(&k);
+        let pairs = self.tracker.solve(t, &v.system, v.d);
+        let dv = self.slope_at(&k);
         let mut out = [None, None, None, None];
         for (slot, pair) in out.iter_mut().zip(pairs.as_slice()) {
             let (a, b) = (&pair.first, &pair.second);
-            let determinant = wave_slope(&system.first[0], a) * wave_slope(&system.second[1], b)
-                - wave_slope(&system.second[0], b) * wave_slope(&system.first[1], a);
+            let (determinant, rates) = branch_rates(&v.system, &dv.system, dv.d, a, b);
             let key = Key {
                 angles: [a.angle, b.angle],
                 fold: determinant,
             };
-            *slot = Some((key, self.point(&v, a, b)));
+            *slot = Some((key, self.point(&v, &dv, a, b, rates)));
         }
         out
     }
 
     /// Joints 3-6 from the subproblem-6 turns `a`, `b` (the middle joint
-    /// by subproblem 1), then `th` and `w` (see the module docs).
+    /// by subproblem 1), then `th`, `w` and the residual (see the module
+    /// docs), each with its derivative along the branch (`dv` the sides'
+    /// derivatives by `t`, `rates` those of `a`, `b`).
     #[inline]
-    fn point(&self, v: &Sides, a: &Turn, b: &Turn) -> Point {
+    fn point(&self, v: &Sides, dv: &Sides, a: &Turn, b: &Turn, rates: (f64, f64)) -> Point {
         let (c, h) = (&self.s.chain.c, &self.s.chain.h);
         let axis = &self.s.h;
-        let joints = match self.form {
+        let zero = Vector3::zeros();
+        let (ra, rb) = rates;
+        let (joints, joint_rates) = match self.form {
             Form::Sixth => {
                 // R4' (R3' h) = R5 g: R(h4, q4) (R5 g) = R3' h.
-                let up = a.rotate_back(&h[2], axis);
-                let down = b.rotate(&h[4], &v.turned);
+                let (up, d_up) = turned_back(&h[2], axis, &zero, a, ra);
+                let (down, d_down) = turned(&h[4], &v.turned, &dv.turned, b, rb);
                 let (q4, _) = subproblem1_turn(&h[3], &down, &up);
-                [*a, q4, *b, v.k]
+                let r4 = angle_rate(&h[3], &down, &d_down, &up, &d_up);
+                ([*a, q4, *b, v.k], [ra, r4, rb, 1.0])
             }
             Form::Third => {
                 // R5' (R4' v) = R6 r: R(h5, q5) (R6 r) = R4' v.
-                let up = a.rotate_back(&h[3], &v.turned);
-                let down = b.rotate(&h[5], &self.reach);
+                let (up, d_up) = turned_back(&h[3], &v.turned, &dv.turned, a, ra);
+                let (down, d_down) = turned(&h[5], &self.reach, &zero, b, rb);
                 let (q5, _) = subproblem1_turn(&h[4], &down, &up);
-                [v.k, *a, q5, *b]
+                let r5 = angle_rate(&h[4], &down, &d_down, &up, &d_up);
+                ([v.k, *a, q5, *b], [1.0, ra, r5, rb])
             }
             Form::Fifth => {
                 // R(h4, q4) (R5 R6 r) = R3' h.
-                let up = a.rotate_back(&h[2], axis);
-                let down = v.k.rotate(&h[4], &b.rotate(&h[5], &self.reach));
+                let (up, d_up) = turned_back(&h[2], axis, &zero, a, ra);
+                let (inner, d_inner) = turned(&h[5], &self.reach, &zero, b, rb);
+                let (down, d_down) = turned(&h[4], &inner, &d_inner, &v.k, 1.0);
                 let (q4, _) = subproblem1_turn(&h[3], &down, &up);
-                [*a, q4, v.k, *b]
+                let r4 = angle_rate(&h[3], &down, &d_down, &up, &d_up);
+                ([*a, q4, v.k, *b], [ra, r4, 1.0, rb])
             }
             Form::Fourth => {
                 // R(h5, q5) (R6 r) = R4' R3' h.
-                let up = v.k.rotate_back(&h[3], &a.rotate_back(&h[2], axis));
-                let down = b.rotate(&h[5], &self.reach);
+                let (inner, d_inner) = turned_back(&h[2], axis, &zero, a, ra);
+                let (up, d_up) = turned_back(&h[3], &inner, &d_inner, &v.k, 1.0);
+                let (down, d_down) = turned(&h[5], &self.reach, &zero, b, rb);
                 let (q5, _) = subproblem1_turn(&h[4], &down, &up);
-                [*a, v.k, q5, *b]
+                let r5 = angle_rate(&h[4], &down, &d_down, &up, &d_up);
+                ([*a, v.k, q5, *b], [ra, 1.0, r5, rb])
             }
         };
         // R(h, th) n = R_O (R3 R4 R5 R6)' n.
-        let mut m = self.s.normal;
-        for (j, turn) in joints.iter().enumerate() {
-            m = turn.rotate_back(&h[j + 2], &m);
+        let (mut m, mut dm) = (self.s.normal, zero);
+        for (j, (turn, rate)) in joints.iter().zip(&joint_rates).enumerate() {
+            (m, dm) = turned_back(&h[j + 2], &m, &dm, turn, *rate);
         }
-        let (pair, _) = subproblem1_turn(axis, &self.s.normal, &(self.orientation * m));
+        let (u, du) = (self.orientation * m, self.orientation * dm);
+        let (pair, _) = subproblem1_turn(axis, &self.s.normal, &u);
+        let d_pair = angle_rate(axis, &self.s.normal, &zero, &u, &du);
         // y = E3 E4 E5 c6.
-        let mut y = c[5];
+        let (mut y, mut dy) = (c[5], zero);
         for j in (2..5).rev() {
-            y = c[j] + joints[j - 2].rotate(&h[j], &(y - c[j]));
+            let (arm, d_arm) = turned(&h[j], &(y - c[j]), &dy, &joints[j - 2], joint_rates[j - 2]);
+            (y, dy) = (c[j] + arm, d_arm);
         }
-        let w = self.goal - c[0] - pair.rotate(axis, &(y - c[1]));
-        Point { joints, pair, w }
+        let arm = pair.rotate(axis, &(y - c[1]));
+        let w = self.goal - c[0] - arm;
+        let dw = -axis.cross(&arm) * d_pair - pair.rotate(axis, &dy);
+        let across = w - axis * axis.dot(&w);
+        let length = across.norm();
+        Point {
+            joints,
+            pair,
+            w,
+            residual: length - self.s.link_length,
+            slope: across.dot(&dw) / length,
+        }
     }
 
     /// The joint values (chain order) at a root `t` of the branch `key`,
@@ -469,6 +568,17 @@ impl<'a> Problem<'a> {
     }
 }
 
+/// The sides as the sweep stores them, with the searched joint's turn
+/// (`d[0]` is always zero).
+fn unflatten(flat: &[f64; FLAT], k: Turn) -> Sides {
+    Sides {
+        system: read_system(&flat[..12]),
+        d: [0.0, flat[12]],
+        k,
+        turned: Vector3::new(flat[13], flat[14], flat[15]),
+    }
+}
+
 impl PairBranches for Problem<'_> {
     type Point = Point;
 
@@ -476,17 +586,17 @@ impl PairBranches for Problem<'_> {
         self.branches(t)
     }
 
-    /// `|w_perp| - |L_perp|`.
-    #[inline]
     fn residual_of(&self, point: &Point) -> f64 {
-        let axis = &self.s.h;
-        let w = &point.w;
-        (w - axis * axis.dot(w)).norm() - self.s.link_length
+        point.residual
+    }
+
+    fn slope_of(&self, point: &Point) -> f64 {
+        point.slope
     }
 
     fn difference_at(&self, t: f64) -> Option<Trig2> {
-        let v = self.sides(t);
-        v.system.difference_polynomial(v.d)
+        let v = self.at(&Turn::of_angle(t));
+        self.tracker.difference(&v.system, v.d)
     }
 
     fn folds(&self) -> &Folds<Point> {
@@ -497,6 +607,7 @@ impl PairBranches for Problem<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::ik::analytic::search::Residual;
     use crate::ik::analytic::structure::{ArmStructure, Motion};
     use crate::ik::analytic::subproblems::rotation;
     use crate::ik::analytic::test_random::{point, unit};
@@ -583,6 +694,44 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The residual's slope along each branch against central differences
+    /// (the branch followed by its key), every form.
+    #[test]
+    fn residual_slopes_match_finite_differences() {
+        let mut rng = ChaCha8Rng::seed_from_u64(23);
+        let mut checked = [0; 4];
+        for _ in 0..40 {
+            let s = random_arm(&mut rng);
+            let search = EndPairSearch::new(&Chain::of(&s).unwrap());
+            let q: [f64; 6] = std::array::from_fn(|_| rng.gen_range(-3.1..3.1));
+            let target = s.forward_kinematics(&q);
+            for (n, form) in PREFERENCE.into_iter().enumerate() {
+                let problem = Problem::new(&search, &target, form);
+                let t = rng.gen_range(-3.0..3.0);
+                for (key, at) in problem.branches(t).into_iter().flatten() {
+                    let e = 1e-6;
+                    let (Some((fp, _)), Some((fm, _))) =
+                        (problem.residual(t + e, &key), problem.residual(t - e, &key))
+                    else {
+                        continue;
+                    };
+                    if key.fold.abs() < 1e-2 {
+                        continue; // near a fold the difference is not accurate
+                    }
+                    let difference = (fp - fm) / (2.0 * e);
+                    let tolerance = 1e-5 * (1.0 + difference.abs());
+                    assert!(
+                        (difference - at.slope).abs() < tolerance,
+                        "{form:?}: slope {} against {difference}",
+                        at.slope
+                    );
+                    checked[n] += 1;
+                }
+            }
+        }
+        assert!(checked.iter().all(|n| *n > 20), "{checked:?}");
     }
 
     /// A search is dropped where its subproblem 6 would be degenerate.

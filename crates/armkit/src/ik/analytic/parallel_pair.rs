@@ -121,18 +121,22 @@ mod ends;
 pub(super) use self::ends::{nearest_among, no_folds, Branches, Folds, PairBranches};
 mod sloped;
 mod sweep;
+mod tracker;
 
-use self::sloped::{find_roots_sloped, Knot, Samples, Sloped};
-use self::sweep::{flatten, unflatten, Sweep};
+pub(super) use self::sloped::find_roots_sloped;
+use self::sloped::{Knot, Samples, Sloped};
+use self::sweep::{flatten, unflatten};
+pub(super) use self::sweep::{read_system, write_system, Sweep};
+pub(super) use self::tracker::{branch_rates, Tracker};
 use super::chain::{Candidates, Chain};
 use super::search::{
     align_nearest, discriminant_sign_change, fold_by_extrapolation, BranchKey, EndCheck, Residual,
 };
 use super::search2d::settle_root;
 use super::structure::GEOMETRY_TOLERANCE;
-use super::subproblem6::{CirclePoints, Eliminated, Sinusoids, Wave};
+use super::subproblem6::{Sinusoids, Wave};
 use super::subproblems::{atan2, rotate_by, rotation, subproblem1, Turn};
-use super::trig2::{Trig2, TrigRoots};
+use super::trig2::Trig2;
 use crate::math::{wrap_angle, Matrix3, Pose, Vector3};
 use std::cell::Cell;
 
@@ -297,18 +301,6 @@ pub(super) fn negated(w: Wave) -> Wave {
     }
 }
 
-/// A wave's value at the turn `t`.
-#[inline]
-fn wave_value(w: &Wave, t: &Turn) -> f64 {
-    w.cos_part * t.cos + w.sin_part * t.sin + w.constant
-}
-
-/// `d/dt` of a wave at the turn `t`.
-#[inline]
-pub(super) fn wave_slope(w: &Wave, t: &Turn) -> f64 {
-    w.sin_part * t.cos - w.cos_part * t.sin
-}
-
 /// One search of one solve: the target read into what every evaluation
 /// shares.
 struct Problem<'a> {
@@ -323,27 +315,12 @@ struct Problem<'a> {
     goal: Vector3<f64>,
     /// The sides and subproblem 6 as functions of `t`.
     sweep: Sweep,
-    /// Subproblem 6 with the unknown whose waves do not move with `t`
-    /// eliminated, when its block is well conditioned.
-    elimination: Option<Eliminated>,
-    /// The searched joint's value at the last evaluation and subproblem
-    /// 6's roots there (starts for the next evaluation's within [`NEAR`]).
-    last: Cell<Option<(f64, Tracked)>>,
-    /// Subproblem 6's roots at each sample of the search (starts for the
-    /// evaluations between samples, wherever the last one was).
-    grid: [Cell<Option<Tracked>>; SAMPLES],
+    /// Subproblem 6 at the evaluations, with the unknown whose waves do
+    /// not move with `t` eliminated where its block is well conditioned.
+    tracker: Tracker<SAMPLES>,
     /// The last few folds located (two branches that merge end at the
     /// same place).
     folds: Folds<Point>,
-}
-
-/// Subproblem 6's roots at one evaluation, as the next one tracks them.
-#[derive(Clone, Copy)]
-enum Tracked {
-    /// The null-space form's circle points.
-    Circle(CirclePoints),
-    /// The eliminated form's roots in the other unknown.
-    Roots(TrigRoots),
 }
 
 /// A branch: the subproblem-6 angles `(q_l, q_r)` and its Jacobian
@@ -391,9 +368,7 @@ impl<'a> Problem<'a> {
             tail_goal: moved.rotation * h[5],
             goal: moved.transform_point(&c[5]),
             sweep: Sweep::ZERO,
-            elimination: None,
-            last: Cell::new(None),
-            grid: std::array::from_fn(|_| Cell::new(None)),
+            tracker: Tracker::new(),
             folds: no_folds(),
         };
         problem.sweep = Sweep::of(|turn| {
@@ -406,7 +381,7 @@ impl<'a> Problem<'a> {
             Known::RightInner | Known::RightOuter => 0,
         };
         let (_, system) = problem.at(0.0);
-        problem.elimination = system.eliminating(fixed);
+        problem.tracker.eliminate(&system, fixed);
         problem
     }
 

@@ -8,79 +8,13 @@ impl Problem<'_> {
     /// The branches at `t`: their keys and points.
     pub(super) fn branches(&self, t: f64) -> [Option<(Key, Point)>; 4] {
         let (v, system) = self.at(t);
-        // The nearest sample of the search, and whether `t` is one.
-        let step = std::f64::consts::TAU / SAMPLES as f64;
-        let index = ((t + std::f64::consts::PI) / step).round();
-        let sample = -std::f64::consts::PI + step * index;
-        let slot = self.grid.get(index as usize % SAMPLES);
-        let on_grid = (t - sample).abs() <= 1e-12;
-        // Starts within NEAR, the nearer first: the last evaluation's
-        // roots and the nearest sample's (when the first does not certify:
-        // a fold between).
-        let mut starts = [None, None];
-        if let Some((at, tracked)) = self.last.get() {
-            if (at - t).abs() <= NEAR {
-                starts[0] = Some((at - t).abs()).zip(Some(tracked));
-            }
-        }
-        if let (false, Some(tracked)) = (on_grid, slot.and_then(Cell::get)) {
-            if (sample - t).abs() <= NEAR {
-                starts[1] = Some((sample - t).abs()).zip(Some(tracked));
-            }
-        }
-        if let [Some((a, _)), Some((b, _))] = starts {
-            if b < a {
-                starts.swap(0, 1);
-            }
-        }
-        let d = [0.0, v.d];
-        let (pairs, tracked) = match &self.elimination {
-            Some(eliminated) => {
-                let start = starts.map(|s| match s {
-                    Some((_, Tracked::Roots(roots))) => Some(roots),
-                    _ => None,
-                });
-                let (pairs, roots) = system.exact_solutions_eliminated(d, eliminated, start);
-                (pairs, Some(Tracked::Roots(roots)))
-            }
-            None => {
-                let start = match starts.iter().flatten().next() {
-                    Some((_, Tracked::Circle(points))) => Some(points),
-                    _ => None,
-                };
-                let (pairs, points) = system.exact_solutions_near(d, start);
-                (pairs, points.map(Tracked::Circle))
-            }
-        };
-        self.last.set(tracked.map(|tracked| (t, tracked)));
-        if let (true, Some(slot)) = (on_grid, slot) {
-            slot.set(tracked);
-        }
+        let pairs = self.tracker.solve(t, &system, [0.0, v.d]);
         let (dv, moving) = self.slope_at(v.k);
         let mut out = [None, None, None, None];
         for (slot, pair) in out.iter_mut().zip(pairs.as_slice()) {
             let (a, b) = (&pair.first, &pair.second);
-            // The branch's Jacobian by (q_l, q_r), and the equations'
-            // derivative by t: (q_l, q_r)' = -J^-1 F_t.
-            let j = [
-                [
-                    wave_slope(&system.first[0], a),
-                    wave_slope(&system.second[0], b),
-                ],
-                [
-                    wave_slope(&system.first[1], a),
-                    wave_slope(&system.second[1], b),
-                ],
-            ];
-            let determinant = j[0][0] * j[1][1] - j[0][1] * j[1][0];
-            let f_t = [
-                wave_value(&moving.first[0], a) + wave_value(&moving.second[0], b),
-                wave_value(&moving.first[1], a) + wave_value(&moving.second[1], b) - dv.d,
-            ];
-            let rates = (
-                -(j[1][1] * f_t[0] - j[0][1] * f_t[1]) / determinant,
-                -(j[0][0] * f_t[1] - j[1][0] * f_t[0]) / determinant,
-            );
+            // (q_l, q_r)' = -J^-1 F_t.
+            let (determinant, rates) = branch_rates(&system, &moving, [0.0, dv.d], a, b);
             let key = Key {
                 angles: [a.angle, b.angle],
                 fold: determinant,

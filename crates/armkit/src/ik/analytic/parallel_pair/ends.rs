@@ -14,17 +14,17 @@ impl PairBranches for Problem<'_> {
         point.residual
     }
 
+    fn slope_of(&self, point: &Point) -> f64 {
+        point.slope
+    }
+
     fn folds(&self) -> &Folds<Point> {
         &self.folds
     }
 
     fn difference_at(&self, t: f64) -> Option<Trig2> {
         let (v, system) = self.at(t);
-        let d = [0.0, v.d];
-        match &self.elimination {
-            Some(eliminated) => Some(system.eliminated_polynomial(d, eliminated)),
-            None => system.difference_polynomial(d),
-        }
+        self.tracker.difference(&system, [0.0, v.d])
     }
 }
 
@@ -42,6 +42,9 @@ pub(in crate::ik::analytic) trait PairBranches {
 
     /// The residual of a branch's point, m.
     fn residual_of(&self, point: &Self::Point) -> f64;
+
+    /// Its derivative along the branch by the searched joint, m/rad.
+    fn slope_of(&self, point: &Self::Point) -> f64;
 
     /// Subproblem 6's `f` at `t` (no roots), `None` without a circle.
     fn difference_at(&self, t: f64) -> Option<Trig2>;
@@ -190,7 +193,7 @@ impl<P: PairBranches> Residual<4> for P {
     }
 }
 
-impl Sloped<4> for Problem<'_> {
+impl<P: PairBranches> Sloped<4> for P {
     const LINK: f64 = LINK;
 
     fn gap(a: &Key, b: &Key) -> f64 {
@@ -199,15 +202,15 @@ impl Sloped<4> for Problem<'_> {
 
     fn sample_sloped(&self, t: f64) -> Samples<Key, 4> {
         self.branches(t)
-            .map(|b| b.map(|(key, point)| (point.residual, (key, point.slope))))
+            .map(|b| b.map(|(key, point)| (self.residual_of(&point), (key, self.slope_of(&point)))))
     }
 
     fn residual_sloped(&self, t: f64, key: &Key) -> Option<Knot<Key>> {
-        let (key, point) = self.nearest(t, key)?;
+        let (key, point) = nearest_among(self.branches(t), key)?;
         Some(Knot {
             t,
-            f: point.residual,
-            g: point.slope,
+            f: self.residual_of(&point),
+            g: self.slope_of(&point),
             key,
         })
     }

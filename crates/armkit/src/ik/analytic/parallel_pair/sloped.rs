@@ -32,7 +32,9 @@ use crate::ik::analytic::search::{Point, Residual, ROOT_TOLERANCE};
 use std::f64::consts::{PI, TAU};
 
 /// A residual with its derivative along each branch.
-pub(super) trait Sloped<const B: usize>: Residual<B> {
+pub(in crate::ik::analytic) trait Sloped<const B: usize>:
+    Residual<B>
+{
     /// The largest gap (by [`Sloped::gap`]) between the keys of one branch
     /// at neighbouring samples.
     const LINK: f64;
@@ -48,11 +50,11 @@ pub(super) trait Sloped<const B: usize>: Residual<B> {
 }
 
 /// Every branch at one sample: its value, and its key with the slope.
-pub(super) type Samples<K, const B: usize> = [Option<(f64, (K, f64))>; B];
+pub(in crate::ik::analytic) type Samples<K, const B: usize> = [Option<(f64, (K, f64))>; B];
 
 /// A point of a branch with its slope.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct Knot<K> {
+pub(in crate::ik::analytic) struct Knot<K> {
     /// The searched angle, rad.
     pub t: f64,
     /// The residual and its derivative by `t`.
@@ -72,7 +74,7 @@ const DIP_STEPS: usize = 40;
 
 /// Every root of every branch of `p` over one turn, `N` samples (see the
 /// module docs), each given to `found` with its branch's key there.
-pub(super) fn find_roots_sloped<R: Sloped<B>, const B: usize, const N: usize>(
+pub(in crate::ik::analytic) fn find_roots_sloped<R: Sloped<B>, const B: usize, const N: usize>(
     p: &R,
     mut found: impl FnMut(f64, R::Key),
 ) {
