@@ -211,13 +211,13 @@ impl ArmClass {
                 kind: PairKind::Parallel,
                 first: 1,
             } => {
-                "parallel axes 1 and 2, no intersecting pair, no closed-form class: 1-D search over joint 6, again over joint 3 and over joint 5, merged (512 samples per turn each; joints 3 and 5, 4 and 6, or 3 and 6 by subproblem 6, joint 4 or 5, the pair and its split by subproblem 1; roots to 1e-13 rad), up to 16 solutions"
+                "parallel axes 1 and 2, no intersecting pair, no closed-form class: 1-D search over joint 6 and again over joint 3, merged (160 samples per turn each, with the residual's slope; joints 3 and 5, or 4 and 6, by subproblem 6, joint 4 or 5, the pair and its split by subproblem 1; roots to 1e-13 rad), up to 16 solutions"
             }
             ArmClass::OnePair {
                 kind: PairKind::Parallel,
                 ..
             } => {
-                "parallel axes 5 and 6, no intersecting pair, no closed-form class: 1-D search on the reversed chain over joint 1, again over joint 4 and over joint 2, merged (512 samples per turn each; joints 4 and 2, 3 and 1, or 4 and 1 by subproblem 6, joint 3 or 2, the pair and its split by subproblem 1; roots to 1e-13 rad), up to 16 solutions"
+                "parallel axes 5 and 6, no intersecting pair, no closed-form class: 1-D search on the reversed chain over joint 1 and again over joint 4, merged (160 samples per turn each, with the residual's slope; joints 4 and 2, or 3 and 1, by subproblem 6, joint 3 or 2, the pair and its split by subproblem 1; roots to 1e-13 rad), up to 16 solutions"
             }
             ArmClass::General => {
                 "no intersecting or parallel consecutive axes: general 6R, a 2-D search (a 16 x 16 grid over joints 1 and 2, each point polished by damped Gauss-Newton; milliseconds, may miss solutions): only with the search option `two_dimensions` (CLI: --search 2d)"

@@ -26,9 +26,7 @@
 //! `w = X - c1 - R(h, th)(y - c2) = R1 L`, `L = c2 - c1`. The `h`
 //! components agree by the height equation; the lengths across `h` must
 //! too: the residual `f(t) = |w_perp| - |L_perp|` (m), smooth on each
-//! branch, its roots found by `search::find_roots` ([`SAMPLES`] per turn,
-//! roots to 1e-13 rad). Then `q1` by subproblem 1 (`R1 L = w`) and
-//! `q2 = s (th - q1)`.
+//! branch. Then `q1` by subproblem 1 (`R1 L = w`) and `q2 = s (th - q1)`.
 //!
 //! Three more searches decouple the same way (with `r = R_O' h` and
 //! `v = R3' h`), each a subproblem 6 in two joints with the joint between
@@ -45,32 +43,46 @@
 //!   `h . c3 + (c4 - c3 + R4 (c5 - c4)) . (R3' h) + (c6 - c5) . (R6 r) = h . X`:
 //!   subproblem 6 in `(q3, q6)`, `q5` from `R5' R4' R3' h = R6 r`.
 //!
-//! A solve runs [`SEARCHES`] = 3 of them, the first usable in the order
+//! Each search runs on [`super::parallel_pair`]'s machinery: subproblem
+//! 6, its right-hand side and the vector the searched joint turns are
+//! affine in `(cos t, sin t)` and read once per solve (`Sweep`); the
+//! searched joint turns the waves of one subproblem-6 unknown only, so the
+//! other's 2 x 2 block is fixed and that unknown eliminated, the roots
+//! tracked from evaluation to evaluation (`Tracker`); the residual's
+//! derivative along each branch comes from the branch's rates
+//! `(a, b)' = -J^-1 F_t` (subproblem 6's Jacobian, `branch_rates`) carried
+//! through the middle joint's subproblem 1, `th` and `w`; and the roots are
+//! found by the search with slopes (`find_roots_sloped`: [`SAMPLES`] = 160
+//! per turn, Hermite dip checks, Newton refinement to 1e-13 rad).
+//!
+//! A solve runs [`SEARCHES`] = 2 of them, the first usable in the order
 //! over `q6`, `q3`, `q5`, `q4` (a search is unusable where its subproblem 6
 //! is degenerate: the joint whose component is kept parallel to the joint
 //! turning the vector it is read from, e.g. axes 5-6 parallel for the search
 //! over `q3`), and merges their roots (duplicates within 1e-9 rad dropped),
 //! as [`super::parallel_pair`] merges its two. Branches are keyed, tracked
-//! and ended as there: the subproblem-6 angles and its Jacobian determinant,
-//! matched within [`LINK`]; roots tracked from the previous evaluation's
-//! within `NEAR`; a branch's end located on the discriminant of subproblem
-//! 6's `f`, by the Jacobian determinant where that does not apply. Each
-//! root is checked by the chain's forward kinematics: exact when within
-//! 1e-10 m and rad (a root missing by more than 1e-12 is first polished by a
-//! few Gauss-Newton steps); roots missing by more than 1e-6 are dropped.
+//! and ended as there (the search traits come from its `PairBranches`):
+//! the subproblem-6 angles and its Jacobian determinant, matched within
+//! `LINK`; a branch's end located on the discriminant of subproblem 6's
+//! `f` (once for the two branches that merge there), by the Jacobian
+//! determinant where that does not apply. Each root is checked by the
+//! chain's forward kinematics: exact when within 1e-10 m and rad (a root
+//! missing by more than 1e-12 is first polished by a few Gauss-Newton
+//! steps); roots missing by more than 1e-6 are dropped.
 //!
-//! Recall: the searches miss roots where the residual dips through zero
-//! and back between two samples, i.e. near a configuration where two
-//! solutions merge (every miss examined had a Jacobian whose smallest
-//! singular value was 1e-4 to 5e-3 of its largest). On 20 000 poses of
-//! 200 random arms (the pair at 1-2 and at 5-6, each built forwards and
-//! reversed; `many_random_end_parallel_pair_arms_by_1d_search`) the
-//! generating configuration was among the exact solutions on 19 999; on
-//! 10 000 poses of 100 more arms, on all. Two searches (over `q6` and `q3`)
-//! missed 8 of 16 000 and 6 of 10 000 (7, 3 and 0 of 10 000 at 640, 768 and
-//! 1 024 samples per turn). Cost: 14.2M instructions per solve (three
-//! searches; two: 9.0M), the
-//! `ik/analytic/parallel_pair_1_2_1d_search` bench.
+//! Recall: a search misses roots where the residual dips through zero and
+//! back between two samples, i.e. near a configuration where two solutions
+//! merge; the second search sees them at other values of its joint. On
+//! 20 000 poses of 200 random arms (the pair at 1-2 and at 5-6, each built
+//! forwards and reversed; `many_random_end_parallel_pair_arms_by_1d_search`)
+//! the generating configuration was among the exact solutions on all 20 000
+//! (on 19 998 with the test's seed 351 instead of 350). Other settings,
+//! seed 350 (351): two searches at 128 samples 19 997, at 192 20 000
+//! (19 997); three at 160 (19 999), at 192 20 000; one search at 192
+//! 19 926. Cost: 6.1M instructions per solve
+//! (`ik/analytic/parallel_pair_1_2_1d_search`; three searches at 192:
+//! 9.6M), down from 14.3M with `search::find_roots` at 512 samples and
+//! three searches.
 //!
 //! ```
 //! use armkit::ik::analytic::{AnalyticOptions, AnalyticSolver};
@@ -122,9 +134,9 @@ use super::trig2::Trig2;
 use crate::math::{wrap_angle, Matrix3, Pose, Vector3};
 
 /// Samples per turn of each search.
-pub const SAMPLES: usize = 192;
+pub const SAMPLES: usize = 160;
 /// Searches per solve (the first usable of [`PREFERENCE`]), merged.
-pub const SEARCHES: usize = 3;
+pub const SEARCHES: usize = 2;
 /// The searches in the order they are taken.
 const PREFERENCE: [Form; 4] = [Form::Sixth, Form::Third, Form::Fifth, Form::Fourth];
 

@@ -1,5 +1,6 @@
 //! The ends of a parallel-pair search's branches (folds) and the search
-//! traits (`search::Residual`, `sloped::Sloped`) of its problem.
+//! traits (`search::Residual`, `sloped::Sloped`), shared with the
+//! end-pair search (`end_parallel_pair`) through [`PairBranches`].
 
 use super::*;
 
