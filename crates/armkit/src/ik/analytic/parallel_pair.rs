@@ -118,6 +118,8 @@
 mod branches;
 mod ends;
 
+#[cfg(test)]
+pub(super) use self::ends::slopes_checked;
 pub(super) use self::ends::{nearest_among, no_folds, Branches, Folds, PairBranches};
 mod sloped;
 mod sweep;
@@ -581,26 +583,7 @@ mod tests {
                 let target = s.forward_kinematics(&q);
                 for form in search.forms {
                     let problem = Problem::new(&search, &target, form);
-                    let t = rng.gen_range(-3.0..3.0);
-                    for (key, at) in problem.branches(t).into_iter().flatten() {
-                        let e = 1e-6;
-                        let (Some((fp, _)), Some((fm, _))) =
-                            (problem.residual(t + e, &key), problem.residual(t - e, &key))
-                        else {
-                            continue;
-                        };
-                        if key.fold.abs() < 1e-2 {
-                            continue; // near a fold the difference is not accurate
-                        }
-                        let difference = (fp - fm) / (2.0 * e);
-                        let tolerance = 1e-5 * (1.0 + difference.abs());
-                        assert!(
-                            (difference - at.slope).abs() < tolerance,
-                            "{form:?}: slope {} against {difference}",
-                            at.slope
-                        );
-                        checked += 1;
-                    }
+                    checked += slopes_checked(&problem, rng.gen_range(-3.0..3.0));
                 }
             }
         }

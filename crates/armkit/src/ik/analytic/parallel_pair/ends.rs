@@ -216,3 +216,32 @@ impl<P: PairBranches> Sloped<4> for P {
         })
     }
 }
+
+/// Test support: at `t`, each branch's slope ([`PairBranches::slope_of`])
+/// against central differences of its residual (the branch followed by its
+/// key), away from folds (where the difference is not accurate); the
+/// number of branches checked.
+#[cfg(test)]
+pub(in crate::ik::analytic) fn slopes_checked<P: PairBranches>(problem: &P, t: f64) -> usize {
+    let mut checked = 0;
+    for (key, at) in problem.branches(t).into_iter().flatten() {
+        let e = 1e-6;
+        let (Some((fp, _)), Some((fm, _))) =
+            (problem.residual(t + e, &key), problem.residual(t - e, &key))
+        else {
+            continue;
+        };
+        if key.fold.abs() < 1e-2 {
+            continue;
+        }
+        let difference = (fp - fm) / (2.0 * e);
+        let slope = problem.slope_of(&at);
+        let tolerance = 1e-5 * (1.0 + difference.abs());
+        assert!(
+            (difference - slope).abs() < tolerance,
+            "at t = {t}: slope {slope} against {difference}"
+        );
+        checked += 1;
+    }
+    checked
+}
