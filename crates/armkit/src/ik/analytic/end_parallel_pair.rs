@@ -122,7 +122,7 @@
 
 use super::chain::{Candidates, Chain};
 use super::parallel_pair::{
-    branch_rates, find_roots_sloped, nearest_among, negated, no_folds, read_system, write_system,
+    branch_rates, merged_roots, nearest_among, negated, no_folds, read_system, write_system,
     Branches, Folds, PairBranches, Sweep, Tracker,
 };
 use super::search::BranchKey;
@@ -241,15 +241,10 @@ impl EndPairSearch {
 
     /// Every solution found for `target` (the chain's end-effector pose).
     pub(crate) fn solve(&self, target: &Pose, out: &mut Candidates) {
-        for form in &self.forms[..self.searches] {
-            let problem = Problem::new(self, target, *form);
-            find_roots_sloped::<_, 4, SAMPLES>(&problem, |t, key| {
-                let Some((q, exact)) = problem.finish(t, &key) else {
-                    return;
-                };
-                out.push_distinct(&q, exact);
-            });
-        }
+        let problems = self.forms[..self.searches]
+            .iter()
+            .map(|form| Problem::new(self, target, *form));
+        merged_roots::<_, SAMPLES>(problems, out);
     }
 }
 
@@ -560,16 +555,6 @@ impl<'a> Problem<'a> {
         }
     }
 
-    /// The joint values (chain order) at a root `t` of the branch `key`,
-    /// and whether the chain's forward kinematics reproduces the target to
-    /// [`EXACT_TOLERANCE`](super::EXACT_TOLERANCE); `None` if it misses by
-    /// more (`search2d::settle_root`).
-    fn finish(&self, t: f64, key: &Key) -> Option<([f64; 6], bool)> {
-        let (_, point) = nearest_among(self.branches(t), key)?;
-        let q = self.configuration(&point);
-        settle_root(&self.s.chain, &self.s.home, q, &self.target)
-    }
-
     /// Every joint from a branch's point: `q1` by subproblem 1
     /// (`R1 L = w`), `q2 = s (th - q1)`.
     fn configuration(&self, point: &Point) -> [f64; 6] {
@@ -597,6 +582,12 @@ fn unflatten(flat: &[f64; FLAT], k: Turn) -> Sides {
 
 impl PairBranches for Problem<'_> {
     type Point = Point;
+
+    fn finish(&self, t: f64, key: &Key) -> Option<([f64; 6], bool)> {
+        let (_, point) = nearest_among(self.branches(t), key)?;
+        let q = self.configuration(&point);
+        settle_root(&self.s.chain, &self.s.home, q, &self.target)
+    }
 
     fn branches(&self, t: f64) -> Branches<Point> {
         self.branches(t)

@@ -120,12 +120,12 @@ mod ends;
 
 #[cfg(test)]
 pub(super) use self::ends::slopes_checked;
-pub(super) use self::ends::{nearest_among, no_folds, Branches, Folds, PairBranches};
+pub(super) use self::ends::{merged_roots, nearest_among, no_folds, Branches, Folds, PairBranches};
 mod sloped;
 mod sweep;
 mod tracker;
 
-pub(super) use self::sloped::find_roots_sloped;
+use self::sloped::find_roots_sloped;
 use self::sloped::{Knot, Samples, Sloped};
 use self::sweep::{flatten, unflatten};
 pub(super) use self::sweep::{read_system, write_system, Sweep};
@@ -269,15 +269,10 @@ impl ParallelPairSearch {
 
     /// Every solution found for `target` (the chain's end-effector pose).
     pub(crate) fn solve(&self, target: &Pose, out: &mut Candidates) {
-        for form in &self.forms[..self.searches] {
-            let problem = Problem::new(self, target, *form);
-            find_roots_sloped::<_, 4, SAMPLES>(&problem, |t, key| {
-                let Some((q, exact)) = problem.finish(t, &key) else {
-                    return;
-                };
-                out.push_distinct(&q, exact);
-            });
-        }
+        let problems = self.forms[..self.searches]
+            .iter()
+            .map(|form| Problem::new(self, target, *form));
+        merged_roots::<_, SAMPLES>(problems, out);
     }
 }
 
@@ -465,16 +460,6 @@ impl<'a> Problem<'a> {
     /// The branch nearest `key` at `t`, within [`LINK`].
     fn nearest(&self, t: f64, key: &Key) -> Option<(Key, Point)> {
         nearest_among(self.branches(t), key)
-    }
-
-    /// The joint values (chain order) at a root `t` of the branch `key`,
-    /// and whether the chain's forward kinematics reproduces the target to
-    /// [`EXACT_TOLERANCE`](super::EXACT_TOLERANCE); `None` if it misses by
-    /// more (`search2d::settle_root`).
-    fn finish(&self, t: f64, key: &Key) -> Option<([f64; 6], bool)> {
-        let (_, point) = self.nearest(t, key)?;
-        let q = self.configuration(t, &point);
-        settle_root(&self.s.chain, &self.s.home, q, &self.target)
     }
 
     /// Every joint from `t` and a branch's point.

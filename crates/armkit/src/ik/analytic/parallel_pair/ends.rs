@@ -7,6 +7,12 @@ use super::*;
 impl PairBranches for Problem<'_> {
     type Point = Point;
 
+    fn finish(&self, t: f64, key: &Key) -> Option<([f64; 6], bool)> {
+        let (_, point) = self.nearest(t, key)?;
+        let q = self.configuration(t, &point);
+        settle_root(&self.s.chain, &self.s.home, q, &self.target)
+    }
+
     fn branches(&self, t: f64) -> Branches<Point> {
         self.branches(t)
     }
@@ -52,6 +58,28 @@ pub(in crate::ik::analytic) trait PairBranches {
 
     /// The last few folds located (see [`FoldMemo`]).
     fn folds(&self) -> &Folds<Self::Point>;
+
+    /// The joint values (chain order) at a root `t` (rad) of the branch
+    /// `key`, and whether the chain's forward kinematics reproduces the
+    /// target to [`EXACT_TOLERANCE`](crate::ik::analytic::EXACT_TOLERANCE);
+    /// `None` if it misses by more (`search2d::settle_root`).
+    fn finish(&self, t: f64, key: &Key) -> Option<([f64; 6], bool)>;
+}
+
+/// Every root of each search in `problems` (one per searched joint, `N`
+/// samples per turn), finished and merged into `out`
+/// (`Candidates::push_distinct`).
+pub(in crate::ik::analytic) fn merged_roots<P: PairBranches, const N: usize>(
+    problems: impl Iterator<Item = P>,
+    out: &mut Candidates,
+) {
+    for problem in problems {
+        find_roots_sloped::<_, 4, N>(&problem, |t, key| {
+            if let Some((q, exact)) = problem.finish(t, &key) {
+                out.push_distinct(&q, exact);
+            }
+        });
+    }
 }
 
 /// The branches at one evaluation.
