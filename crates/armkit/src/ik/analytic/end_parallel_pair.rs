@@ -329,12 +329,7 @@ fn turned_back(
     q: &Turn,
     rate: f64,
 ) -> (Vector3<f64>, Vector3<f64>) {
-    let back = Turn {
-        angle: -q.angle,
-        sin: -q.sin,
-        cos: q.cos,
-    };
-    turned(k, v, dv, &back, -rate)
+    turned(k, v, dv, &q.times_sign(-1.0), -rate)
 }
 
 /// The rate of the angle `q` of subproblem 1 `R(k, q) from = to` (the
