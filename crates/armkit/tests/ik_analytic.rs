@@ -914,9 +914,9 @@ fn random_search_arms(
 }
 
 /// Every intersecting-pair layout (5-6, 4-5 and 3-4 as built, 1-2 and 2-3
-/// on the reversed lines) on `arms` arms x `poses` poses; the recovery
-/// over all.
-fn one_pair_tally(seed: u64, arms: u64, poses: usize) -> Tally {
+/// on the reversed lines) on `arms` arms x `poses` poses, solved with
+/// `options`; the recovery over all.
+fn one_pair_tally(seed: u64, arms: u64, poses: usize, options: AnalyticOptions) -> Tally {
     let cases = [
         (4, false, "one_pair_intersecting_5_6_1d_search"),
         (4, true, "one_pair_intersecting_1_2_1d_search"),
@@ -938,14 +938,7 @@ fn one_pair_tally(seed: u64, arms: u64, poses: usize) -> Tally {
             }
             lines
         };
-        let tally = random_search_arms(
-            seed + i as u64,
-            arms,
-            poses,
-            &lines,
-            class,
-            AnalyticOptions::default(),
-        );
+        let tally = random_search_arms(seed + i as u64, arms, poses, &lines, class, options);
         total.poses += tally.poses;
         total.recovered += tally.recovered;
         total.solutions += tally.solutions;
@@ -962,16 +955,30 @@ fn one_pair_tally(seed: u64, arms: u64, poses: usize) -> Tally {
 }
 
 #[test]
+fn random_one_pair_arms_by_elimination() {
+    let tally = one_pair_tally(70, 10, POSES / 10, AnalyticOptions::default());
+    assert_search_recovered("one-pair arms", &tally);
+}
+
+#[test]
 fn random_one_pair_arms_by_1d_search() {
-    let tally = one_pair_tally(70, 10, POSES / 10);
+    let tally = one_pair_tally(70, 4, POSES / 10, one_dimension());
     assert_search_recovered("one-pair arms", &tally);
 }
 
 /// 20 000 poses: 40 arms x 100 poses for each of the five layouts.
 #[test]
 #[ignore = "slow: cargo test --release --test ik_analytic -- --ignored --nocapture"]
+fn many_random_one_pair_arms_by_elimination() {
+    let tally = one_pair_tally(410, 40, 100, AnalyticOptions::default());
+    assert_search_recovered("one-pair arms", &tally);
+}
+
+/// The same 20 000 poses by the 1-D searches.
+#[test]
+#[ignore = "slow: cargo test --release --test ik_analytic -- --ignored --nocapture"]
 fn many_random_one_pair_arms_by_1d_search() {
-    let tally = one_pair_tally(410, 40, 100);
+    let tally = one_pair_tally(410, 40, 100, one_dimension());
     assert_search_recovered("one-pair arms", &tally);
 }
 
@@ -1006,13 +1013,12 @@ const END_PARALLEL_CASES: [(usize, bool, &str); 4] = [
     (4, true, "one_pair_parallel_1_2_1d_search"),
 ];
 
-/// Every case of `cases` on `arms` arms x `poses` poses; the recovery over
-/// all.
+/// Every case of `cases` on `arms` arms x `poses` poses, solved with
+/// `options`; the recovery over all.
 fn parallel_pair_tally(
     cases: &[(usize, bool, &'static str)],
-    seed: u64,
-    arms: u64,
-    poses: usize,
+    (seed, arms, poses): (u64, u64, usize),
+    options: AnalyticOptions,
 ) -> Tally {
     let mut total = Tally {
         poses: 0,
@@ -1028,14 +1034,7 @@ fn parallel_pair_tally(
             }
             lines
         };
-        let tally = random_search_arms(
-            seed + i as u64,
-            arms,
-            poses,
-            &lines,
-            class,
-            AnalyticOptions::default(),
-        );
+        let tally = random_search_arms(seed + i as u64, arms, poses, &lines, class, options);
         total.poses += tally.poses;
         total.recovered += tally.recovered;
         total.solutions += tally.solutions;
@@ -1049,28 +1048,62 @@ fn parallel_pair_tally(
 }
 
 #[test]
+fn random_parallel_pair_arms_by_elimination() {
+    let tally = parallel_pair_tally(&PARALLEL_CASES, (300, 10, 20), AnalyticOptions::default());
+    assert_search_recovered("parallel-pair arms", &tally);
+}
+
+#[test]
 fn random_parallel_pair_arms_by_1d_search() {
-    let tally = parallel_pair_tally(&PARALLEL_CASES, 300, 10, 20);
+    let tally = parallel_pair_tally(&PARALLEL_CASES, (300, 4, 20), one_dimension());
+    assert_search_recovered("parallel-pair arms", &tally);
+}
+
+#[test]
+#[ignore = "slow: cargo test --release --test ik_analytic -- --ignored --nocapture"]
+fn many_random_parallel_pair_arms_by_elimination() {
+    let tally = parallel_pair_tally(&PARALLEL_CASES, (310, 40, 100), AnalyticOptions::default());
     assert_search_recovered("parallel-pair arms", &tally);
 }
 
 #[test]
 #[ignore = "slow: cargo test --release --test ik_analytic -- --ignored --nocapture"]
 fn many_random_parallel_pair_arms_by_1d_search() {
-    let tally = parallel_pair_tally(&PARALLEL_CASES, 310, 40, 100);
+    let tally = parallel_pair_tally(&PARALLEL_CASES, (310, 40, 100), one_dimension());
     assert_search_recovered("parallel-pair arms", &tally);
 }
 
 #[test]
+fn random_end_parallel_pair_arms_by_elimination() {
+    let tally = parallel_pair_tally(
+        &END_PARALLEL_CASES,
+        (340, 6, 20),
+        AnalyticOptions::default(),
+    );
+    assert_search_recovered("end parallel-pair arms", &tally);
+}
+
+#[test]
 fn random_end_parallel_pair_arms_by_1d_search() {
-    let tally = parallel_pair_tally(&END_PARALLEL_CASES, 340, 6, 20);
+    let tally = parallel_pair_tally(&END_PARALLEL_CASES, (340, 3, 20), one_dimension());
+    assert_search_recovered("end parallel-pair arms", &tally);
+}
+
+#[test]
+#[ignore = "slow: cargo test --release --test ik_analytic -- --ignored --nocapture"]
+fn many_random_end_parallel_pair_arms_by_elimination() {
+    let tally = parallel_pair_tally(
+        &END_PARALLEL_CASES,
+        (350, 50, 100),
+        AnalyticOptions::default(),
+    );
     assert_search_recovered("end parallel-pair arms", &tally);
 }
 
 #[test]
 #[ignore = "slow: cargo test --release --test ik_analytic -- --ignored --nocapture"]
 fn many_random_end_parallel_pair_arms_by_1d_search() {
-    let tally = parallel_pair_tally(&END_PARALLEL_CASES, 350, 50, 100);
+    let tally = parallel_pair_tally(&END_PARALLEL_CASES, (350, 50, 100), one_dimension());
     assert_search_recovered("end parallel-pair arms", &tally);
 }
 
@@ -1217,33 +1250,46 @@ fn parallel_end_pairs_are_solved_and_pairs_no_search_takes_are_refused_by_name()
 }
 
 #[test]
-fn a_general_6r_arm_needs_the_2d_search_option() {
+fn a_general_6r_arm_is_solved_by_elimination_and_by_the_2d_search_on_request() {
     use armkit::ik::analytic::SearchPolicy;
     let mut rng = common::rng(90);
     let lines: Lines = (0..6)
         .map(|_| (point(&mut rng), unit(&mut rng), false))
         .collect();
     let model = model_from_lines("general", &lines, random_home(&mut rng));
-    let error = AnalyticSolver::new(&model, AnalyticOptions::default())
+    let mut s = AnalyticSolver::new(&model, AnalyticOptions::default()).unwrap();
+    assert_eq!(s.class(), ArmClass::General);
+    assert!(s.method().contains("elimination"), "{}", s.method());
+    let tally = check(&model, &mut s, 50, 91, &no_parameter);
+    assert_all_recovered("general 6R by elimination", &tally);
+    // The searches alone refuse it, naming both options.
+    let error = AnalyticSolver::new(&model, one_dimension())
         .unwrap_err()
         .to_string();
     assert!(error.contains("general_6r_2d_search"), "{error}");
+    assert!(error.contains("SearchPolicy::Elimination"), "{error}");
     assert!(error.contains("SearchPolicy::TwoDimensions"), "{error}");
     assert!(error.contains("--search 2d"), "{error}");
     let options = AnalyticOptions {
         search: SearchPolicy::TwoDimensions,
         ..AnalyticOptions::default()
     };
-    assert_eq!(
-        AnalyticSolver::new(&model, options).unwrap().class(),
-        ArmClass::General
-    );
+    let s = AnalyticSolver::new(&model, options).unwrap();
+    assert_eq!(s.class(), ArmClass::General);
+    assert!(s.method().contains("2-D search"), "{}", s.method());
 }
 
 fn general_lines(rng: &mut ChaCha8Rng) -> Lines {
     (0..6)
         .map(|_| (point(rng) * 2.0, unit(rng), false))
         .collect()
+}
+
+fn one_dimension() -> AnalyticOptions {
+    AnalyticOptions {
+        search: armkit::ik::analytic::SearchPolicy::UpToOneDimension,
+        ..AnalyticOptions::default()
+    }
 }
 
 fn two_dimensions() -> AnalyticOptions {
@@ -1288,6 +1334,34 @@ fn many_random_general_6r_arms_by_2d_search() {
         two_dimensions(),
     );
     assert!(tally.recovered as f64 >= GENERAL_FLOOR * tally.poses as f64);
+}
+
+#[test]
+fn random_general_6r_arms_by_elimination() {
+    let tally = random_search_arms(
+        97,
+        10,
+        POSES / 10,
+        &general_lines,
+        "general_6r_2d_search",
+        AnalyticOptions::default(),
+    );
+    assert_search_recovered("general 6R arms by elimination", &tally);
+}
+
+/// 20 000 poses: 200 arms x 100 poses.
+#[test]
+#[ignore = "slow: cargo test --release --test ik_analytic -- --ignored --nocapture"]
+fn many_random_general_6r_arms_by_elimination() {
+    let tally = random_search_arms(
+        98,
+        200,
+        POSES / 10,
+        &general_lines,
+        "general_6r_2d_search",
+        AnalyticOptions::default(),
+    );
+    assert_search_recovered("general 6R arms by elimination", &tally);
 }
 
 #[test]

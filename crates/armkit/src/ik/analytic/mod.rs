@@ -72,6 +72,7 @@
 
 mod chain;
 mod class;
+pub mod elimination;
 pub mod end_parallel_pair;
 mod finish;
 mod options;
@@ -103,6 +104,7 @@ pub use route::{route_class, solver_for, sweep_values, AnalyticRoute, JointNumbe
 
 use self::chain::{Candidates, Chain};
 use self::class::{detect, Detected};
+use self::elimination::Elimination;
 use self::end_parallel_pair::EndPairSearch;
 use self::finish::Finisher;
 use self::pair_search::PairSearch;
@@ -151,6 +153,10 @@ enum Plan {
         end: ChainEnd,
     },
     TwoDimensional(GridSearch),
+    Elimination {
+        solver: Elimination,
+        end: ChainEnd,
+    },
 }
 
 /// An analytic IK solver for one model (see the module docs).
@@ -242,6 +248,16 @@ impl AnalyticSolver {
         self.class
     }
 
+    /// How this solver solves its class: the class's
+    /// [`description`](ArmClass::description), or the elimination's for an
+    /// arm solved by [`SearchPolicy::Elimination`].
+    pub fn method(&self) -> &'static str {
+        match self.plan {
+            Plan::Elimination { .. } => elimination::METHOD,
+            _ => self.class.description(),
+        }
+    }
+
     /// The model's lines at zero configuration.
     pub fn structure(&self) -> &ArmStructure {
         &self.structure
@@ -318,65 +334,56 @@ impl AnalyticSolver {
         check_finite_vector("current", current, self.model.dof())?;
         self.candidates.clear();
         let goal = &self.held_target(target);
-        let mut fixed = None;
-        let mut reverse = false;
-        match &self.plan {
+        let out = &mut self.candidates;
+        // The end the plan's chain is solved from (None: the 7-DOF elbow
+        // plan, whose candidates are in model order with every joint).
+        let end = match &self.plan {
             Plan::Wrist { solver, end } => {
-                reverse = *end == ChainEnd::Base;
-                solver.solve(&goal_of(goal, *end), &mut self.candidates);
-                if let Some(Parameter::FixedJoint { joint, value }) = self.parameter {
-                    fixed = Some((joint, value));
-                }
+                solver.solve(&goal_of(goal, *end), out);
+                Some(*end)
             }
             Plan::ThreeParallel { solver, end } => {
-                reverse = *end == ChainEnd::Base;
-                solver.solve(&goal_of(goal, *end), &mut self.candidates);
-                if let Some(Parameter::FixedJoint { joint, value }) = self.parameter {
-                    fixed = Some((joint, value));
-                }
+                solver.solve(&goal_of(goal, *end), out);
+                Some(*end)
             }
             Plan::ThreeParallelOffset { solver, end } => {
-                reverse = *end == ChainEnd::Base;
-                solver.solve(&goal_of(goal, *end), &mut self.candidates);
-                if let Some(Parameter::FixedJoint { joint, value }) = self.parameter {
-                    fixed = Some((joint, value));
-                }
+                solver.solve(&goal_of(goal, *end), out);
+                Some(*end)
             }
             Plan::ShoulderElbowWrist(srs) => {
                 let psi = match self.parameter {
                     Some(Parameter::ElbowAngle(psi)) => psi,
                     _ => 0.0,
                 };
-                srs.solve(goal, psi, &mut self.candidates);
+                srs.solve(goal, psi, out);
+                None
             }
             Plan::OnePair { solver, end } => {
-                reverse = *end == ChainEnd::Base;
-                solver.solve(&goal_of(goal, *end), &mut self.candidates);
-                if let Some(Parameter::FixedJoint { joint, value }) = self.parameter {
-                    fixed = Some((joint, value));
-                }
+                solver.solve(&goal_of(goal, *end), out);
+                Some(*end)
             }
             Plan::ParallelPair { solver, end } => {
-                reverse = *end == ChainEnd::Base;
-                solver.solve(&goal_of(goal, *end), &mut self.candidates);
-                if let Some(Parameter::FixedJoint { joint, value }) = self.parameter {
-                    fixed = Some((joint, value));
-                }
+                solver.solve(&goal_of(goal, *end), out);
+                Some(*end)
             }
             Plan::EndParallelPair { solver, end } => {
-                reverse = *end == ChainEnd::Base;
-                solver.solve(&goal_of(goal, *end), &mut self.candidates);
-                if let Some(Parameter::FixedJoint { joint, value }) = self.parameter {
-                    fixed = Some((joint, value));
-                }
+                solver.solve(&goal_of(goal, *end), out);
+                Some(*end)
             }
             Plan::TwoDimensional(solver) => {
-                solver.solve(goal, &mut self.candidates);
-                if let Some(Parameter::FixedJoint { joint, value }) = self.parameter {
-                    fixed = Some((joint, value));
-                }
+                solver.solve(goal, out);
+                Some(ChainEnd::Tip)
             }
-        }
+            Plan::Elimination { solver, end } => {
+                solver.solve(&goal_of(goal, *end), out);
+                Some(*end)
+            }
+        };
+        let reverse = end == Some(ChainEnd::Base);
+        let fixed = match (end, self.parameter) {
+            (Some(_), Some(Parameter::FixedJoint { joint, value })) => Some((joint, value)),
+            _ => None,
+        };
         self.finisher.finish(
             &self.model,
             self.candidates.as_slice(),
@@ -541,6 +548,11 @@ fn plan(
             ),
         )
     };
+    if search == SearchPolicy::Elimination && eliminable(&detected, parameter) {
+        if let Some(plan) = elimination_plan(&arm) {
+            return Ok((class, plan));
+        }
+    }
     match (detected, parameter) {
         (Detected::ShoulderElbowWrist { .. }, Some(Parameter::FixedJoint { .. })) => {
             Err(unsolvable(""))
@@ -627,16 +639,46 @@ fn plan(
                 ArmClass::General | ArmClass::UnsearchedPairs | ArmClass::OnePair { .. },
             ),
             None,
-        ) => {
-            Err(unsolvable(
-                "; it needs the 2-D search: set AnalyticOptions::search = SearchPolicy::TwoDimensions (CLI: --search 2d)",
-            ))
-        }
+        ) => Err(unsolvable(match search {
+            // Elimination was tried (and does not apply to this arm).
+            SearchPolicy::Elimination => {
+                "; elimination does not apply to it (its determinant vanishes identically); it needs the 2-D search: set AnalyticOptions::search = SearchPolicy::TwoDimensions (CLI: --search 2d)"
+            }
+            _ => {
+                "; it needs elimination (AnalyticOptions::search = SearchPolicy::Elimination, the default; CLI: --search elimination) or the 2-D search (SearchPolicy::TwoDimensions; CLI: --search 2d)"
+            }
+        })),
         (Detected::Unsolvable(_), Some(Parameter::ElbowAngle(_))) => Err(unsolvable(
             "; an elbow angle needs a spherical-shoulder-elbow-wrist 7-DOF arm",
         )),
         (Detected::Unsolvable(_), _) => Err(unsolvable("")),
     }
+}
+
+/// Whether elimination is tried for `detected`: the 6R classes without a
+/// closed form that have a special pair or none (a spherical wrist behind
+/// general axes makes `det Sigma` vanish identically); not with an elbow
+/// angle.
+fn eliminable(detected: &Detected, parameter: Option<Parameter>) -> bool {
+    let class_fits = matches!(
+        detected,
+        Detected::OnePair { .. }
+            | Detected::ParallelPair { .. }
+            | Detected::EndParallelPair { .. }
+            | Detected::Unsolvable(
+                ArmClass::General | ArmClass::UnsearchedPairs | ArmClass::OnePair { .. }
+            )
+    );
+    class_fits && !matches!(parameter, Some(Parameter::ElbowAngle(_)))
+}
+
+/// The elimination of `arm`'s chain from the tip, else from the base (a
+/// special pair at joints 1-2 needs the reversed chain), if either applies.
+fn elimination_plan(arm: &ArmStructure) -> Option<Plan> {
+    [ChainEnd::Tip, ChainEnd::Base].into_iter().find_map(|end| {
+        let solver = Elimination::new(&chain_of(arm, end)?)?;
+        Some(Plan::Elimination { solver, end })
+    })
 }
 
 /// The target as the chain is solved: the pose itself, or its inverse for

@@ -90,24 +90,36 @@ impl GridSearch {
 }
 
 /// Largest pose error (m and rad) of a 1-D search's root kept as a candidate.
-const KEEP: f64 = 1e-6;
+pub(crate) const KEEP: f64 = 1e-6;
 /// Pose error (m and rad) above which a 1-D search's root is polished.
 const POLISHED: f64 = 1e-12;
 
 /// A 1-D search's root `q` (chain order) as a solution for `target`:
-/// dropped (`None`) when the chain's pose misses it by more than [`KEEP`];
-/// polished by three steps of [`polish`] when it misses by more than
-/// [`POLISHED`] (near a fold the closed-form steps lose digits), the
-/// polished configuration kept only if it errs less; with whether it is
-/// exact (within [`EXACT_TOLERANCE`]).
+/// [`settle_root_within`] [`KEEP`].
 pub(crate) fn settle_root(
+    chain: &Chain,
+    home: &Pose,
+    q: [f64; 6],
+    target: &Pose,
+) -> Option<([f64; 6], bool)> {
+    settle_root_within(chain, home, q, target, KEEP)
+}
+
+/// A root `q` (chain order) as a solution for `target`: dropped (`None`)
+/// when the chain's pose misses it by more than `keep` (m and rad);
+/// polished by three steps of [`polish`] when it misses by more than
+/// [`POLISHED`] (near a fold or a double root the closed-form steps lose
+/// digits), the polished configuration kept only if it errs less; with
+/// whether it is exact (within [`EXACT_TOLERANCE`]).
+pub(crate) fn settle_root_within(
     chain: &Chain,
     home: &Pose,
     mut q: [f64; 6],
     target: &Pose,
+    keep: f64,
 ) -> Option<([f64; 6], bool)> {
     let error = pose_gap(chain, home, &q, target);
-    if error > KEEP {
+    if error > keep {
         return None;
     }
     if error > POLISHED {
