@@ -282,35 +282,65 @@ fn bench_analytic(c: &mut Criterion) {
         &iiwa_urdf,
         solver,
     );
-    // A one-pair arm (axes 5-6 meet, the rest general: 1-D search) and a
-    // general 6R arm (2-D search, on request).
-    let pair = lines_model("one_pair", &ONE_PAIR);
-    let solver = AnalyticSolver::new(&pair, nearest).unwrap();
-    bench_analytic_solver(c, "one_pair_5_6_1d_search/distinct", &pair, solver);
-    // Axes 2-3 parallel, the rest general: the parallel-pair 1-D search.
-    let parallel = lines_model("parallel_pair", &PARALLEL_PAIR);
-    let solver = AnalyticSolver::new(&parallel, nearest).unwrap();
-    assert_eq!(solver.class().as_str(), "one_pair_parallel_2_3_1d_search");
-    bench_analytic_solver(c, "parallel_pair_2_3_1d_search/distinct", &parallel, solver);
-    // Axes 1-2 parallel, the rest general: the end parallel-pair 1-D search.
-    let end = lines_model("parallel_pair_1_2", &PARALLEL_PAIR_1_2);
-    let solver = AnalyticSolver::new(&end, nearest).unwrap();
-    assert_eq!(solver.class().as_str(), "one_pair_parallel_1_2_1d_search");
-    bench_analytic_solver(c, "parallel_pair_1_2_1d_search/distinct", &end, solver);
-    let pair = lines_model("pair_3_4", &PAIR_3_4);
-    let solver = AnalyticSolver::new(&pair, nearest).unwrap();
-    assert_eq!(
-        solver.class().as_str(),
-        "one_pair_intersecting_3_4_1d_search"
-    );
-    bench_analytic_solver(c, "one_pair_3_4_1d_search/distinct", &pair, solver);
-    let general = lines_model("general", &GENERAL);
+    // The arms without a closed form, each by elimination (the default)
+    // and by its 1-D search (`SearchPolicy::UpToOneDimension`): one pair
+    // (axes 5-6 or 3-4 meet), parallel axes 2-3 or 1-2, the rest general;
+    // a general 6R arm by elimination and by the 2-D search.
+    let searches = AnalyticOptions {
+        search: SearchPolicy::UpToOneDimension,
+        ..nearest
+    };
     let two = AnalyticOptions {
         search: SearchPolicy::TwoDimensions,
         ..nearest
     };
-    let solver = AnalyticSolver::new(&general, two).unwrap();
-    bench_analytic_solver(c, "general_6r_2d_search/distinct", &general, solver);
+    // (label, lines, class, the search's bench label, its options)
+    let cases = [
+        (
+            "one_pair_5_6",
+            &ONE_PAIR,
+            "one_pair_intersecting_5_6_1d_search",
+            "one_pair_5_6_1d_search",
+            searches,
+        ),
+        (
+            "one_pair_3_4",
+            &PAIR_3_4,
+            "one_pair_intersecting_3_4_1d_search",
+            "one_pair_3_4_1d_search",
+            searches,
+        ),
+        (
+            "parallel_pair_2_3",
+            &PARALLEL_PAIR,
+            "one_pair_parallel_2_3_1d_search",
+            "parallel_pair_2_3_1d_search",
+            searches,
+        ),
+        (
+            "parallel_pair_1_2",
+            &PARALLEL_PAIR_1_2,
+            "one_pair_parallel_1_2_1d_search",
+            "parallel_pair_1_2_1d_search",
+            searches,
+        ),
+        (
+            "general_6r",
+            &GENERAL,
+            "general_6r_2d_search",
+            "general_6r_2d_search",
+            two,
+        ),
+    ];
+    for (label, lines, class, search_label, search) in cases {
+        let model = lines_model(label, lines);
+        let elimination = format!("{label}_elimination");
+        for (name, options) in [(elimination.as_str(), nearest), (search_label, search)] {
+            let solver = AnalyticSolver::new(&model, options).unwrap();
+            assert_eq!(solver.class().as_str(), class);
+            bench_analytic_solver(c, &format!("{name}/distinct"), &model, solver);
+        }
+    }
     for name in ["ur5", "panda"] {
         let model = armkit::robots::by_name(name).unwrap();
         let targets = benchmark_targets(&model, 64, 42).unwrap();

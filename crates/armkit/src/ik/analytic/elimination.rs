@@ -106,7 +106,7 @@ pub const ROOT_SAMPLES: usize = 128;
 pub const TANGENT: f64 = 1e-3;
 /// Samples of the polynomial below this fraction of the largest are
 /// rounding-dominated: [`QUIET_STEPS`] direct evaluations per interval there.
-pub const QUIET: f64 = 1e-10;
+pub const QUIET: f64 = 1e-11;
 /// Direct evaluations of `det Sigma` per sample interval where the
 /// polynomial is quiet.
 pub const QUIET_STEPS: usize = 32;
@@ -188,23 +188,28 @@ impl Elimination {
         elimination.solves_probes().then_some(elimination)
     }
 
+    /// The polynomial `det Sigma(q3)` of `system` and its largest sample's
+    /// magnitude.
+    fn polynomial(&self, system: &System) -> (Trigonometric, f64) {
+        let mut samples = [0.0; DET_SAMPLES];
+        for (j, sample) in samples.iter_mut().enumerate() {
+            let (c, s) = self.det_table[j][1];
+            *sample = determinant(&system.sigma(c, s));
+        }
+        let largest = samples.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        (
+            Trigonometric::of_samples(&samples, &self.det_table),
+            largest,
+        )
+    }
+
     /// Every solution found for `target` (the chain's end-effector pose).
     pub(crate) fn solve(&self, target: &Pose, out: &mut Candidates) {
         let goal = *target * self.chain.home_inverse;
         let system = self.system(&goal);
-        let mut samples = [0.0; DET_SAMPLES];
-        for (j, sample) in samples.iter_mut().enumerate() {
-            let (c, s) = self.det_table[j][1];
-            *sample = full_pivot(&system.sigma(c, s)).determinant;
-        }
-        let polynomial = Trigonometric::of_samples(&samples, &self.det_table);
+        let (polynomial, largest) = self.polynomial(&system);
         let mut roots = [0.0; 2 * HARMONICS + 4];
-        let determinant = |t: f64| {
-            let (s, c) = sin_cos(t);
-            full_pivot(&system.sigma(c, s)).determinant
-        };
-        let count = polynomial.roots(&self.root_table, &determinant, &mut roots);
-        let largest = samples.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let count = polynomial.roots(&self.root_table, &|t| system.determinant(t), &mut roots);
         for &root in &roots[..count] {
             let q3 = if polynomial.at(root)[1].abs() < FLAT * largest {
                 refined_on_determinant(&system, root)
@@ -328,14 +333,11 @@ impl Elimination {
             let mut coefficients = [0.0; 27];
             coefficients.copy_from_slice(&row[8..35]);
             coefficients[0] -= row[35];
-            let norm = coefficients.iter().map(|v| v * v).sum::<f64>().sqrt();
-            if norm > 0.0 {
-                coefficients.iter_mut().for_each(|v| *v /= norm);
-            }
             for (i3, polynomial) in equation.iter_mut().enumerate() {
                 *polynomial = half_angle_form(&coefficients[9 * i3..9 * i3 + 9]);
             }
         }
+        orthonormalize(&mut equations);
         System {
             equations,
             upper: m,
@@ -346,7 +348,7 @@ impl Elimination {
     /// is not finite.
     fn back_substitute(&self, system: &System, goal: &Pose, q3: f64) -> Option<[f64; 6]> {
         let (s3, c3) = sin_cos(q3);
-        let v = full_pivot(&system.sigma(c3, s3)).null_vector();
+        let v = null_vector(&system.sigma(c3, s3));
         // v[3 a + b] = x4^a x5^b: the ratios of the largest neighbours.
         let best = |pairs: &mut dyn Iterator<Item = (usize, usize)>| {
             pairs
@@ -402,15 +404,12 @@ impl Elimination {
 }
 
 /// A root of the polynomial refined by the secant method on `det Sigma`
-/// itself (at most 6 steps, to 1e-15 rad): where the polynomial is flat
+/// itself (at most 6 steps, to 1e-12 rad; the chain's polish follows): where the polynomial is flat
 /// its interpolation's rounding (relative to its largest sample) moves the
 /// root, while the determinant evaluated there is accurate relative to its
 /// own size. The root itself is kept if the secant steps wander off.
 fn refined_on_determinant(system: &System, root: f64) -> f64 {
-    let det = |t: f64| {
-        let (s, c) = sin_cos(t);
-        full_pivot(&system.sigma(c, s)).determinant
-    };
+    let det = |t: f64| system.determinant(t);
     let (mut t0, mut t1) = (root, root + 1e-7);
     let (mut f0, mut f1) = (det(t0), det(t1));
     for _ in 0..6 {
@@ -421,12 +420,12 @@ fn refined_on_determinant(system: &System, root: f64) -> f64 {
         if !t2.is_finite() || (t2 - root).abs() > 1e-3 {
             return root;
         }
+        if (t2 - t1).abs() < 1e-12 {
+            return t2;
+        }
         (t0, f0) = (t1, f1);
         t1 = t2;
         f1 = det(t1);
-        if (t1 - t0).abs() < 1e-15 {
-            break;
-        }
     }
     t1
 }
@@ -453,6 +452,12 @@ struct System {
 }
 
 impl System {
+    /// `det Sigma(q3)` at `q3` (rad).
+    fn determinant(&self, q3: f64) -> f64 {
+        let (s, c) = sin_cos(q3);
+        determinant(&self.sigma(c, s))
+    }
+
     /// `Sigma(q3)` at `(cos q3, sin q3)`: rows 0..6 the equations, rows
     /// 6..12 the same times `x4`; column `3 a + b` is `x4^a x5^b`.
     fn sigma(&self, c3: f64, s3: f64) -> Square {
@@ -507,6 +512,36 @@ fn half_angle_form(coefficients: &[f64]) -> [f64; 9] {
     out
 }
 
+/// The six equations' coefficient vectors made orthonormal (modified
+/// Gram-Schmidt): the same solutions (`Sigma` is multiplied by a constant
+/// invertible matrix), a better-scaled determinant.
+fn orthonormalize(equations: &mut [[[f64; 9]; 3]; 6]) {
+    let dot = |a: &[[f64; 9]; 3], b: &[[f64; 9]; 3]| -> f64 {
+        a.iter()
+            .flatten()
+            .zip(b.iter().flatten())
+            .map(|(x, y)| x * y)
+            .sum()
+    };
+    for k in 0..6 {
+        for j in 0..k {
+            let projection = dot(&equations[k], &equations[j]);
+            let previous = equations[j];
+            for (x, y) in equations[k]
+                .iter_mut()
+                .flatten()
+                .zip(previous.iter().flatten())
+            {
+                *x -= projection * y;
+            }
+        }
+        let norm = dot(&equations[k], &equations[k]).sqrt();
+        if norm > 0.0 {
+            equations[k].iter_mut().flatten().for_each(|x| *x /= norm);
+        }
+    }
+}
+
 /// `m3 (x) m4 (x) m5` (index `9 i3 + 3 i4 + i5`).
 fn tensor3(q3: f64, q4: f64, q5: f64) -> [f64; 27] {
     let m = |q: f64| {
@@ -556,20 +591,52 @@ fn householder(m: &mut [[f64; 36]; FUNCTIONS]) {
     }
 }
 
-/// Gaussian elimination with full pivoting of a 12 x 12 matrix.
-struct Eliminated {
-    /// The upper triangle (columns permuted).
-    upper: Square,
-    /// `columns[j]`: the original column at position `j`.
-    columns: [usize; 12],
-    determinant: f64,
-}
-
-fn full_pivot(matrix: &Square) -> Eliminated {
-    let mut upper = *matrix;
-    let mut columns = [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11];
+/// The determinant of a 12 x 12 matrix: Gaussian elimination with row
+/// pivoting.
+fn determinant(matrix: &Square) -> f64 {
+    let mut a = *matrix;
     let mut determinant = 1.0;
     for k in 0..12 {
+        let mut pivot_row = k;
+        for i in k + 1..12 {
+            if a[i][k].abs() > a[pivot_row][k].abs() {
+                pivot_row = i;
+            }
+        }
+        if pivot_row != k {
+            a.swap(pivot_row, k);
+            determinant = -determinant;
+        }
+        let pivot = a[k][k];
+        determinant *= pivot;
+        if pivot == 0.0 {
+            return 0.0;
+        }
+        let (above, below) = a.split_at_mut(k + 1);
+        let pivot_values = &above[k][k + 1..];
+        let inverse = 1.0 / pivot;
+        for row in below.iter_mut() {
+            // Sigma's first three columns are zero below row 6 (and stay
+            // so until a pivot mixes the blocks): nothing to update there.
+            if row[k] == 0.0 {
+                continue;
+            }
+            let factor = row[k] * inverse;
+            for (value, above) in row[k + 1..].iter_mut().zip(pivot_values) {
+                *value -= factor * above;
+            }
+        }
+    }
+    determinant
+}
+
+/// The vector `v` with `M v ~ 0` of a (nearly) singular 12 x 12 matrix:
+/// Gaussian elimination with full pivoting, the last pivoted unknown 1,
+/// the others by back-substitution.
+fn null_vector(matrix: &Square) -> [f64; 12] {
+    let mut upper = *matrix;
+    let mut columns = [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11];
+    for k in 0..11 {
         let (mut row, mut column, mut largest) = (k, k, 0.0);
         for (i, values) in upper.iter().enumerate().skip(k) {
             for (j, value) in values.iter().enumerate().skip(k) {
@@ -578,57 +645,34 @@ fn full_pivot(matrix: &Square) -> Eliminated {
                 }
             }
         }
-        if row != k {
-            upper.swap(row, k);
-            determinant = -determinant;
+        upper.swap(row, k);
+        for values in upper.iter_mut() {
+            values.swap(column, k);
         }
-        if column != k {
-            for values in upper.iter_mut() {
-                values.swap(column, k);
-            }
-            columns.swap(column, k);
-            determinant = -determinant;
-        }
+        columns.swap(column, k);
         let pivot = upper[k][k];
-        determinant *= pivot;
         if pivot == 0.0 {
             continue;
         }
         let pivot_row = upper[k];
         for row in upper.iter_mut().skip(k + 1) {
             let factor = row[k] / pivot;
-            if factor != 0.0 {
-                for (value, above) in row.iter_mut().zip(&pivot_row).skip(k) {
-                    *value -= factor * above;
-                }
+            for (value, above) in row.iter_mut().zip(&pivot_row).skip(k) {
+                *value -= factor * above;
             }
         }
     }
-    Eliminated {
-        upper,
-        columns,
-        determinant,
+    let mut y = [0.0; 12];
+    y[11] = 1.0;
+    for i in (0..11).rev() {
+        let known: f64 = (i + 1..12).map(|j| upper[i][j] * y[j]).sum();
+        y[i] = -known / upper[i][i];
     }
-}
-
-impl Eliminated {
-    /// The vector `v` with `M v ~ 0` for the (nearly) singular matrix
-    /// eliminated: the last permuted unknown 1, the others by
-    /// back-substitution.
-    fn null_vector(&self) -> [f64; 12] {
-        let u = &self.upper;
-        let mut y = [0.0; 12];
-        y[11] = 1.0;
-        for i in (0..11).rev() {
-            let known: f64 = (i + 1..12).map(|j| u[i][j] * y[j]).sum();
-            y[i] = -known / u[i][i];
-        }
-        let mut v = [0.0; 12];
-        for (j, value) in y.iter().enumerate() {
-            v[self.columns[j]] = *value;
-        }
-        v
+    let mut v = [0.0; 12];
+    for (j, value) in y.iter().enumerate() {
+        v[columns[j]] = *value;
     }
+    v
 }
 
 /// `a0 + sum_k (a_k cos k t + b_k sin k t)`, `k = 1..8`.
@@ -719,10 +763,15 @@ impl Trigonometric {
         let fourth = (1..=HARMONICS)
             .map(|k| (k * k * k * k) as f64 * (self.cosines[k].abs() + self.sines[k].abs()))
             .sum::<f64>();
+        // And the second derivative's, sum k^2 (|a_k| + |b_k|).
+        let second = (1..=HARMONICS)
+            .map(|k| (k * k) as f64 * (self.cosines[k].abs() + self.sines[k].abs()))
+            .sum::<f64>();
         let mut found = Found {
             roots,
             count: 0,
             fourth,
+            second,
         };
         let step = TAU / ROOT_SAMPLES as f64;
         for j in 0..ROOT_SAMPLES {
@@ -760,6 +809,16 @@ impl Trigonometric {
     /// interpolant reaching the bound a double-root candidate.
     fn isolate(&self, start: &Knot, end: &Knot, found: &mut Found) {
         let h = end.t - start.t;
+        // Cheap first: within h/2 of an end the polynomial moves at most
+        // |slope| h/2 + max|p''| h^2/8; farther from zero than that (and
+        // than TANGENT of itself) at both ends of one sign, no root here.
+        let reach = |knot: &Knot| knot.slope.abs() * h / 2.0 + found.second * h * h / 8.0;
+        if start.value * end.value > 0.0
+            && start.value.abs() - reach(start) > TANGENT * start.value.abs()
+            && end.value.abs() - reach(end) > TANGENT * end.value.abs()
+        {
+            return;
+        }
         let cubic = Hermite::new(start, end);
         let (low, high) = cubic.value_range();
         let value_error = found.fourth * h.powi(4) / 384.0;
@@ -777,12 +836,12 @@ impl Trigonometric {
         let (slope_low, slope_high) = cubic.slope_range();
         let slope_error = found.fourth * h.powi(3) / 72.0;
         if sign_change && (slope_low > slope_error || slope_high < -slope_error) {
-            found.push(self.bracketed(start.t, end.t, 0));
+            found.push(self.bracketed(start.t, end.t));
             return;
         }
         if h < SMALLEST_INTERVAL {
             if sign_change {
-                found.push(self.bracketed(start.t, end.t, 0));
+                found.push(self.bracketed(start.t, end.t));
             } else {
                 found.push(0.5 * (start.t + end.t));
             }
@@ -798,18 +857,16 @@ impl Trigonometric {
         self.isolate(&middle, end, found);
     }
 
-    /// The zero of derivative `order` (0: the value, 1: the slope) in
-    /// `[t0, t1]`, where it changes sign: Newton kept inside the bracket,
-    /// bisection when a step leaves it, to 1e-15 rad.
-    fn bracketed(&self, mut t0: f64, mut t1: f64, order: usize) -> f64 {
-        let value_at = |t: f64| {
-            let d = self.at(t);
-            (d[order], d[order + 1])
-        };
-        let sign0 = value_at(t0).0.signum();
+    /// The zero in `[t0, t1]`, where the value changes sign: Newton kept
+    /// inside the bracket, bisection when a step leaves it; until a step is
+    /// below 1e-15 rad or a Newton step below 1e-9 rad no longer shrinks
+    /// (the rounding of the samples reached).
+    fn bracketed(&self, mut t0: f64, mut t1: f64) -> f64 {
+        let sign0 = self.at(t0)[0].signum();
         let mut t = 0.5 * (t0 + t1);
+        let mut last_newton = f64::INFINITY;
         for _ in 0..60 {
-            let (value, slope) = value_at(t);
+            let [value, slope, _] = self.at(t);
             if value == 0.0 {
                 return t;
             }
@@ -819,12 +876,18 @@ impl Trigonometric {
                 t1 = t;
             }
             let newton = t - value / slope;
-            let next = if newton > t0 && newton < t1 {
-                newton
+            let (next, step) = if newton > t0 && newton < t1 {
+                let step = (newton - t).abs();
+                if step < 1e-9 && step >= last_newton {
+                    return t;
+                }
+                last_newton = step;
+                (newton, step)
             } else {
-                0.5 * (t0 + t1)
+                let middle = 0.5 * (t0 + t1);
+                (middle, (middle - t).abs())
             };
-            if (next - t).abs() < 1e-15 || t1 - t0 < 1e-15 {
+            if step < 1e-15 || t1 - t0 < 1e-15 {
                 return next;
             }
             t = next;
@@ -934,11 +997,13 @@ struct Knot {
 }
 
 /// Roots found so far (the buffer of [`Trigonometric::roots`]) and the
-/// bound on the polynomial's fourth derivative.
+/// bounds on the polynomial's fourth and second derivatives.
 struct Found<'a> {
     roots: &'a mut [f64],
     count: usize,
     fourth: f64,
+    /// The bound on the polynomial's second derivative.
+    second: f64,
 }
 
 impl Found<'_> {
@@ -1121,10 +1186,7 @@ mod tests {
             let elimination = Elimination::new(&chain).unwrap();
             let q = random_q(&mut rng);
             let system = elimination.system(&(s.forward_kinematics(&q) * chain.home_inverse));
-            let det = |t: f64| {
-                let (s, c) = sin_cos(t);
-                full_pivot(&system.sigma(c, s)).determinant
-            };
+            let det = |t: f64| system.determinant(t);
             let samples: Vec<f64> = (0..25).map(|j| det(TAU * j as f64 / 25.0)).collect();
             let largest = samples.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
             for k in 0..=12 {
