@@ -365,8 +365,9 @@ fn explain_and_solve_a_parallel_1_2_pair_arm_by_1d_search() {
 }
 
 /// `armkit ik --explain` names `class` (a subproblem-6 search) for the DH
-/// file `dh`, and `--solver analytic` returns only exact solutions, the
-/// generating configuration nearest the start first.
+/// file `dh` and the method, elimination; `--solver analytic` returns only
+/// exact solutions, the generating configuration nearest the start first,
+/// by elimination (the default) and by the search (`--search 1d`).
 fn explain_and_solve_by_parallel_pair_search(name: &str, dh: &str, class: &str) {
     let dir = std::env::temp_dir().join(format!("armkit-ik-{name}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
@@ -378,6 +379,10 @@ fn explain_and_solve_by_parallel_pair_search(name: &str, dh: &str, class: &str) 
     let text = stdout(&output);
     assert!(text.contains(&format!("class: {class}\n")), "{text}");
     assert!(text.contains("subproblem 6"), "{text}");
+    assert!(
+        text.contains("method (--solver analytic, --search elimination): no closed-form class: algebraic elimination"),
+        "{text}"
+    );
     let model = armkit::description::load(&file).unwrap();
     let q = [0.4, -1.1, 1.3, -0.6, 1.4, 0.2];
     let pose = *forward_kinematics(&model, &mut Data::new(&model), &q).unwrap();
@@ -387,35 +392,42 @@ fn explain_and_solve_by_parallel_pair_search(name: &str, dh: &str, class: &str) 
         "{:.17e},{:.17e},{:.17e},{:.17e},{:.17e},{:.17e}",
         t.x, t.y, t.z, r, p, y
     );
-    let output = armkit(&[
-        "ik",
-        "--robot-file",
-        path,
-        "--pose",
-        &pose,
-        "--solver",
-        "analytic",
-        "--start",
-        "0.4,-1.1,1.3,-0.6,1.4,0.2",
-        "--json",
-    ]);
-    assert!(output.status.success(), "{}", stderr(&output));
-    let json: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
-    assert_eq!(json["class"], class);
-    let fits = json["solution_fits"].as_array().unwrap();
-    assert!(!fits.is_empty());
-    assert!(fits.iter().all(|f| f["fit"] == "exact"), "{fits:?}");
-    // Nearest the start first: the generating configuration.
-    let first: Vec<f64> = json["solutions"][0]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|v| v.as_f64().unwrap())
-        .collect();
-    assert!(
-        first.iter().zip(&q).all(|(a, b)| (a - b).abs() < 1e-9),
-        "{first:?}"
-    );
+    for search in ["elimination", "1d"] {
+        let output = armkit(&[
+            "ik",
+            "--robot-file",
+            path,
+            "--pose",
+            &pose,
+            "--solver",
+            "analytic",
+            "--search",
+            search,
+            "--start",
+            "0.4,-1.1,1.3,-0.6,1.4,0.2",
+            "--json",
+        ]);
+        assert!(output.status.success(), "{}", stderr(&output));
+        let json: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+        assert_eq!(json["class"], class);
+        let fits = json["solution_fits"].as_array().unwrap();
+        assert!(!fits.is_empty());
+        assert!(
+            fits.iter().all(|f| f["fit"] == "exact"),
+            "{search}: {fits:?}"
+        );
+        // Nearest the start first: the generating configuration.
+        let first: Vec<f64> = json["solutions"][0]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect();
+        assert!(
+            first.iter().zip(&q).all(|(a, b)| (a - b).abs() < 1e-9),
+            "{search}: {first:?}"
+        );
+    }
     std::fs::remove_dir_all(&dir).ok();
 }
 

@@ -19,7 +19,7 @@ use crate::errors::OrRaise;
 /// Python argument).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SolutionsArguments {
-    /// `search=`: `"1d"` or `"2d"`.
+    /// `search=`: `"elimination"`, `"1d"` or `"2d"`.
     pub search: SearchPolicy,
     /// `fixed_joint=` (0-based) and `parameter=`.
     pub redundancy: Redundancy,
@@ -36,12 +36,13 @@ impl SolutionsArguments {
         sweep: Option<i64>,
     ) -> armkit::Result<Self> {
         let search = match search {
+            "elimination" => SearchPolicy::Elimination,
             "1d" => SearchPolicy::UpToOneDimension,
             "2d" => SearchPolicy::TwoDimensions,
             other => {
                 return Err(Error::invalid_argument(
                     "search",
-                    format!("unknown value `{other}`; expected \"1d\" or \"2d\""),
+                    format!("unknown value `{other}`; expected \"elimination\", \"1d\" or \"2d\""),
                 ))
             }
         };

@@ -496,8 +496,10 @@ impl Robot {
 
     /// Every analytic IK solution of `T` (4 x 4, world frame, m) within the
     /// joint limits, nearest `q0` first (default: mid-range): the route of
-    /// `armkit ik --solver analytic`. `search`: `"1d"` (closed forms and 1-D
-    /// searches) or `"2d"` (also a general 6R arm's 2-D search). 7-joint
+    /// `armkit ik --solver analytic`. `search`: `"elimination"` (the default:
+    /// closed forms, every other 6R arm by algebraic elimination), `"1d"`
+    /// (closed forms and 1-D searches) or `"2d"` (the 1-D searches and a
+    /// general 6R arm's 2-D search). 7-joint
     /// arms: the elbow angle of a spherical-shoulder-elbow-wrist arm, else a
     /// held joint; `fixed_joint` (0-based, like a numpy index) holds that
     /// joint; `parameter` is the elbow angle (rad) or the held joint's value
@@ -506,7 +508,7 @@ impl Robot {
     /// `IkSolutions` (`q` (k, dof), `exact` (k,), `fits`, `position_error`,
     /// `orientation_error`, `arm_class`, `method`). An arm without analytic
     /// solver raises `ValueError` naming its class.
-    #[pyo3(signature = (T, q0=None, search="1d", fixed_joint=None, parameter=None, sweep=None))]
+    #[pyo3(signature = (T, q0=None, search="elimination", fixed_joint=None, parameter=None, sweep=None))]
     #[allow(non_snake_case, clippy::too_many_arguments)]
     fn ik_solutions(
         &self,

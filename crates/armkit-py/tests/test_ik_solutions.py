@@ -201,7 +201,7 @@ def test_a_sweep_gives_more_solutions_than_one_value():
     assert len(np.unique(np.round(swept.q[:, joint], 9))) >= 3
 
 
-def test_general_6r_needs_the_2d_search(tmp_path):
+def test_general_6r_by_elimination_and_by_the_2d_search(tmp_path):
     path = tmp_path / "general-6r.toml"
     path.write_text(GENERAL_6R)
     robot = armkit.Robot.from_file(path)
@@ -209,9 +209,18 @@ def test_general_6r_needs_the_2d_search(tmp_path):
     assert "general" in name
     q = np.array([0.4, -0.3, 0.8, 0.5, -0.6, 0.2])
     T = robot.fk(q)
+    # The default: elimination, every solution exact and the generating one
+    # among them.
+    result = robot.ik_solutions(T, q0=q)
+    assert result.arm_class == name
+    assert "elimination" in result.method
+    check_solutions(robot, result, T, q)
+    assert contains(result.q[result.exact], q)
+    # The searches alone refuse it, naming the options.
     with pytest.raises(ValueError, match="search") as error:
-        robot.ik_solutions(T)
+        robot.ik_solutions(T, search="1d")
     assert "general" in str(error.value)
+    assert "Elimination" in str(error.value)
     result = robot.ik_solutions(T, q0=q, search="2d")
     assert result.arm_class == name
     check_solutions(robot, result, T, q)

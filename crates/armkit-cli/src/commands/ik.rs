@@ -114,18 +114,24 @@ pub struct RedundancyArgs {
     /// held joint's range) and list the solutions of all of them.
     #[arg(long, value_name = "N")]
     pub sweep: Option<usize>,
-    /// The searches the analytic solver may run: `1d` (closed forms and
-    /// 1-D searches, tens of microseconds to milliseconds) or `2d` (also a
-    /// general 6R arm's 2-D search: milliseconds, may miss solutions).
-    #[arg(long, value_enum, default_value_t = SearchArg::OneD)]
+    /// How the analytic solver solves 6R arms without a closed form:
+    /// `elimination` (the default: algebraic elimination, tens of
+    /// microseconds, every 6R arm with at most one special pair), `1d`
+    /// (closed forms and the 1-D searches, hundreds of microseconds; a
+    /// general 6R arm refused) or `2d` (also a general 6R arm's 2-D search:
+    /// milliseconds, may miss solutions).
+    #[arg(long, value_enum, default_value_t = SearchArg::Elimination)]
     pub search: SearchArg,
 }
 
 /// `--search` values.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
 pub enum SearchArg {
-    /// Closed forms and 1-D searches (default).
+    /// Closed forms, elimination for the rest (default).
     #[default]
+    #[value(name = "elimination")]
+    Elimination,
+    /// Closed forms and 1-D searches.
     #[value(name = "1d")]
     OneD,
     /// Also the general 6R arm's 2-D search.
@@ -134,9 +140,19 @@ pub enum SearchArg {
 }
 
 impl SearchArg {
+    /// The value as written on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            SearchArg::Elimination => "elimination",
+            SearchArg::OneD => "1d",
+            SearchArg::TwoD => "2d",
+        }
+    }
+
     /// The library's policy.
     pub fn policy(self) -> armkit::ik::analytic::SearchPolicy {
         match self {
+            SearchArg::Elimination => armkit::ik::analytic::SearchPolicy::Elimination,
             SearchArg::OneD => armkit::ik::analytic::SearchPolicy::UpToOneDimension,
             SearchArg::TwoD => armkit::ik::analytic::SearchPolicy::TwoDimensions,
         }

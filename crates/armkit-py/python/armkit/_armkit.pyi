@@ -25,7 +25,7 @@ _ArrayLike = npt.ArrayLike
 _FloatArray = npt.NDArray[np.float64]
 _BoolArray = npt.NDArray[np.bool_]
 _StrPath = Union[str, "PathLike[str]"]
-_AnalyticSearch = Literal["1d", "2d"]
+_AnalyticSearch = Literal["elimination", "1d", "2d"]
 _IkSolverName = Literal["auto", "closed-form", "lm", "nr", "dls", "sri"]
 _JacobianFrameName = Literal["world", "end-effector"]
 
@@ -164,16 +164,18 @@ class Robot:
         self,
         T: _ArrayLike,
         q0: Optional[_ArrayLike] = None,
-        search: _AnalyticSearch = "1d",
+        search: _AnalyticSearch = "elimination",
         fixed_joint: Optional[int] = None,
         parameter: Optional[float] = None,
         sweep: Optional[int] = None,
     ) -> IkSolutions:
         """Every analytic IK solution of ``T`` ((4, 4), world frame, m) within
         the joint limits, nearest ``q0`` (dof,) first (default: mid-range),
-        as ``armkit ik --solver analytic``. ``search``: ``"1d"`` (closed forms
-        and 1-D searches) or ``"2d"`` (also a general 6R arm's 2-D search,
-        milliseconds, may miss solutions). 7-joint arms: the elbow angle of a
+        as ``armkit ik --solver analytic``. ``search``: ``"elimination"`` (the
+        default: closed forms, every other 6R arm by algebraic elimination,
+        tens of microseconds), ``"1d"`` (closed forms and the 1-D searches;
+        a general 6R arm refused) or ``"2d"`` (the 1-D searches and a general
+        6R arm's 2-D search, milliseconds, may miss solutions). 7-joint arms: the elbow angle of a
         spherical-shoulder-elbow-wrist arm (iiwa), else a held joint (Panda);
         ``fixed_joint`` holds that joint (0-based, like a numpy index);
         ``parameter`` is the elbow angle (rad) or the held joint's value

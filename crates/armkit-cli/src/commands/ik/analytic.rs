@@ -129,12 +129,18 @@ pub(super) fn explain(model: &Model, redundancy: &RedundancyArgs, json: bool) ->
     let held_text = held
         .map(|j| format!(" (with joint {j} held, the route of --solver analytic)"))
         .unwrap_or_default();
+    // How `--solver analytic` would solve it with these flags (None when it
+    // refuses the arm; the class line then says why).
+    let method = route(model, redundancy, &model.neutral_configuration())
+        .ok()
+        .map(|route| route.method(JointNumbering::OneBased));
     if json {
         return print_json(&serde_json::json!({
             "robot": model.name(),
             "class": class.as_str(),
             "solvable": class.is_solvable(),
             "description": class.description(),
+            "method": method,
             "held_joint": held,
         }));
     }
@@ -145,5 +151,11 @@ pub(super) fn explain(model: &Model, redundancy: &RedundancyArgs, json: bool) ->
         structure.describe(),
         class.description()
     );
+    if let Some(method) = method {
+        println!(
+            "method (--solver analytic, --search {}): {method}",
+            redundancy.search.name()
+        );
+    }
     Ok(())
 }

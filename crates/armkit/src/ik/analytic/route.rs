@@ -222,7 +222,7 @@ impl AnalyticRoute {
             AnalyticRoute::Subproblems(s) => s,
             AnalyticRoute::Arm4(c) => return c.description().to_string(),
         };
-        let class = solver.class().description();
+        let class = solver.method();
         match solver.parameter() {
             Some(Parameter::ElbowAngle(psi)) => format!("{class}; elbow angle {psi:.6} rad"),
             Some(Parameter::FixedJoint { joint, value }) => match numbering {
