@@ -108,8 +108,11 @@ pub const TANGENT: f64 = 1e-3;
 /// rounding-dominated: [`QUIET_STEPS`] direct evaluations per interval there.
 pub const QUIET: f64 = 1e-11;
 /// Direct evaluations of `det Sigma` per sample interval where the
-/// polynomial is quiet.
-pub const QUIET_STEPS: usize = 32;
+/// polynomial is quiet (and per window around a dip of it).
+pub const QUIET_STEPS: usize = 8;
+/// How many times a dip of the direct evaluations is scanned again, a
+/// quarter of the step each time.
+pub const QUIET_REFINEMENTS: usize = 1;
 /// A root where the polynomial's slope (per rad) is below this fraction of
 /// its largest sample is refined on the determinant itself.
 pub const FLAT: f64 = 1e-4;
@@ -742,8 +745,7 @@ impl Trigonometric {
     /// largest, the interpolation's rounding (relative to the largest
     /// sample) may hide or invent sign changes: there `determinant` (the
     /// function interpolated, evaluated directly: accurate relative to its
-    /// own size) is scanned at [`QUIET_STEPS`] points per interval instead,
-    /// and its sign changes refined.
+    /// own size) is scanned instead ([`scan_directly`]).
     fn roots(
         &self,
         table: &[(f64, f64); ROOT_SAMPLES],
@@ -791,7 +793,7 @@ impl Trigonometric {
                 slope,
             };
             if start.value.abs().max(end.value.abs()) < QUIET * largest {
-                scan_directly(determinant, start.t, end.t, &mut found);
+                scan_directly(determinant, (start.t, end.t), QUIET_REFINEMENTS, &mut found);
             } else {
                 self.isolate(&start, &end, &mut found);
             }
@@ -897,25 +899,45 @@ impl Trigonometric {
 }
 
 /// The roots of `f` in `[t0, t1)` from its values at [`QUIET_STEPS`] + 1
-/// evenly spaced points: a sign change refined by [`regula_falsi`], and a
-/// dip toward zero between two points (a pair of roots, or a double root,
-/// closer than a step) by [`dip`].
-fn scan_directly(f: &dyn Fn(f64) -> f64, t0: f64, t1: f64, found: &mut Found) {
+/// evenly spaced points: a sign change refined by [`regula_falsi`]; where
+/// `|f|` dips at a point between two of one sign (a pair of roots, or a
+/// double root, closer than a step may hide there), the two steps around it
+/// scanned again the same way `refinements` times (a quarter of the step
+/// each time), then by [`dip`].
+fn scan_directly(
+    f: &dyn Fn(f64) -> f64,
+    (t0, t1): (f64, f64),
+    refinements: usize,
+    found: &mut Found,
+) {
     let step = (t1 - t0) / QUIET_STEPS as f64;
-    let mut points = [(0.0, 0.0); QUIET_STEPS + 1];
-    for (i, point) in points.iter_mut().enumerate() {
+    let points: [(f64, f64); QUIET_STEPS + 1] = std::array::from_fn(|i| {
         let t = t0 + step * i as f64;
-        *point = (t, f(t));
-    }
-    for i in 0..QUIET_STEPS {
+        (t, f(t))
+    });
+    let mut i = 0;
+    while i < QUIET_STEPS {
         let ((a, fa), (b, fb)) = (points[i], points[i + 1]);
+        let dips = i + 2 <= QUIET_STEPS && {
+            let fc = points[i + 2].1;
+            fa * fb > 0.0 && fb * fc > 0.0 && fb.abs() < fa.abs() && fb.abs() <= fc.abs()
+        };
+        if dips {
+            let window = (a, points[i + 2].0);
+            if refinements > 0 {
+                scan_directly(f, window, refinements - 1, found);
+            } else {
+                dip(f, points[i], points[i + 1], points[i + 2], found);
+            }
+            i += 2;
+            continue;
+        }
         if fa == 0.0 {
             found.push(a);
         } else if fa * fb < 0.0 {
             found.push(regula_falsi(f, (a, fa), (b, fb)));
-        } else if i > 0 && fa.abs() < points[i - 1].1.abs() && fa.abs() <= fb.abs() {
-            dip(f, points[i - 1], (a, fa), (b, fb), found);
         }
+        i += 1;
     }
 }
 
