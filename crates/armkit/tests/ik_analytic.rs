@@ -1383,3 +1383,68 @@ fn auto_takes_the_numeric_route_on_one_pair_arms() {
     let solved = auto.solve(&target, &model.neutral_configuration()).unwrap();
     assert_eq!(solved.route, IkRoute::Numeric);
 }
+
+/// Elimination checked against the other algorithm: on random arms of every
+/// pair layout, the exact solutions of elimination and of the 1-D searches
+/// are the same sets (joint angles to 1e-6 rad, modulo 2 pi), to 0.1 % of
+/// either's solutions. Measured on these 1 000 poses: elimination finds all
+/// 3 974 of the searches' solutions; the searches miss 2 of elimination's
+/// 3 976.
+#[test]
+fn elimination_and_the_searches_find_the_same_solutions() {
+    let mut rng = common::rng(500);
+    let same = |a: &[f64], b: &[f64]| {
+        a.iter().zip(b).all(|(x, y)| {
+            let d = x - y;
+            (d - std::f64::consts::TAU * (d / std::f64::consts::TAU).round()).abs() < 1e-6
+        })
+    };
+    // [found by elimination, by the searches]; [not found by the other].
+    let (mut total, mut unmatched) = ([0; 2], [0; 2]);
+    for first in 0..5 {
+        for parallel in [false, true] {
+            for _ in 0..2 {
+                let lines = match parallel {
+                    false => one_pair_lines(&mut rng, first),
+                    true => parallel_pair_lines(&mut rng, first),
+                };
+                let model = model_from_lines("pair", &lines, random_home(&mut rng));
+                let mut elimination = solver(&model);
+                let mut search = AnalyticSolver::new(&model, one_dimension()).unwrap();
+                let mut data = Data::new(&model);
+                for _ in 0..50 {
+                    let q = common::random_configuration(&model, &mut rng);
+                    let target = *forward_kinematics(&model, &mut data, &q).unwrap();
+                    let start = model.neutral_configuration();
+                    let exact = |s: &mut AnalyticSolver| -> Vec<Vec<f64>> {
+                        let found = s.solve(&target, &start).unwrap();
+                        found
+                            .iter()
+                            .filter(|s| s.fit == Fit::Exact)
+                            .map(|s| s.q().to_vec())
+                            .collect()
+                    };
+                    let (by_elimination, by_search) = (exact(&mut elimination), exact(&mut search));
+                    let pairs = [(&by_elimination, &by_search), (&by_search, &by_elimination)];
+                    for (k, (these, those)) in pairs.into_iter().enumerate() {
+                        total[k] += these.len();
+                        unmatched[k] += these
+                            .iter()
+                            .filter(|q| !those.iter().any(|p| same(q, p)))
+                            .count();
+                    }
+                }
+            }
+        }
+    }
+    println!(
+        "of elimination's {} solutions the searches miss {}; of the searches' {} elimination misses {}",
+        total[0], unmatched[0], total[1], unmatched[1]
+    );
+    for k in 0..2 {
+        assert!(
+            unmatched[k] as f64 <= 0.001 * total[k] as f64,
+            "{unmatched:?} of {total:?} solutions unmatched"
+        );
+    }
+}

@@ -774,8 +774,8 @@ fn dynamics_workspace_moving_between_models_does_not_allocate() {
 }
 
 #[test]
-fn analytic_ik_searches_do_not_allocate() {
-    use armkit::ik::analytic::{AnalyticOptions, AnalyticSolver, SearchPolicy};
+fn analytic_ik_searches_and_elimination_do_not_allocate() {
+    use armkit::ik::analytic::{AnalyticOptions, SearchPolicy};
     use armkit::math::{Pose, Vector3};
     use armkit::model::{JointSpec, ModelBuilder};
     use std::f64::consts::PI;
@@ -829,28 +829,48 @@ fn analytic_ik_searches_do_not_allocate() {
             .fixed(Pose::from_translation(Vector3::new(0.15, 0.0, 0.0)))
             .build()
             .unwrap();
-        let mut solver = AnalyticSolver::new(&model, options).unwrap();
-        if name == "parallel_pair" {
-            assert_eq!(solver.class().as_str(), "one_pair_parallel_2_3_1d_search");
+        // The searches (with the 2-D one) and elimination, the default.
+        for options in [options, AnalyticOptions::default()] {
+            solve_without_allocating(name, &model, options);
         }
-        if name == "parallel_pair_1_2" {
-            assert_eq!(solver.class().as_str(), "one_pair_parallel_1_2_1d_search");
-        }
-        if name == "pair_3_4" {
-            assert_eq!(
-                solver.class().as_str(),
-                "one_pair_intersecting_3_4_1d_search"
-            );
-        }
-        let targets = benchmark_targets(&model, 5, 3).unwrap();
-        let start = model.neutral_configuration();
-        let mut solutions = 0;
-        for (_, target) in &targets {
-            let before = allocations();
-            solutions += solver.solve(target, &start).unwrap().len();
-            let after = allocations();
-            assert_eq!(after - before, 0, "{name}: {} allocations", after - before);
-        }
-        assert!(solutions > 0, "{name}");
     }
+}
+
+/// Solves 5 targets of `model` with a solver of `options`; asserts none of
+/// the solves allocates and that some solution is found.
+fn solve_without_allocating(
+    name: &str,
+    model: &armkit::Model,
+    options: armkit::ik::analytic::AnalyticOptions,
+) {
+    use armkit::ik::analytic::AnalyticSolver;
+    let mut solver = AnalyticSolver::new(model, options).unwrap();
+    if name == "parallel_pair" {
+        assert_eq!(solver.class().as_str(), "one_pair_parallel_2_3_1d_search");
+    }
+    if name == "parallel_pair_1_2" {
+        assert_eq!(solver.class().as_str(), "one_pair_parallel_1_2_1d_search");
+    }
+    if name == "pair_3_4" {
+        assert_eq!(
+            solver.class().as_str(),
+            "one_pair_intersecting_3_4_1d_search"
+        );
+    }
+    let targets = benchmark_targets(model, 5, 3).unwrap();
+    let start = model.neutral_configuration();
+    let mut solutions = 0;
+    for (_, target) in &targets {
+        let before = allocations();
+        solutions += solver.solve(target, &start).unwrap().len();
+        let after = allocations();
+        let method = options.search;
+        assert_eq!(
+            after - before,
+            0,
+            "{name} ({method}): {} allocations",
+            after - before
+        );
+    }
+    assert!(solutions > 0, "{name}");
 }
