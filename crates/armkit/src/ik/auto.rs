@@ -352,9 +352,13 @@ fn analytic_for(model: &Model) -> (Option<AnalyticSolver>, Spare) {
     (None, Spare::None)
 }
 
-/// False for the one-pair search (about 0.6 ms a solve, forty times a
-/// numeric solve): the automatic route is for the fastest answer, and a
+/// False for the 6R classes without a closed form (elimination, 30-60 us a
+/// solve, or the 1-D searches, about 0.4 ms; a numeric solve of such an arm
+/// takes about 15 us): the automatic route is for the fastest answer, and a
 /// caller who wants every solution of such an arm asks the analytic solver.
 fn faster_than_numeric(solver: &AnalyticSolver) -> bool {
-    !matches!(solver.class(), ArmClass::OnePair { .. })
+    !matches!(
+        solver.class(),
+        ArmClass::OnePair { .. } | ArmClass::General | ArmClass::UnsearchedPairs
+    )
 }

@@ -82,14 +82,14 @@
 //! ```
 
 use super::chain::{Candidates, Chain};
-use super::search2d::{chain_pose, settle_root_within};
+use super::search2d::{chain_pose, settle_root_within, Settle};
 use super::subproblems::{rotation, subproblem1};
 use crate::math::{sin_cos, wrap_angle, Matrix3, Pose, Vector3};
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 /// [`AnalyticSolver::method`](super::AnalyticSolver::method) for an arm
 /// solved by elimination.
-pub const METHOD: &str = "no closed-form class: algebraic elimination (Raghavan and Roth's 14 equations, Manocha and Canny's 12 x 12 matrix in joint 3; the real roots of a degree-8 trigonometric polynomial, isolated with certified bounds and refined to 1e-15 rad; joints 4-5 from the null vector, 1-2 by least squares, 6 by subproblem 1, each polished on the chain), up to 16 solutions";
+pub const METHOD: &str = "no closed-form class: algebraic elimination (Raghavan and Roth's 14 equations, Manocha and Canny's 12 x 12 matrix in joint 3; the real roots of a degree-8 trigonometric polynomial read from 17 determinants, isolated with certified bounds, refined by Newton, on the determinant itself where the polynomial is flat or below its rounding; joints 4-5 from the null vector, 1-2 by least squares, 6 by subproblem 1, each polished on the chain), up to 16 solutions";
 /// Raghavan and Roth's functions of `p` and `l`.
 const FUNCTIONS: usize = 14;
 /// Evaluations of `det Sigma(q3)` per solve (one turn, evenly spaced): a
@@ -104,6 +104,9 @@ pub const ROOT_SAMPLES: usize = 128;
 /// double root (two real roots made complex by rounding: a pose at a
 /// singular configuration).
 pub const TANGENT: f64 = 1e-3;
+/// The rounding of the polynomial's values, relative to its largest sample
+/// (each determinant's rounding, measured: 1e-14 to 1e-13 per harmonic).
+pub const ROUNDING: f64 = 1e-13;
 /// Samples of the polynomial below this fraction of the largest are
 /// rounding-dominated: [`QUIET_STEPS`] direct evaluations per interval there.
 pub const QUIET: f64 = 1e-11;
@@ -116,11 +119,20 @@ pub const QUIET_REFINEMENTS: usize = 1;
 /// A root where the polynomial's slope (per rad) is below this fraction of
 /// its largest sample is refined on the determinant itself.
 pub const FLAT: f64 = 1e-4;
-/// Largest pose error (m and rad) of a back-substituted root kept (and
-/// polished): a root of a nearly double root of `det Sigma` is found to
-/// about the square root of the polynomial's rounding, 1e-8 rad, which
-/// back-substitution amplifies.
-pub const KEEP: f64 = 1e-3;
+/// The null space of `Sigma` at a root counts as two-dimensional (two
+/// solutions sharing joint 3) when its eleventh pivot is below this
+/// fraction of its first.
+pub const DOUBLE_NULL: f64 = 1e-6;
+/// How a back-substituted root is settled on the chain: kept within 1e-3
+/// (m and rad) and polished by up to 10 steps. A root of a nearly double
+/// root of `det Sigma` is found to about the square root of the
+/// polynomial's rounding, which back-substitution amplifies; two solutions
+/// that share joint 3 to the rounding come from one root and are polished
+/// apart near a singular configuration, where Gauss-Newton slows down.
+const SETTLE: Settle = Settle {
+    keep: 1e-3,
+    iterations: 10,
+};
 /// The grid of the fits: `(1, cos t, sin t)` at these angles is invertible.
 const GRID: [f64; 3] = [0.0, FRAC_PI_2, PI];
 /// `(1, cos t, sin t)` in half-angle-tangent polynomials times `1 + x^2`:
@@ -219,17 +231,10 @@ impl Elimination {
             } else {
                 root
             };
-            if let Some(q) = self.back_substitute(&system, &goal, q3) {
-                if let Some((q, exact)) =
-                    settle_root_within(&self.chain, &self.home, q, target, KEEP)
-                {
-                    out.push_distinct(&q, exact);
-                }
-            }
+            self.back_substitute(&system, target, q3, out);
         }
     }
 
-    /// Whether the probe pose's configuration is among its solutions.
     /// Whether at least two of the [`PROBES`] poses give their configuration
     /// back (one may be near a singular configuration of this arm; an arm
     /// whose `det Sigma` vanishes identically gives none back).
@@ -347,12 +352,40 @@ impl Elimination {
         }
     }
 
-    /// The configuration at a root `q3` (chain order), `None` when a value
-    /// is not finite.
-    fn back_substitute(&self, system: &System, goal: &Pose, q3: f64) -> Option<[f64; 6]> {
+    /// The solutions at a root `q3` (chain order), settled on the chain,
+    /// into `out`: from the null vector of `Sigma(q3)`; and where its null
+    /// space is two-dimensional (two solutions share joint 3 to the
+    /// rounding) or that vector's configuration is not exact, from the two
+    /// monomial vectors in the two-dimensional null space.
+    fn back_substitute(&self, system: &System, target: &Pose, q3: f64, out: &mut Candidates) {
+        let goal = *target * self.chain.home_inverse;
         let (s3, c3) = sin_cos(q3);
-        let v = null_vector(&system.sigma(c3, s3));
-        // v[3 a + b] = x4^a x5^b: the ratios of the largest neighbours.
+        let null = NullSpace::of(&system.sigma(c3, s3));
+        let settled = |v: &[f64; 12]| {
+            let q = self.completed(system, &goal, q3, v)?;
+            settle_root_within(&self.chain, &self.home, q, target, SETTLE)
+        };
+        let single = settled(&null.vector());
+        if let Some((q, true)) = single {
+            out.push_distinct(&q, true);
+            if !null.is_double() {
+                return;
+            }
+        }
+        let pair = monomials_in(&null.pair()).map(|pair| pair.map(|v| settled(&v)));
+        let exact_pair = pair.is_some_and(|p| p.iter().any(|s| matches!(s, Some((_, true)))));
+        for (q, exact) in pair.into_iter().flatten().flatten() {
+            out.push_distinct(&q, exact);
+        }
+        if let (Some((q, false)), false) = (single, exact_pair) {
+            out.push_distinct(&q, false);
+        }
+    }
+
+    /// The configuration of the monomial vector `v` (`v[3 a + b] = x4^a
+    /// x5^b`) at `q3`: joints 4-5 from the ratios of its largest
+    /// neighbours, 1-2 by least squares, 6 by subproblem 1.
+    fn completed(&self, system: &System, goal: &Pose, q3: f64, v: &[f64; 12]) -> Option<[f64; 6]> {
         let best = |pairs: &mut dyn Iterator<Item = (usize, usize)>| {
             pairs
                 .max_by(|x, y| {
@@ -633,49 +666,133 @@ fn determinant(matrix: &Square) -> f64 {
     determinant
 }
 
-/// The vector `v` with `M v ~ 0` of a (nearly) singular 12 x 12 matrix:
-/// Gaussian elimination with full pivoting, the last pivoted unknown 1,
-/// the others by back-substitution.
-fn null_vector(matrix: &Square) -> [f64; 12] {
-    let mut upper = *matrix;
-    let mut columns = [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11];
-    for k in 0..11 {
-        let (mut row, mut column, mut largest) = (k, k, 0.0);
-        for (i, values) in upper.iter().enumerate().skip(k) {
-            for (j, value) in values.iter().enumerate().skip(k) {
-                if value.abs() > largest {
-                    (row, column, largest) = (i, j, value.abs());
+/// The null space of a (nearly) singular 12 x 12 matrix: Gaussian
+/// elimination with full pivoting over 11 pivots.
+struct NullSpace {
+    /// The upper triangle (columns permuted).
+    upper: Square,
+    /// `columns[j]`: the original column at position `j`.
+    columns: [usize; 12],
+}
+
+impl NullSpace {
+    fn of(matrix: &Square) -> NullSpace {
+        let mut upper = *matrix;
+        let mut columns = [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11];
+        for k in 0..11 {
+            let (mut row, mut column, mut largest) = (k, k, 0.0);
+            for (i, values) in upper.iter().enumerate().skip(k) {
+                for (j, value) in values.iter().enumerate().skip(k) {
+                    if value.abs() > largest {
+                        (row, column, largest) = (i, j, value.abs());
+                    }
+                }
+            }
+            upper.swap(row, k);
+            for values in upper.iter_mut() {
+                values.swap(column, k);
+            }
+            columns.swap(column, k);
+            let pivot = upper[k][k];
+            if pivot == 0.0 {
+                continue;
+            }
+            let pivot_row = upper[k];
+            for row in upper.iter_mut().skip(k + 1) {
+                let factor = row[k] / pivot;
+                for (value, above) in row.iter_mut().zip(&pivot_row).skip(k) {
+                    *value -= factor * above;
                 }
             }
         }
-        upper.swap(row, k);
-        for values in upper.iter_mut() {
-            values.swap(column, k);
+        NullSpace { upper, columns }
+    }
+
+    /// Whether the eleventh pivot is below [`DOUBLE_NULL`] of the first:
+    /// the null space is (nearly) two-dimensional.
+    fn is_double(&self) -> bool {
+        self.upper[10][10].abs() <= DOUBLE_NULL * self.upper[0][0].abs()
+    }
+
+    /// The null vector: the last pivoted unknown 1.
+    fn vector(&self) -> [f64; 12] {
+        let mut y = [0.0; 12];
+        y[11] = 1.0;
+        self.completed(y, 11)
+    }
+
+    /// A basis of the two-dimensional null space: the last two pivoted
+    /// unknowns (1, 0) and (0, 1).
+    fn pair(&self) -> [[f64; 12]; 2] {
+        let mut first = [0.0; 12];
+        first[10] = 1.0;
+        let mut second = [0.0; 12];
+        second[11] = 1.0;
+        [self.completed(first, 10), self.completed(second, 10)]
+    }
+
+    /// `y` (pivoted order) with its first `solved` unknowns back-substituted
+    /// from the rest, in the original order.
+    fn completed(&self, mut y: [f64; 12], solved: usize) -> [f64; 12] {
+        let u = &self.upper;
+        for i in (0..solved).rev() {
+            let known: f64 = (i + 1..12).map(|j| u[i][j] * y[j]).sum();
+            y[i] = -known / u[i][i];
         }
-        columns.swap(column, k);
-        let pivot = upper[k][k];
-        if pivot == 0.0 {
-            continue;
+        let mut v = [0.0; 12];
+        for (j, value) in y.iter().enumerate() {
+            v[self.columns[j]] = *value;
         }
-        let pivot_row = upper[k];
-        for row in upper.iter_mut().skip(k + 1) {
-            let factor = row[k] / pivot;
-            for (value, above) in row.iter_mut().zip(&pivot_row).skip(k) {
-                *value -= factor * above;
+        v
+    }
+}
+
+/// The monomial vectors `(x4^a x5^b)` in a two-dimensional null space
+/// `basis` (two solutions sharing joint 3): `v = N c` with `v[3 (a + 1) + b]
+/// = x4 v[3 a + b]`, a 2 x 2 eigenproblem `(A'A)^-1 A'B c = x4 c` over the
+/// shifted rows (least squares); `None` for a complex pair.
+fn monomials_in(basis: &[[f64; 12]; 2]) -> Option<[[f64; 12]; 2]> {
+    let (mut gram, mut cross) = ([[0.0; 2]; 2], [[0.0; 2]; 2]);
+    for i in 0..9 {
+        for r in 0..2 {
+            for c in 0..2 {
+                gram[r][c] += basis[r][i] * basis[c][i];
+                cross[r][c] += basis[r][i] * basis[c][i + 3];
             }
         }
     }
-    let mut y = [0.0; 12];
-    y[11] = 1.0;
-    for i in (0..11).rev() {
-        let known: f64 = (i + 1..12).map(|j| upper[i][j] * y[j]).sum();
-        y[i] = -known / upper[i][i];
+    let det = gram[0][0] * gram[1][1] - gram[0][1] * gram[1][0];
+    if det == 0.0 {
+        return None;
     }
-    let mut v = [0.0; 12];
-    for (j, value) in y.iter().enumerate() {
-        v[columns[j]] = *value;
+    // M = gram^-1 cross.
+    let inverse = [
+        [gram[1][1] / det, -gram[0][1] / det],
+        [-gram[1][0] / det, gram[0][0] / det],
+    ];
+    let mut m = [[0.0; 2]; 2];
+    for r in 0..2 {
+        for c in 0..2 {
+            m[r][c] = inverse[r][0] * cross[0][c] + inverse[r][1] * cross[1][c];
+        }
     }
-    v
+    let half_trace = 0.5 * (m[0][0] + m[1][1]);
+    let discriminant = half_trace * half_trace - (m[0][0] * m[1][1] - m[0][1] * m[1][0]);
+    if discriminant < 0.0 {
+        return None;
+    }
+    let eigenvector = |lambda: f64| {
+        if m[0][1].abs() > m[1][0].abs() {
+            [m[0][1], lambda - m[0][0]]
+        } else {
+            [lambda - m[1][1], m[1][0]]
+        }
+    };
+    let root = discriminant.sqrt();
+    Some([half_trace + root, half_trace - root].map(|lambda| {
+        let c = eigenvector(lambda);
+        std::array::from_fn(|i| basis[0][i] * c[0] + basis[1][i] * c[1])
+    }))
 }
 
 /// `a0 + sum_k (a_k cos k t + b_k sin k t)`, `k = 1..8`.
@@ -774,6 +891,7 @@ impl Trigonometric {
             count: 0,
             fourth,
             second,
+            noise: ROUNDING * largest,
         };
         let step = TAU / ROOT_SAMPLES as f64;
         for j in 0..ROOT_SAMPLES {
@@ -826,11 +944,13 @@ impl Trigonometric {
         let value_error = found.fourth * h.powi(4) / 384.0;
         if low > value_error || high < -value_error {
             // No root, but one of a pair made complex by rounding may be
-            // near: the interpolant's closest approach to zero.
+            // near: the interpolant's closest approach to zero, if within
+            // TANGENT of the ends or within the rounding of the samples.
             let (s, value) = cubic.nearest_zero();
             let ends = start.value.abs().max(end.value.abs());
-            if s > 0.0 && s < 1.0 && value.abs() <= TANGENT * ends {
-                found.push(start.t + s * h);
+            if s > 0.0 && s < 1.0 && value.abs() <= (TANGENT * ends).max(found.noise) {
+                let [value, _, curvature] = self.at(start.t + s * h);
+                found.push_double(start.t + s * h, value.abs().max(found.noise), curvature);
             }
             return;
         }
@@ -977,7 +1097,10 @@ fn dip(
         m = bottom;
     }
     if m.1.abs() <= TANGENT * left.1.abs().min(right.1.abs()) {
-        found.push(m.0);
+        // The parabola's curvature: twice the second divided difference.
+        let slope = |(t0, f0): (f64, f64), (t1, f1): (f64, f64)| (f1 - f0) / (t1 - t0);
+        let curvature = 2.0 * (slope(m, b) - slope(a, m)) / (b.0 - a.0);
+        found.push_double(m.0, m.1.abs(), curvature);
     }
 }
 
@@ -1026,6 +1149,8 @@ struct Found<'a> {
     fourth: f64,
     /// The bound on the polynomial's second derivative.
     second: f64,
+    /// [`ROUNDING`] of the largest sample.
+    noise: f64,
 }
 
 impl Found<'_> {
@@ -1033,6 +1158,23 @@ impl Found<'_> {
         if self.count < self.roots.len() {
             self.roots[self.count] = t;
             self.count += 1;
+        }
+    }
+
+    /// A double root at `t` where the function, of curvature `curvature`,
+    /// comes within `gap` of zero without crossing (two real roots made a
+    /// complex pair by rounding, or nearly meeting): pushed as the two
+    /// roots the parabola would have at that depth, `t -+ sqrt(2 gap /
+    /// |curvature|)`, each then polished apart on the chain (from `t`
+    /// itself, where the two solutions' Jacobian is singular, Gauss-Newton
+    /// would not separate them).
+    fn push_double(&mut self, t: f64, gap: f64, curvature: f64) {
+        let half_gap = (2.0 * gap / curvature.abs()).sqrt();
+        if half_gap.is_finite() && half_gap < 1e-2 {
+            self.push(t - half_gap);
+            self.push(t + half_gap);
+        } else {
+            self.push(t);
         }
     }
 }

@@ -89,41 +89,55 @@ impl GridSearch {
     }
 }
 
-/// Largest pose error (m and rad) of a 1-D search's root kept as a candidate.
-pub(crate) const KEEP: f64 = 1e-6;
-/// Pose error (m and rad) above which a 1-D search's root is polished.
+/// How far a root may miss and how hard it is polished: a root `q` whose
+/// pose misses the target by more than `keep` (m and rad) is dropped; one
+/// missing by more than [`POLISHED`] is polished by at most `iterations`
+/// steps of [`polish`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Settle {
+    pub keep: f64,
+    pub iterations: usize,
+}
+
+impl Settle {
+    /// A 1-D search's roots: within 1e-6, three steps (near a fold the
+    /// closed-form steps lose digits).
+    pub(crate) const SEARCH: Settle = Settle {
+        keep: 1e-6,
+        iterations: 3,
+    };
+}
+
+/// Pose error (m and rad) above which a root is polished.
 const POLISHED: f64 = 1e-12;
 
 /// A 1-D search's root `q` (chain order) as a solution for `target`:
-/// [`settle_root_within`] [`KEEP`].
+/// [`settle_root_within`] [`Settle::SEARCH`].
 pub(crate) fn settle_root(
     chain: &Chain,
     home: &Pose,
     q: [f64; 6],
     target: &Pose,
 ) -> Option<([f64; 6], bool)> {
-    settle_root_within(chain, home, q, target, KEEP)
+    settle_root_within(chain, home, q, target, Settle::SEARCH)
 }
 
-/// A root `q` (chain order) as a solution for `target`: dropped (`None`)
-/// when the chain's pose misses it by more than `keep` (m and rad);
-/// polished by three steps of [`polish`] when it misses by more than
-/// [`POLISHED`] (near a fold or a double root the closed-form steps lose
-/// digits), the polished configuration kept only if it errs less; with
-/// whether it is exact (within [`EXACT_TOLERANCE`]).
+/// A root `q` (chain order) as a solution for `target`, per `settle`: the
+/// polished configuration kept only if it errs less; with whether it is
+/// exact (within [`EXACT_TOLERANCE`]).
 pub(crate) fn settle_root_within(
     chain: &Chain,
     home: &Pose,
     mut q: [f64; 6],
     target: &Pose,
-    keep: f64,
+    settle: Settle,
 ) -> Option<([f64; 6], bool)> {
     let error = pose_gap(chain, home, &q, target);
-    if error > keep {
+    if error > settle.keep {
         return None;
     }
     if error > POLISHED {
-        if let Some((p, _)) = polish(chain, home, q, target, 3) {
+        if let Some((p, _)) = polish(chain, home, q, target, settle.iterations) {
             if pose_gap(chain, home, &p, target) < error {
                 q = p.map(wrap_angle);
             }
