@@ -22,7 +22,7 @@
 //! joints 1-2. Raghavan and Roth's fourteen functions
 //! `f = (p, l, p.p, p.l, p x l, (p.p) l - 2 (p.l) p)` keep the degree of
 //! `p` and `l`: every one is linear in `(1, cos, sin)` of each joint on its
-//! side (true for any points `c3`, `c6` on their axes; checked at set-up by
+//! side (true for any points `c3`, `c6` on their axes; checked by
 //! a unit test on random angles). So `f` is `P m3 (x) m4 (x) m5` on the
 //! left (`P` 14 x 27, fixed by the arm, fitted once on a 3 x 3 x 3 grid of
 //! angles) and `Q m1 (x) m2` on the right (`Q` 14 x 9, fitted per target on
@@ -41,17 +41,27 @@
 //! (Manocha and Canny's factor `(1 + x3^2)^4`), so degree 8, read exactly
 //! from [`DET_SAMPLES`] = 17 evaluations by a discrete Fourier transform.
 //!
-//! **Roots and back-substitution.** The polynomial is sampled at
-//! [`ROOT_SAMPLES`] points per turn with its derivative; a sign change is
-//! refined by bracketed Newton to 1e-15 rad; an extremum between two
-//! samples that crosses zero gives two roots, and one that comes within
-//! [`TANGENT`] (relative) of zero without crossing is tried as a double root
-//! (a pose at a singular configuration). At each root, `Sigma(q3)`'s null
-//! vector (Gaussian elimination with full pivoting) is the monomial vector,
-//! whose ratios give joints 4 and 5; joints 1 and 2 follow from the fourteen
-//! equations by least squares (the QR above), joint 6 by subproblem 1; each
-//! candidate is polished by Gauss-Newton and checked on the chain
-//! ([`super::search2d::settle_root`]).
+//! **Roots.** The polynomial is sampled at [`ROOT_SAMPLES`] points per turn
+//! with its derivative. Each interval between samples is certified by cubic
+//! Hermite interpolation and a bound on the polynomial's fourth derivative:
+//! no root, or one (ends of opposite signs, the slope bounded away from
+//! zero), refined by bracketed Newton to 1e-15 rad; otherwise it is halved.
+//! Where the polynomial is flat at a root (slope below [`FLAT`] of its
+//! largest sample per rad) the root is refined by the secant method on the
+//! determinant itself; where two neighbouring samples are below [`QUIET`]
+//! of the largest (the interpolation's rounding, about [`ROUNDING`], may
+//! hide or invent sign changes there) the determinant itself is scanned.
+//! A dip toward zero that does not cross it (within [`TANGENT`] of its
+//! sides, or within the rounding) is a double root made a complex pair by
+//! rounding: it is split into the two roots its parabola would have.
+//!
+//! **Back-substitution.** At each root `Sigma(q3)`'s null vector (Gaussian
+//! elimination with full pivoting) is the monomial vector, whose ratios give
+//! joints 4 and 5 (where the null space is two-dimensional, two solutions
+//! sharing joint 3, the two monomial vectors in it by a 2 x 2 eigenproblem);
+//! joints 1 and 2 follow from the fourteen equations by least squares (the
+//! QR above), joint 6 by subproblem 1; each candidate is polished by
+//! Gauss-Newton on the chain and checked there (exact within 1e-10).
 //!
 //! **When it does not apply.** With a special pair at joints 1-2 (parallel
 //! or intersecting axes), or a spherical wrist, `det Sigma` vanishes

@@ -135,7 +135,7 @@ use crate::math::{wrap_angle, Matrix3, Pose, Vector3};
 
 /// Samples per turn of each search.
 pub const SAMPLES: usize = 160;
-/// Searches per solve (the first usable of [`PREFERENCE`]), merged.
+/// Searches per solve (the first usable of the preferred forms), merged.
 pub const SEARCHES: usize = 2;
 /// The searches in the order they are taken.
 const PREFERENCE: [Form; 4] = [Form::Sixth, Form::Third, Form::Fifth, Form::Fourth];

@@ -1,6 +1,7 @@
-//! Analytic inverse kinematics by subproblem decomposition: every solution
-//! of a 6-joint arm of a known class in closed form, and of a 7-DOF arm at a
-//! given redundancy parameter.
+//! Analytic inverse kinematics by subproblem decomposition and by
+//! algebraic elimination: every solution of a 6-joint arm (in closed form
+//! where its class has one), and of a 7-DOF arm at a given redundancy
+//! parameter.
 //!
 //! The arm's joint axes are read as lines in the zero configuration
 //! ([`structure`]); which consecutive axes intersect or are parallel decides
@@ -18,7 +19,14 @@
 //! * 7-DOF spherical shoulder, elbow, spherical wrist (iiwa, LWR4) at an
 //!   elbow angle ([`Parameter::ElbowAngle`]); any other 7-DOF arm with one
 //!   joint held ([`Parameter::FixedJoint`]) if what is left has a class;
+//! * every other 6R arm of rotation joints (one intersecting or parallel
+//!   pair of consecutive axes anywhere, or none: a general 6R arm) by
+//!   algebraic elimination ([`elimination`], [`SearchPolicy::Elimination`],
+//!   the default: Raghavan and Roth's equations, the 16 roots of a
+//!   trigonometric polynomial of degree 8; tens of microseconds, up to 16
+//!   solutions);
 //! * 1-D searches: a spherical wrist behind three general axes ([`search`]);
+//!   and, with [`SearchPolicy::UpToOneDimension`] instead of elimination,
 //!   6R arms of no closed-form class with an intersecting pair of
 //!   consecutive axes at 1-2, 2-3, 3-4, 4-5 or 5-6 ([`pair_search`]: up to
 //!   16 solutions; the three joints that place the pair's point in closed
@@ -26,12 +34,13 @@
 //!   parallel consecutive axes at 2-3, 3-4 or 4-5 ([`parallel_pair`]: up to
 //!   16 solutions; the pair's two neighbours by subproblem 6), or at 1-2 or
 //!   5-6 ([`end_parallel_pair`]: up to 16; two joints beyond the pair by
-//!   subproblem 6);
-//! * on request ([`SearchPolicy::TwoDimensions`]), general 6R arms (no
-//!   intersecting or parallel consecutive axes) by a 2-D search
-//!   ([`search2d`]: a 16 x 16 grid over joints 1 and 2 polished by
-//!   Gauss-Newton; milliseconds), refused by default with an error naming
-//!   the option.
+//!   subproblem 6); under the default these take the pair arms elimination
+//!   does not (special pairs at both ends);
+//! * on request ([`SearchPolicy::TwoDimensions`]), general 6R arms and the
+//!   arms neither elimination nor a 1-D search takes (axes 1-2-3 parallel
+//!   outside the UR family) by a 2-D search ([`search2d`]: a 16 x 16 grid
+//!   over joints 1 and 2 polished by Gauss-Newton; milliseconds, may miss
+//!   solutions).
 //!
 //! Each solution is checked by forward kinematics (the product of
 //! exponentials of the model's joint lines, compared with the model's own
@@ -47,11 +56,12 @@
 //! configuration. After [`AnalyticSolver::new`], a solve allocates nothing
 //! (unless the representatives outgrow the buffer sized at set-up for every
 //! joint's range, which only happens for [`Parameter::FixedJoint`] changes).
-//! The searches sample 128 (spherical wrist), 256 (one pair) or 512
-//! (parallel pair) points per turn and refine roots to 1e-13 rad (a double
-//! root may be missed: >= 99.9 % of random poses recover the generating
-//! configuration; [`search2d`] may miss more); a search's solution is
-//! exact only if forward kinematics confirms it to 1e-10.
+//! The searches sample 128 (spherical wrist), 256 (one pair) or 192 and 160
+//! (parallel pairs) points per turn and refine roots to 1e-13 rad; a double
+//! root may be missed by them and, more rarely, by elimination (>= 99.9 %
+//! of random poses recover the generating configuration; [`search2d`] may
+//! miss more); a solution of a search or of elimination is exact only if
+//! forward kinematics confirms it to 1e-10.
 //!
 //! ```
 //! use armkit::ik::analytic::{AnalyticOptions, AnalyticSolver};
