@@ -510,7 +510,7 @@ const CASES: &[Case] = &[
     ),
     case(
         "ik",
-        "general 6R arm without --search 2d (the 2-D search is opt-in)",
+        "general 6R arm with --search 1d (the 1-D searches alone do not take it)",
         &[
             "ik",
             "--robot-file",
@@ -519,6 +519,8 @@ const CASES: &[Case] = &[
             "0.4,0.1,0.5,pi,0,0",
             "--solver",
             "analytic",
+            "--search",
+            "1d",
         ],
         1,
     ),

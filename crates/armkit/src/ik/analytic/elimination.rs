@@ -62,6 +62,9 @@
 //! joints 1 and 2 follow from the fourteen equations by least squares (the
 //! QR above), joint 6 by subproblem 1; each candidate is polished by
 //! Gauss-Newton on the chain and checked there (exact within 1e-10).
+//! A pose out of reach has no real root near a solution: elimination then
+//! returns no solution (not a least-squares one, as the closed forms do),
+//! and `armkit ik --solver analytic` reports the numeric best effort.
 //!
 //! **When it does not apply.** With a special pair at joints 1-2 (parallel
 //! or intersecting axes), or a spherical wrist, `det Sigma` vanishes
