@@ -1336,52 +1336,52 @@ fn many_random_general_6r_arms_by_2d_search() {
     assert!(tally.recovered as f64 >= GENERAL_FLOOR * tally.poses as f64);
 }
 
-#[test]
-fn random_general_6r_arms_by_elimination() {
+/// `arms` random general 6R arms x 100 poses by elimination: the
+/// generating configuration on >= 99.9 % of the poses.
+fn general_arms_by_elimination(seed: u64, arms: u64) {
     let tally = random_search_arms(
-        97,
-        10,
+        seed,
+        arms,
         POSES / 10,
         &general_lines,
         "general_6r_2d_search",
         AnalyticOptions::default(),
     );
     assert_search_recovered("general 6R arms by elimination", &tally);
+}
+
+#[test]
+fn random_general_6r_arms_by_elimination() {
+    general_arms_by_elimination(97, 10);
 }
 
 /// 20 000 poses: 200 arms x 100 poses.
 #[test]
 #[ignore = "slow: cargo test --release --test ik_analytic -- --ignored --nocapture"]
 fn many_random_general_6r_arms_by_elimination() {
-    let tally = random_search_arms(
-        98,
-        200,
-        POSES / 10,
-        &general_lines,
-        "general_6r_2d_search",
-        AnalyticOptions::default(),
-    );
-    assert_search_recovered("general 6R arms by elimination", &tally);
+    general_arms_by_elimination(98, 200);
 }
 
 #[test]
-fn auto_takes_the_numeric_route_on_one_pair_arms() {
-    // The one-pair search is slower than a numeric solve: the automatic
-    // route leaves it to the analytic solver's explicit callers.
+fn auto_takes_the_numeric_route_on_arms_without_a_closed_form() {
+    // Elimination (and the one-pair search) is slower than a numeric
+    // solve: the automatic route leaves these arms to the analytic solver's
+    // explicit callers.
     use armkit::ik::{AutoSolver, IkOptions, IkRoute};
     let mut rng = common::rng(77);
-    let model = model_from_lines(
-        "pair56",
-        &one_pair_lines(&mut rng, 4),
-        random_home(&mut rng),
-    );
-    assert!(solver(&model).class().as_str().starts_with("one_pair"));
-    let mut auto = AutoSolver::new(&model, IkOptions::default()).unwrap();
-    assert_eq!(auto.class(), None);
-    let mut data = Data::new(&model);
-    let target = *forward_kinematics(&model, &mut data, &[0.3, -0.4, 0.5, 0.2, -0.6, 0.1]).unwrap();
-    let solved = auto.solve(&target, &model.neutral_configuration()).unwrap();
-    assert_eq!(solved.route, IkRoute::Numeric);
+    let pair = one_pair_lines(&mut rng, 4);
+    let general = general_lines(&mut rng);
+    for (lines, class) in [(pair, "one_pair"), (general, "general_6r")] {
+        let model = model_from_lines("arm", &lines, random_home(&mut rng));
+        assert!(solver(&model).class().as_str().starts_with(class));
+        let mut auto = AutoSolver::new(&model, IkOptions::default()).unwrap();
+        assert_eq!(auto.class(), None);
+        let mut data = Data::new(&model);
+        let q = [0.3, -0.4, 0.5, 0.2, -0.6, 0.1];
+        let target = *forward_kinematics(&model, &mut data, &q).unwrap();
+        let solved = auto.solve(&target, &model.neutral_configuration()).unwrap();
+        assert_eq!(solved.route, IkRoute::Numeric, "{class}");
+    }
 }
 
 /// Elimination checked against the other algorithm: on random arms of every

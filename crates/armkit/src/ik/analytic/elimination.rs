@@ -1312,6 +1312,14 @@ mod tests {
         std::array::from_fn(|_| rng.gen_range(-3.1..3.1))
     }
 
+    /// A random general arm, its chain, elimination and a configuration.
+    fn random_case(rng: &mut ChaCha8Rng) -> (ArmStructure, Chain, Elimination, [f64; 6]) {
+        let s = random_arm(rng, Special::None);
+        let chain = Chain::of(&s).unwrap();
+        let elimination = Elimination::new(&chain).unwrap();
+        (s, chain, elimination, random_q(rng))
+    }
+
     /// Raghavan and Roth's claim the method rests on: the fourteen
     /// functions are linear in `(1, cos, sin)` of each joint, so the fits on
     /// the grid reproduce them at any angles (a wrong function or a wrong
@@ -1320,10 +1328,7 @@ mod tests {
     fn the_fits_reproduce_both_sides_at_random_angles() {
         let mut rng = ChaCha8Rng::seed_from_u64(3);
         for _ in 0..20 {
-            let s = random_arm(&mut rng, Special::None);
-            let chain = Chain::of(&s).unwrap();
-            let elimination = Elimination::new(&chain).unwrap();
-            let q = random_q(&mut rng);
+            let (s, chain, elimination, q) = random_case(&mut rng);
             let goal = s.forward_kinematics(&q) * chain.home_inverse;
             let right = elimination.fit_right(&goal);
             let (c, h) = (&chain.c, &chain.h);
@@ -1358,10 +1363,7 @@ mod tests {
     fn the_determinant_is_of_degree_8_and_vanishes_at_the_solution() {
         let mut rng = ChaCha8Rng::seed_from_u64(4);
         for _ in 0..20 {
-            let s = random_arm(&mut rng, Special::None);
-            let chain = Chain::of(&s).unwrap();
-            let elimination = Elimination::new(&chain).unwrap();
-            let q = random_q(&mut rng);
+            let (s, chain, elimination, q) = random_case(&mut rng);
             let system = elimination.system(&(s.forward_kinematics(&q) * chain.home_inverse));
             let det = |t: f64| system.determinant(t);
             let samples: Vec<f64> = (0..25).map(|j| det(TAU * j as f64 / 25.0)).collect();
