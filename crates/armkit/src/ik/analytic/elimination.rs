@@ -957,11 +957,16 @@ impl Trigonometric {
         let value_error = found.fourth * h.powi(4) / 384.0;
         if low > value_error || high < -value_error {
             // No root, but one of a pair made complex by rounding may be
-            // near: the interpolant's closest approach to zero, if within
-            // TANGENT of the ends or within the rounding of the samples.
-            let (s, value) = cubic.nearest_zero();
+            // near: the interpolant's closest approach to zero (`low` or
+            // `-high`), if within TANGENT of the ends or within the
+            // rounding of the samples.
             let ends = start.value.abs().max(end.value.abs());
-            if s > 0.0 && s < 1.0 && value.abs() <= (TANGENT * ends).max(found.noise) {
+            let threshold = (TANGENT * ends).max(found.noise);
+            if low.max(-high) > threshold {
+                return;
+            }
+            let (s, value) = cubic.nearest_zero();
+            if s > 0.0 && s < 1.0 && value.abs() <= threshold {
                 let [value, _, curvature] = self.at(start.t + s * h);
                 found.push_double(start.t + s * h, value.abs().max(found.noise), curvature);
             }
