@@ -358,7 +358,7 @@ impl Elimination {
                 *polynomial = half_angle_form(&coefficients[9 * i3..9 * i3 + 9]);
             }
         }
-        orthonormalize(&mut equations);
+        normalize(&mut equations);
         System {
             equations,
             upper: m,
@@ -561,32 +561,13 @@ fn half_angle_form(coefficients: &[f64]) -> [f64; 9] {
     out
 }
 
-/// The six equations' coefficient vectors made orthonormal (modified
-/// Gram-Schmidt): the same solutions (`Sigma` is multiplied by a constant
-/// invertible matrix), a better-scaled determinant.
-fn orthonormalize(equations: &mut [[[f64; 9]; 3]; 6]) {
-    let dot = |a: &[[f64; 9]; 3], b: &[[f64; 9]; 3]| -> f64 {
-        a.iter()
-            .flatten()
-            .zip(b.iter().flatten())
-            .map(|(x, y)| x * y)
-            .sum()
-    };
-    for k in 0..6 {
-        for j in 0..k {
-            let projection = dot(&equations[k], &equations[j]);
-            let previous = equations[j];
-            for (x, y) in equations[k]
-                .iter_mut()
-                .flatten()
-                .zip(previous.iter().flatten())
-            {
-                *x -= projection * y;
-            }
-        }
-        let norm = dot(&equations[k], &equations[k]).sqrt();
+/// Each of the six equations scaled to a unit coefficient vector (the
+/// same solutions; a determinant of order 1).
+fn normalize(equations: &mut [[[f64; 9]; 3]; 6]) {
+    for equation in equations.iter_mut() {
+        let norm = equation.iter().flatten().map(|x| x * x).sum::<f64>().sqrt();
         if norm > 0.0 {
-            equations[k].iter_mut().flatten().for_each(|x| *x /= norm);
+            equation.iter_mut().flatten().for_each(|x| *x /= norm);
         }
     }
 }
@@ -630,11 +611,18 @@ fn householder(m: &mut [[f64; 36]; FUNCTIONS]) {
         if vv == 0.0 {
             continue;
         }
-        for j in k..36 {
-            let dot: f64 = (k..FUNCTIONS).map(|i| v[i] * m[i][j]).sum();
-            let factor = 2.0 * dot / vv;
-            for (row, vi) in m.iter_mut().zip(&v).skip(k) {
-                row[j] -= factor * vi;
+        // m -= v (2 v'm / v'v), row by row (the rows are contiguous).
+        let mut dots = [0.0; 36];
+        for (row, vi) in m[k..].iter().zip(&v[k..]) {
+            for (dot, value) in dots[k..].iter_mut().zip(&row[k..]) {
+                *dot += vi * value;
+            }
+        }
+        let scale = 2.0 / vv;
+        for (row, vi) in m[k..].iter_mut().zip(&v[k..]) {
+            let factor = scale * vi;
+            for (value, dot) in row[k..].iter_mut().zip(&dots[k..]) {
+                *value -= factor * dot;
             }
         }
     }
@@ -694,10 +682,10 @@ impl NullSpace {
         let mut columns = [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11];
         for k in 0..11 {
             let (mut row, mut column, mut largest) = (k, k, 0.0);
-            for (i, values) in upper.iter().enumerate().skip(k) {
-                for (j, value) in values.iter().enumerate().skip(k) {
+            for (i, values) in upper[k..].iter().enumerate() {
+                for (j, value) in values[k..].iter().enumerate() {
                     if value.abs() > largest {
-                        (row, column, largest) = (i, j, value.abs());
+                        (row, column, largest) = (k + i, k + j, value.abs());
                     }
                 }
             }
@@ -711,9 +699,9 @@ impl NullSpace {
                 continue;
             }
             let pivot_row = upper[k];
-            for row in upper.iter_mut().skip(k + 1) {
+            for row in upper[k + 1..].iter_mut() {
                 let factor = row[k] / pivot;
-                for (value, above) in row.iter_mut().zip(&pivot_row).skip(k) {
+                for (value, above) in row[k..].iter_mut().zip(&pivot_row[k..]) {
                     *value -= factor * above;
                 }
             }
