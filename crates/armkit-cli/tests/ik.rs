@@ -13,19 +13,27 @@ fn urdf(name: &str) -> String {
     )
 }
 
-/// The pose argument "x,y,z,roll,pitch,yaw" of FK(q).
+/// The pose argument "x,y,z,roll,pitch,yaw" of FK(q) of a built-in robot,
+/// and the pose it parses to.
 fn pose_argument(robot: &str, q: &[f64]) -> (String, Pose) {
     let model = armkit::robots::by_name(robot).unwrap();
-    let mut data = Data::new(&model);
-    let pose = *forward_kinematics(&model, &mut data, q).unwrap();
+    let text = fk_text(&model, q);
+    let pose = *forward_kinematics(&model, &mut Data::new(&model), q).unwrap();
     let (r, p, y) = pose.rpy();
     let t = pose.translation;
-    // 17 significant digits: the pose round-trips to ~1e-16.
-    let text = format!(
+    (text, Pose::from_xyz_rpy([t.x, t.y, t.z], [r, p, y]))
+}
+
+/// The pose argument "x,y,z,roll,pitch,yaw" of `model`'s FK at `q`, 17
+/// significant digits (the pose round-trips to ~1e-16).
+fn fk_text(model: &armkit::Model, q: &[f64]) -> String {
+    let pose = *forward_kinematics(model, &mut Data::new(model), q).unwrap();
+    let (r, p, y) = pose.rpy();
+    let t = pose.translation;
+    format!(
         "{:.17e},{:.17e},{:.17e},{:.17e},{:.17e},{:.17e}",
         t.x, t.y, t.z, r, p, y
-    );
-    (text, Pose::from_xyz_rpy([t.x, t.y, t.z], [r, p, y]))
+    )
 }
 
 fn q_of(value: &serde_json::Value) -> Vec<f64> {
@@ -246,13 +254,7 @@ fn explain_and_solve_a_three_parallel_arm_without_an_intersecting_pair() {
     assert!(text.contains("subproblem 6"), "{text}");
     let model = armkit::description::load(&file).unwrap();
     let q = [0.4, -1.1, 1.3, -0.6, 1.4, 0.2];
-    let pose = *forward_kinematics(&model, &mut Data::new(&model), &q).unwrap();
-    let (r, p, y) = pose.rpy();
-    let t = pose.translation;
-    let pose = format!(
-        "{:.17e},{:.17e},{:.17e},{:.17e},{:.17e},{:.17e}",
-        t.x, t.y, t.z, r, p, y
-    );
+    let pose = fk_text(&model, &q);
     let output = armkit(&[
         "ik",
         "--robot-file",
@@ -385,13 +387,7 @@ fn explain_and_solve_by_parallel_pair_search(name: &str, dh: &str, class: &str) 
     );
     let model = armkit::description::load(&file).unwrap();
     let q = [0.4, -1.1, 1.3, -0.6, 1.4, 0.2];
-    let pose = *forward_kinematics(&model, &mut Data::new(&model), &q).unwrap();
-    let (r, p, y) = pose.rpy();
-    let t = pose.translation;
-    let pose = format!(
-        "{:.17e},{:.17e},{:.17e},{:.17e},{:.17e},{:.17e}",
-        t.x, t.y, t.z, r, p, y
-    );
+    let pose = fk_text(&model, &q);
     for search in ["elimination", "1d"] {
         let output = armkit(&[
             "ik",
@@ -492,13 +488,7 @@ fn explain_and_solve_an_arm_with_only_axes_3_4_meeting() {
     assert!(text.contains("axes 3 and 4"), "{text}");
     let model = armkit::description::load(&file).unwrap();
     let q = [0.4, -1.1, 1.3, -0.6, 1.4, 0.2];
-    let pose = *forward_kinematics(&model, &mut Data::new(&model), &q).unwrap();
-    let (r, p, y) = pose.rpy();
-    let t = pose.translation;
-    let pose = format!(
-        "{:.17e},{:.17e},{:.17e},{:.17e},{:.17e},{:.17e}",
-        t.x, t.y, t.z, r, p, y
-    );
+    let pose = fk_text(&model, &q);
     let output = armkit(&[
         "ik",
         "--robot-file",
@@ -673,15 +663,7 @@ fn urdf_robot_is_solved() {
         &armkit::urdf::ChainSelection::between("base_link", "tool0"),
     )
     .unwrap();
-    let mut data = Data::new(&model);
-    let pose =
-        *forward_kinematics(&model, &mut data, &[0.2, 0.5, -0.3, -1.2, 0.4, 0.8, 0.1]).unwrap();
-    let (r, p, y) = pose.rpy();
-    let t = pose.translation;
-    let text = format!(
-        "{:.17e},{:.17e},{:.17e},{:.17e},{:.17e},{:.17e}",
-        t.x, t.y, t.z, r, p, y
-    );
+    let text = fk_text(&model, &[0.2, 0.5, -0.3, -1.2, 0.4, 0.8, 0.1]);
     let path = urdf("iiwa14.urdf");
     let output = armkit(&[
         "ik",

@@ -1013,6 +1013,17 @@ const END_PARALLEL_CASES: [(usize, bool, &str); 4] = [
     (4, true, "one_pair_parallel_1_2_1d_search"),
 ];
 
+/// [`parallel_pair_tally`] recovers the generating configuration on
+/// >= 99.9 % of the poses.
+fn parallel_pairs_recovered(
+    name: &str,
+    cases: &[(usize, bool, &'static str)],
+    sizes: (u64, u64, usize),
+    options: AnalyticOptions,
+) {
+    assert_search_recovered(name, &parallel_pair_tally(cases, sizes, options));
+}
+
 /// Every case of `cases` on `arms` arms x `poses` poses, solved with
 /// `options`; the recovery over all.
 fn parallel_pair_tally(
@@ -1049,62 +1060,86 @@ fn parallel_pair_tally(
 
 #[test]
 fn random_parallel_pair_arms_by_elimination() {
-    let tally = parallel_pair_tally(&PARALLEL_CASES, (300, 10, 20), AnalyticOptions::default());
-    assert_search_recovered("parallel-pair arms", &tally);
+    parallel_pairs_recovered(
+        "parallel-pair arms",
+        &PARALLEL_CASES,
+        (300, 10, 20),
+        AnalyticOptions::default(),
+    );
 }
 
 #[test]
 fn random_parallel_pair_arms_by_1d_search() {
-    let tally = parallel_pair_tally(&PARALLEL_CASES, (300, 4, 20), one_dimension());
-    assert_search_recovered("parallel-pair arms", &tally);
+    parallel_pairs_recovered(
+        "parallel-pair arms",
+        &PARALLEL_CASES,
+        (300, 4, 20),
+        one_dimension(),
+    );
 }
 
 #[test]
 #[ignore = "slow: cargo test --release --test ik_analytic -- --ignored --nocapture"]
 fn many_random_parallel_pair_arms_by_elimination() {
-    let tally = parallel_pair_tally(&PARALLEL_CASES, (310, 40, 100), AnalyticOptions::default());
-    assert_search_recovered("parallel-pair arms", &tally);
+    parallel_pairs_recovered(
+        "parallel-pair arms",
+        &PARALLEL_CASES,
+        (310, 40, 100),
+        AnalyticOptions::default(),
+    );
 }
 
 #[test]
 #[ignore = "slow: cargo test --release --test ik_analytic -- --ignored --nocapture"]
 fn many_random_parallel_pair_arms_by_1d_search() {
-    let tally = parallel_pair_tally(&PARALLEL_CASES, (310, 40, 100), one_dimension());
-    assert_search_recovered("parallel-pair arms", &tally);
+    parallel_pairs_recovered(
+        "parallel-pair arms",
+        &PARALLEL_CASES,
+        (310, 40, 100),
+        one_dimension(),
+    );
 }
 
 #[test]
 fn random_end_parallel_pair_arms_by_elimination() {
-    let tally = parallel_pair_tally(
+    parallel_pairs_recovered(
+        "end parallel-pair arms",
         &END_PARALLEL_CASES,
         (340, 6, 20),
         AnalyticOptions::default(),
     );
-    assert_search_recovered("end parallel-pair arms", &tally);
 }
 
 #[test]
 fn random_end_parallel_pair_arms_by_1d_search() {
-    let tally = parallel_pair_tally(&END_PARALLEL_CASES, (340, 3, 20), one_dimension());
-    assert_search_recovered("end parallel-pair arms", &tally);
+    parallel_pairs_recovered(
+        "end parallel-pair arms",
+        &END_PARALLEL_CASES,
+        (340, 3, 20),
+        one_dimension(),
+    );
 }
 
 #[test]
 #[ignore = "slow: cargo test --release --test ik_analytic -- --ignored --nocapture"]
 fn many_random_end_parallel_pair_arms_by_elimination() {
-    let tally = parallel_pair_tally(
+    parallel_pairs_recovered(
+        "end parallel-pair arms",
         &END_PARALLEL_CASES,
         (350, 50, 100),
         AnalyticOptions::default(),
     );
-    assert_search_recovered("end parallel-pair arms", &tally);
 }
 
 #[test]
 #[ignore = "slow: cargo test --release --test ik_analytic -- --ignored --nocapture"]
 fn many_random_end_parallel_pair_arms_by_1d_search() {
-    let tally = parallel_pair_tally(&END_PARALLEL_CASES, (350, 50, 100), one_dimension());
-    assert_search_recovered("end parallel-pair arms", &tally);
+    parallel_pairs_recovered(
+        "end parallel-pair arms",
+        &END_PARALLEL_CASES,
+        (350, 50, 100),
+        one_dimension(),
+    );
 }
 
 #[test]
@@ -1180,7 +1215,6 @@ fn parallel_pair_detection_takes_only_its_class() {
 
 #[test]
 fn auto_takes_the_numeric_route_on_parallel_pair_arms() {
-    use armkit::ik::{AutoSolver, IkOptions, IkRoute};
     let mut rng = common::rng(330);
     for (first, class) in [
         (1, "one_pair_parallel_2_3_1d_search"),
@@ -1192,13 +1226,7 @@ fn auto_takes_the_numeric_route_on_parallel_pair_arms() {
             random_home(&mut rng),
         );
         assert_eq!(solver(&model).class().as_str(), class);
-        let mut auto = AutoSolver::new(&model, IkOptions::default()).unwrap();
-        assert_eq!(auto.class(), None);
-        let mut data = Data::new(&model);
-        let q = [0.3, -0.4, 0.5, 0.2, -0.6, 0.1];
-        let target = *forward_kinematics(&model, &mut data, &q).unwrap();
-        let solved = auto.solve(&target, &model.neutral_configuration()).unwrap();
-        assert_eq!(solved.route, IkRoute::Numeric);
+        assert_auto_takes_the_numeric_route(&model, class);
     }
 }
 
@@ -1367,21 +1395,27 @@ fn auto_takes_the_numeric_route_on_arms_without_a_closed_form() {
     // Elimination (and the one-pair search) is slower than a numeric
     // solve: the automatic route leaves these arms to the analytic solver's
     // explicit callers.
-    use armkit::ik::{AutoSolver, IkOptions, IkRoute};
     let mut rng = common::rng(77);
     let pair = one_pair_lines(&mut rng, 4);
     let general = general_lines(&mut rng);
     for (lines, class) in [(pair, "one_pair"), (general, "general_6r")] {
         let model = model_from_lines("arm", &lines, random_home(&mut rng));
         assert!(solver(&model).class().as_str().starts_with(class));
-        let mut auto = AutoSolver::new(&model, IkOptions::default()).unwrap();
-        assert_eq!(auto.class(), None);
-        let mut data = Data::new(&model);
-        let q = [0.3, -0.4, 0.5, 0.2, -0.6, 0.1];
-        let target = *forward_kinematics(&model, &mut data, &q).unwrap();
-        let solved = auto.solve(&target, &model.neutral_configuration()).unwrap();
-        assert_eq!(solved.route, IkRoute::Numeric, "{class}");
+        assert_auto_takes_the_numeric_route(&model, class);
     }
+}
+
+/// `model`'s automatic solver has no analytic route and solves a pose
+/// numerically (`class` names the arm in the message).
+fn assert_auto_takes_the_numeric_route(model: &Model, class: &str) {
+    use armkit::ik::{AutoSolver, IkOptions, IkRoute};
+    let mut auto = AutoSolver::new(model, IkOptions::default()).unwrap();
+    assert_eq!(auto.class(), None, "{class}");
+    let mut data = Data::new(model);
+    let q = [0.3, -0.4, 0.5, 0.2, -0.6, 0.1];
+    let target = *forward_kinematics(model, &mut data, &q).unwrap();
+    let solved = auto.solve(&target, &model.neutral_configuration()).unwrap();
+    assert_eq!(solved.route, IkRoute::Numeric, "{class}");
 }
 
 /// Elimination checked against the other algorithm: on random arms of every
