@@ -151,7 +151,9 @@ pub(super) fn explain(model: &Model, redundancy: &RedundancyArgs, json: bool) ->
         structure.describe(),
         class.description()
     );
-    if let Some(method) = method {
+    // Printed where it says more than the class line: another method
+    // (elimination, a search option) or a held joint's value.
+    if let Some(method) = method.filter(|m| m != class.description()) {
         println!(
             "method (--solver analytic, --search {}): {method}",
             redundancy.search.name()
