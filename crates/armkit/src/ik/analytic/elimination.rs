@@ -515,9 +515,14 @@ impl System {
     /// The six equations at `(cos q3, sin q3)`: `[k][3 a + b]` the
     /// coefficient of `x4^a x5^b`.
     fn equations_at(&self, c3: f64, s3: f64) -> [[f64; 9]; 6] {
-        self.equations.map(|equation| {
-            std::array::from_fn(|i| equation[0][i] + c3 * equation[1][i] + s3 * equation[2][i])
-        })
+        let mut at = [[0.0; 9]; 6];
+        for (row, equation) in at.iter_mut().zip(&self.equations) {
+            let [constant, cosine, sine] = equation;
+            for (i, value) in row.iter_mut().enumerate() {
+                *value = constant[i] + c3 * cosine[i] + s3 * sine[i];
+            }
+        }
+        at
     }
 
     /// `Sigma(q3)` at `(cos q3, sin q3)`: rows 0..6 the equations, rows
@@ -556,8 +561,9 @@ fn shifted_determinant(a: &[[f64; 9]; 6]) -> f64 {
         determinant *= pivot;
         let (above, below) = a.split_at_mut(k + 1);
         let pivot_values = &above[k][k + 1..];
+        let inverse = 1.0 / pivot;
         for row in below.iter_mut() {
-            let factor = row[k] / pivot;
+            let factor = row[k] * inverse;
             for (value, above) in row[k + 1..].iter_mut().zip(pivot_values) {
                 *value -= factor * above;
             }
