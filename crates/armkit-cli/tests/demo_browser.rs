@@ -4,8 +4,8 @@
 //!
 //! Chromium (Debian's `chromium`) is needed for the browser half. Without it
 //! the test only checks the files, unless `ARMKIT_REQUIRE_BROWSER=1` makes its
-//! absence a failure (`.ci/run` installs Chromium, and stops if it cannot,
-//! before it runs the README's test command).
+//! absence a failure (`scripts/browser-test.sh`, which `.ci/run` calls after
+//! the README's test command, installs Chromium and runs this test so).
 
 use std::path::{Path, PathBuf};
 use std::process::Command;

@@ -95,6 +95,7 @@
 //! ```
 
 use super::chain::{Candidates, Chain};
+use super::search::illinois;
 use super::search2d::{chain_pose, settle_root_within, Settle};
 use super::subproblems::{rotation, subproblem1};
 use crate::math::{sin_cos, wrap_angle, Matrix3, Pose, Vector3};
@@ -1165,31 +1166,22 @@ fn dip(
     }
 }
 
-/// The zero of `f` between `a` and `b` where it changes sign: regula falsi
-/// with the Illinois halving (superlinear, always bracketed), to 1e-15 rad
-/// or 100 steps.
-fn regula_falsi(
-    f: &dyn Fn(f64) -> f64,
-    (mut a, mut fa): (f64, f64),
-    (mut b, mut fb): (f64, f64),
-) -> f64 {
-    for _ in 0..100 {
-        let t = (a * fb - b * fa) / (fb - fa);
-        let ft = f(t);
-        if ft == 0.0 {
-            return t;
+/// The zero of `f` between `a` and `b` where it changes sign: the
+/// Illinois regula falsi of the searches ([`illinois`]) to 1e-15 rad, the
+/// end where `|f|` is smaller.
+fn regula_falsi(f: &dyn Fn(f64) -> f64, (a, fa): (f64, f64), (b, fb): (f64, f64)) -> f64 {
+    let ends = illinois((a, fa, ()), (b, fb, ()), 1e-15, |t, _| Some((f(t), ())));
+    match ends {
+        Some(((ta, fa, ()), (tb, fb, ()))) => {
+            if fa.abs() <= fb.abs() {
+                ta
+            } else {
+                tb
+            }
         }
-        if ft * fb < 0.0 {
-            (a, fa) = (b, fb);
-        } else {
-            fa *= 0.5;
-        }
-        (b, fb) = (t, ft);
-        if (b - a).abs() < 1e-15 {
-            break;
-        }
+        // (Never: `f` is defined everywhere.)
+        None => 0.5 * (a + b),
     }
-    b
 }
 
 /// Smallest interval [`Trigonometric::isolate`] halves, rad.
