@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The browser half of the end-to-end demo test (crates/armkit-cli/tests/
+# The browser half of the end-to-end demo test (crates/armkit-cli/tests/it/
 # demo_browser.rs), which the README's test command skips with a message when
 # Chromium is missing: installs Debian's chromium when it is missing (as root,
 # or with sudo), then runs that test with ARMKIT_REQUIRE_BROWSER=1 so that a
@@ -19,4 +19,7 @@ if ! command -v chromium >/dev/null 2>&1; then
   echo "chromium could not be installed: the browser half of the demo test was not run"
   exit 0
 fi
-ARMKIT_REQUIRE_BROWSER=1 cargo test --release -p armkit-cli --test demo_browser
+# The same selection as the README's test command (--workspace --release), so
+# that cargo reuses its build instead of building the dependencies again with
+# another feature set; the filter runs only the browser test.
+ARMKIT_REQUIRE_BROWSER=1 cargo test --workspace --release --test it -- demo_browser

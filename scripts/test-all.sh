@@ -1,29 +1,40 @@
 #!/usr/bin/env bash
 # The README's test command: the Rust suite, then the Python package's suite.
 #
-#   1. cargo test --workspace --release
+#   1. cargo test --workspace --release (four test binaries and the merged
+#      doctests; about 4 min on a quiet 2-core machine from a fresh clone)
 #   2. the armkit wheel built by pip (pip fetches maturin, the build backend,
-#      from PyPI) into a fresh virtual environment with numpy, pytest and
-#      mypy (its stubtest checks the type stubs),
-#      then pytest on crates/armkit-py/tests.
+#      from PyPI; the wheel reuses the Rust build of step 1) into a fresh
+#      virtual environment with numpy, pytest and mypy (its stubtest checks
+#      the type stubs), then pytest on crates/armkit-py/tests.
+#
+# Each stage prints a line when it starts and its time when it ends; where the
+# output is not a terminal (CI, a pipe), a line every 30 s says the stage is
+# still running, since cargo then hides its progress bar.
 #
 # Needs Rust and Python >= 3.9 with pip and venv. PYTHON picks the
 # interpreter (default python3); ARMKIT_PY_VENV the environment's folder
 # (default target/py-venv, made afresh each run).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source scripts/stage.sh
 
-echo "== Rust: cargo test --workspace --release"
-cargo test --workspace --release
+stage "Rust: cargo test --workspace --release" \
+    cargo test --workspace --release
 
 PYTHON="${PYTHON:-python3}"
 VENV="${ARMKIT_PY_VENV:-target/py-venv}"
 WHEELS=target/py-wheels
-echo "== Python: wheel, then pytest (venv $VENV)"
+PIP=(-m pip --disable-pip-version-check)
 rm -rf "$VENV" "$WHEELS"
-"$PYTHON" -m venv "$VENV"
-"$VENV/bin/python" -m pip install -q --disable-pip-version-check numpy pytest mypy
-"$VENV/bin/python" -m pip wheel -q --disable-pip-version-check --no-deps -w "$WHEELS" crates/armkit-py
-"$VENV/bin/python" -m pip install -q --disable-pip-version-check "$WHEELS"/armkit-*.whl
+stage "Python: a virtual environment with numpy, pytest and mypy ($VENV)" \
+    bash -c "'$PYTHON' -m venv '$VENV' && '$VENV/bin/python' ${PIP[*]} install -q numpy pytest mypy"
+# Verbose, so that maturin's cargo build shows as it goes.
+stage "Python: the armkit wheel (pip wheel: maturin, then cargo build --release)" \
+    "$VENV/bin/python" "${PIP[@]}" wheel -v --no-deps -w "$WHEELS" crates/armkit-py
+stage "Python: install the wheel" \
+    bash -c "'$VENV/bin/python' ${PIP[*]} install -q '$WHEELS'/armkit-*.whl"
 # From outside the source tree, so that the installed wheel is what is tested.
-(cd "$VENV" && bin/python -m pytest -q -p no:cacheprovider "$OLDPWD/crates/armkit-py/tests")
+stage "Python: pytest" \
+    bash -c "cd '$VENV' && bin/python -m pytest -q -p no:cacheprovider '$PWD/crates/armkit-py/tests'"
+stage_summary

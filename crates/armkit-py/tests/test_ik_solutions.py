@@ -67,7 +67,7 @@ def pose_gap(robot, q, T):
 
 def contains(solutions, q, tolerance=1e-6):
     """True when some row of `solutions` equals `q` modulo 2 pi, to 1e-6 rad
-    (the recovery tolerance of crates/armkit/tests/ik_analytic.rs: near a
+    (the recovery tolerance of crates/armkit/tests/it/ik_analytic.rs: near a
     singularity, e.g. a nearly straight elbow, a pose exact to 1e-10 can sit
     1e-8 rad from the generating configuration)."""
     if len(solutions) == 0:

@@ -87,7 +87,7 @@ fn bench_planning(c: &mut Criterion) {
     group.finish();
 }
 
-/// arm4's 0.3 m line (as in tests/trajectory.rs): y = -0.30 m, x from
+/// arm4's 0.3 m line (as in tests/it/trajectory.rs): y = -0.30 m, x from
 /// -0.15 to 0.15 m, roll 0.3 rad and pitch 0.4 rad at both ends; start configuration.
 fn arm4_line() -> (armkit::Model, CartesianTrajectory, Vec<f64>) {
     let model = armkit::robots::by_name("arm4").unwrap();
@@ -120,7 +120,7 @@ fn arm4_line() -> (armkit::Model, CartesianTrajectory, Vec<f64>) {
     (model, path, qa)
 }
 
-/// panda's 0.3 m line (as in tests/trajectory.rs).
+/// panda's 0.3 m line (as in tests/it/trajectory.rs).
 fn panda_line() -> (armkit::Model, CartesianTrajectory, Vec<f64>) {
     let model = armkit::robots::by_name("panda").unwrap();
     let start = vec![0.0, -0.3, 0.0, -2.2, 0.0, 2.0, 0.8];

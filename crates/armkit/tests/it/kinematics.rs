@@ -1,0 +1,216 @@
+//! Forward kinematics and Jacobian: finite differences on every built-in
+//! robot, frames, couplings and bad input.
+
+use crate::common::*;
+use armkit::kinematics::{forward_kinematics, jacobian, Data, JacobianFrame};
+use armkit::math::{Matrix6xX, Pose};
+use armkit::{Error, Model};
+
+#[test]
+fn jacobian_matches_finite_differences_on_every_builtin_robot() {
+    let mut rng = rng(7);
+    for entry in armkit::robots::BUILTIN {
+        let model = (entry.build)().unwrap();
+        assert_eq!(model.dof(), entry.dof, "{}", entry.name);
+        let mut data = Data::new(&model);
+        for _ in 0..50 {
+            let q = random_configuration(&model, &mut rng);
+            let analytic = jacobian(&model, &mut data, &q, JacobianFrame::World)
+                .unwrap()
+                .clone();
+            let numeric = finite_difference_jacobian(&model, &q, 1e-6);
+            let error = (&analytic - &numeric).amax();
+            assert!(
+                error < 1e-8,
+                "{}: |J - J_fd| = {error:e} at {q:?}",
+                entry.name
+            );
+        }
+    }
+}
+
+#[test]
+fn end_effector_jacobian_is_the_world_jacobian_in_tool_axes() {
+    let model = armkit::robots::panda().unwrap();
+    let mut data = Data::new(&model);
+    let q = [0.3, -0.5, 0.2, -2.0, 0.4, 1.8, -0.6];
+    let world = jacobian(&model, &mut data, &q, JacobianFrame::World)
+        .unwrap()
+        .clone();
+    let rotation = data.end_effector_pose().rotation;
+    let local = jacobian(&model, &mut data, &q, JacobianFrame::EndEffector)
+        .unwrap()
+        .clone();
+    let mut rotated = Matrix6xX::zeros(7);
+    for c in 0..7 {
+        let v = rotation * local.fixed_view::<3, 1>(0, c);
+        let w = rotation * local.fixed_view::<3, 1>(3, c);
+        rotated.fixed_view_mut::<3, 1>(0, c).copy_from(&v);
+        rotated.fixed_view_mut::<3, 1>(3, c).copy_from(&w);
+    }
+    assert!((rotated - world).amax() < 1e-14);
+}
+
+#[test]
+fn joint_frames_end_at_the_end_effector_through_the_tool() {
+    let model = armkit::robots::panda().unwrap();
+    let mut data = Data::new(&model);
+    let q = [0.1, 0.2, 0.3, -1.0, 0.5, 1.0, 0.7];
+    let pose = *forward_kinematics(&model, &mut data, &q).unwrap();
+    let last = data.joint_frames()[6];
+    let rebuilt = last * *model.end_effector_placement();
+    assert!((rebuilt.to_matrix4() - pose.to_matrix4()).amax() < 1e-15);
+    // Modified DH: joint frames are the DH frames; the tool is the tool.
+    assert!(
+        (model.end_effector_placement().to_matrix4() - model.tool().to_matrix4()).amax() < 1e-15
+    );
+}
+
+#[test]
+fn base_transform_moves_everything_rigidly() {
+    let model = armkit::robots::ur5().unwrap();
+    let (convention, links) = model.dh_table().unwrap();
+    let base = Pose::from_xyz_rpy([1.0, -2.0, 0.5], [0.1, 0.2, 0.3]);
+    let moved =
+        Model::from_dh_with_transforms("ur5-moved", convention, links, base, Pose::identity())
+            .unwrap();
+    let q = [0.4, -1.1, 1.3, 0.2, -0.7, 2.0];
+    let mut data = Data::new(&model);
+    let mut moved_data = Data::new(&moved);
+    let pose = *forward_kinematics(&model, &mut data, &q).unwrap();
+    let moved_pose = *forward_kinematics(&moved, &mut moved_data, &q).unwrap();
+    assert!(((base * pose).to_matrix4() - moved_pose.to_matrix4()).amax() < 1e-14);
+}
+
+#[test]
+fn wrong_size_non_finite_and_foreign_data_are_errors() {
+    let model = armkit::robots::ur5().unwrap();
+    let mut data = Data::new(&model);
+    let err = forward_kinematics(&model, &mut data, &[0.0; 5]).unwrap_err();
+    assert_eq!(
+        err,
+        Error::DimensionMismatch {
+            what: "joint_positions",
+            expected: 6,
+            got: 5
+        }
+    );
+    assert_eq!(err.to_string(), "joint_positions: expected 6 values, got 5");
+    let err = jacobian(
+        &model,
+        &mut data,
+        &[0.0, 0.0, f64::NAN, 0.0, 0.0, 0.0],
+        JacobianFrame::World,
+    )
+    .unwrap_err();
+    assert_eq!(err.to_string(), "joint_positions[2] is not finite (NaN)");
+    let panda = armkit::robots::panda().unwrap();
+    let mut panda_data = Data::new(&panda);
+    let err = forward_kinematics(&model, &mut panda_data, &[0.0; 6]).unwrap_err();
+    assert!(err.to_string().contains("another model"), "{err}");
+}
+
+#[test]
+fn limits_check_names_the_joint() {
+    let model = armkit::robots::panda().unwrap();
+    let err = model
+        .check_limits(&[0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+        .unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "joint 3 (`q4`) = 0 is outside its limits [-3.0718, -0.0698]"
+    );
+    assert!(model.check_limits(&model.neutral_configuration()).is_ok());
+}
+
+#[test]
+fn a_pose_that_overflows_is_an_error_not_a_result() {
+    // Finite inputs whose product overflows: lengths near f64::MAX.
+    let text = "convention = \"standard\"\n[[links]]\ntype = \"P\"\nd = 1e308\na = 1e308\nalpha = 0\nqlim = [0, 1e308]\n[[links]]\ntype = \"R\"\nd = 1e308\na = 1e308\nalpha = 0\n";
+    let model =
+        armkit::description::parse_str(text, armkit::description::Format::Toml, "<huge>").unwrap();
+    let mut data = Data::new(&model);
+    let q = [1e308, 0.0];
+    let fk = forward_kinematics(&model, &mut data, &q);
+    assert!(
+        matches!(&fk, Err(Error::Numerical { reason, .. }) if reason.contains("overflowed")),
+        "{fk:?}"
+    );
+    let j = jacobian(&model, &mut data, &q, JacobianFrame::World);
+    assert!(matches!(j, Err(Error::Numerical { .. })), "{j:?}");
+    // Even at zero the two offsets `d` add up past f64::MAX.
+    assert!(forward_kinematics(&model, &mut data, &[0.0, 0.0]).is_err());
+}
+
+/// Forward kinematics and the Jacobian written out the plain way (index
+/// loops over the public model: placements, joint kinds, couplings), the
+/// arithmetic of every earlier version. The library's loops (issue 15: a
+/// coupling map matched once, slices zipped, the chain product out of line)
+/// must give the same bits, on every built-in robot (gantry9-flex with its
+/// beam coupling included).
+#[test]
+fn kinematics_equal_the_plain_product_bit_for_bit() {
+    fn rotate(frame: &mut Pose, angle: f64) {
+        let (s, c) = armkit::math::sin_cos(angle);
+        let x = frame.rotation.column(0).into_owned();
+        let y = frame.rotation.column(1).into_owned();
+        frame.rotation.set_column(0, &(x * c + y * s));
+        frame.rotation.set_column(1, &(y * c - x * s));
+    }
+    let mut rng = rng(15);
+    for entry in armkit::robots::BUILTIN {
+        let model = (entry.build)().unwrap();
+        assert!(!model.has_mimic_joints(), "{}", entry.name);
+        let mut data = Data::new(&model);
+        for _ in 0..100 {
+            let q = random_configuration(&model, &mut rng);
+            let mut chain = q.clone();
+            for coupling in model.couplings() {
+                let (offset, _) = coupling.law.offset_and_slope(q[coupling.source]);
+                chain[coupling.target] += offset;
+            }
+            let mut frame = Pose::identity();
+            let mut frames = Vec::new();
+            for (j, placement) in model.joint_placements().iter().enumerate() {
+                frame = &frame * placement;
+                if model.joints()[j].kind.is_rotational() {
+                    rotate(&mut frame, chain[j]);
+                } else {
+                    frame.translation += frame.rotation.column(2) * chain[j];
+                }
+                frames.push(frame);
+            }
+            let end = &frame * model.end_effector_placement();
+            let mut expected = Matrix6xX::zeros(model.dof());
+            for (j, f) in frames.iter().enumerate() {
+                let axis = f.rotation.column(2).into_owned();
+                let mut column = expected.column_mut(j);
+                if model.joints()[j].kind.is_rotational() {
+                    let linear = axis.cross(&(end.translation - f.translation));
+                    column.fixed_rows_mut::<3>(0).copy_from(&linear);
+                    column.fixed_rows_mut::<3>(3).copy_from(&axis);
+                } else {
+                    column.fixed_rows_mut::<3>(0).copy_from(&axis);
+                }
+            }
+            for coupling in model.couplings() {
+                let (_, slope) = coupling.law.offset_and_slope(q[coupling.source]);
+                let target = expected.column(coupling.target).into_owned();
+                expected
+                    .column_mut(coupling.source)
+                    .axpy(slope, &target, 1.0);
+            }
+            let pose = *forward_kinematics(&model, &mut data, &q).unwrap();
+            assert_eq!(pose, end, "{} at {q:?}", entry.name);
+            assert_eq!(data.joint_frames(), frames.as_slice(), "{}", entry.name);
+            assert_eq!(
+                data.effective_positions(),
+                chain.as_slice(),
+                "{}",
+                entry.name
+            );
+            let j = jacobian(&model, &mut data, &q, JacobianFrame::World).unwrap();
+            assert_eq!(j, &expected, "{} at {q:?}", entry.name);
+        }
+    }
+}

@@ -1,0 +1,32 @@
+//! The integration tests of the `armkit` library, one module per concept,
+//! linked into one test binary (one link step for the whole suite).
+
+mod common;
+mod seed000_common;
+
+mod beam;
+mod description;
+mod dynamics;
+mod dynamics_coupled;
+mod ik;
+mod ik_analytic;
+mod ik_closed_form;
+mod invariants;
+mod invariants_nonfinite;
+mod kinematics;
+mod mimic;
+mod mpc;
+mod mpc_qp;
+mod mpc_random;
+mod no_allocation;
+mod redundancy;
+mod reference_dh;
+mod seed000_claims;
+mod seed000_precision;
+mod singularity;
+mod space;
+mod studies;
+mod tracking;
+mod trajectory;
+mod urdf;
+mod urdf_corpus;
