@@ -76,7 +76,7 @@ fn run(command: &Command) -> CliResult<Outcome> {
 /// quietly there, like other Unix tools: restore the default action.
 #[cfg(unix)]
 fn restore_default_sigpipe() {
-    extern "C" {
+    unsafe extern "C" {
         fn signal(signum: i32, handler: usize) -> usize;
     }
     const SIGPIPE: i32 = 13; // the same on Linux, macOS and the BSDs

@@ -375,7 +375,7 @@ impl PartitionedSolver {
         partition: &Partition,
     ) -> Result<&[f64]> {
         check_finite_vector("weights", weights, self.dof)?;
-        if let Some((joint, value)) = weights.iter().enumerate().find(|(_, &w)| w < 0.0) {
+        if let Some((joint, value)) = weights.iter().enumerate().find(|&(_, &w)| w < 0.0) {
             return Err(Error::invalid_argument(
                 "weights",
                 format!("weight of joint {joint} must be >= 0 (seed 001, eq 18), got {value}"),

@@ -582,7 +582,7 @@ fn torque_outcome(
         .zip(&scaling.after.torques)
         .zip(&scaling.before.gravity)
         .zip(&scaling.before.times)
-        .filter(|(_, &t)| !on_knot(t))
+        .filter(|&(_, &t)| !on_knot(t))
     {
         for j in 0..before.len() {
             let predicted = g[j] + (before[j] - g[j]) / k2;

@@ -108,7 +108,7 @@ fn outside_limits(model: &Model, q: &[f64]) -> Option<String> {
         .iter()
         .zip(q)
         .enumerate()
-        .find(|(_, (joint, &v))| !(v >= joint.limits.lower && v <= joint.limits.upper))
+        .find(|(_, (joint, v))| !(**v >= joint.limits.lower && **v <= joint.limits.upper))
         .map(|(j, (joint, v))| {
             format!(
                 "joint {j} = {v} outside [{}, {}]",
@@ -178,7 +178,7 @@ fn ik_invariants(scale: usize) {
             let mut options = IkOptions {
                 position_tolerance: tolerance,
                 orientation_tolerance: tolerance,
-                seed: rng.gen(),
+                seed: rng.r#gen(),
                 ..IkOptions::default()
             }
             .with_method(method);
@@ -403,7 +403,7 @@ fn mpc_invariants(scale: usize) {
             horizon,
             control_horizon: rng.gen_range(1..=horizon.min(3)),
             sample_time: rng.gen_range(0.005..=0.05),
-            task_weights: if rng.gen() {
+            task_weights: if rng.r#gen() {
                 TaskWeights::full_pose(10.0, 200.0)
             } else {
                 TaskWeights::position_only(rng.gen_range(1.0..=100.0), 200.0)

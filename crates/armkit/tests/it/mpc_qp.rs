@@ -95,7 +95,7 @@ fn random_instance(shape: &Shape, rng: &mut impl Rng) -> (Vec<f64>, Vec<f64>, Ve
     let bt: Vec<f64> = (0..6 * dof)
         .map(|_| SAMPLE_TIME * rng.gen_range(-1.5..1.5))
         .collect();
-    let weights: [f64; 6] = if rng.gen() {
+    let weights: [f64; 6] = if rng.r#gen() {
         [10.0, 10.0, 10.0, 0.0, 0.0, 0.0]
     } else {
         [10.0; 6]

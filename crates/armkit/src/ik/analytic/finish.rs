@@ -585,7 +585,7 @@ mod tests {
             {
                 // Moved and turned by up to 0.3 m and (for the last ones) nearly pi.
                 let angle = if k < 90 {
-                    0.5 * rng.gen::<f64>()
+                    0.5 * rng.r#gen::<f64>()
                 } else {
                     std::f64::consts::PI - 0.002
                 };
@@ -595,7 +595,7 @@ mod tests {
                     rng.gen_range(-1.0..1.0),
                 ));
                 let turn = nalgebra::Rotation3::from_axis_angle(&axis, angle).into_inner();
-                let shift = Vector3::new(rng.gen(), rng.gen(), rng.gen()) * 0.1;
+                let shift = Vector3::new(rng.r#gen(), rng.r#gen(), rng.r#gen()) * 0.1;
                 let moved = Pose::new(turn * target.rotation, target.translation + shift);
                 for solution in solver.solve(&moved, &q).unwrap().to_vec() {
                     let pose = forward_kinematics(&model, &mut data, solution.q()).unwrap();

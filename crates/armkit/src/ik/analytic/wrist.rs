@@ -514,7 +514,7 @@ mod tests {
         for _ in 0..200 {
             let h4 = unit(&mut rng);
             let h5 = h4.cross(&unit(&mut rng)).normalize();
-            let h6 = if rng.gen::<bool>() { h4 } else { -h4 };
+            let h6 = if rng.r#gen::<bool>() { h4 } else { -h4 };
             let wrist = WristOrientation::new(&h4, &h5, &h6);
             assert!(matches!(wrist.form, WristForm::Euler { .. }));
             let solved = WristOrientation {
