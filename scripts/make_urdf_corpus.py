@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Build the URDF corpus test data (issue 20): copy the URDF files of
+"""Build the URDF corpus test data: copy the URDF files of
 example-robot-data into tests/data/urdf_corpus/ and write Pinocchio reference
 forward kinematics and Jacobians for every root-to-leaf chain with two or more
 moving joints into tests/data/urdf_corpus/reference.json.

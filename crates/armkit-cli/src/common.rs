@@ -46,7 +46,6 @@ pub type CliResult<T = ()> = Result<T, CliError>;
 
 /// How a command ended, mapped to the process exit code by `main`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[allow(dead_code)] // NotConverged: for `ik` and `mpc`, being written.
 pub enum Outcome {
     /// Done (exit code 0).
     Success,
@@ -78,8 +77,8 @@ pub struct RobotArgs {
 impl RobotArgs {
     /// Loads the selected robot model.
     pub fn load(&self) -> CliResult<Model> {
-        // clap's `requires = "urdf"` is bypassed when --robot (which conflicts
-        // with --urdf) is given (clap issue 4520), so check here.
+        // clap does not enforce `requires = "urdf"` when --robot (which
+        // conflicts with --urdf) is given, so check here.
         if self.urdf.is_none() && (self.base.is_some() || self.tip.is_some()) {
             return Err(CliError(
                 "--base and --tip choose the chain of a URDF: they need --urdf PATH".into(),
@@ -106,6 +105,34 @@ fn load_urdf(path: &std::path::Path, base: Option<&str>, tip: Option<&str>) -> C
         tip: tip.map(str::to_string),
     };
     Ok(armkit::urdf::load(path, &selection)?)
+}
+
+/// A robot and one configuration: the arguments of `fk`, `jacobian`,
+/// `dynamics` and `manipulability`.
+#[derive(Args, Debug)]
+pub struct ConfigurationArgs {
+    #[command(flatten)]
+    pub robot: RobotArgs,
+    /// Joint positions, comma-separated (rad or m; `pi/2` and `90deg` work).
+    #[arg(long, value_name = "Q1,Q2,...", allow_hyphen_values = true)]
+    pub q: String,
+    /// Evaluate even when a joint is outside its limits.
+    #[arg(long)]
+    pub allow_out_of_limits: bool,
+    /// Print JSON.
+    #[arg(long)]
+    pub json: bool,
+}
+
+impl ConfigurationArgs {
+    /// The robot and the joint positions, checked against its limits unless
+    /// `--allow-out-of-limits` is given.
+    pub fn load(&self) -> CliResult<(Model, Vec<f64>)> {
+        let model = self.robot.load()?;
+        let policy = LimitPolicy::from_flag(self.allow_out_of_limits);
+        let q = parse_joint_positions(&self.q, &model, policy)?;
+        Ok((model, q))
+    }
 }
 
 /// Parses one number: a decimal (`0.5`, `-1e-3`), or a multiple of pi
@@ -217,7 +244,6 @@ impl LimitPolicy {
     }
 }
 
-#[allow(dead_code)] // for `ik` and `mpc`, being written.
 /// Parses `"x,y,z,roll,pitch,yaw"` (m, rad; `R = Rz(yaw) Ry(pitch) Rx(roll)`).
 pub fn parse_pose(text: &str, what: &str) -> CliResult<Pose> {
     let v = parse_fixed_numbers(text, what, 6)?;

@@ -144,7 +144,7 @@ fn tracking(c: &mut Criterion) {
     });
 }
 
-/// The shared kernels and the bare tracking loop (new hot paths of the
+/// The shared kernels and the bare tracking loop (hot paths of the
 /// velocity-level layer): the damped least-squares rates of a 6 x 9
 /// Jacobian, and a 100-period least-squares run on a fixed base recording
 /// every sample.

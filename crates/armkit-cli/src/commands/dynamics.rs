@@ -8,8 +8,9 @@ use armkit::dynamics::{
 use armkit::math::{DMatrix, Vector3};
 use clap::Args;
 
-use crate::commands::fk::ConfigurationArgs;
-use crate::common::{format_rows, parse_fixed_numbers, print_json, CliResult, Outcome};
+use crate::common::{
+    format_rows, parse_fixed_numbers, print_json, CliResult, ConfigurationArgs, Outcome,
+};
 
 /// Rigid-body dynamics at one state: tau = M(q) a + C(q, v) v + g(q), the
 /// mass matrix, g and C v, and ddq = ABA(q, v, tau) with --tau.

@@ -2,40 +2,11 @@
 
 use armkit::kinematics::{forward_kinematics, jacobian, Data, JacobianFrame};
 use armkit::math::Pose;
-use armkit::Model;
 use clap::{Args, ValueEnum};
 
 use crate::common::{
-    format_rows, jacobian_rows, parse_joint_positions, pose_rows, print_json, CliResult,
-    LimitPolicy, Outcome, RobotArgs,
+    format_rows, jacobian_rows, pose_rows, print_json, CliResult, ConfigurationArgs, Outcome,
 };
-
-/// Arguments shared by `fk` and `jacobian`.
-#[derive(Args, Debug)]
-pub struct ConfigurationArgs {
-    #[command(flatten)]
-    pub robot: RobotArgs,
-    /// Joint positions, comma-separated (rad or m; `pi/2` and `90deg` work).
-    #[arg(long, value_name = "Q1,Q2,...", allow_hyphen_values = true)]
-    pub q: String,
-    /// Evaluate even when a joint is outside its limits.
-    #[arg(long)]
-    pub allow_out_of_limits: bool,
-    /// Print JSON.
-    #[arg(long)]
-    pub json: bool,
-}
-
-impl ConfigurationArgs {
-    /// The robot and the joint positions, checked against its limits unless
-    /// `--allow-out-of-limits` is given.
-    pub fn load(&self) -> CliResult<(Model, Vec<f64>)> {
-        let model = self.robot.load()?;
-        let policy = LimitPolicy::from_flag(self.allow_out_of_limits);
-        let q = parse_joint_positions(&self.q, &model, policy)?;
-        Ok((model, q))
-    }
-}
 
 /// Forward kinematics: the end-effector pose in the world frame.
 #[derive(Args, Debug)]

@@ -9,8 +9,7 @@ use armkit::singularity::{
 };
 use clap::Args;
 
-use crate::commands::fk::ConfigurationArgs;
-use crate::common::{print_json, CliResult, Outcome};
+use crate::common::{print_json, CliResult, ConfigurationArgs, Outcome};
 
 /// Arguments of `armkit manipulability`.
 #[derive(Args, Debug)]

@@ -13,4 +13,3 @@ pub mod run;
 pub mod singularity;
 pub mod space;
 pub mod traj;
-pub mod traj_torques;

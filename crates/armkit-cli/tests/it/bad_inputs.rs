@@ -227,7 +227,7 @@ const FILES: &[(&str, &str)] = &[
         "scenario-robot-for-beam.toml",
         "name = \"s\"\ntitle = \"t\"\n[robot]\nbuiltin = \"ur5\"\n[beam]\n",
     ),
-    // Scenarios as users write them (issue 21, item 12).
+    // Scenarios as users write them.
     (
         "scenario-mpc-no-target.toml",
         "name = \"s\"\ntitle = \"t\"\n[robot]\nbuiltin = \"panda\"\n[mpc]\nhorizon = 10\n",
@@ -264,7 +264,7 @@ const FILES: &[(&str, &str)] = &[
         "scenario-space-massless-arm.toml",
         "name = \"s\"\ntitle = \"t\"\n[robot]\nbuiltin = \"ur5\"\n[space]\nduration = 1.0\n",
     ),
-    // Dynamics (issue 18): an inertia that is not positive semi-definite, a link without mass.
+    // Dynamics: an inertia that is not positive semi-definite, a link without mass.
     (
         "indefinite-inertia.toml",
         "convention = \"standard\"\n[[links]]\ntype = \"R\"\nd = 0\na = 1\nalpha = 0\nmass = 1.0\ninertia = [0.1, 0.1, -0.05, 0, 0, 0]\n",
@@ -1885,7 +1885,7 @@ const CASES: &[Case] = &[
         ],
         1,
     ),
-    // Mimic joints and `armkit info` (issue 20).
+    // Mimic joints and `armkit info`.
     case(
         "urdf",
         "mimic joint whose leader is missing",

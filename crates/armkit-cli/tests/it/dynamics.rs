@@ -216,7 +216,7 @@ fn coupled_models_work_in_their_independent_joints() {
         assert_eq!(result[key].as_array().unwrap().len(), 7, "{key}");
     }
     assert_eq!(result["mass_matrix"].as_array().unwrap().len(), 7);
-    // The flexible gantry, refused before issue 20's coupled dynamics.
+    // The flexible gantry: its dynamics in its independent joints.
     let output = armkit(&[
         "dynamics",
         "--robot",

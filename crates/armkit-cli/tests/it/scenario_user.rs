@@ -1,4 +1,4 @@
-//! Scenarios as users write them (issue 21, item 12): every method table
+//! Scenarios as users write them: every method table
 //! runs on the user's own robot (a built-in, a DH file or a URDF) with the
 //! target or path the command line takes, and produces a report whose
 //! checks are what armkit promises for any robot (converged, errors within

@@ -105,7 +105,8 @@ fn default_json_matches_the_library_on_the_held_space6r() {
         );
         assert_eq!(row["regions"].as_array().unwrap().len(), run.regions.len());
     }
-    // The claims, as properties.
+    // The avoidance against plain tracking: at most a tenth of its peak
+    // joint rate, the goal reached, the first region straddling mid-path.
     let plain = method(&value, "plain");
     let avoidance = method(&value, "avoidance k=1");
     assert!(

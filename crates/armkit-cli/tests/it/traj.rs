@@ -251,7 +251,7 @@ fn line_errors_and_unmet_tolerance() {
     );
 }
 
-/// Issue 18 on a seed 002 line: the Panda's torques (Franka's inertias and
+/// The torque check on a seed 002 line: the Panda's torques (Franka's inertias and
 /// effort limits from the built-in panda.urdf) with the line played 20 times
 /// faster, then slowed down uniformly until every torque is within its limit.
 #[test]

@@ -142,8 +142,8 @@ fn urdf_errors_are_one_line_with_the_file_and_element() {
     assert!(stderr(&output).contains("--urdf"), "{}", stderr(&output));
 }
 
-/// `armkit info` lists the chain, which joints mimic which, and the limits
-/// (issue 20); `fk` takes the independent joints only.
+/// `armkit info` lists the chain, which joints mimic which, and the limits;
+/// `fk` takes the independent joints only.
 #[test]
 fn info_lists_mimic_joints_and_the_limits_they_impose() {
     let output = armkit(&[

@@ -1,4 +1,4 @@
-//! Rigid-body dynamics (issue 18): RNEA, CRBA, ABA, gravity and Coriolis
+//! Rigid-body dynamics: RNEA, CRBA, ABA, gravity and Coriolis
 //! torques against Pinocchio 4.1's reference data through the URDF loader,
 //! and consistency checks on every built-in with masses and on random arms:
 //! M symmetric positive definite, M's columns from the RNEA, ABA inverting

@@ -1,6 +1,6 @@
-//! Dynamics of coupled models in their independent joints (issues 18 and
-//! 20): mimic-joint chains (URDF and built) and the flexible gantry
-//! (`d3' = d3 + w(d2)`, seed 000 eq 4).
+//! Dynamics of coupled models in their independent joints: mimic-joint
+//! chains (URDF and built) and the flexible gantry (`d3' = d3 + w(d2)`,
+//! seed 000 eq 4).
 //!
 //! Checked against the same chain built without the coupling, with the map
 //! applied by hand from finite differences of `Model::chain_positions`

@@ -143,10 +143,9 @@ fn a_pose_that_overflows_is_an_error_not_a_result() {
 }
 
 /// Forward kinematics and the Jacobian written out the plain way (index
-/// loops over the public model: placements, joint kinds, couplings), the
-/// arithmetic of every earlier version. The library's loops (issue 15: a
-/// coupling map matched once, slices zipped, the chain product out of line)
-/// must give the same bits, on every built-in robot (gantry9-flex with its
+/// loops over the public model: placements, joint kinds, couplings). The
+/// library's loops (a coupling map matched once, slices zipped, the chain
+/// product out of line) must give the same bits, on every built-in robot (gantry9-flex with its
 /// beam coupling included).
 #[test]
 fn kinematics_equal_the_plain_product_bit_for_bit() {

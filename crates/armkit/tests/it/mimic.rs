@@ -1,4 +1,4 @@
-//! Mimic joints (issue 20): the configuration holds the independent joints,
+//! Mimic joints: the configuration holds the independent joints,
 //! forward kinematics expands it, the Jacobian folds mimic columns into their
 //! leaders' (checked against finite differences of FK and against `J0 M`),
 //! limits bound leaders through the map, and IK, a trajectory and the MPC

@@ -833,7 +833,7 @@ fn the_study_calibrates_sweeps_the_miss_and_states_the_paper_claims() {
     assert!(verdict("conclusion 1").measured.contains("miss sweep"));
 }
 
-/// Issue 21 item 2: a line missing the wrist singularity by d = 1 or 3 mm.
+/// A line missing the wrist singularity by d = 1 or 3 mm.
 /// The regions planned jointly keep every step within eps_dq and drop no
 /// knot, err about the floor (the distance to the wrist-singular poses,
 /// about d: the line is offset by d along the direction J loses there) and

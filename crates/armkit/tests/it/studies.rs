@@ -12,7 +12,7 @@ fn seed004_avoidance_study_passes_and_states_the_held_drift() {
     let report = AvoidanceStudy::default().run().unwrap();
     assert!(report.all_passed(), "{:#?}", report.checks);
     assert_eq!(report.checks.len(), 12);
-    // Issue 21 item 2: the miss sweep's claim, as a finding. With the
+    // The miss sweep's claim, as a finding. With the
     // regions planned jointly, the avoidance errs no more than DLS and SRI on
     // the 0, 1 and 3 mm lines; where it errs more, the faster methods move a
     // joint beyond the speed bound and DLS clamped to it errs more.
@@ -175,7 +175,7 @@ fn seed004_space_study_states_the_papers_claims() {
     );
 }
 
-/// Seed 002's continuous path (issue 21 items 10-11): the default study on
+/// Seed 002's continuous path: the default study on
 /// arm4, every check passing, the paper's variants as findings with their
 /// figures.
 #[test]

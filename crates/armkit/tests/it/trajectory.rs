@@ -1013,7 +1013,7 @@ fn adaptive_segmentation_meets_the_tolerance_on_arm4_and_panda() {
     }
 }
 
-/// The issue's figures: 0.3 m lines with 0.1 mm tolerance, planned with the
+/// Lines of 0.3 m with a 0.1 mm tolerance, planned with the
 /// library's IK (arm4: closed form, position only; panda: numeric, full pose).
 #[test]
 fn seed002_lines_with_the_library_ik() {
@@ -1146,7 +1146,7 @@ fn cubic_quintic_last_scheme_on_the_lines() {
     }
 }
 
-/// Issue 21 item 11: the adaptive segmentation with the cubic-quintic
+/// The adaptive segmentation with the cubic-quintic
 /// scheme refines until the recursion overflows; that is the scheme's
 /// outcome (status `scheme_diverged`, the last finite pass returned), not an
 /// error. The rate amplification shows the growth; the quartic-cubic scheme

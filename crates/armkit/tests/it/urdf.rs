@@ -725,7 +725,7 @@ fn a_byte_order_mark_and_a_missing_axis_are_accepted() {
     assert_eq!(model.joints()[0].limits.velocity, None);
 }
 
-/// Issue 20: elements the kinematics and mass properties do not read never
+/// Elements the kinematics and mass properties do not read never
 /// block a load, however they are written; what the model reads still
 /// fails with the file, line and element.
 #[test]

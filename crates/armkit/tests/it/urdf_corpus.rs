@@ -1,4 +1,4 @@
-//! The URDF corpus (issue 20): every URDF file of example-robot-data 6.0.0
+//! The URDF corpus: every URDF file of example-robot-data 6.0.0
 //! (tests/data/urdf_corpus, see its README) and every root-to-leaf chain with
 //! two or more moving joints, against Pinocchio's forward kinematics and
 //! Jacobians (scripts/make_urdf_corpus.py; mimic joints expanded there).

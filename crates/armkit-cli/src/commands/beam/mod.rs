@@ -13,19 +13,14 @@
 use std::path::PathBuf;
 
 use armkit::beam::{
-    CarriageDeflection, GantryBeam, SimplySupportedBeam, TwoCarriageBeam, SEED000_CARRIAGE_MASS,
-    SEED000_GRAVITY,
+    CarriageDeflection, GantryBeam, SimplySupportedBeam, SEED000_CARRIAGE_MASS, SEED000_GRAVITY,
 };
 use armkit::kinematics::{forward_kinematics, Data};
-use armkit::math::Vector3;
 use armkit::robots;
 use armkit::study::{BeamTableStudy, Table1Row};
 use clap::{Args, Subcommand};
 
-use crate::common::{
-    clean_zero, parse_joint_positions, print_json, CliError, CliResult, LimitPolicy, Outcome,
-};
-use crate::plot::Figure;
+use crate::common::{clean_zero, print_json, CliResult, Outcome};
 use crate::report::{write_atomic, Animation, Check, Report, Table};
 
 mod sweep;

@@ -1,6 +1,13 @@
 //! The error a rigid-beam model makes along the gantry's beam (`armkit beam error-along-beam`).
 
-use super::*;
+use armkit::beam::{CarriageDeflection, GantryBeam, SimplySupportedBeam, TwoCarriageBeam};
+use armkit::kinematics::{forward_kinematics, Data};
+use armkit::math::Vector3;
+use armkit::robots;
+
+use super::LoadArgs;
+use crate::common::{parse_joint_positions, CliError, CliResult, LimitPolicy};
+use crate::plot::Figure;
 
 /// One sample of the sweep: carriage position and what the rigid model misses.
 pub struct ErrorSample {

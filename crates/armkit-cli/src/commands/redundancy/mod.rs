@@ -7,10 +7,9 @@
 //! the full dynamics, and each joint's travel; writes the samples and the
 //! summary as CSV and SVG plots.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use armkit::dynamics::energy_weights::TorqueModel;
-use armkit::redundancy::ComparisonResult;
 use armkit::study::{DistributionOutcome, DistributionStudy, FormulationKind, SecondaryKind};
 use armkit::Model;
 use clap::{Args, ValueEnum};
@@ -19,8 +18,7 @@ use crate::common::{
     parse_fixed_numbers, parse_joint_positions, parse_numbers, print_json, CliError, CliResult,
     LimitPolicy, Outcome, RobotArgs,
 };
-use crate::plot::Figure;
-use crate::report::{join, Animation, Report, Table};
+use crate::report::join;
 
 mod output;
 

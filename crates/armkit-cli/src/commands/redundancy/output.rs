@@ -1,6 +1,16 @@
 //! The table, files, figures and report of `armkit redundancy`.
 
-use super::*;
+use std::path::Path;
+
+use armkit::dynamics::energy_weights::TorqueModel;
+use armkit::redundancy::ComparisonResult;
+use armkit::study::DistributionOutcome;
+use armkit::Model;
+
+use super::{study, RedundancyArgs};
+use crate::common::{CliError, CliResult};
+use crate::plot::Figure;
+use crate::report::{Animation, Report, Table};
 use armkit::study::{TorqueEnergies, DISTRIBUTION_NOTE, VARIANT_NAME};
 
 /// F under dynamic torques of the run named `name`, if computed.

@@ -1,6 +1,12 @@
 //! The figures and the animation of `armkit singularity`.
 
-use super::*;
+use armkit::math::{Pose, Vector3};
+use armkit::singularity::MethodRun;
+
+use super::{Plant, Study};
+use crate::common::CliResult;
+use crate::plot::Figure;
+use crate::report::Animation;
 
 /// Samples where `|det J|` is below the threshold.
 fn singular_mask(run: &MethodRun, threshold: f64) -> Vec<bool> {

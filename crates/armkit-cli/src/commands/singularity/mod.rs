@@ -11,11 +11,11 @@
 //! `summary.csv`, `summary.json` and a `report.html`. The same report is a
 //! scenario's `[singularity]` method ([`report`]).
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
-use armkit::math::{Pose, Vector3};
+use armkit::math::Pose;
 use armkit::singularity::{
-    AvoidanceOptions, BaseKind, Manipulator, MethodRun, SEED004_DIRECTION, SEED004_THROUGH,
+    AvoidanceOptions, BaseKind, Manipulator, SEED004_DIRECTION, SEED004_THROUGH,
 };
 use armkit::space::FreeFloatingModel;
 use armkit::study::{AvoidanceOutcome, AvoidanceStudy, ThresholdRule};
@@ -26,19 +26,16 @@ use clap::{Args, ValueEnum};
 use crate::common::{
     parse_fixed_numbers, parse_numbers, print_json, CliError, CliResult, Outcome, RobotArgs,
 };
-use crate::plot::Figure;
-use crate::report::{join, write_atomic, Animation, Report, Table};
+use crate::report::join;
 
 mod figures;
 mod outputs;
 mod page;
 mod tables;
 
-use figures::{animation, figures};
 use outputs::{summary_json, write_outputs};
 use page::build_report;
 pub use page::report;
-use tables::{k_table, methods_table, regions_table, sweep_table, table_runs};
 
 /// Track a straight-line pose path through a wrist singularity (seed 004):
 /// plain, avoidance, damped least squares and singularity-robust inverse.

@@ -1,6 +1,11 @@
 //! The files and the JSON summary of `armkit singularity`.
 
-use super::*;
+use std::path::Path;
+
+use super::tables::table_runs;
+use super::{BaseArg, SingularityArgs, Study};
+use crate::common::{CliError, CliResult};
+use crate::report::{write_atomic, Report};
 
 /// Writes the report's files into `dir` and `summary.csv`; returns the paths.
 pub(super) fn write_outputs(dir: &Path, study: &Study, report: &Report) -> CliResult<Vec<String>> {

@@ -1,6 +1,10 @@
 //! The report of `armkit singularity` (and of a scenario's `[singularity]` table).
 
-use super::*;
+use super::figures::{animation, figures};
+use super::tables::{k_table, methods_table, regions_table, sweep_table};
+use super::{study, SingularityArgs, Study};
+use crate::common::CliResult;
+use crate::report::{join, Report};
 
 /// The comparison as a report (a scenario's `[singularity]` table, and the
 /// command's `--out`).

@@ -1,6 +1,9 @@
 //! The tables of `armkit singularity`: one row per method, the regions, the error against k.
 
-use super::*;
+use armkit::singularity::MethodRun;
+
+use super::Study;
+use crate::report::Table;
 
 /// The runs of the table: plain, avoidance (first k), dls, sri, then the
 /// other k of the sweep.

@@ -1,6 +1,9 @@
 //! CSV cells and SVG plots of the space commands.
 
-use super::*;
+use armkit::math::Pose;
+
+use crate::common::{CliError, CliResult};
+use crate::plot::Figure;
 
 /// `x,y,z,roll,pitch,yaw` CSV cells of a pose.
 pub(super) fn pose_cells(pose: &Pose) -> String {

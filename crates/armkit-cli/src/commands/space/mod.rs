@@ -3,32 +3,25 @@
 //! resolved-rate tracking of a straight-line pose path, and seed 004's
 //! space-robot study.
 
-use std::fmt::Write as _;
 use std::path::PathBuf;
 
-use armkit::math::{Pose, Rotation3, Vector3, Vector6};
+use armkit::math::{Pose, Vector3};
 use armkit::space::{
-    center_of_mass, generalized_jacobian, momentum, space6r_base_body, step, track_pose_path,
-    BaseBody, BaseMode, FreeFloatingModel, FreeFloatingState, SinusoidalJointMotion, SpaceData,
+    generalized_jacobian, space6r_base_body, BaseBody, BaseMode, FreeFloatingModel, SpaceData,
 };
-use armkit::tracking::{LeastSquares, TimedPath, TrackingOptions, TrackingStatus};
-use armkit::trajectory::{CartesianTrajectory, TimeLaw};
 use clap::{Args, Subcommand, ValueEnum};
 
-use crate::plot::Figure;
+use crate::common::{
+    format_rows, jacobian_rows, parse_fixed_numbers, parse_joint_positions, parse_pose, pose_rows,
+    print_json, CliError, CliResult, LimitPolicy, Outcome, RobotArgs,
+};
 
 mod csv;
 mod simulate;
 mod study;
 mod track;
 
-use csv::{joint_header, number_cells, pose_cells, pose_header, write_plots};
 pub use study::{report as study_report, SpaceStudyArgs};
-
-use crate::common::{
-    format_rows, jacobian_rows, parse_fixed_numbers, parse_joint_positions, parse_pose, pose_rows,
-    print_json, CliError, CliResult, LimitPolicy, Outcome, RobotArgs,
-};
 
 /// Free-floating space robot: a base body carrying the arm, momentum zero.
 #[derive(Args, Debug)]

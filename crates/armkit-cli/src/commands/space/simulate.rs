@@ -1,6 +1,17 @@
 //! `armkit space simulate`: a smooth random joint motion, momentum conserved.
 
-use super::*;
+use std::fmt::Write as _;
+
+use armkit::math::{Pose, Rotation3, Vector6};
+use armkit::space::{
+    center_of_mass, generalized_jacobian, momentum, step, BaseMode, FreeFloatingState,
+    SinusoidalJointMotion, SpaceData,
+};
+
+use super::csv::{joint_header, number_cells, pose_cells, pose_header, write_plots};
+use super::{initial_q, step_count, SimulateArgs};
+use crate::common::{print_json, CliResult, Outcome};
+use crate::plot::Figure;
 
 /// The base twist that `J*` implies for joint rates `rates` (call after
 /// `generalized_jacobian`).

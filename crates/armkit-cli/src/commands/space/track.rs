@@ -1,6 +1,17 @@
 //! `armkit space track`: resolved-rate tracking of a line with J*.
 
-use super::*;
+use std::fmt::Write as _;
+
+use armkit::space::{
+    generalized_jacobian, track_pose_path, BaseMode, FreeFloatingState, SpaceData,
+};
+use armkit::tracking::{LeastSquares, TimedPath, TrackingOptions, TrackingStatus};
+use armkit::trajectory::{CartesianTrajectory, TimeLaw};
+
+use super::csv::{joint_header, number_cells, pose_cells, pose_header, write_plots};
+use super::{initial_q, step_count, TrackArgs};
+use crate::common::{parse_pose, print_json, CliError, CliResult, Outcome};
+use crate::plot::Figure;
 
 pub(super) fn run_track(args: &TrackArgs) -> CliResult<Outcome> {
     let (model, base) = args.system.load()?;

@@ -1,6 +1,20 @@
 //! `armkit traj line`: seed 002's continuous path along a Cartesian line.
 
-use super::*;
+use armkit::study::{
+    BoundaryKind, ContinuousPathStudy, IkKind, LawKind, OrientationKind, PathGoal, SchemeKind,
+    TaskKind, TorqueStudy,
+};
+use armkit::trajectory::{PathStatus, TrajectoryLimits};
+use armkit::Model;
+use clap::{Args, ValueEnum};
+
+use super::output::{write_outputs, OutputArgs};
+use super::summary::{rename, report_summary, summarize};
+use super::torques::{self, TorqueArgs};
+use crate::common::{
+    parse_fixed_numbers, parse_joint_positions, parse_pose, CliError, CliResult, LimitPolicy,
+    Outcome, RobotArgs,
+};
 
 /// `--law` values.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -147,7 +161,7 @@ pub struct LineArgs {
     #[arg(long, value_name = "N,N,...", value_delimiter = ',', default_values_t = [4, 8, 16])]
     pub cubic_quintic_segments: Vec<usize>,
     #[command(flatten)]
-    pub torques: crate::commands::traj_torques::TorqueArgs,
+    pub torques: TorqueArgs,
     /// Play the planned motion this many times faster before the torque
     /// check (which then slows it down to the limits): how fast can the path run?
     #[arg(
@@ -295,7 +309,7 @@ pub(super) fn run_line(args: &LineArgs) -> CliResult<Outcome> {
     let (planned, method) = study.plan(&model)?;
     let (start, goal) = study.end_poses(&model)?;
     let report = planned.report;
-    let (trajectory, torques) = super::super::traj_torques::check(
+    let (trajectory, torques) = torques::check(
         dynamics.as_ref().unwrap_or(&model),
         report.trajectory.time_scaled(1.0 / args.speed_up)?,
         &args.torques,

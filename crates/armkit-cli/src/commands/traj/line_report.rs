@@ -6,7 +6,9 @@ use armkit::trajectory::IkTask;
 use armkit::trajectory::PathError;
 
 use super::line::LineArgs;
-use super::*;
+use super::output::{joint_figures, sample};
+use crate::common::CliResult;
+use crate::report::{Animation, Report, Table};
 
 /// Seed 002's continuous path as a report (a scenario's `[continuous_path]`
 /// table, with the options of `armkit traj line`): the main run, the

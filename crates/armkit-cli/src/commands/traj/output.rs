@@ -1,6 +1,37 @@
-//! Sampling, CSV and figures of `armkit traj`.
+//! The output options of `armkit traj`, and its sampling, CSV and figures.
 
-use super::*;
+use std::path::PathBuf;
+
+use armkit::kinematics::{forward_kinematics, Data};
+use armkit::trajectory::{JointState, Trajectory};
+use armkit::Model;
+use clap::Args;
+
+use crate::common::{CliError, CliResult};
+use crate::plot::Figure;
+
+/// Where and how densely the trajectory is written.
+#[derive(Args, Debug, Clone)]
+pub struct OutputArgs {
+    /// Sampling period of the CSV and plots, s.
+    #[arg(
+        long,
+        default_value_t = 0.01,
+        value_name = "S",
+        allow_hyphen_values = true
+    )]
+    pub dt: f64,
+    /// CSV file: t, q, qd, qdd, end-effector x y z roll pitch yaw.
+    #[arg(long, value_name = "PATH")]
+    pub csv: Option<PathBuf>,
+    /// Directory for SVG plots (created if missing): positions.svg,
+    /// velocities.svg, accelerations.svg.
+    #[arg(long, value_name = "DIR")]
+    pub plots: Option<PathBuf>,
+    /// Print the summary as JSON.
+    #[arg(long)]
+    pub json: bool,
+}
 
 /// The trajectory sampled every `dt` (and at its end): times and states.
 pub(super) fn sample(traj: &Trajectory, dt: f64) -> CliResult<(Vec<f64>, Vec<JointState>)> {

@@ -1,6 +1,7 @@
-//! `armkit traj joint --torques` / `--fit-torque-limits`: the joint torques
-//! along the trajectory (inverse dynamics, issue 18) against the motors'
-//! limits, the uniform slow-down that meets them, and `torques.svg`.
+//! `armkit traj joint|line --torques` / `--fit-torque-limits`: the joint
+//! torques along the trajectory (inverse dynamics, gravity along -z) against
+//! the motors' limits, the uniform slow-down that meets them, and
+//! `torques.svg`.
 
 use armkit::dynamics::torque_limits::{
     scale_to_torque_limits, torque_profile, TorqueCheckOptions, TorqueReport, TorqueStatus,
@@ -9,7 +10,7 @@ use armkit::trajectory::Trajectory;
 use armkit::Model;
 use clap::Args;
 
-use super::traj::OutputArgs;
+use super::output::OutputArgs;
 use crate::common::{parse_fixed_numbers, CliResult};
 use crate::plot::Figure;
 
