@@ -7,7 +7,8 @@ use common::*;
 use std::path::PathBuf;
 
 use armkit::math::Pose;
-use armkit::space::{generalized_jacobian, space6r_free_floating, BaseMode, SpaceData};
+use armkit::robots::space6r_free_floating;
+use armkit::space::{generalized_jacobian, BaseMode, SpaceData};
 
 fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("armkit-space-cli-{}", std::process::id()));

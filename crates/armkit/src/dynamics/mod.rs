@@ -70,11 +70,9 @@
 
 mod algorithms;
 mod energy;
-pub mod energy_weights;
 pub mod simulate;
 pub mod spatial;
 mod subspace;
-pub mod torque_limits;
 
 pub use algorithms::{
     aba, coriolis_torques, gravity_torques, mass_matrix, mass_matrix_inverse, nonlinear_effects,

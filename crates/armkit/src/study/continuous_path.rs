@@ -8,9 +8,6 @@
 use std::time::Instant;
 
 use super::StudyReport;
-use crate::dynamics::torque_limits::{
-    scale_to_torque_limits, torque_profile, TorqueCheckOptions, TorqueScaling,
-};
 use crate::error::{check_finite_vector, Error, Result};
 use crate::kinematics::{forward_kinematics, Data};
 use crate::math::{rotation_angle, Pose};
@@ -22,6 +19,9 @@ use crate::trajectory::{
     Segmentation, ViaVelocity,
 };
 use crate::trajectory::{path_ik_for, IkTask, NumericPathIk};
+use crate::trajectory::{
+    scale_to_torque_limits, torque_profile, TorqueCheckOptions, TorqueScaling,
+};
 use crate::trajectory::{CartesianTrajectory, LinePath, OrientationLaw, TimeLaw};
 
 mod outcome;

@@ -9,8 +9,8 @@
 
 use std::path::{Path, PathBuf};
 
-use armkit::dynamics::energy_weights::TorqueModel;
 use armkit::redundancy::ComparisonResult;
+use armkit::redundancy::TorqueModel;
 use armkit::study::{DistributionOutcome, DistributionStudy, FormulationKind, SecondaryKind};
 use armkit::Model;
 use clap::{Args, ValueEnum};

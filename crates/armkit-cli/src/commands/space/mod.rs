@@ -7,9 +7,10 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use armkit::math::{Pose, Rotation3, Vector3, Vector6};
+use armkit::robots::space6r_base_body;
 use armkit::space::{
-    center_of_mass, generalized_jacobian, momentum, space6r_base_body, step, track_pose_path,
-    BaseBody, BaseMode, FreeFloatingModel, FreeFloatingState, SinusoidalJointMotion, SpaceData,
+    center_of_mass, generalized_jacobian, momentum, step, track_pose_path, BaseBody, BaseMode,
+    FreeFloatingModel, FreeFloatingState, SinusoidalJointMotion, SpaceData,
 };
 use armkit::tracking::{LeastSquares, TimedPath, TrackingOptions, TrackingStatus};
 use armkit::trajectory::{CartesianTrajectory, TimeLaw};

@@ -3,7 +3,7 @@
 //! the baseline run, and the study's checks and findings.
 //!
 //! ```
-//! use armkit::dynamics::energy_weights::TorqueModel;
+//! use armkit::redundancy::TorqueModel;
 //! use armkit::study::DistributionStudy;
 //! let model = armkit::robots::by_name("gantry9").unwrap();
 //! let outcome = DistributionStudy::default().compare(&model).unwrap();
@@ -14,12 +14,13 @@
 //! ```
 
 use super::{DistributionOutcome, VARIANT_NAME};
-use crate::dynamics::energy_weights::{energy_along_motion, TorqueModel};
 use crate::error::{Error, Result};
 use crate::kinematics::{jacobian, Data, JacobianFrame};
 use crate::math::{DVector, Vector6};
 use crate::model::Model;
-use crate::redundancy::{ComparisonResult, Load, Partition, PartitionedSolver};
+use crate::redundancy::{
+    energy_along_motion, ComparisonResult, Load, Partition, PartitionedSolver, TorqueModel,
+};
 use crate::study::{Check, Finding, FindingStatus};
 use crate::tracking::TrackingStatus;
 
