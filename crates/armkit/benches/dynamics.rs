@@ -1,8 +1,8 @@
-//! Rigid-body dynamics timings (issue 18): RNEA, the mass matrix (CRBA) and
+//! Rigid-body dynamics timings: RNEA, the mass matrix (CRBA) and
 //! ABA on the ur5 and panda URDF chains, the models Pinocchio's benchmark in
 //! `../shared/peers` (`bench_cpp.py`: `rnea_ns`, `crba_ns`, `aba_ns`) loads.
 //!
-//! Also the coupled models of issue 20 (mimicbot's finger, gantry9-flex),
+//! Also the coupled models (mimicbot's finger, gantry9-flex),
 //! which work in their independent joints.
 //!
 //! Run: `cargo bench -p armkit --bench dynamics`.
@@ -92,7 +92,7 @@ fn bench_model(c: &mut Criterion, name: &str, model: &armkit::Model) {
 fn dynamics(c: &mut Criterion) {
     bench_robot(c, "ur5", "base_link", "tool0");
     bench_robot(c, "panda", "panda_link0", "panda_link8");
-    // Coupled models (issue 20): a mimic-joint finger (9 chain joints, 7
+    // Coupled models: a mimic-joint finger (9 chain joints, 7
     // independent; forward dynamics by Cholesky) and the flexible gantry.
     bench_robot(c, "mimicbot", "base", "fingertip");
     let flex = armkit::robots::by_name("gantry9-flex").unwrap();

@@ -20,7 +20,7 @@
 //! [`super::damped_least_squares_step`]) must run into the singularity as
 //! the paper shows. With `linalg`'s thresholded solve that baseline stops
 //! at the singular pose: the demo's check "peak joint rate: plain /
-//! avoidance k=1" fell from 393 to 1.0 when it was tried. The two kernels
+//! avoidance k=1" reads 1.0 with it instead of 393. The two kernels
 //! differ on purpose (docs/DEVELOPING.md, "Two 6 x 6 solves").
 
 use crate::math::{Matrix6, Matrix6xX, Vector6};

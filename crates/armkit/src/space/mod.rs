@@ -77,7 +77,7 @@
 //! `q`, and is integrated with the fourth-order Magnus (Gauss-Legendre) scheme
 //! on SO(3) through the exponential map.
 //!
-//! # Relation to the rigid-body dynamics ([`crate::dynamics`], issue 18)
+//! # Relation to the rigid-body dynamics ([`crate::dynamics`])
 //!
 //! [`momentum`] is computed with the dynamics module's spatial algebra
 //! (each body's spatial velocity and inertia, `sum I_i V_i`). The time

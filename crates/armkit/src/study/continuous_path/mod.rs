@@ -176,7 +176,8 @@ pub enum PathGoal {
     Pose([f64; 6]),
 }
 
-/// The torque check of the planned motion (issue 18).
+/// The torque check of the planned motion: its joint torques (inverse
+/// dynamics) against the motors' limits, and the slow-down that meets them.
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "io", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "io", serde(default, deny_unknown_fields))]

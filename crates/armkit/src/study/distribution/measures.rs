@@ -26,8 +26,7 @@ use crate::tracking::TrackingStatus;
 
 /// One distribution's energy measure `integral F dt` (seed 001, eq 9, W^2
 /// s) under the static torques of the load and under the full inverse
-/// dynamics of its motion (issue 18, item 4;
-/// [`energy_along_motion`] on the run's samples).
+/// dynamics of its motion ([`energy_along_motion`] on the run's samples).
 #[derive(Clone, Debug, PartialEq)]
 pub struct TorqueEnergies {
     /// The distribution's name.
@@ -190,7 +189,7 @@ impl DistributionOutcome {
         Ok(checks)
     }
 
-    /// The static-versus-dynamic checks (issue 18, item 4).
+    /// The checks comparing F under static and dynamic torques.
     fn torque_checks(&self) -> Vec<Check> {
         let largest_difference = self
             .results

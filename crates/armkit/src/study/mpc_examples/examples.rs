@@ -176,9 +176,9 @@ impl Seed000Example {
             // Seed 000's planner as published: no goal posture.
             reach: ReachAid::Off,
             // The undamped comparison drifts along its self-motion for 2000
-            // steps, integrating the QP's round-off: it keeps the solver its
-            // figures were made with (the exact active-set answer moves its
-            // rotary travel by 0.7 %).
+            // steps, integrating the QP's round-off: it runs on Clarabel, the
+            // solver of its published figures (the exact active-set answer
+            // moves its rotary travel by 0.7 %).
             solver: match self {
                 Seed000Example::EqualWeightsUndamped => QpSolverKind::Clarabel,
                 _ => QpSolverKind::default(),
