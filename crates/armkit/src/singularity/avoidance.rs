@@ -157,7 +157,7 @@ impl<'m> PathTracker<'m> {
     /// The `|det J|` threshold by seed 004's own rule (sec 2.3.1) on this
     /// tracker's line: [`calibrate_determinant_threshold`] on a
     /// [`Method::Plain`] run with this tracker's `eps_dq`
-    /// ([`DetectionOptions::joint_step_threshold`]). `None` when the plain
+    /// ([`super::DetectionOptions::joint_step_threshold`]). `None` when the plain
     /// run never jumps (a line tracked smoothly: there is nothing to
     /// calibrate on). m^3 for a 6R arm.
     pub fn calibrated_threshold(&self) -> Result<Option<f64>> {

@@ -119,7 +119,8 @@ impl SpaceRobotStudy {
     /// are the laws of a free-floating system, not figures of the paper.
     ///
     /// ```
-    /// use armkit::space::{space6r_base_body, FreeFloatingModel};
+    /// use armkit::robots::space6r_base_body;
+    /// use armkit::space::FreeFloatingModel;
     /// use armkit::study::SpaceRobotStudy;
     /// let arm = armkit::robots::by_name("gantry9")?; // 9 joints with mass properties
     /// let start = arm.neutral_configuration();
