@@ -1,9 +1,10 @@
 //! Free-floating space manipulators from Python: `armkit.SpaceRobot`.
 
 use armkit::math::Pose;
+use armkit::robots::space6r_free_floating;
 use armkit::space::{
-    generalized_jacobian, space6r_free_floating, step as space_step, BaseMode, FreeFloatingModel,
-    FreeFloatingState, SpaceData,
+    generalized_jacobian, step as space_step, BaseMode, FreeFloatingModel, FreeFloatingState,
+    SpaceData,
 };
 use armkit::Error;
 use numpy::ndarray::Dim;

@@ -2,7 +2,7 @@
 //! checks, the series behind its figures (as arrays) and its notes.
 
 use armkit::mpc::qp::QpSolverKind;
-use armkit::mpc::scenario::Seed000Example;
+use armkit::study::Seed000Example;
 use armkit::study::{
     AvoidanceStudy, BeamTableStudy, ContinuousPathStudy, DistributionStudy, MpcExampleStudy,
     SpaceRobotStudy, StudyReport as LibraryReport,

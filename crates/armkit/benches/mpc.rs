@@ -15,8 +15,9 @@ use std::hint::black_box;
 use std::time::{Duration, Instant};
 
 use armkit::mpc::qp::QpSolverKind;
-use armkit::mpc::scenario::{simulate, Seed000Example};
+use armkit::mpc::scenario::simulate;
 use armkit::mpc::{MpcOptions, MpcPlanner};
+use armkit::study::Seed000Example;
 use criterion::{criterion_group, criterion_main, Criterion};
 
 /// The recorded states `(q, v_old)` of Example 1 with control horizon `m`.

@@ -13,11 +13,11 @@ use armkit::ik::{
     damped_least_squares_step, pose_error, IkMethod, IkOptions, IkSolver, NakamuraDamping,
 };
 use armkit::math::Pose;
+use armkit::robots::space6r_free_floating;
 use armkit::singularity::{
     detect, seed004_path, AvoidanceOptions, Baselines, DetectionOptions, Manipulator, Method,
     PathTracker, RegionPlan,
 };
-use armkit::space::space6r_free_floating;
 use armkit::{jacobian, Data, JacobianFrame};
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;

@@ -5,9 +5,9 @@
 //! Run: `cargo bench -p armkit --bench space -- --warm-up-time 1 --measurement-time 3`.
 
 use armkit::math::Pose;
+use armkit::robots::space6r_free_floating;
 use armkit::space::{
-    center_of_mass, generalized_jacobian, space6r_free_floating, step, BaseMode, FreeFloatingState,
-    SpaceData,
+    center_of_mass, generalized_jacobian, step, BaseMode, FreeFloatingState, SpaceData,
 };
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;

@@ -15,8 +15,8 @@ use armkit::beam::{TwoCarriageBeam, SEED000_TABLE1};
 use armkit::kinematics::{forward_kinematics, Data};
 use armkit::math::{Matrix3, Pose, Vector3};
 use armkit::model::JointKind;
-use armkit::mpc::scenario::{SEED000_PRIORITIES, SEED000_START};
 use armkit::mpc::{MpcOptions, MpcPlanner, TaskWeights};
+use armkit::study::{SEED000_PRIORITIES, SEED000_START};
 
 fn main() -> Result<(), armkit::Error> {
     // Table 1 (g = 10 m/s^2 reproduces the printed values).

@@ -12,9 +12,10 @@
 
 use armkit::kinematics::{forward_kinematics, jacobian, Data, JacobianFrame};
 use armkit::math::{rotation_angle, DVector, Pose, Vector6};
+use armkit::robots::space6r_free_floating;
 use armkit::space::{
-    center_of_mass, end_effector_pose, generalized_jacobian, space6r_free_floating, step, BaseMode,
-    FreeFloatingState, SpaceData,
+    center_of_mass, end_effector_pose, generalized_jacobian, step, BaseMode, FreeFloatingState,
+    SpaceData,
 };
 
 /// Prints the tool's linear (m/s) and angular (rad/s) velocity.

@@ -15,11 +15,11 @@
 //! Run: `cargo run --release --example 09_singularity`
 
 use armkit::math::Pose;
+use armkit::robots::space6r_free_floating;
 use armkit::singularity::{
     classify, manipulability_ellipsoid, seed004_path, AvoidanceOptions, Baselines, ClassifyOptions,
     Comparison, JacobianPart, Manipulator, PathTracker, SEED004_THROUGH,
 };
-use armkit::space::space6r_free_floating;
 use armkit::{jacobian, Data, JacobianFrame};
 
 fn print_table(title: &str, comparison: &Comparison) {

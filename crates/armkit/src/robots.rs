@@ -16,6 +16,10 @@
 //! printed (or are garbled) in the papers; each builder's documentation gives
 //! every length and limit we chose, and why.
 //!
+//! Seed 004's space robot, `space6r` on its satellite
+//! ([`space6r_base_body`]), is [`space6r_free_floating`], a
+//! [`crate::space::FreeFloatingModel`].
+//!
 //! ```
 //! for name in armkit::robots::names() {
 //!     let model = armkit::robots::by_name(name).unwrap();
@@ -29,6 +33,7 @@ use std::f64::consts::{FRAC_PI_2, PI};
 use crate::error::{Error, Result};
 use crate::math::{Matrix3, Pose, Vector3};
 use crate::model::{DhConvention, DhLink, LinkInertia, Model};
+use crate::space::{BaseBody, FreeFloatingModel};
 
 /// A built-in robot: name, degrees of freedom, one-line description, constructor.
 #[derive(Clone, Copy, Debug)]
@@ -315,6 +320,42 @@ pub fn space6r_mass_properties() -> [LinkInertia; 6] {
         rod(8.0, [0.0, 0.0, 0.0], 0.10, 2),
         rod(10.0, [0.0, 0.0, -0.117], 0.2345, 2),
     ]
+}
+
+/// space6r's spacecraft: a small satellite of 400 kg.
+///
+/// The paper prints no mass properties. We take a 400 kg body (a small
+/// satellite; the arm's links weigh 118 kg in all, so the mass ratio of about
+/// 3.4 makes the base's reaction clearly visible, as it is on real servicing
+/// spacecraft) shaped as a uniform 1.2 m x 1.0 m x 1.0 m box (x, y, z),
+/// density 333 kg/m^3, typical of small satellites:
+///
+/// * base frame at the centre of mass, axes along the box's edges;
+/// * inertia `diag(m (b^2 + c^2), m (a^2 + c^2), m (a^2 + b^2)) / 12` =
+///   `diag(66.67, 81.33, 81.33)` kg m^2;
+/// * the arm is mounted at the centre of the top face: `mount = Tz(0.5)`; the
+///   arm model's own base transform adds `L1 = 0.30` m, so joint 1 sits
+///   0.80 m above the base's centre of mass.
+pub fn space6r_base_body() -> BaseBody {
+    let (mass, a, b, c) = (400.0, 1.2, 1.0, 1.0);
+    BaseBody {
+        name: "satellite".into(),
+        mass,
+        com: Vector3::zeros(),
+        inertia: Matrix3::from_diagonal(&Vector3::new(
+            mass * (b * b + c * c) / 12.0,
+            mass * (a * a + c * c) / 12.0,
+            mass * (a * a + b * b) / 12.0,
+        )),
+        mount: Pose::trans_z(0.5),
+    }
+}
+
+/// Seed 004's space robot: [`space6r`] (links with the mass properties of
+/// [`space6r_mass_properties`]) on the satellite of [`space6r_base_body`].
+/// Total mass 518 kg.
+pub fn space6r_free_floating() -> Result<FreeFloatingModel> {
+    FreeFloatingModel::new(space6r_base_body(), space6r()?)
 }
 
 /// Height of gantry9's beam above the floor, m (the carriage's mounting plane

@@ -3,12 +3,12 @@
 
 use crate::common::*;
 
-use armkit::dynamics::energy_weights::{energy_along_motion, TorqueModel};
 use armkit::math::{Pose, Vector3};
 use armkit::redundancy::{
     compare_distributions, ComparisonCase, Distribution, DistributionOptions, JointWeights, Load,
     TorqueFloor, SEED000_PRIORITY_WEIGHTS,
 };
+use armkit::redundancy::{energy_along_motion, TorqueModel};
 use armkit::trajectory::{CartesianTrajectory, TimeLaw};
 
 #[test]

@@ -31,7 +31,7 @@ fn default_json_matches_the_library_on_the_held_space6r() {
     assert_eq!(value["base"], "attitude-held");
     assert_eq!(value["k"], serde_json::json!([1, 5, 10]));
     // The same comparison through the library.
-    let system = armkit::space::space6r_free_floating().unwrap();
+    let system = armkit::robots::space6r_free_floating().unwrap();
     let line = seed004_path(&Manipulator::AttitudeHeld {
         system: &system,
         base: Pose::identity(),

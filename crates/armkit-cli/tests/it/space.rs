@@ -6,7 +6,8 @@ use crate::common::*;
 use std::path::PathBuf;
 
 use armkit::math::Pose;
-use armkit::space::{generalized_jacobian, space6r_free_floating, BaseMode, SpaceData};
+use armkit::robots::space6r_free_floating;
+use armkit::space::{generalized_jacobian, BaseMode, SpaceData};
 
 fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("armkit-space-cli-{}", std::process::id()));

@@ -1,4 +1,4 @@
-//! Rigid-body dynamics of a serial chain (issue 18): inverse dynamics
+//! Rigid-body dynamics of a serial chain: inverse dynamics
 //! (RNEA), the joint-space inertia matrix (CRBA) and its inverse, gravity and
 //! Coriolis torques, forward dynamics (ABA, O(n)), kinetic and potential
 //! energy, and a simulation step.
@@ -37,7 +37,7 @@
 //! A model whose links lack mass properties is refused, naming the first
 //! such link.
 //!
-//! **Coupled models** (mimic joints, issue 20, and `gantry9-flex`'s beam
+//! **Coupled models** (mimic joints, and `gantry9-flex`'s beam
 //! deflection `d3' = d3 + w(d2)`, seed 000 eq 4) work in the independent
 //! joints. The algorithms run on the chain's joints at the chain
 //! configuration `q_c = c(q)` ([`Model::chain_positions`]) with
@@ -70,11 +70,9 @@
 
 mod algorithms;
 mod energy;
-pub mod energy_weights;
 pub mod simulate;
 pub mod spatial;
 mod subspace;
-pub mod torque_limits;
 
 pub use algorithms::{
     aba, coriolis_torques, gravity_torques, mass_matrix, mass_matrix_inverse, nonlinear_effects,

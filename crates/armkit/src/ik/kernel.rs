@@ -20,10 +20,9 @@
 //! [`super::damped_least_squares_step`]) must run into the singularity as
 //! the paper shows. With `linalg`'s thresholded solve that baseline stops
 //! at the singular pose: the demo's check "peak joint rate: plain /
-//! avoidance k=1" fell from 393 to 1.0 when it was tried. The two kernels
+//! avoidance k=1" reads 1.0 with it instead of 393. The two kernels
 //! differ on purpose (docs/DEVELOPING.md, "Two 6 x 6 solves").
 
-use super::damping::ChiaveriniFilter;
 use crate::math::{Matrix6, Matrix6xX, Vector6};
 
 /// Which 6 x 6 system a step solves.
@@ -187,20 +186,23 @@ impl Kernel {
     }
 
     /// Chiaverini's filtered inverse applied to `rhs`: returns `y` and the
-    /// smallest meaningful singular value.
+    /// smallest meaningful singular value `sigma_m`. `damping(sigma_m)` is
+    /// the extra damping `lambda` of the smallest direction, `filter` the
+    /// `beta` of every direction (the policy: `super::ChiaveriniFilter`).
     pub(super) fn solve_filtered(
         &self,
         a0: &Mat6Array,
         rhs: &Vector6<f64>,
-        filter: &ChiaveriniFilter,
+        damping: impl Fn(f64) -> f64,
+        filter: f64,
     ) -> (Vector6<f64>, f64) {
         let eigen = Matrix6::from_fn(|r, c| a0[r][c]).symmetric_eigen();
         let mut order = [0usize, 1, 2, 3, 4, 5];
         order.sort_unstable_by(|a, b| eigen.eigenvalues[*b].total_cmp(&eigen.eigenvalues[*a]));
         let smallest = order[self.rank - 1];
         let sigma_min = eigen.eigenvalues[smallest].max(0.0).sqrt();
-        let lambda = filter.damping(sigma_min);
-        let beta2 = filter.filter * filter.filter;
+        let lambda = damping(sigma_min);
+        let beta2 = filter * filter;
         let mut y = Vector6::zeros();
         for i in 0..6 {
             let u = eigen.eigenvectors.column(i);

@@ -542,7 +542,11 @@ fn method_step(
             let mu = damping_scale * (current.objective + lm.floor);
             kernel.solve_damped(&a0, mu, &rhs)
         }
-        IkMethod::SingularityRobust(filter) => Some(kernel.solve_filtered(&a0, &rhs, &filter).0),
+        IkMethod::SingularityRobust(filter) => Some(
+            kernel
+                .solve_filtered(&a0, &rhs, |s| filter.damping(s), filter.filter)
+                .0,
+        ),
     };
     match y {
         Some(y) => {

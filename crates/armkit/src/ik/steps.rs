@@ -80,7 +80,7 @@ pub fn singularity_robust_step(
     let kernel = Kernel::new(&[1.0; 6], jacobian.ncols());
     let a0 = kernel.normal_matrix(jacobian);
     let rhs = kernel.rhs(jacobian, twist);
-    let (y, sigma_min) = kernel.solve_filtered(&a0, &rhs, filter);
+    let (y, sigma_min) = kernel.solve_filtered(&a0, &rhs, |s| filter.damping(s), filter.filter);
     kernel.map_back(jacobian, &y, step);
     Ok(sigma_min)
 }

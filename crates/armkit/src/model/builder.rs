@@ -330,6 +330,52 @@ fn validate_joint(spec: &JointSpec) -> std::result::Result<(), (&'static str, St
     Ok(())
 }
 
+impl Model {
+    /// A model from a DH table, with identity base and tool transforms.
+    ///
+    /// Joint names are `q1`, `q2`, ...; errors name the 0-based link index and
+    /// the DH field (`theta`, `d`, `a`, `alpha`, `offset`, `qlim`, `vlim`,
+    /// `mass`, `com`, `inertia`).
+    pub fn from_dh(name: &str, convention: DhConvention, links: &[DhLink]) -> Result<Model> {
+        Self::from_dh_with_transforms(name, convention, links, Pose::identity(), Pose::identity())
+    }
+
+    /// A model from a DH table: `T = base A_1 ... A_n tool`.
+    pub fn from_dh_with_transforms(
+        name: &str,
+        convention: DhConvention,
+        links: &[DhLink],
+        base: Pose,
+        tool: Pose,
+    ) -> Result<Model> {
+        let mut builder = ModelBuilder::new(name)
+            .base(base)
+            .tool(tool)
+            .dh_source(convention, links.to_vec());
+        for (j, link) in links.iter().enumerate() {
+            let invalid = |(field, reason): (&str, String)| Error::InvalidModel {
+                link: j,
+                name: format!("q{}", j + 1),
+                field: field.into(),
+                reason,
+            };
+            link.check_numbers().map_err(invalid)?;
+            let (before, after) = link.split(convention);
+            let spec = JointSpec {
+                name: format!("q{}", j + 1),
+                kind: link.kind,
+                origin: before,
+                axis: Vector3::z(),
+                limits: link.limits,
+                // The DH frame is the motion frame followed by `after`.
+                inertia: link.inertia.map(|i| i.transformed(&after)),
+            };
+            builder = builder.joint(spec).fixed(after);
+        }
+        builder.build()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

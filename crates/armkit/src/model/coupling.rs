@@ -1,6 +1,6 @@
 //! Joint couplings: chain joints whose position depends on another joint's.
 //!
-//! One concept covers both couplings armkit knows (issue 20):
+//! One concept covers both couplings armkit knows:
 //!
 //! * [`CouplingLaw::Mimic`], a URDF `<mimic>` joint: `q_m = multiplier *
 //!   q_leader + offset`. The mimic joint leaves the configuration: the

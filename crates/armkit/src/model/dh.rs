@@ -1,7 +1,6 @@
 //! Denavit-Hartenberg parameters, standard and modified (Craig).
 
-use super::{JointKind, JointLimits, JointSpec, LinkInertia, Model, ModelBuilder};
-use crate::error::{Error, Result};
+use super::{JointKind, JointLimits, LinkInertia};
 use crate::math::Pose;
 
 /// Which Denavit-Hartenberg convention a table uses.
@@ -103,7 +102,7 @@ impl DhLink {
         self
     }
 
-    fn check_numbers(&self) -> std::result::Result<(), (&'static str, String)> {
+    pub(super) fn check_numbers(&self) -> std::result::Result<(), (&'static str, String)> {
         for (field, value) in [
             ("theta", self.theta),
             ("d", self.d),
@@ -120,7 +119,7 @@ impl DhLink {
 
     /// The fixed transform before the joint's motion, in the previous DH
     /// frame, and the one after it, up to this link's DH frame.
-    fn split(&self, convention: DhConvention) -> (Pose, Pose) {
+    pub(super) fn split(&self, convention: DhConvention) -> (Pose, Pose) {
         let rotational = self.kind.is_rotational();
         let (theta0, d0) = if rotational {
             (self.theta + self.offset, self.d)
@@ -136,51 +135,5 @@ impl DhLink {
                 Pose::identity(),
             ),
         }
-    }
-}
-
-impl Model {
-    /// A model from a DH table, with identity base and tool transforms.
-    ///
-    /// Joint names are `q1`, `q2`, ...; errors name the 0-based link index and
-    /// the DH field (`theta`, `d`, `a`, `alpha`, `offset`, `qlim`, `vlim`,
-    /// `mass`, `com`, `inertia`).
-    pub fn from_dh(name: &str, convention: DhConvention, links: &[DhLink]) -> Result<Model> {
-        Self::from_dh_with_transforms(name, convention, links, Pose::identity(), Pose::identity())
-    }
-
-    /// A model from a DH table: `T = base A_1 ... A_n tool`.
-    pub fn from_dh_with_transforms(
-        name: &str,
-        convention: DhConvention,
-        links: &[DhLink],
-        base: Pose,
-        tool: Pose,
-    ) -> Result<Model> {
-        let mut builder = ModelBuilder::new(name)
-            .base(base)
-            .tool(tool)
-            .dh_source(convention, links.to_vec());
-        for (j, link) in links.iter().enumerate() {
-            let invalid = |(field, reason): (&str, String)| Error::InvalidModel {
-                link: j,
-                name: format!("q{}", j + 1),
-                field: field.into(),
-                reason,
-            };
-            link.check_numbers().map_err(invalid)?;
-            let (before, after) = link.split(convention);
-            let spec = JointSpec {
-                name: format!("q{}", j + 1),
-                kind: link.kind,
-                origin: before,
-                axis: crate::math::Vector3::z(),
-                limits: link.limits,
-                // The DH frame is the motion frame followed by `after`.
-                inertia: link.inertia.map(|i| i.transformed(&after)),
-            };
-            builder = builder.joint(spec).fixed(after);
-        }
-        builder.build()
     }
 }

@@ -33,7 +33,8 @@
 //! assert_eq!(solver.active_set().collect::<Vec<_>>(), vec![(0, armkit::mpc::active_set::BoundSide::Upper)]);
 //! ```
 
-use super::qp::{upper_index, ClarabelQp, QpOutcome, QpProblem, QpSolver, QpStatus};
+use super::clarabel_qp::ClarabelQp;
+use super::qp::{upper_index, QpOutcome, QpProblem, QpSolver, QpStatus};
 use crate::error::Result;
 
 /// Which side of a two-sided row `lower <= a'x <= upper` is active.

@@ -38,7 +38,10 @@
 //!
 //! Layout: [`MpcOptions`] and its parts in `options`, the constraints of
 //! eqs 17-19 in `constraints`, the planner in `planner`, the goal posture in
-//! `reach`, run statuses in `outcome`, solve-time statistics in `timing`.
+//! `reach`, run statuses in `outcome`, solve-time statistics in `timing`;
+//! the QP interface in [`qp`], its backends in [`active_set`],
+//! `clarabel_qp` and `osqp_qp`, and the one place that builds a backend from
+//! its [`qp::QpSolverKind`] in `solver`.
 //!
 //! Infeasibility is handled, never hidden: a start outside the position
 //! limits relaxes those joints' bounds to what they can reach moving back at
@@ -72,8 +75,11 @@
 //! ```
 
 pub mod active_set;
+mod clarabel_qp;
 mod constraints;
 mod options;
+#[cfg(feature = "osqp")]
+mod osqp_qp;
 mod outcome;
 mod planner;
 mod plant;
@@ -81,18 +87,22 @@ pub mod prediction;
 pub mod qp;
 mod reach;
 pub mod scenario;
+mod solver;
 mod timing;
 
-pub use options::{MpcOptions, ReachAid, TaskWeights, VelocityWeights};
+pub use clarabel_qp::{ClarabelAccuracy, ClarabelQp};
+pub use options::{GoalPostureOptions, MpcOptions, ReachAid, TaskWeights, VelocityWeights};
+#[cfg(feature = "osqp")]
+pub use osqp_qp::OsqpQp;
 pub use outcome::{diagnose_run, RunStatus};
 pub use planner::{MpcPlanner, StepReport, StepStatus};
 pub use plant::{ActuatorPrecision, Plant, PlantModel};
-pub use reach::{GoalPostureOptions, GoalSearch};
+pub use reach::GoalSearch;
 pub use timing::SolveTimes;
 
 /// Default sample time `T`, s. Seed 000 does not print it; 0.05 s (20 Hz
 /// planning, a 0.5 s horizon with `N = 10`) makes its weights behave as its
-/// figures describe (see [`scenario`]).
+/// figures describe (seed 000's examples, `armkit::study::Seed000Example`).
 pub const DEFAULT_SAMPLE_TIME: f64 = 0.05;
 
 /// Commands that cross a limit by more than this (m/s or rad/s, after the

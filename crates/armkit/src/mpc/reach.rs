@@ -36,84 +36,15 @@
 //! options.validate().unwrap();
 //! ```
 
-use crate::error::{check_positive, Error, Result};
+use crate::error::Result;
 use crate::ik::{IkOptions, IkSelection, IkSolver, IkStatus};
 use crate::math::Pose;
 use crate::model::Model;
 
-use super::TaskWeights;
+use super::{GoalPostureOptions, TaskWeights};
 
 /// Largest factor the stalls can put on the pull.
 const MAX_ESCALATION: f64 = 1e3;
-
-/// Settings of the goal posture ([`super::ReachAid::GoalPosture`]).
-#[derive(Clone, Debug, PartialEq)]
-pub struct GoalPostureOptions {
-    /// `w`: weight of the joint-space pull relative to the mean task weight
-    /// (> 0, finite). Default 0.2.
-    pub weight: f64,
-    /// Random IK restarts per search (>= 1). Default 300.
-    pub ik_restarts: usize,
-    /// Converged IK solutions compared for the one nearest the current
-    /// configuration (>= 1). Default 4.
-    pub candidates: usize,
-    /// Steps without a 1 % fall of the task error that count as a stall
-    /// (>= 1). Default 60. On a stall the pull is made
-    /// [`GoalPostureOptions::stall_gain`] times stronger (the linearised
-    /// task cost is holding the arm in a local minimum against it), and a
-    /// goal posture not found yet is searched again.
-    pub stall_steps: usize,
-    /// Factor on the pull after each stall (>= 1). Default 4.
-    pub stall_gain: f64,
-    /// Searches at most per target (>= 1). Default 4.
-    pub max_searches: usize,
-    /// Seed of the IK restarts (each search adds its index). Default 0.
-    pub seed: u64,
-    /// Task error (m and rad combined, the norm over the tracked
-    /// coordinates) below which the pull fades linearly to zero (> 0).
-    /// Default 0.02.
-    pub fade_error: f64,
-}
-
-impl Default for GoalPostureOptions {
-    fn default() -> Self {
-        GoalPostureOptions {
-            weight: 0.2,
-            ik_restarts: 300,
-            candidates: 4,
-            stall_steps: 60,
-            stall_gain: 4.0,
-            max_searches: 4,
-            seed: 0,
-            fade_error: 0.02,
-        }
-    }
-}
-
-impl GoalPostureOptions {
-    /// Checks the weight is finite and > 0 and the counts are >= 1.
-    pub fn validate(&self) -> Result<()> {
-        check_positive("reach.weight", self.weight)?;
-        check_positive("reach.fade_error", self.fade_error)?;
-        if !(self.stall_gain.is_finite() && self.stall_gain >= 1.0) {
-            return Err(Error::invalid_argument(
-                "reach.stall_gain",
-                format!("must be finite and >= 1, got {}", self.stall_gain),
-            ));
-        }
-        for (name, value) in [
-            ("reach.ik_restarts", self.ik_restarts),
-            ("reach.candidates", self.candidates),
-            ("reach.stall_steps", self.stall_steps),
-            ("reach.max_searches", self.max_searches),
-        ] {
-            if value == 0 {
-                return Err(Error::invalid_argument(name, "must be at least 1"));
-            }
-        }
-        Ok(())
-    }
-}
 
 /// What the last goal-posture search found.
 #[derive(Clone, Copy, Debug, PartialEq)]

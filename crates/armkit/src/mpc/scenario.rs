@@ -1,5 +1,4 @@
-//! Closed-loop simulation of the planner and seed 000's three examples
-//! (sec 5, Figs 7-9) on the flexible-beam gantry.
+//! Closed-loop simulation of the planner.
 //!
 //! [`simulate`] runs the planner against a kinematic plant and records
 //! every sample, the limits crossed (velocity and position: both are 0 when
@@ -8,40 +7,23 @@
 //! joint velocities exactly over each sample (`q(k+1) = q(k) + T u(k)`,
 //! what a joint velocity servo does to a velocity held for one sample);
 //! [`super::PlantModel::LimitedPrecision`] gives the joints a finite
-//! position resolution, deadband or velocity quantisation.
-//!
-//! [`Seed000Example`] holds the paper's examples adapted to our model. The
-//! paper's start `q0 = [-1, 2, 0, 0, pi/2, 0, 0, 0, 0]` violates its own
-//! limits (`d1 >= 0`, and our shoulder `q5 <= 1.22`); we start instead at
-//! [`SEED000_START`], inside every limit, which puts the hand at
-//! `X0 = [2.00, 2.38, 5.00]` m (the paper's `X0`) with the tool horizontal,
-//! as the paper describes its start. The targets are then the paper's own,
-//! `[4, 1, 6]` (Ex 1) and `[2, 1.8, 4.5]` (Exs 2, 3), orientation not tracked.
-//!
-//! Three findings change the paper's recipe (each shown by a run):
-//! Example 2's "the prismatic joints do not move" needs priorities far more
-//! spread than the paper's 100/10/1 ([`SEED000_SPREAD_PRIORITIES`]); eq 20
-//! without a velocity term never settles on a redundant robot
-//! ([`super::VelocityWeights`]); and Example 3's oscillation, which the
-//! paper puts down to the prismatic joints' low motion precision, appears
-//! only on a plant that has it: on the exact plant every example settles,
-//! with prismatic joints of 1 mm position resolution Example 3 keeps
-//! oscillating while Example 2 settles. Each example's checks
-//! ([`Seed000Example::checks`]) and the paper's claims as findings
-//! ([`Seed000Example::findings`]) are evaluated on its run.
+//! position resolution, deadband or velocity quantisation. Seed 000's
+//! examples (sec 5) run on it in `armkit::study` (`Seed000Example`).
 //!
 //! ```
-//! use armkit::mpc::scenario::{simulate, Seed000Example, SimulationOptions};
-//! let example = Seed000Example::SmallMove;
-//! let model = Seed000Example::model().unwrap();
-//! let run = simulate(
-//!     &model,
-//!     example.options(),
-//!     &example.start(),
-//!     &example.target(),
-//!     &SimulationOptions::default(),
-//! )
-//! .unwrap();
+//! use armkit::kinematics::{forward_kinematics, Data};
+//! use armkit::math::{Pose, Vector3};
+//! use armkit::mpc::scenario::{simulate, SimulationOptions};
+//! use armkit::mpc::{MpcOptions, TaskWeights};
+//! let model = armkit::robots::by_name("panda").unwrap();
+//! let start = [0.0, -0.3, 0.0, -2.2, 0.0, 2.0, 0.8];
+//! let pose = *forward_kinematics(&model, &mut Data::new(&model), &start).unwrap();
+//! let target = Pose::new(pose.rotation, pose.translation + Vector3::new(0.05, -0.05, 0.05));
+//! let options = MpcOptions {
+//!     task_weights: TaskWeights::position_only(10.0, 200.0),
+//!     ..MpcOptions::default()
+//! };
+//! let run = simulate(&model, options, &start, &target, &SimulationOptions::default()).unwrap();
 //! assert!(run.summary.converged);
 //! assert_eq!(run.summary.max_velocity_violation, 0.0);
 //! assert_eq!(run.summary.max_position_violation, 0.0);
@@ -51,16 +33,6 @@ use super::{MpcOptions, MpcPlanner, Plant, PlantModel, StepStatus};
 use crate::error::{check_positive, Error, Result};
 use crate::math::Pose;
 use crate::model::{JointKind, Model};
-
-mod checks;
-mod examples;
-mod findings;
-
-pub use checks::{
-    ExampleCheck, PrismaticSettling, DIRECTION_FLOOR, OSCILLATION_DIRECTION_CHANGES,
-    REACHED_TOLERANCE,
-};
-pub use examples::{Seed000Example, SEED000_PRIORITIES, SEED000_SPREAD_PRIORITIES, SEED000_START};
 
 /// When a run counts as converged, and how long it may take.
 #[derive(Clone, Debug, PartialEq)]

@@ -19,7 +19,9 @@
 //! * Energy weights from joint torques ([`joint_torques`], [`energy_measure`]): `a_i = tau_i^2`, so the
 //!   cost is seed 001's energy measure `F = sum (q_dot_i tau_i)^2` (eq 9), with
 //!   `tau = J' w + gravity` for a load ([`Load`]) and a documented floor for
-//!   zero torques ([`TorqueFloor`]).
+//!   zero torques ([`TorqueFloor`]); with the full inverse dynamics of a
+//!   moving arm instead of the static torques ([`TorqueModel`],
+//!   [`EnergyTorques`], [`energy_along_motion`]).
 //! * Minimum norm (all weights 1: the pseudo-inverse), joint priorities (seed
 //!   000: a large weight is a low priority) and locked joints (an infinite
 //!   weight: the joint does not move; seed 001's zero `A_Q` in eq 19), all
@@ -51,6 +53,7 @@
 //! ```
 
 mod energy;
+mod energy_weights;
 mod nullspace;
 mod partition;
 mod tracking;
@@ -59,6 +62,7 @@ mod weighted;
 pub use energy::{
     energy_measure, gravity_torques, joint_torques, Load, TorqueFloor, STANDARD_GRAVITY,
 };
+pub use energy_weights::{energy_along_motion, EnergyTorques, MotionEnergy, TorqueModel};
 pub use nullspace::{
     joint_limit_cost, joint_limit_gradient, weighted_direction, SecondaryObjective, SecondaryTask,
 };

@@ -1,248 +1,20 @@
 //! Velocity-level tracking of a straight-line pose path, with seed 004's
-//! singularity avoidance and the damped baselines.
+//! singularity avoidance and the damped baselines: the [`PathTracker`] and
+//! the rate law of each [`Method`] it hands to the tracking loop
+//! ([`crate::tracking::track`]).
 
-use super::detection::{below_threshold, DetectionOptions, Trigger};
-use super::method_law::MethodLaw;
+use super::detection::{below_threshold, detect};
+use super::method::{
+    calibrate_determinant_threshold, AvoidanceOptions, LineTask, Method, MethodRun, MethodSummary,
+    SingularRegion,
+};
 use super::plant::Plant;
-use super::region_plan::RegionPlan;
 use super::Manipulator;
 use crate::error::{check_finite_vector, check_positive, Error, Result};
-use crate::ik::{
-    damped_least_squares_step, singularity_robust_step, ChiaveriniFilter, NakamuraDamping,
-};
-use crate::math::{Pose, Vector6};
-use crate::tracking::{track, TrackingOptions, TrackingStatus};
-use crate::trajectory::JointState;
-use crate::trajectory::{CartesianTrajectory, LinePath, TimeLaw};
-
-/// How the joint rates are obtained from the commanded end-effector twist.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Method {
-    /// Classic resolved rate, `q_dot = J^-1 x_dot` (the pseudo-inverse for
-    /// n > 6; seed 004, eq 28): blows up near a singularity (Fig 5).
-    Plain,
-    /// Seed 004's avoidance: plain tracking outside the singular region;
-    /// inside it, Newton-Raphson IK of every `k`-th planned pose
-    /// (warm-started from the previous one) and the C2 cubic fit of the
-    /// joint angles (eqs 33-42) through them; tracking resumes after.
-    Avoidance {
-        /// `k`: IK every `k`-th control period of the region (>= 1).
-        k: usize,
-    },
-    /// Damped least squares with Nakamura's adaptive damping.
-    DampedLeastSquares(NakamuraDamping),
-    /// Damped least squares (Nakamura) with its rates scaled down, all
-    /// joints by one factor (the direction kept), so that none exceeds
-    /// `max_rate`: the damped baseline at the arm's joint speed limit, the
-    /// bound the avoidance's knots keep.
-    ClampedDampedLeastSquares {
-        /// The damping.
-        damping: NakamuraDamping,
-        /// Largest joint rate, rad/s or m/s (> 0).
-        max_rate: f64,
-    },
-    /// Chiaverini's singularity-robust inverse with numerical filtering.
-    SingularityRobust(ChiaveriniFilter),
-}
-
-impl Method {
-    /// A short label: `plain`, `avoidance k=5`, `dls`, `dls clamped`, `sri`.
-    pub fn label(&self) -> String {
-        match self {
-            Method::Plain => "plain".into(),
-            Method::Avoidance { k } => format!("avoidance k={k}"),
-            Method::DampedLeastSquares(_) => "dls".into(),
-            Method::ClampedDampedLeastSquares { .. } => "dls clamped".into(),
-            Method::SingularityRobust(_) => "sri".into(),
-        }
-    }
-
-    /// Checks the parameters: `k >= 1`, a positive finite `max_rate`, and
-    /// the baselines' own checks.
-    pub fn validate(&self) -> Result<()> {
-        match self {
-            Method::Plain => Ok(()),
-            Method::Avoidance { k } => {
-                if *k == 0 {
-                    Err(Error::invalid_argument(
-                        "k",
-                        "the knot stride must be >= 1 (IK every k-th planned pose of the singular region)",
-                    ))
-                } else {
-                    Ok(())
-                }
-            }
-            Method::DampedLeastSquares(d) => d.validate(),
-            Method::ClampedDampedLeastSquares { damping, max_rate } => {
-                damping.validate()?;
-                check_positive("max_rate", *max_rate)
-            }
-            Method::SingularityRobust(f) => f.validate(),
-        }
-    }
-}
-
-/// A straight-line pose path: from the pose of the start configuration to
-/// `goal`, position linear and orientation by slerp, timed by seed 004's
-/// trapezoidal speed profile.
-#[derive(Clone, Debug, PartialEq)]
-pub struct LineTask {
-    /// Start joint positions, rad or m; the path starts at their pose.
-    pub start: Vec<f64>,
-    /// End pose, inertial (world) frame.
-    pub goal: Pose,
-    /// Duration, s (> 0). Seed 004: 20 s.
-    pub duration: f64,
-    /// Acceleration and deceleration time of the trapezoid, s, in
-    /// `(0, duration / 2]`. Seed 004: 4 s.
-    pub acceleration_time: f64,
-}
-
-/// Options of a [`PathTracker`]. Defaults: the tracking defaults (`dt`
-/// 0.01 s, [`crate::tracking::Feedback::NextPose`]: seed 004's
-/// `e(t + h) / h`), the detection defaults ([`DetectionOptions`]), IK
-/// tolerance 1e-8 (m and rad), 50 IK iterations.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct AvoidanceOptions {
-    /// Control period and feedback; the duration is split into
-    /// `ceil(duration / dt)` equal steps.
-    pub tracking: TrackingOptions,
-    /// The singular-region tests.
-    pub detection: DetectionOptions,
-    /// `eps_T`: position (m) and orientation (rad) tolerance of the
-    /// Newton-Raphson solves inside the region (> 0). Seed 004 step 3 uses
-    /// 1e-8.
-    pub ik_tolerance: f64,
-    /// Newton-Raphson iterations per solve (>= 1).
-    pub ik_max_iterations: usize,
-    /// How a region's knots are chosen when the arm cannot follow its
-    /// planned poses exactly (a path missing the singular pose). Default
-    /// [`RegionPlan::Joint`].
-    pub region_plan: RegionPlan,
-}
-
-impl Default for AvoidanceOptions {
-    fn default() -> Self {
-        AvoidanceOptions {
-            tracking: TrackingOptions::default(),
-            detection: DetectionOptions::default(),
-            ik_tolerance: 1e-8,
-            ik_max_iterations: 50,
-            region_plan: RegionPlan::default(),
-        }
-    }
-}
-
-impl AvoidanceOptions {
-    /// Checks every field; the error names it.
-    pub fn validate(&self) -> Result<()> {
-        self.tracking.validate()?;
-        self.detection.validate()?;
-        check_positive("ik_tolerance", self.ik_tolerance)?;
-        if self.ik_max_iterations == 0 {
-            return Err(Error::invalid_argument("ik_max_iterations", "must be >= 1"));
-        }
-        Ok(())
-    }
-}
-
-/// One singular region crossed by the avoidance method.
-#[derive(Clone, Debug, PartialEq)]
-pub struct SingularRegion {
-    /// Entry time (the state where detection triggered), s.
-    pub start_time: f64,
-    /// Exit time (the knot whose `|det J|` is back above the threshold, or
-    /// the path's end), s.
-    pub end_time: f64,
-    /// The test that triggered at entry.
-    pub trigger: Trigger,
-    /// Knot times, s (entry, then every `k`-th period, then exit).
-    pub knot_times: Vec<f64>,
-    /// IK solves (one per knot after the entry).
-    pub ik_solves: usize,
-    /// Newton-Raphson iterations over those solves.
-    pub ik_iterations: usize,
-    /// Solves that did not reach the IK tolerance (their best iterate was used).
-    pub ik_failures: usize,
-    /// Knots whose planned pose the arm cannot reach within `eps_dq` per
-    /// control period of the last knot (the Newton solution jumped, or the
-    /// solve did not converge): each is the least-squares knot, the nearest
-    /// pose within that reach, and may miss the planned pose (see
-    /// `max_knot_error`).
-    pub bounded_knots: usize,
-    /// Largest position (m) and orientation (rad) error of a knot (of the
-    /// plan kept).
-    pub max_knot_error: (f64, f64),
-    /// The plan kept: [`RegionPlan::Joint`] when the joint plan ran on a
-    /// region with least-squares knots and lowered its largest error, else
-    /// [`RegionPlan::Greedy`] (also for regions whose knots are all exact).
-    pub plan: RegionPlan,
-    /// Largest knot error of the greedy plan (norm of the 6-vector pose
-    /// error, m and rad); equal to the kept plan's when that is the greedy.
-    pub greedy_max_error: f64,
-    /// Cone programs the joint plan solved (0 when it did not run).
-    pub cone_programs: usize,
-}
-
-/// Summary figures of a [`MethodRun`].
-#[derive(Clone, Copy, Debug, PartialEq, Default)]
-pub struct MethodSummary {
-    /// Largest `|q_dot_j|` over joints and samples, rad/s or m/s.
-    pub peak_joint_rate: f64,
-    /// Largest position error from the planned pose, m.
-    pub max_position_error: f64,
-    /// Largest orientation error from the planned pose, rad.
-    pub max_orientation_error: f64,
-    /// Largest norm of the 6-vector pose error (position m and rotation
-    /// vector rad together), `max sqrt(p^2 + o^2)` over the samples.
-    pub max_pose_error: f64,
-    /// Position error at the last sample, m.
-    pub final_position_error: f64,
-    /// Orientation error at the last sample, rad.
-    pub final_orientation_error: f64,
-    /// Time during which `|det J|` was below the detection threshold, s
-    /// (control periods whose start state is below it): the singular region
-    /// as this method crossed it.
-    pub time_in_singular_region: f64,
-    /// Mean position error over the samples of the singular region (m; 0 if
-    /// it was never entered).
-    pub mean_region_position_error: f64,
-    /// Mean orientation error over the samples of the singular region (rad).
-    pub mean_region_orientation_error: f64,
-    /// Position-level IK solves (avoidance only).
-    pub ik_solves: usize,
-}
-
-/// Everything a run recorded, one entry per sample (control period start,
-/// `t = 0, h, ..., T`), for plotting and tables.
-#[derive(Clone, Debug, PartialEq)]
-pub struct MethodRun {
-    /// The method.
-    pub method: Method,
-    /// Completed, or where it stopped.
-    pub status: TrackingStatus,
-    /// Sample times, s.
-    pub time: Vec<f64>,
-    /// `joint_positions[j][i]`: joint j at sample i, rad or m.
-    pub joint_positions: Vec<Vec<f64>>,
-    /// `joint_rates[j][i]`: rate of joint j applied from sample i to i + 1
-    /// (zero at the last sample), rad/s or m/s.
-    pub joint_rates: Vec<Vec<f64>>,
-    /// Distance from the planned position, m.
-    pub position_error: Vec<f64>,
-    /// Angle of the rotation from the end effector to the planned orientation, rad.
-    pub orientation_error: Vec<f64>,
-    /// `|det J|` at each sample ([`super::jacobian_determinant`]).
-    pub determinant: Vec<f64>,
-    /// True for the samples whose next period is inside a planned region (avoidance).
-    pub in_region: Vec<bool>,
-    /// Base position at each sample (inertial frame, m); constant on a fixed base.
-    pub base_position: Vec<[f64; 3]>,
-    /// The singular regions (avoidance only).
-    pub regions: Vec<SingularRegion>,
-    /// Peak rate, errors, time in the singular region.
-    pub summary: MethodSummary,
-}
+use crate::ik::{damped_least_squares_step, singularity_robust_step};
+use crate::math::Vector6;
+use crate::tracking::{track, RateLaw, RateOutcome, Step, TrackingStatus};
+use crate::trajectory::{CartesianTrajectory, JointState, LinePath, TimeLaw, Trajectory};
 
 /// A path to track, checked and planned once; [`PathTracker::run`] then
 /// runs any [`Method`] on it from the same start.
@@ -372,7 +144,7 @@ impl<'m> PathTracker<'m> {
     /// base); the state then advances by `h` (the base moving on a
     /// free-floating system).
     ///
-    /// The avoidance method checks every period ([`super::detect`]) with the plain
+    /// The avoidance method checks every period ([`detect`]) with the plain
     /// rates as candidate; when a test triggers at sample `i`, it solves the
     /// IK of the planned poses at samples `i + k, i + 2k, ...` (each
     /// warm-started from the previous solution) until a solution's `|det J|`
@@ -385,14 +157,12 @@ impl<'m> PathTracker<'m> {
     /// The `|det J|` threshold by seed 004's own rule (sec 2.3.1) on this
     /// tracker's line: [`calibrate_determinant_threshold`] on a
     /// [`Method::Plain`] run with this tracker's `eps_dq`
-    /// ([`DetectionOptions::joint_step_threshold`]). `None` when the plain
+    /// ([`super::DetectionOptions::joint_step_threshold`]). `None` when the plain
     /// run never jumps (a line tracked smoothly: there is nothing to
     /// calibrate on). m^3 for a 6R arm.
-    ///
-    /// [`calibrate_determinant_threshold`]: super::calibrate_determinant_threshold
     pub fn calibrated_threshold(&self) -> Result<Option<f64>> {
         let plain = self.run(&Method::Plain)?;
-        Ok(super::calibrate_determinant_threshold(
+        Ok(calibrate_determinant_threshold(
             &plain,
             self.options.detection.joint_step_threshold,
         ))
@@ -453,7 +223,7 @@ impl<'m> PathTracker<'m> {
     /// The method's joint rates for `twist` at the plant's last evaluation
     /// (the avoidance method's candidate is the plain inverse); false when
     /// the plain inverse meets an exactly singular Jacobian.
-    pub(super) fn rates(
+    fn rates(
         &self,
         method: &Method,
         plant: &Plant<'_>,
@@ -519,5 +289,81 @@ impl<'m> PathTracker<'m> {
             mean_region_orientation_error: mean(orientation_sum),
             ik_solves: run.regions.iter().map(|r| r.ik_solves).sum(),
         }
+    }
+}
+
+/// The rate law of one [`Method`] on a [`PathTracker`]'s path: the plain,
+/// damped or singularity-robust inverse, or seed 004's avoidance (plain
+/// outside a singular region, the fitted joint motion across it).
+struct MethodLaw<'t, 'm> {
+    tracker: &'t PathTracker<'m>,
+    method: Method,
+    /// The active region: its fit and the sample index where it ends.
+    active: Option<(Trajectory, usize)>,
+    /// The rates applied in the last period.
+    previous_rates: Vec<f64>,
+    /// The plain rates' joint steps, for detection.
+    candidate: Vec<f64>,
+    fit_state: JointState,
+    regions: Vec<SingularRegion>,
+}
+
+impl RateLaw<Plant<'_>> for MethodLaw<'_, '_> {
+    fn rates(
+        &mut self,
+        plant: &mut Plant<'_>,
+        step: &Step<'_>,
+        rates: &mut [f64],
+    ) -> Result<RateOutcome> {
+        let (i, t, h) = (step.index, step.time, step.dt);
+        if self.active.as_ref().is_some_and(|(_, end)| i >= *end) {
+            self.active = None;
+        }
+        if self.active.is_none() {
+            let solved = self.tracker.rates(&self.method, plant, &step.twist, rates);
+            match self.method {
+                Method::Avoidance { k } => {
+                    for (c, r) in self.candidate.iter_mut().zip(rates.iter()) {
+                        *c = if solved { r * h } else { f64::INFINITY };
+                    }
+                    let detection = detect(
+                        plant.jacobian(),
+                        &self.candidate,
+                        &self.tracker.options.detection,
+                    )?;
+                    if let Some(trigger) = detection.trigger {
+                        let (fit, end, region) =
+                            self.tracker
+                                .plan_region(plant, i, k, trigger, &self.previous_rates)?;
+                        self.regions.push(region);
+                        self.active = Some((fit, end));
+                    } else if !solved {
+                        return Ok(RateOutcome::Singular);
+                    }
+                }
+                _ if !solved => return Ok(RateOutcome::Singular),
+                _ => {}
+            }
+        }
+        let planned = if let Some((fit, _)) = &self.active {
+            fit.sample_into(t + h, &mut self.fit_state)?;
+            for ((rate, target), q) in rates
+                .iter_mut()
+                .zip(&self.fit_state.position)
+                .zip(plant.q())
+            {
+                *rate = (target - q) / h;
+            }
+            true
+        } else {
+            false
+        };
+        self.previous_rates.copy_from_slice(rates);
+        Ok(RateOutcome::Rates {
+            velocity_scale: 1.0,
+            limit_locks: 0,
+            planned,
+            stopped_at: None,
+        })
     }
 }

@@ -2,8 +2,9 @@
 //! plain resolved rate, the avoidance for several `k`, and the two damped
 //! baselines, with a plain-text table.
 
-use super::avoidance::{Method, MethodRun, PathTracker};
+use super::avoidance::PathTracker;
 use super::detection::DetectionOptions;
+use super::method::{Method, MethodRun};
 use crate::error::{Error, Result};
 use crate::ik::{ChiaveriniFilter, NakamuraDamping};
 
@@ -154,29 +155,4 @@ impl std::fmt::Display for Comparison {
         }
         Ok(())
     }
-}
-
-/// The paper's way of setting the determinant threshold (seed 004, sec
-/// 2.3.1: "find where the joint angles jump, hence the joint range of the
-/// singular region and the determinant threshold"): the largest `|det J|` at
-/// a sample of `plain` (a [`Method::Plain`] run) where a joint moved more
-/// than `joint_step_threshold` (rad or m) in one control period. `None` if no
-/// joint ever did.
-pub fn calibrate_determinant_threshold(
-    plain: &MethodRun,
-    joint_step_threshold: f64,
-) -> Option<f64> {
-    let h = match plain.time.as_slice() {
-        [a, b, ..] => b - a,
-        _ => return None,
-    };
-    (0..plain.time.len())
-        .filter(|&i| {
-            plain
-                .joint_rates
-                .iter()
-                .any(|rates| (rates[i] * h).abs() > joint_step_threshold)
-        })
-        .map(|i| plain.determinant[i])
-        .reduce(f64::max)
 }

@@ -154,16 +154,14 @@ mod configurations;
 mod detection;
 mod ellipsoid;
 mod gap;
-mod method_law;
+mod method;
 mod plant;
 mod region;
 mod region_plan;
 mod scenario;
 
-pub use avoidance::{
-    AvoidanceOptions, LineTask, Method, MethodRun, MethodSummary, PathTracker, SingularRegion,
-};
-pub use comparison::{calibrate_determinant_threshold, Baselines, Comparison};
+pub use avoidance::PathTracker;
+pub use comparison::{Baselines, Comparison};
 pub use configurations::{
     classify, find_singularities, nearest_singularity, Classification, ClassifyOptions,
     SearchOptions, SearchStatus, SearchTarget, SingularConfiguration, SingularityKind,
@@ -172,6 +170,10 @@ pub use configurations::{
 pub use detection::{detect, jacobian_determinant, Detection, DetectionOptions, Trigger};
 pub use ellipsoid::{manipulability_ellipsoid, Ellipsoid, JacobianPart};
 pub use gap::SingularGap;
+pub use method::{
+    calibrate_determinant_threshold, AvoidanceOptions, LineTask, Method, MethodRun, MethodSummary,
+    SingularRegion,
+};
 pub use region_plan::RegionPlan;
 pub use scenario::{line_through, seed004_path, LineThrough, SEED004_DIRECTION, SEED004_THROUGH};
 

@@ -5,8 +5,9 @@
 //! some were least-squares ([`super::region_plan`]), and the C2 fit through
 //! them.
 
-use super::avoidance::{PathTracker, SingularRegion};
+use super::avoidance::PathTracker;
 use super::detection::{detect, Trigger};
+use super::method::SingularRegion;
 use super::plant::{KnotSolve, Plant};
 use super::region_plan::{plan_jointly, KnotProblem, RegionPlan};
 use crate::error::Result;

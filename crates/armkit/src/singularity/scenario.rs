@@ -1,6 +1,6 @@
 //! Straight-line paths through a chosen configuration, and seed 004's scenario.
 
-use super::avoidance::LineTask;
+use super::method::LineTask;
 use super::plant::Plant;
 use super::Manipulator;
 use crate::error::{check_finite_vector, Error, Result};

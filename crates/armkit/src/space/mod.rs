@@ -77,7 +77,7 @@
 //! `q`, and is integrated with the fourth-order Magnus (Gauss-Legendre) scheme
 //! on SO(3) through the exponential map.
 //!
-//! # Relation to the rigid-body dynamics ([`crate::dynamics`], issue 18)
+//! # Relation to the rigid-body dynamics ([`crate::dynamics`])
 //!
 //! [`momentum`] is computed with the dynamics module's spatial algebra
 //! (each body's spatial velocity and inertia, `sum I_i V_i`). The time
@@ -110,9 +110,10 @@
 //! and [`end_effector_pose`].
 //!
 //! ```
+//! use armkit::robots::space6r_free_floating;
 //! use armkit::space::{
-//!     center_of_mass, end_effector_pose, generalized_jacobian, space6r_free_floating, step,
-//!     BaseMode, FreeFloatingState, SpaceData,
+//!     center_of_mass, end_effector_pose, generalized_jacobian, step, BaseMode, FreeFloatingState,
+//!     SpaceData,
 //! };
 //! use armkit::math::{Matrix3, Pose};
 //! let model = space6r_free_floating().unwrap();
@@ -139,7 +140,7 @@ mod tracking;
 
 pub use dynamics::{center_of_mass, end_effector_pose, generalized_jacobian, momentum, Momentum};
 pub use simulate::{step, SinusoidalJointMotion};
-pub use tracking::track_pose_path;
+pub use tracking::{track_pose_path, FloatingBase};
 
 use nalgebra::Matrix3xX;
 
@@ -444,40 +445,4 @@ impl SpaceData {
         }
         Ok(())
     }
-}
-
-/// space6r's spacecraft: a small satellite of 400 kg.
-///
-/// The paper prints no mass properties. We take a 400 kg body (a small
-/// satellite; the arm's links weigh 118 kg in all, so the mass ratio of about
-/// 3.4 makes the base's reaction clearly visible, as it is on real servicing
-/// spacecraft) shaped as a uniform 1.2 m x 1.0 m x 1.0 m box (x, y, z),
-/// density 333 kg/m^3, typical of small satellites:
-///
-/// * base frame at the centre of mass, axes along the box's edges;
-/// * inertia `diag(m (b^2 + c^2), m (a^2 + c^2), m (a^2 + b^2)) / 12` =
-///   `diag(66.67, 81.33, 81.33)` kg m^2;
-/// * the arm is mounted at the centre of the top face: `mount = Tz(0.5)`; the
-///   arm model's own base transform adds `L1 = 0.30` m, so joint 1 sits
-///   0.80 m above the base's centre of mass.
-pub fn space6r_base_body() -> BaseBody {
-    let (mass, a, b, c) = (400.0, 1.2, 1.0, 1.0);
-    BaseBody {
-        name: "satellite".into(),
-        mass,
-        com: Vector3::zeros(),
-        inertia: Matrix3::from_diagonal(&Vector3::new(
-            mass * (b * b + c * c) / 12.0,
-            mass * (a * a + c * c) / 12.0,
-            mass * (a * a + b * b) / 12.0,
-        )),
-        mount: Pose::trans_z(0.5),
-    }
-}
-
-/// Seed 004's space robot: [`crate::robots::space6r`] (links with the mass
-/// properties of [`crate::robots::space6r_mass_properties`]) on the satellite
-/// of [`space6r_base_body`]. Total mass 518 kg.
-pub fn space6r_free_floating() -> Result<FreeFloatingModel> {
-    FreeFloatingModel::new(space6r_base_body(), crate::robots::space6r()?)
 }

@@ -52,7 +52,11 @@ pub use distribution::{
     TorqueEnergies, ZeroWeightLock, DISTRIBUTION_NOTE, VARIANT_NAME,
 };
 pub use finding::{count_findings, Finding, FindingStatus};
-pub use mpc_examples::MpcExampleStudy;
+pub use mpc_examples::{
+    ExampleCheck, MpcExampleStudy, PrismaticSettling, Seed000Example, DIRECTION_FLOOR,
+    OSCILLATION_DIRECTION_CHANGES, REACHED_TOLERANCE, SEED000_PRIORITIES,
+    SEED000_SPREAD_PRIORITIES, SEED000_START,
+};
 pub use space_robot::{SpaceRobotStudy, SPACE6R_START};
 
 /// How a check's value is compared with its threshold.

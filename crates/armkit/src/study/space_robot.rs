@@ -6,9 +6,10 @@ use super::{Check, Finding, FindingStatus, Series, StudyReport};
 use crate::error::{check_finite_vector, check_positive, Error, Result};
 use crate::ik::pose_error;
 use crate::math::{rotation_log, Pose, Vector6};
+use crate::robots::space6r_free_floating;
 use crate::space::{
-    center_of_mass, generalized_jacobian, momentum, space6r_free_floating, step, BaseMode,
-    FreeFloatingModel, FreeFloatingState, SinusoidalJointMotion, SpaceData,
+    center_of_mass, generalized_jacobian, momentum, step, BaseMode, FreeFloatingModel,
+    FreeFloatingState, SinusoidalJointMotion, SpaceData,
 };
 
 /// Seed 004's free-floating space robot (space6r on a 400 kg satellite):
@@ -118,7 +119,8 @@ impl SpaceRobotStudy {
     /// are the laws of a free-floating system, not figures of the paper.
     ///
     /// ```
-    /// use armkit::space::{space6r_base_body, FreeFloatingModel};
+    /// use armkit::robots::space6r_base_body;
+    /// use armkit::space::FreeFloatingModel;
     /// use armkit::study::SpaceRobotStudy;
     /// let arm = armkit::robots::by_name("gantry9")?; // 9 joints with mass properties
     /// let start = arm.neutral_configuration();

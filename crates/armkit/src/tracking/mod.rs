@@ -7,9 +7,10 @@
 //! path and the pose error ([`Feedback`]), asks a [`RateLaw`] for the joint
 //! rates, and advances the plant. [`track`] is that loop, written once:
 //!
-//! * plants: [`FixedBase`] (any arm, the flexible gantry included),
-//!   [`FloatingBase`] (a free-floating space robot, attitude held or fully
-//!   free, seed 004), and the singularity study's attitude-held system;
+//! * plants: [`FixedBase`] (any arm, the flexible gantry included), and in
+//!   the modules above: [`crate::space::FloatingBase`] (a free-floating
+//!   space robot, attitude held or fully free, seed 004) and the singularity
+//!   study's attitude-held system;
 //! * rate laws: [`LeastSquares`] (minimum norm / damped least squares, seed
 //!   004 eq 28), the weighted and energy-optimal distributions of
 //!   [`crate::redundancy`] (seed 001, seed 000's priorities), Nakamura's
@@ -48,7 +49,7 @@ mod report;
 mod run;
 mod status;
 
-pub use plant::{FixedBase, FloatingBase, Plant};
+pub use plant::{FixedBase, Plant};
 pub use report::{SampleRecorder, TrackingReport, TrackingSample};
 pub use run::{
     track, Feedback, LeastSquares, RateLaw, RateOutcome, Recorder, SampleState, Step,

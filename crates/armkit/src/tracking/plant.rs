@@ -1,22 +1,20 @@
 //! The simulated system a tracking run drives: its state, its end-effector
 //! pose and Jacobian, and how it advances at given joint rates.
 
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::kinematics::{jacobian, Data, JacobianFrame};
 use crate::math::{Matrix6xX, Pose};
 use crate::model::Model;
-use crate::space::{
-    generalized_jacobian, step, BaseMode, FreeFloatingModel, FreeFloatingState, SpaceData,
-};
 
 /// A system driven at the velocity level: joint positions, the end-effector
 /// pose and Jacobian (6 x n, rows `[vx, vy, vz, wx, wy, wz]`, world or
 /// inertial frame) at them, and a step at constant joint rates.
 ///
 /// Plants in armkit: [`FixedBase`] (any arm on a fixed base, the flexible
-/// gantry included: its model carries the beam coupling), [`FloatingBase`]
-/// (a free-floating space robot, attitude held or fully free, seed 004), and
-/// the attitude-held system placed by its centre of mass that
+/// gantry included: its model carries the beam coupling), and, in the
+/// modules above this one, [`crate::space::FloatingBase`] (a free-floating
+/// space robot, attitude held or fully free, seed 004) and the attitude-held
+/// system placed by its centre of mass that
 /// [`crate::singularity::PathTracker`] uses.
 pub trait Plant {
     /// Number of joints.
@@ -107,84 +105,5 @@ impl Plant for FixedBase<'_> {
             *qi += dt * vi;
         }
         Ok(())
-    }
-}
-
-/// A free-floating space robot (seed 004): the generalized Jacobian `J*` of
-/// its base mode, and [`crate::space::step`] (momentum conserved, the base
-/// moving) to advance.
-#[derive(Debug)]
-pub struct FloatingBase<'a> {
-    model: &'a FreeFloatingModel,
-    data: &'a mut SpaceData,
-    mode: BaseMode,
-    state: FreeFloatingState,
-}
-
-impl<'a> FloatingBase<'a> {
-    /// The system from `initial` (base pose and joint positions), the base
-    /// behaving as `mode` says. Errors: an arm with fewer than 6 joints (a
-    /// 6-D pose cannot be tracked).
-    pub fn new(
-        model: &'a FreeFloatingModel,
-        data: &'a mut SpaceData,
-        mode: BaseMode,
-        initial: &FreeFloatingState,
-    ) -> Result<Self> {
-        let n = model.dof();
-        if n < 6 {
-            return Err(Error::invalid_argument(
-                "model",
-                format!("tracking a 6-D pose needs at least 6 joints, the arm has {n}"),
-            ));
-        }
-        Ok(FloatingBase {
-            model,
-            data,
-            mode,
-            state: initial.clone(),
-        })
-    }
-
-    /// The current state (base pose and joints).
-    pub fn state(&self) -> &FreeFloatingState {
-        &self.state
-    }
-}
-
-impl Plant for FloatingBase<'_> {
-    fn dof(&self) -> usize {
-        self.state.q.len()
-    }
-
-    fn joint_positions(&self) -> &[f64] {
-        &self.state.q
-    }
-
-    fn evaluate(&mut self) -> Result<()> {
-        generalized_jacobian(
-            self.model,
-            self.data,
-            &self.state.base,
-            &self.state.q,
-            self.mode,
-        )?;
-        Ok(())
-    }
-
-    fn end_effector(&self) -> &Pose {
-        self.data.end_effector_pose()
-    }
-
-    fn jacobian(&self) -> &Matrix6xX<f64> {
-        self.data.jacobian()
-    }
-
-    fn base(&self) -> Pose {
-        self.state.base
-    }
-
-    fn advance(&mut self, rates: &[f64], dt: f64) -> Result<()> {
-        step(self.model, self.data, &mut self.state, rates, dt, self.mode)
     }
 }

@@ -92,7 +92,7 @@ impl TrajectoryLimits {
             upper: *self.upper.get(j)?,
             velocity: finite(*self.velocity.get(j)?),
             acceleration: finite(*self.acceleration.get(j)?),
-            // Torque limits are not a trajectory limit (see `dynamics::torque_limits`).
+            // Torque limits need the dynamics: `torque_profile` checks them.
             effort: None,
         })
     }

@@ -20,6 +20,9 @@
 //!   PUMA-type arms) or numeric (any robot), nearest the previous knot.
 //! * [`check_limits`], [`scale_to_limits`]: where a trajectory exceeds position, velocity or acceleration
 //!   limits, and uniform time scaling to meet them.
+//! * [`torque_profile`], [`scale_to_torque_limits`]: the joint torques along
+//!   a trajectory (inverse dynamics, [`crate::dynamics::rnea`]) against the
+//!   motors' limits, and the uniform time scaling that meets them.
 //!
 //! Units: seconds; rad, rad/s, rad/s^2 for revolute joints; m, m/s, m/s^2 for
 //! prismatic ones.
@@ -44,6 +47,7 @@ mod poly;
 mod profile;
 mod spline;
 mod timed;
+mod torque_limits;
 
 pub use cartesian::{
     ArcOrientation, ArcPath, CartesianPath, CartesianState, CartesianTrajectory, FnPath, LinePath,
@@ -63,6 +67,10 @@ pub use profile::{cubic, minimum_time, quintic, rest_to_rest, trapezoidal, Profi
 pub use spline::clamped_cubic_spline;
 pub(crate) use timed::rename_argument;
 pub use timed::{TimeFn, TimedPath};
+pub use torque_limits::{
+    scale_to_torque_limits, torque_profile, JointTorquePeak, TorqueCheckOptions, TorqueReport,
+    TorqueScaling, TorqueStatus,
+};
 
 use crate::error::{check_finite, check_finite_vector, check_positive, Error, Result};
 

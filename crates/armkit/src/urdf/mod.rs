@@ -1,4 +1,4 @@
-//! Loading a serial chain from a URDF file (issue 3).
+//! Loading a serial chain from a URDF file.
 //!
 //! A URDF describes a tree of links joined by joints. [`load`] (a file) and
 //! [`parse_str`] (text) pick the serial chain from a base link to a tip link

@@ -664,10 +664,10 @@ fn effort_limits_are_read_from_urdf_and_dh_files() {
 
 #[test]
 fn time_scaling_brings_torques_within_limits_tightly() {
-    use armkit::dynamics::torque_limits::{
+    use armkit::trajectory::{rest_to_rest, ProfileShape};
+    use armkit::trajectory::{
         scale_to_torque_limits, torque_profile, TorqueCheckOptions, TorqueStatus,
     };
-    use armkit::trajectory::{rest_to_rest, ProfileShape};
     let panda = load(
         data_path("urdf/panda.urdf"),
         &ChainSelection::between("panda_link0", "panda_link8"),
@@ -751,8 +751,8 @@ fn time_scaling_brings_torques_within_limits_tightly() {
 fn dynamic_torques_at_rest_equal_the_static_holding_torques() {
     // Two independent implementations: redundancy's centre-of-mass Jacobians
     // plus J' w, and this module's RNEA plus J' w.
-    use armkit::dynamics::energy_weights::{EnergyTorques, TorqueModel};
     use armkit::redundancy::Load;
+    use armkit::redundancy::{EnergyTorques, TorqueModel};
     let mut r = rng(22);
     for model in models_with_masses() {
         let n = model.dof();
@@ -800,11 +800,11 @@ fn dynamic_torques_at_rest_equal_the_static_holding_torques() {
 fn seed001_energy_under_static_and_dynamic_torques() {
     // The four-way comparison of the redundancy study on gantry9: the static
     // measure equals the study's own, the dynamic one adds the inertia.
-    use armkit::dynamics::energy_weights::{energy_along_motion, TorqueModel};
     use armkit::redundancy::{
         compare_distributions, ComparisonCase, DistributionOptions, JointWeights, Load,
         TorqueFloor, SEED000_PRIORITY_WEIGHTS,
     };
+    use armkit::redundancy::{energy_along_motion, TorqueModel};
     use armkit::trajectory::{CartesianTrajectory, TimeLaw};
     let model = armkit::robots::by_name("gantry9").unwrap();
     let q0 = [3.0, 2.5, 1.0, 0.3, 0.4, -0.5, 0.2, 0.8, 0.1];

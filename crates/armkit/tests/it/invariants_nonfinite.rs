@@ -31,10 +31,10 @@ use armkit::redundancy::{
 use armkit::redundancy::{energy_measure, gravity_torques, joint_torques, Load, TorqueFloor};
 use armkit::redundancy::{joint_limit_cost, joint_limit_gradient};
 use armkit::redundancy::{Distribution, DistributionOptions, ResolvedRateTracker};
+use armkit::robots::space6r_free_floating;
 use armkit::space::{
-    center_of_mass, end_effector_pose, generalized_jacobian, momentum, space6r_free_floating, step,
-    track_pose_path, BaseMode, FreeFloatingModel, FreeFloatingState, SinusoidalJointMotion,
-    SpaceData,
+    center_of_mass, end_effector_pose, generalized_jacobian, momentum, step, track_pose_path,
+    BaseMode, FreeFloatingModel, FreeFloatingState, SinusoidalJointMotion, SpaceData,
 };
 use armkit::tracking::{Feedback, LeastSquares, TrackingOptions};
 use armkit::trajectory::clamped_cubic_spline;
@@ -791,7 +791,7 @@ fn space_robot_rejects_non_finite_numbers() {
     let mut data = SpaceData::new(&model);
     let q = [0.1, -0.5, 0.8, 0.2, 0.6, -0.3];
     let base = Pose::identity();
-    let base_body = armkit::space::space6r_base_body();
+    let base_body = armkit::robots::space6r_base_body();
     cases.rejects_each("FreeFloatingModel::new base mass", "mass", |b| {
         let mut body = base_body.clone();
         body.mass = b;

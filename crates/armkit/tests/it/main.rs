@@ -14,6 +14,7 @@ mod ik_closed_form;
 mod invariants;
 mod invariants_nonfinite;
 mod kinematics;
+mod layers;
 mod mimic;
 mod mpc;
 mod mpc_qp;

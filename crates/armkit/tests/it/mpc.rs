@@ -16,8 +16,9 @@ use armkit::mpc::prediction::{
 use armkit::mpc::qp::{
     upper_index, upper_triangle_len, QpOutcome, QpProblem, QpSolver, QpSolverKind, QpStatus,
 };
-use armkit::mpc::scenario::{position_violation, Seed000Example};
+use armkit::mpc::scenario::position_violation;
 use armkit::mpc::{MpcOptions, MpcPlanner, ReachAid, StepStatus, TaskWeights, VelocityWeights};
+use armkit::study::Seed000Example;
 use armkit::Error;
 use rand::Rng;
 

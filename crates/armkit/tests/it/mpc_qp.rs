@@ -13,10 +13,8 @@ use crate::common;
 
 use armkit::mpc::active_set::{ActiveSetQp, BoundSide};
 use armkit::mpc::prediction::{increment_coefficient, weighted_gram, Condensation};
-use armkit::mpc::qp::{
-    upper_index, upper_triangle_len, ClarabelAccuracy, ClarabelQp, CscMatrix, QpProblem, QpSolver,
-    QpStatus,
-};
+use armkit::mpc::qp::{upper_index, upper_triangle_len, CscMatrix, QpProblem, QpSolver, QpStatus};
+use armkit::mpc::{ClarabelAccuracy, ClarabelQp};
 use rand::Rng;
 
 const HORIZON: usize = 10;

@@ -19,17 +19,18 @@ use armkit::ik::{benchmark_targets, IkMethod, IkOptions, IkSolver, Redundancy};
 use armkit::kinematics::{forward_kinematics, jacobian, Data, JacobianFrame};
 use armkit::math::{Pose, Vector3, Vector6};
 use armkit::mpc::qp::{QpOutcome, QpProblem, QpSolver, QpSolverKind, QpStatus};
-use armkit::mpc::scenario::Seed000Example;
 use armkit::mpc::{MpcOptions, MpcPlanner};
 use armkit::redundancy::SecondaryTask;
 use armkit::redundancy::{
     best_partition, joint_torques, Damping, JointWeights, Load, PartitionedSolver,
     SecondaryObjective, SolverOptions, TorqueFloor, WeightedLeastNorm,
 };
+use armkit::robots::space6r_free_floating;
 use armkit::space::{
-    center_of_mass, end_effector_pose, generalized_jacobian, momentum, space6r_free_floating, step,
-    BaseMode, FreeFloatingState, SpaceData,
+    center_of_mass, end_effector_pose, generalized_jacobian, momentum, step, BaseMode,
+    FreeFloatingState, SpaceData,
 };
+use armkit::study::Seed000Example;
 use armkit::trajectory::clamped_cubic_spline;
 use armkit::trajectory::JointState;
 use armkit::trajectory::{self, ProfileShape};
@@ -482,12 +483,12 @@ fn a_tracking_period_does_not_allocate() {
 
 #[test]
 fn dynamics_does_not_allocate() {
-    use armkit::dynamics::energy_weights::{EnergyTorques, TorqueModel};
     use armkit::dynamics::simulate::{Integrator, JointFriction, SimulationOptions, Simulator};
     use armkit::dynamics::{
         aba, coriolis_torques, gravity_torques, kinetic_energy, mass_matrix, mass_matrix_inverse,
         nonlinear_effects, potential_energy, rnea, DynamicsData,
     };
+    use armkit::redundancy::{EnergyTorques, TorqueModel};
     // Coupled models too: the flexible gantry and a mimic-joint finger.
     let mut models: Vec<armkit::Model> = ["space6r", "gantry9", "gantry9-flex"]
         .into_iter()

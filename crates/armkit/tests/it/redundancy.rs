@@ -1335,7 +1335,7 @@ fn zero_generalized_weights_lock_the_extra_joints_along_the_motion() {
 
 #[test]
 fn distribution_study_uses_the_papers_baseline_and_compares_torque_models() {
-    use armkit::dynamics::energy_weights::TorqueModel;
+    use armkit::redundancy::TorqueModel;
     use armkit::study::{DistributionStudy, FindingStatus, VARIANT_NAME};
     let model = armkit::robots::by_name("gantry9").unwrap();
     let outcome = DistributionStudy::default().compare(&model).unwrap();

@@ -136,8 +136,8 @@ fn the_beam_study_checks_the_printed_digits_and_reports_fig5_as_not_reproduced()
 /// passed), and the Fig 7d finding turns to not reproduced.
 #[test]
 fn example1_check_fails_when_one_prismatic_joint_stays_below_the_limit() {
-    use armkit::mpc::scenario::Seed000Example;
     use armkit::study::FindingStatus;
+    use armkit::study::Seed000Example;
     let example = Seed000Example::LargeMove;
     let run = example.run().unwrap();
     let name = "every prismatic velocity reaches 0.6 m/s without exceeding it";

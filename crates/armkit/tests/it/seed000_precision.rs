@@ -259,7 +259,7 @@ fn other_resolutions_and_velocity_imprecision() {
 /// exact and on the 1 mm plant.
 #[test]
 fn simulate_with_a_plant_is_the_hand_written_loop() {
-    use armkit::mpc::scenario::Seed000Example;
+    use armkit::study::Seed000Example;
     for (example, ours) in [
         (Example::SmallMove, Seed000Example::SmallMove),
         (Example::EqualWeights, Seed000Example::EqualWeights),
@@ -284,8 +284,8 @@ fn simulate_with_a_plant_is_the_hand_written_loop() {
 /// findings' verdicts follow.
 #[test]
 fn the_demo_contrast_holds_through_the_library() {
-    use armkit::mpc::scenario::{PrismaticSettling, Seed000Example};
     use armkit::study::FindingStatus;
+    use armkit::study::{PrismaticSettling, Seed000Example};
     let plant = resolution(1e-3);
     let status_of = |example: Seed000Example, run, claim: &str| -> FindingStatus {
         let findings = example.findings(run).unwrap();
@@ -376,7 +376,7 @@ fn the_demo_contrast_holds_through_the_library() {
 
 #[test]
 fn direction_changes_count_sign_flips_above_the_floor() {
-    use armkit::mpc::scenario::Seed000Example;
+    use armkit::study::Seed000Example;
     let mut run = Seed000Example::SmallMove.run().unwrap();
     let pattern = [0.5, 1e-7, 0.2, -0.3, 0.0, -0.1, 0.4, -1e-7, 0.1, -0.2];
     run.samples.truncate(pattern.len());

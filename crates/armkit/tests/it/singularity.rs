@@ -5,13 +5,14 @@
 
 use armkit::kinematics::singular_values;
 use armkit::math::{Matrix6, Pose, Vector3};
+use armkit::robots::space6r_free_floating;
 use armkit::singularity::{
     calibrate_determinant_threshold, classify, find_singularities, line_through,
     manipulability_ellipsoid, nearest_singularity, seed004_path, AvoidanceOptions, Baselines,
     ClassifyOptions, Comparison, DetectionOptions, JacobianPart, LineTask, Manipulator, Method,
     PathTracker, SearchOptions, SearchStatus, SearchTarget, SingularityKind, SEED004_THROUGH,
 };
-use armkit::space::{center_of_mass, space6r_free_floating, SpaceData};
+use armkit::space::{center_of_mass, SpaceData};
 use armkit::tracking::{TrackingOptions, TrackingStatus};
 use armkit::trajectory::clamped_cubic_spline;
 use armkit::{jacobian, Data, JacobianFrame};

@@ -9,10 +9,10 @@ use crate::common;
 
 use armkit::kinematics::{jacobian, Data, JacobianFrame};
 use armkit::math::{Matrix3, Matrix6xX, Pose, Rotation3, Vector3, Vector6};
+use armkit::robots::{space6r_base_body, space6r_free_floating};
 use armkit::space::{
-    center_of_mass, end_effector_pose, generalized_jacobian, momentum, space6r_base_body,
-    space6r_free_floating, step, track_pose_path, BaseBody, BaseMode, FreeFloatingModel,
-    FreeFloatingState, SinusoidalJointMotion, SpaceData,
+    center_of_mass, end_effector_pose, generalized_jacobian, momentum, step, track_pose_path,
+    BaseBody, BaseMode, FreeFloatingModel, FreeFloatingState, SinusoidalJointMotion, SpaceData,
 };
 use armkit::tracking::{LeastSquares, TrackingOptions, TrackingStatus};
 use armkit::trajectory::TimeFn;

@@ -1,8 +1,8 @@
 //! The seed studies as library values: each runs from its default options
 //! and every check passes; options are checked; the figures' data is there.
 
-use armkit::mpc::scenario::Seed000Example;
 use armkit::singularity::BaseKind;
+use armkit::study::Seed000Example;
 use armkit::study::{
     AvoidanceStudy, BeamTableStudy, DistributionStudy, MpcExampleStudy, SpaceRobotStudy,
 };

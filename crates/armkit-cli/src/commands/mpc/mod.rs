@@ -30,8 +30,9 @@ mod target_report;
 use std::path::PathBuf;
 
 use armkit::mpc::qp::QpSolverKind;
-use armkit::mpc::scenario::{simulate_with, MpcRun, Seed000Example, SimulationOptions};
+use armkit::mpc::scenario::{simulate_with, MpcRun, SimulationOptions};
 use armkit::mpc::{diagnose_run, ActuatorPrecision, MpcOptions, MpcPlanner, PlantModel, ReachAid};
+use armkit::study::Seed000Example;
 use clap::{Args, ValueEnum};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 

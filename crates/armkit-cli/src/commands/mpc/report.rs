@@ -3,8 +3,9 @@
 
 use std::path::{Path, PathBuf};
 
-use armkit::mpc::scenario::{simulate_with, MpcRun, Seed000Example};
+use armkit::mpc::scenario::{simulate_with, MpcRun};
 use armkit::mpc::{MpcPlanner, PlantModel};
+use armkit::study::Seed000Example;
 
 use super::MpcArgs;
 use crate::common::{CliError, CliResult};

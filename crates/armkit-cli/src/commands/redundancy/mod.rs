@@ -9,7 +9,7 @@
 
 use std::path::PathBuf;
 
-use armkit::dynamics::energy_weights::TorqueModel;
+use armkit::redundancy::TorqueModel;
 use armkit::study::{DistributionOutcome, DistributionStudy, FormulationKind, SecondaryKind};
 use armkit::Model;
 use clap::{Args, ValueEnum};

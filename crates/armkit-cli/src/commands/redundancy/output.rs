@@ -2,8 +2,8 @@
 
 use std::path::Path;
 
-use armkit::dynamics::energy_weights::TorqueModel;
 use armkit::redundancy::ComparisonResult;
+use armkit::redundancy::TorqueModel;
 use armkit::study::DistributionOutcome;
 use armkit::Model;
 

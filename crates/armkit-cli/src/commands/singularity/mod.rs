@@ -355,7 +355,7 @@ fn load_plant(args: &SingularityArgs) -> CliResult<Plant> {
                 ));
             }
             Ok(Plant::Held(Box::new(
-                armkit::space::space6r_free_floating()?
+                armkit::robots::space6r_free_floating()?,
             )))
         }
     }

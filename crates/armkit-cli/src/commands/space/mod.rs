@@ -6,9 +6,8 @@
 use std::path::PathBuf;
 
 use armkit::math::{Pose, Vector3};
-use armkit::space::{
-    generalized_jacobian, space6r_base_body, BaseBody, BaseMode, FreeFloatingModel, SpaceData,
-};
+use armkit::robots::space6r_base_body;
+use armkit::space::{generalized_jacobian, BaseBody, BaseMode, FreeFloatingModel, SpaceData};
 use clap::{Args, Subcommand, ValueEnum};
 
 use crate::common::{

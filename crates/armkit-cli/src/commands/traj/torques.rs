@@ -3,10 +3,10 @@
 //! the motors' limits, the uniform slow-down that meets them, and
 //! `torques.svg`.
 
-use armkit::dynamics::torque_limits::{
+use armkit::trajectory::Trajectory;
+use armkit::trajectory::{
     scale_to_torque_limits, torque_profile, TorqueCheckOptions, TorqueReport, TorqueStatus,
 };
-use armkit::trajectory::Trajectory;
 use armkit::Model;
 use clap::Args;
 

@@ -332,7 +332,7 @@ impl AvoidanceOutcome {
             };
             findings.push(Finding::new(
                 "seed 004, conclusion 1: the avoidance tracks with a smaller error than the \
-                 damped-inverse methods (issue 21: on every line of the miss sweep, its largest \
+                 damped-inverse methods (tested here as: on every line of the miss sweep, its largest \
                  error no worse than DLS's)",
                 measured,
                 FindingStatus::from_holds(worse.is_empty()),

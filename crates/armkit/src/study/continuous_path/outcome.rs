@@ -3,12 +3,12 @@
 
 use std::time::Duration;
 
-use crate::dynamics::torque_limits::{TorqueReport, TorqueScaling, TorqueStatus};
 use crate::math::rotation_angle;
 use crate::study::{Check, Finding, FindingStatus, Series, StudyReport};
 use crate::trajectory::CartesianTrajectory;
 use crate::trajectory::IkTask;
 use crate::trajectory::{ContinuousPathReport, PathError, PathStatus, PathTolerance};
+use crate::trajectory::{TorqueReport, TorqueScaling, TorqueStatus};
 
 /// One planned run of the line.
 #[derive(Debug)]

@@ -3,7 +3,7 @@
 //! the baseline run, and the study's checks and findings.
 //!
 //! ```
-//! use armkit::dynamics::energy_weights::TorqueModel;
+//! use armkit::redundancy::TorqueModel;
 //! use armkit::study::DistributionStudy;
 //! let model = armkit::robots::by_name("gantry9").unwrap();
 //! let outcome = DistributionStudy::default().compare(&model).unwrap();
@@ -14,19 +14,19 @@
 //! ```
 
 use super::{DistributionOutcome, VARIANT_NAME};
-use crate::dynamics::energy_weights::{energy_along_motion, TorqueModel};
 use crate::error::{Error, Result};
 use crate::kinematics::{jacobian, Data, JacobianFrame};
 use crate::math::{DVector, Vector6};
 use crate::model::Model;
-use crate::redundancy::{ComparisonResult, Load, Partition, PartitionedSolver};
+use crate::redundancy::{
+    energy_along_motion, ComparisonResult, Load, Partition, PartitionedSolver, TorqueModel,
+};
 use crate::study::{Check, Finding, FindingStatus};
 use crate::tracking::TrackingStatus;
 
 /// One distribution's energy measure `integral F dt` (seed 001, eq 9, W^2
 /// s) under the static torques of the load and under the full inverse
-/// dynamics of its motion (issue 18, item 4;
-/// [`energy_along_motion`] on the run's samples).
+/// dynamics of its motion ([`energy_along_motion`] on the run's samples).
 #[derive(Clone, Debug, PartialEq)]
 pub struct TorqueEnergies {
     /// The distribution's name.
@@ -189,7 +189,7 @@ impl DistributionOutcome {
         Ok(checks)
     }
 
-    /// The static-versus-dynamic checks (issue 18, item 4).
+    /// The checks comparing F under static and dynamic torques.
     fn torque_checks(&self) -> Vec<Check> {
         let largest_difference = self
             .results

@@ -2,7 +2,9 @@
 //! subproblem 6's branches, and on each the residual and its slope (see
 //! the parent module's docs).
 
-use super::*;
+use super::tracker::branch_rates;
+use super::{moved, moved_back, Form, Key, Known, Point, Problem, Sides};
+use crate::ik::analytic::subproblems::{rotate_by, Turn};
 
 impl Problem<'_> {
     /// The branches at `t`: their keys and points.

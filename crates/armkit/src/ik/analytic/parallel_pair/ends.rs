@@ -2,7 +2,15 @@
 //! traits (`search::Residual`, `sloped::Sloped`), shared with the
 //! end-pair search (`end_parallel_pair`) through [`PairBranches`].
 
-use super::*;
+use super::sloped::{find_roots_sloped, Knot, Samples, Sloped};
+use super::{Key, Point, Problem, END_TOLERANCE, FOLDING, LINK};
+use crate::ik::analytic::chain::Candidates;
+use crate::ik::analytic::search::{
+    align_nearest, discriminant_sign_change, fold_by_extrapolation, EndCheck, Residual,
+};
+use crate::ik::analytic::search2d::settle_root;
+use crate::ik::analytic::trig2::Trig2;
+use std::cell::Cell;
 
 impl PairBranches for Problem<'_> {
     type Point = Point;

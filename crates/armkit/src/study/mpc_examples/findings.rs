@@ -4,8 +4,9 @@
 //! examples, from the other example run on the same plant).
 
 use super::checks::{format_values, PrismaticSettling};
-use super::{MpcRun, Seed000Example};
+use super::examples::Seed000Example;
 use crate::error::Result;
+use crate::mpc::scenario::MpcRun;
 use crate::study::{Finding, FindingStatus};
 
 /// Seed 000, Fig 9 and its text: Example 3's oscillation and its cause.

@@ -1,16 +1,16 @@
 //! Seed 001's energy measure and energy weights with the real torques of a
-//! moving arm (issue 18, item 4).
+//! moving arm.
 //!
 //! Seed 001 weighs joint velocities by the torques the joints deliver:
-//! `F = sum (q_dot_i tau_i)^2` (eq 9), weights `a_i = tau_i^2` (eq 17). The
-//! [`crate::redundancy`] module takes `tau` as the static torques holding a
-//! load, `tau = J' w + g(q)`. Here `tau` is the full inverse dynamics of the
-//! motion, `tau = M(q) qdd + C(q, qd) qd + g(q) + J' w`
-//! ([`TorqueModel::Dynamic`]), so a fast or heavy motion's inertia counts.
+//! `F = sum (q_dot_i tau_i)^2` (eq 9), weights `a_i = tau_i^2` (eq 17).
+//! [`super::joint_torques`] takes `tau` as the static torques holding a
+//! load, `tau = J' w + g(q)`. Here `tau` may instead be the full inverse
+//! dynamics of the motion, `tau = M(q) qdd + C(q, qd) qd + g(q) + J' w`
+//! ([`TorqueModel::Dynamic`], by [`crate::dynamics::rnea`]), so a fast or
+//! heavy motion's inertia counts.
 //!
 //! ```
-//! use armkit::dynamics::energy_weights::{energy_along_motion, TorqueModel};
-//! use armkit::redundancy::Load;
+//! use armkit::redundancy::{energy_along_motion, Load, TorqueModel};
 //! let model = armkit::robots::by_name("space6r").unwrap();
 //! // A motion sampled every 10 ms: q, q_dot.
 //! let times: Vec<f64> = (0..=100).map(|k| k as f64 * 0.01).collect();
@@ -24,18 +24,19 @@
 
 use std::fmt;
 
-use super::{rnea, DynamicsData};
+use super::energy::{energy_measure, joint_torques, Load, TorqueFloor};
+use super::JointWeights;
+use crate::dynamics::{rnea, DynamicsData};
 use crate::error::{check_finite_vector, Error, Result};
 use crate::kinematics::Data;
 use crate::math::Vector3;
 use crate::model::Model;
-use crate::redundancy::{energy_measure, joint_torques, JointWeights, Load, TorqueFloor};
 
 /// Which torques enter seed 001's eq 9 and eq 17.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum TorqueModel {
     /// The torques holding the load still: `J' w + g(q)` (gravity only when
-    /// the load has one), as [`crate::redundancy::joint_torques`].
+    /// the load has one), as [`super::joint_torques`].
     Static,
     /// The full inverse dynamics of the motion:
     /// `M(q) qdd + C(q, qd) qd + J' w` plus `g(q)` when the load has gravity.
@@ -69,7 +70,7 @@ pub struct EnergyTorques {
 
 impl EnergyTorques {
     /// A workspace for `model`. Errors: a model without mass properties
-    /// (the dynamic torques need them; see [`super::check_dynamics_model`]).
+    /// (the dynamic torques need them; see [`crate::dynamics::check_dynamics_model`]).
     pub fn new(model: &Model) -> Result<Self> {
         Ok(EnergyTorques {
             kinematics: Data::new(model),
@@ -150,7 +151,7 @@ pub struct MotionEnergy {
     pub torque_model: TorqueModel,
     /// `integral of F dt` (W^2 s), `F = sum (q_dot_i tau_i)^2` (eq 9) at each
     /// sample times the step to the next (as
-    /// [`crate::redundancy::MotionSummary`] does).
+    /// [`super::MotionSummary`] does).
     pub energy: f64,
     /// `F` at each sample, W^2.
     pub measure: Vec<f64>,

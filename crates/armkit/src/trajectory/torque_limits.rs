@@ -12,8 +12,9 @@
 //! says so.
 //!
 //! ```
-//! use armkit::dynamics::torque_limits::{scale_to_torque_limits, TorqueCheckOptions, TorqueStatus};
-//! use armkit::trajectory::{rest_to_rest, ProfileShape};
+//! use armkit::trajectory::{
+//!     rest_to_rest, scale_to_torque_limits, ProfileShape, TorqueCheckOptions, TorqueStatus,
+//! };
 //! let model = armkit::robots::by_name("space6r").unwrap();
 //! let goal = [1.0, -0.5, 0.8, 0.3, 0.2, 0.1];
 //! let traj = rest_to_rest(ProfileShape::Quintic, &[0.0; 6], &goal, 0.5, None).unwrap();
@@ -27,11 +28,11 @@
 
 use std::fmt;
 
-use super::{rnea, DynamicsData, DEFAULT_GRAVITY};
+use super::{JointState, Trajectory};
+use crate::dynamics::{rnea, DynamicsData, DEFAULT_GRAVITY};
 use crate::error::{check_finite, check_finite_vector, Error, Result};
 use crate::math::Vector3;
 use crate::model::Model;
-use crate::trajectory::{JointState, Trajectory};
 
 /// Options of [`torque_profile`] and [`scale_to_torque_limits`].
 #[derive(Clone, Debug, PartialEq)]
@@ -159,7 +160,7 @@ pub struct TorqueReport {
 /// `options.samples` evenly spaced times, their peaks against the limits.
 ///
 /// Errors: a trajectory for another number of joints, invalid options, a
-/// model without mass properties (see [`super::check_dynamics_model`]).
+/// model without mass properties (see [`crate::dynamics::check_dynamics_model`]).
 pub fn torque_profile(
     model: &Model,
     traj: &Trajectory,

@@ -271,7 +271,7 @@ impl AvoidanceStudy {
     /// held): checks and notes ([`AvoidanceOutcome::checks`]).
     pub fn run(&self) -> Result<StudyReport> {
         let arm = crate::robots::space6r()?;
-        let system = crate::space::space6r_free_floating()?;
+        let system = crate::robots::space6r_free_floating()?;
         let manipulator = match self.base {
             BaseKind::Fixed => Manipulator::FixedBase(&arm),
             BaseKind::AttitudeHeld => Manipulator::AttitudeHeld {

@@ -1,11 +1,13 @@
 //! Seed 000's examples (sec 5) adapted to our model: start, targets,
 //! priorities, options, and the plant they run on.
 
-use super::{simulate, MpcRun, SimulationOptions};
 use crate::error::{Error, Result};
-use crate::math::{Pose, Vector3};
+use crate::math::{Matrix3, Pose, Vector3};
 use crate::model::Model;
+use crate::mpc::qp::QpSolverKind;
+use crate::mpc::scenario::{simulate, MpcRun, SimulationOptions};
 use crate::mpc::{MpcOptions, PlantModel, ReachAid, TaskWeights, VelocityWeights};
+use crate::robots::gantry9_flex;
 
 /// Our start for seed 000's examples: `[d1, d2, d3, q4..q9]` =
 /// `[2.0, 0.89, 0.76, pi/2, 0.5, 0.5, 0, 0.5, 0]` (m, rad): inside every
@@ -128,7 +130,7 @@ impl Seed000Example {
 
     /// The model: [`crate::robots::gantry9_flex`] (beam deflection coupled).
     pub fn model() -> Result<Model> {
-        crate::robots::gantry9_flex()
+        gantry9_flex()
     }
 
     /// The start, [`SEED000_START`].
@@ -143,7 +145,7 @@ impl Seed000Example {
             Seed000Example::LargeMove => Vector3::new(4.0, 1.0, 6.0),
             _ => Vector3::new(2.0, 1.8, 4.5),
         };
-        Pose::new(crate::math::Matrix3::identity(), position)
+        Pose::new(Matrix3::identity(), position)
     }
 
     /// The joint priorities `R` (eq 20).
@@ -174,12 +176,12 @@ impl Seed000Example {
             // Seed 000's planner as published: no goal posture.
             reach: ReachAid::Off,
             // The undamped comparison drifts along its self-motion for 2000
-            // steps, integrating the QP's round-off: it keeps the solver its
-            // figures were made with (the exact active-set answer moves its
-            // rotary travel by 0.7 %).
+            // steps, integrating the QP's round-off: it runs on Clarabel, the
+            // solver of its published figures (the exact active-set answer
+            // moves its rotary travel by 0.7 %).
             solver: match self {
-                Seed000Example::EqualWeightsUndamped => crate::mpc::qp::QpSolverKind::Clarabel,
-                _ => crate::mpc::qp::QpSolverKind::default(),
+                Seed000Example::EqualWeightsUndamped => QpSolverKind::Clarabel,
+                _ => QpSolverKind::default(),
             },
             ..MpcOptions::default()
         }

@@ -3,7 +3,8 @@
 //! the run's plant lets it hold (the paper's claims themselves, with their
 //! verdicts, are the findings of `findings.rs`).
 
-use super::{MpcRun, Seed000Example};
+use super::examples::Seed000Example;
+use crate::mpc::scenario::MpcRun;
 
 /// The hand counts as having reached the target, for counting direction
 /// changes, once it is within this distance of it, m: closer than the

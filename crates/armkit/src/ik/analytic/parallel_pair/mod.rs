@@ -125,22 +125,15 @@ mod sloped;
 mod sweep;
 mod tracker;
 
-use self::sloped::find_roots_sloped;
-use self::sloped::{Knot, Samples, Sloped};
 use self::sweep::{flatten, unflatten};
 pub(super) use self::sweep::{read_system, write_system, Sweep};
 pub(super) use self::tracker::{branch_rates, Tracker};
 use super::chain::{Candidates, Chain};
-use super::search::{
-    align_nearest, discriminant_sign_change, fold_by_extrapolation, BranchKey, EndCheck, Residual,
-};
-use super::search2d::settle_root;
+use super::search::BranchKey;
 use super::structure::GEOMETRY_TOLERANCE;
 use super::subproblem6::{Sinusoids, Wave};
-use super::subproblems::{atan2, rotate_by, rotation, subproblem1, Turn};
-use super::trig2::Trig2;
+use super::subproblems::{atan2, rotation, subproblem1, Turn};
 use crate::math::{wrap_angle, Matrix3, Pose, Vector3};
-use std::cell::Cell;
 
 /// Samples per turn of the search.
 pub const SAMPLES: usize = 192;

@@ -8,9 +8,6 @@
 use std::time::Instant;
 
 use super::StudyReport;
-use crate::dynamics::torque_limits::{
-    scale_to_torque_limits, torque_profile, TorqueCheckOptions, TorqueScaling,
-};
 use crate::error::{check_finite_vector, Error, Result};
 use crate::kinematics::{forward_kinematics, Data};
 use crate::math::{rotation_angle, Pose};
@@ -22,6 +19,9 @@ use crate::trajectory::{
     Segmentation, ViaVelocity,
 };
 use crate::trajectory::{path_ik_for, IkTask, NumericPathIk};
+use crate::trajectory::{
+    scale_to_torque_limits, torque_profile, TorqueCheckOptions, TorqueScaling,
+};
 use crate::trajectory::{CartesianTrajectory, LinePath, OrientationLaw, TimeLaw};
 
 mod outcome;
@@ -176,7 +176,8 @@ pub enum PathGoal {
     Pose([f64; 6]),
 }
 
-/// The torque check of the planned motion (issue 18).
+/// The torque check of the planned motion: its joint torques (inverse
+/// dynamics) against the motors' limits, and the slow-down that meets them.
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "io", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "io", serde(default, deny_unknown_fields))]
