@@ -5,6 +5,7 @@ mod common;
 mod seed000_common;
 
 mod beam;
+mod build_features;
 mod description;
 mod dynamics;
 mod dynamics_coupled;

@@ -1,0 +1,3 @@
+//! Empty: it exists so that cargo resolves this crate's build-dependencies,
+//! whose features unify with the proc macros' (see Cargo.toml).
+fn main() {}
