@@ -286,7 +286,7 @@ impl AvoidanceStudy {
         let line = line_through(&manipulator, &self.through, &self.direction, 0.0)?;
         let half = LineThrough {
             goal: line.through,
-            ..line.clone()
+            ..line
         };
         let task = half.task(0.5 * self.duration, self.acceleration_time);
         Ok(PathTracker::new(place(manipulator, &half), task, options)
