@@ -57,6 +57,14 @@ impl AvoidanceOutcome {
             findings.push(self.in_region_finding());
         }
         findings.extend(self.conclusion_findings());
+        findings.push(Finding::new(
+            "seed 004, sec 3 (simulation): the paper's own arm and path, from its start pose Pe0 \
+             to its end pose Pef",
+            "not attempted: the paper's DH table and mass properties are not printed, so its \
+             start pose does not map onto space6r (a reconstruction from the printed lengths); \
+             every row above runs our own line through a singular pose",
+            FindingStatus::NotAttempted,
+        ));
         findings
     }
 
