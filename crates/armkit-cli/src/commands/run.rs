@@ -142,17 +142,29 @@ pub fn demo(args: &DemoArgs) -> CliResult<Outcome> {
         started.elapsed().as_secs_f64()
     );
     for s in &summaries {
-        let (reproduced, deviation, not_reproduced) = s.findings;
-        let findings = if reproduced + deviation + not_reproduced == 0 {
+        let c = s.findings;
+        let mut findings = if c.independent() + c.duplicates == 0 {
             String::new()
         } else {
             format!(
-                "; paper's claims: {reproduced} reproduced, {deviation} with a deviation, \
-                 {not_reproduced} not reproduced"
+                "; paper's claims: {} reproduced, {} with a deviation, {} not reproduced, {} not \
+                 attempted",
+                c.reproduced, c.with_deviation, c.not_reproduced, c.not_attempted
+            )
+        };
+        if c.duplicates > 0 {
+            findings += &format!(" ({} more restate counted evidence)", c.duplicates);
+        }
+        let invariants = if s.invariants == 0 {
+            String::new()
+        } else {
+            format!(
+                "; {} of {} invariants hold",
+                s.invariants_held, s.invariants
             )
         };
         println!(
-            "  [{}] {}: {} of {} checks pass{findings}",
+            "  [{}] {}: {} of {} checks pass{invariants}{findings}",
             if s.all_passed() { "pass" } else { "FAIL" },
             s.name,
             s.passed,

@@ -10,7 +10,8 @@ h1{font-size:1.6em;margin-bottom:0.2em}h2{font-size:1.2em;margin-top:1.6em;borde
 table{border-collapse:collapse;margin:8px 0}td,th{border:1px solid #ccc;padding:4px 8px;text-align:left;font-size:0.92em}
 th{background:#f3f3f6}.pass{color:#1a7f37;font-weight:bold}.fail{color:#c62828;font-weight:bold}
 .figures{display:flex;flex-wrap:wrap;gap:12px}.figure{border:1px solid #eee;padding:4px}
-.figure svg{max-width:100%;height:auto}.caption{color:#666;font-size:0.9em}.note{background:#fff8e1;padding:6px 10px;border-left:4px solid #f0b400}";
+.figure svg{max-width:100%;height:auto}.caption{color:#666;font-size:0.9em}.note{background:#fff8e1;padding:6px 10px;border-left:4px solid #f0b400}
+.reproduced{background:#d7f5dd}.reproduced-with-deviation{background:#fff1c2}.not-reproduced{background:#fbd5d5}.not-attempted{background:#e6e6ea}";
 
 /// Escapes text for HTML.
 pub fn escape(text: &str) -> String {
@@ -42,31 +43,15 @@ pub fn report_page(report: &Report, svgs: &[(String, String)]) -> String {
         escape(&report.title),
         escape(&report.description),
         report.passed(),
-        report.checks.len()
+        report.evidence().count()
     );
-    body += "<h2>Checks</h2>\n<table><tr><th>check</th><th>value</th><th>threshold</th><th>unit</th><th>result</th></tr>\n";
-    for check in &report.checks {
-        let op = if check.comparison == Comparison::AtMost {
-            "&le;"
-        } else {
-            "&ge;"
-        };
-        let (value, threshold) = if check.detail.is_empty() {
-            (
-                format_value(check.value),
-                format!("{op} {}", format_value(check.threshold)),
-            )
-        } else {
-            (escape(&check.detail), "holds".to_string())
-        };
-        body += &format!(
-            "<tr><td>{}</td><td>{value}</td><td>{threshold}</td><td>{}</td><td>{}</td></tr>\n",
-            escape(&check.name),
-            escape(&check.unit),
-            verdict(check.passed())
-        );
+    body += "<h2>Checks</h2>\n";
+    body += &checks_table(report.evidence());
+    let invariants: Vec<&super::Check> = report.invariants().collect();
+    if !invariants.is_empty() {
+        body += "<h2>Invariants of the implementation</h2>\n<p>True by construction: kept as tests of the code, never evidence for a paper's claim.</p>\n";
+        body += &checks_table(invariants.into_iter());
     }
-    body += "</table>\n";
     body += &findings_table(&report.findings);
     for note in &report.notes {
         body += &format!("<p class=\"note\">{}</p>\n", escape(note));
@@ -104,6 +89,33 @@ pub fn report_page(report: &Report, svgs: &[(String, String)]) -> String {
     page(&report.title, &body)
 }
 
+/// The checks' table: name, value, threshold, unit, result.
+fn checks_table<'a>(checks: impl Iterator<Item = &'a super::Check>) -> String {
+    let mut body = "<table><tr><th>check</th><th>value</th><th>threshold</th><th>unit</th><th>result</th></tr>\n".to_string();
+    for check in checks {
+        let op = if check.comparison == Comparison::AtMost {
+            "&le;"
+        } else {
+            "&ge;"
+        };
+        let (value, threshold) = if check.detail.is_empty() {
+            (
+                format_value(check.value),
+                format!("{op} {}", format_value(check.threshold)),
+            )
+        } else {
+            (escape(&check.detail), "holds".to_string())
+        };
+        body += &format!(
+            "<tr><td>{}</td><td>{value}</td><td>{threshold}</td><td>{}</td><td>{}</td></tr>\n",
+            escape(&check.name),
+            escape(&check.unit),
+            verdict(check.passed())
+        );
+    }
+    body + "</table>\n"
+}
+
 /// The papers' claims and how they fared, apart from the checks.
 fn findings_table(findings: &[super::Finding]) -> String {
     if findings.is_empty() {
@@ -111,14 +123,32 @@ fn findings_table(findings: &[super::Finding]) -> String {
     }
     let mut html = "<h2>The paper's claims</h2>\n<table><tr><th>claim</th><th>measured here</th><th>verdict</th></tr>\n".to_string();
     for finding in findings {
+        let same = finding
+            .same_evidence_as
+            .as_ref()
+            .map_or(String::new(), |at| {
+                format!(" (same evidence as {}; not counted)", escape(at))
+            });
         html += &format!(
-            "<tr><td>{}</td><td>{}</td><td>{}</td></tr>\n",
+            "<tr><td>{}</td><td>{}</td><td class=\"{}\">{}{same}</td></tr>\n",
             escape(&finding.claim),
             escape(&finding.measured),
+            status_class(finding.status),
             escape(finding.status.as_str())
         );
     }
     html + "</table>\n"
+}
+
+/// The CSS class colouring a verdict.
+fn status_class(status: armkit::study::FindingStatus) -> &'static str {
+    use armkit::study::FindingStatus;
+    match status {
+        FindingStatus::Reproduced => "reproduced",
+        FindingStatus::ReproducedWithDeviation => "reproduced-with-deviation",
+        FindingStatus::NotReproduced => "not-reproduced",
+        FindingStatus::NotAttempted => "not-attempted",
+    }
 }
 
 fn strip_xml_declaration(svg: &str) -> &str {
@@ -132,7 +162,7 @@ fn strip_xml_declaration(svg: &str) -> &str {
 pub fn index_page(summaries: &[ReportSummary], out_dir: &Path) -> String {
     let all = summaries.iter().all(ReportSummary::all_passed);
     let mut body = format!(
-        "<h1>armkit demo</h1>\n<p>{} scenarios; {}.</p>\n<table><tr><th>scenario</th><th>checks</th><th>result</th><th>paper's claims: reproduced / with deviation / not reproduced</th></tr>\n",
+        "<h1>armkit demo</h1>\n<p>{} scenarios; {}.</p>\n<table><tr><th>scenario</th><th>checks</th><th>result</th><th>invariants</th><th>reproduced</th><th>with deviation</th><th>not reproduced</th><th>not attempted</th><th>same evidence (not counted)</th></tr>\n",
         summaries.len(),
         if all { "every check passes" } else { "some checks fail: see the reports" }
     );
@@ -144,15 +174,21 @@ pub fn index_page(summaries: &[ReportSummary], out_dir: &Path) -> String {
             .to_string_lossy()
             .replace('\\', "/");
         body += &format!(
-            "<tr><td><a href=\"{}\">{}</a></td><td>{} of {} pass</td><td>{}</td><td>{} / {} / {}</td></tr>\n",
+            "<tr><td><a href=\"{}\">{}</a></td><td>{} of {} pass</td><td>{}</td><td>{} of {} hold</td>\
+             <td class=\"reproduced\">{}</td><td class=\"reproduced-with-deviation\">{}</td>\
+             <td class=\"not-reproduced\">{}</td><td class=\"not-attempted\">{}</td><td>{}</td></tr>\n",
             escape(&link),
             escape(&s.title),
             s.passed,
             s.total,
             verdict(s.all_passed()),
-            s.findings.0,
-            s.findings.1,
-            s.findings.2
+            s.invariants_held,
+            s.invariants,
+            s.findings.reproduced,
+            s.findings.with_deviation,
+            s.findings.not_reproduced,
+            s.findings.not_attempted,
+            s.findings.duplicates
         );
     }
     body += "</table>\n";

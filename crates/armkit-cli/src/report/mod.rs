@@ -38,6 +38,7 @@ fn finding_json(finding: &Finding) -> serde_json::Value {
         "claim": finding.claim,
         "measured": finding.measured,
         "status": finding.status.as_str(),
+        "same_evidence_as": finding.same_evidence_as,
     })
 }
 
@@ -114,7 +115,8 @@ pub struct Report {
     pub title: String,
     /// What the scenario shows and where it comes from (seed, equations).
     pub description: String,
-    /// The checks, each pass or fail.
+    /// The checks, each pass or fail: evidence and, marked
+    /// [`Check::invariant`], invariants of the implementation (listed apart).
     pub checks: Vec<Check>,
     /// The papers' claims and how they fared (kept apart from the checks).
     pub findings: Vec<Finding>,
@@ -135,20 +137,24 @@ pub struct ReportSummary {
     pub name: String,
     /// Title.
     pub title: String,
-    /// Number of checks that passed.
+    /// Number of evidence checks that passed.
     pub passed: usize,
-    /// Number of checks.
+    /// Number of evidence checks.
     pub total: usize,
-    /// The findings' counts: (reproduced, with deviation, not reproduced).
-    pub findings: (usize, usize, usize),
+    /// Number of invariants (checks true by construction) that hold.
+    pub invariants_held: usize,
+    /// Number of invariants.
+    pub invariants: usize,
+    /// The findings' counts by verdict.
+    pub findings: armkit::study::FindingCounts,
     /// Path of `report.html`.
     pub html: PathBuf,
 }
 
 impl ReportSummary {
-    /// True when every check passed.
+    /// True when every check passed and every invariant holds.
     pub fn all_passed(&self) -> bool {
-        self.passed == self.total
+        self.passed == self.total && self.invariants_held == self.invariants
     }
 }
 
@@ -186,20 +192,40 @@ impl Report {
         }
     }
 
-    /// Number of checks that pass.
-    pub fn passed(&self) -> usize {
-        self.checks.iter().filter(|c| c.passed()).count()
+    /// The checks that test a result (not the invariants).
+    pub fn evidence(&self) -> impl Iterator<Item = &Check> {
+        self.checks.iter().filter(|c| !c.is_invariant())
     }
 
-    /// `summary.json`: every check with name, value, threshold and pass.
+    /// The invariants of the implementation (checks true by construction).
+    pub fn invariants(&self) -> impl Iterator<Item = &Check> {
+        self.checks.iter().filter(|c| c.is_invariant())
+    }
+
+    /// Number of evidence checks that pass.
+    pub fn passed(&self) -> usize {
+        self.evidence().filter(|c| c.passed()).count()
+    }
+
+    /// `summary.json`: every check with name, value, threshold and pass, the
+    /// invariants apart, the findings and their counts.
     pub fn summary_json(&self) -> serde_json::Value {
+        let counts = armkit::study::count_findings(&self.findings);
         serde_json::json!({
             "scenario": self.name,
             "title": self.title,
             "passed": self.passed(),
-            "total": self.checks.len(),
-            "checks": self.checks.iter().map(check_json).collect::<Vec<_>>(),
+            "total": self.evidence().count(),
+            "checks": self.evidence().map(check_json).collect::<Vec<_>>(),
+            "invariants": self.invariants().map(check_json).collect::<Vec<_>>(),
             "findings": self.findings.iter().map(finding_json).collect::<Vec<_>>(),
+            "finding_counts": {
+                "reproduced": counts.reproduced,
+                "reproduced_with_deviation": counts.with_deviation,
+                "not_reproduced": counts.not_reproduced,
+                "not_attempted": counts.not_attempted,
+                "same_evidence": counts.duplicates,
+            },
             "notes": self.notes,
         })
     }
@@ -226,7 +252,9 @@ impl Report {
             name: self.name.clone(),
             title: self.title.clone(),
             passed: self.passed(),
-            total: self.checks.len(),
+            total: self.evidence().count(),
+            invariants_held: self.invariants().filter(|c| c.passed()).count(),
+            invariants: self.invariants().count(),
             findings: armkit::study::count_findings(&self.findings),
             html: html_path,
         })
@@ -239,11 +267,16 @@ impl Report {
             out += &table.to_text();
         }
         for check in &self.checks {
+            let name = if check.is_invariant() {
+                format!("invariant: {}", check.name)
+            } else {
+                check.name.clone()
+            };
             if !check.detail.is_empty() {
                 out += &format!(
                     "  [{}] {}: {}\n",
                     if check.passed() { "pass" } else { "FAIL" },
-                    check.name,
+                    name,
                     check.detail
                 );
                 continue;
@@ -383,7 +416,7 @@ mod tests {
         let index_html = std::fs::read_to_string(index).unwrap();
         assert!(index_html.contains("sample/report.html") && index_html.contains("1 of 2"));
         assert!(
-            index_html.contains("0 / 0 / 1"),
+            index_html.contains("class=\"not-reproduced\">1<"),
             "findings counts in the index"
         );
         assert!(html.contains("not reproduced") && html.contains("the sky is green"));

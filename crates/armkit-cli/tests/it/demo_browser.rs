@@ -108,6 +108,33 @@ fn demo_reports_open_offline_with_plots_and_animation() {
             let json: serde_json::Value =
                 serde_json::from_str(&std::fs::read_to_string(&summary).unwrap()).unwrap();
             assert_eq!(json["passed"], json["total"], "{}", summary.display());
+            // Invariants are listed apart from the checks, and hold too.
+            for invariant in json["invariants"].as_array().unwrap() {
+                assert_eq!(
+                    invariant["pass"],
+                    true,
+                    "{}: {invariant}",
+                    summary.display()
+                );
+            }
+            // No finding is both counted and marked as restating evidence.
+            let counts = &json["finding_counts"];
+            let counted: u64 = [
+                "reproduced",
+                "reproduced_with_deviation",
+                "not_reproduced",
+                "not_attempted",
+                "same_evidence",
+            ]
+            .iter()
+            .map(|k| counts[k].as_u64().unwrap())
+            .sum();
+            assert_eq!(
+                counted as usize,
+                json["findings"].as_array().unwrap().len(),
+                "{}",
+                summary.display()
+            );
         }
     }
 

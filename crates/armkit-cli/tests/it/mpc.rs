@@ -286,3 +286,26 @@ fn a_target_the_plain_planner_misses_is_reached_with_the_goal_posture() {
     assert_eq!(v["max_position_violation"].as_f64().unwrap(), 0.0);
     assert_eq!(v["max_velocity_violation"].as_f64().unwrap(), 0.0);
 }
+
+/// Every flag that would change a seed 000 example's own settings is
+/// refused with `--example`, naming the flag (never silently ignored).
+#[test]
+fn example_refuses_the_flags_it_would_ignore() {
+    for (flag, value) in [
+        ("--dt", "0.01"),
+        ("--velocity-weight", "0"),
+        ("--priorities", "1,1,1,1,1,1,1,1,1"),
+        ("--horizon", "5"),
+        ("--weights", "pose"),
+        ("--terminal-factor", "5"),
+        ("--start", "2,0.89,0.76,1.57,0.5,0.5,0,0.5,0"),
+    ] {
+        let output = armkit(&["mpc", "--example", "2", flag, value]);
+        assert!(!output.status.success(), "{flag} accepted");
+        let err = stderr(&output);
+        assert!(
+            err.contains(flag) && err.contains("--example"),
+            "{flag}: {err}"
+        );
+    }
+}

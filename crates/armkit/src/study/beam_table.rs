@@ -210,8 +210,9 @@ impl BeamTableStudy {
             .all(|r| r.largest <= r.under_each[0].max(r.under_each[1]) * (1.0 + 1e-9));
         Ok(vec![
             Finding::new(
-                "seed 000, Table 1 (theory): the deflection under the two loads is 0.0046 / 0.0056 / \
-                 0.0022 m for loads at 3.3 m from each end / at 4 and 6 m / at 2 and 8 m",
+                "seed 000, Table 1 (theory): with the two 400 kg loads taken as 4000 N each (g = 10 \
+                 m/s^2), the deflection under the loads is 0.0046 / 0.0056 / 0.0022 m for loads at \
+                 3.3 m from each end / at 4 and 6 m / at 2 and 8 m",
                 format!(
                     "ours {} m with {} kg and g = {} m/s^2 {}; standard gravity ({STANDARD_GRAVITY}) \
                      would print {} m",
@@ -235,12 +236,18 @@ impl BeamTableStudy {
                 "seed 000, Table 1: the Ansys simulation (0.0046 / 0.0054 / 0.0022 m) agrees with the \
                  theory within 4 %",
                 format!(
-                    "the printed Ansys values lie {} from our theory (largest {:.1} %); armkit runs no \
-                     finite-element model",
+                    "not attempted: armkit runs no finite-element model. Only the paper's printed \
+                     columns are compared: the printed Ansys values lie {} from our theory (largest \
+                     {:.1} %; {} the paper's 4 %)",
                     list(&|r| format!("{:+.1} %", 100.0 * r.simulation_error())),
-                    100.0 * worst_simulation
+                    100.0 * worst_simulation,
+                    if worst_simulation < TABLE1_TOLERANCE {
+                        "within"
+                    } else {
+                        "beyond"
+                    }
                 ),
-                FindingStatus::from_holds(worst_simulation < TABLE1_TOLERANCE),
+                FindingStatus::NotAttempted,
             ),
             Finding::new(
                 "seed 000, sec 3.1 on Fig 5: the largest deflection lies under the loads",

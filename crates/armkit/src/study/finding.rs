@@ -15,15 +15,20 @@ pub enum FindingStatus {
     ReproducedWithDeviation,
     /// The claim does not hold here; the finding gives the figures.
     NotReproduced,
+    /// armkit does not test the claim; the finding's text says why (a
+    /// method armkit does not run, data the paper does not print).
+    NotAttempted,
 }
 
 impl FindingStatus {
-    /// `reproduced`, `reproduced with deviation` or `not reproduced`.
+    /// `reproduced`, `reproduced with deviation`, `not reproduced` or `not
+    /// attempted`.
     pub fn as_str(&self) -> &'static str {
         match self {
             FindingStatus::Reproduced => "reproduced",
             FindingStatus::ReproducedWithDeviation => "reproduced with deviation",
             FindingStatus::NotReproduced => "not reproduced",
+            FindingStatus::NotAttempted => "not attempted",
         }
     }
 
@@ -83,6 +88,9 @@ pub struct Finding {
     pub measured: String,
     /// The verdict.
     pub status: FindingStatus,
+    /// Where the same evidence is already counted (a scenario or a claim),
+    /// when this finding restates it: shown, never counted twice.
+    pub same_evidence_as: Option<String>,
 }
 
 impl Finding {
@@ -96,7 +104,15 @@ impl Finding {
             claim: claim.into(),
             measured: measured.into(),
             status,
+            same_evidence_as: None,
         }
+    }
+
+    /// The same finding marked as restating the evidence counted at
+    /// `counted_at` (a scenario or a claim): [`count_findings`] skips it.
+    pub fn same_evidence_as(mut self, counted_at: impl Into<String>) -> Self {
+        self.same_evidence_as = Some(counted_at.into());
+        self
     }
 }
 
@@ -107,13 +123,57 @@ impl fmt::Display for Finding {
     }
 }
 
-/// How many findings have each status: (reproduced, with deviation, not
-/// reproduced).
-pub fn count_findings(findings: &[Finding]) -> (usize, usize, usize) {
-    let count = |status| findings.iter().filter(|f| f.status == status).count();
-    (
-        count(FindingStatus::Reproduced),
-        count(FindingStatus::ReproducedWithDeviation),
-        count(FindingStatus::NotReproduced),
-    )
+/// How many independent findings have each status; findings marked
+/// [`Finding::same_evidence_as`] are counted apart, in `duplicates`.
+///
+/// ```
+/// use armkit::study::{count_findings, Finding, FindingStatus};
+/// let findings = [
+///     Finding::new("a", "x", FindingStatus::Reproduced),
+///     Finding::new("a", "x", FindingStatus::Reproduced).same_evidence_as("scenario-1"),
+///     Finding::new("b", "no model", FindingStatus::NotAttempted),
+/// ];
+/// let counts = count_findings(&findings);
+/// assert_eq!((counts.reproduced, counts.not_attempted, counts.duplicates), (1, 1, 1));
+/// assert_eq!(counts.independent(), 2);
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct FindingCounts {
+    /// Reproduced as stated.
+    pub reproduced: usize,
+    /// Reproduced with a stated deviation.
+    pub with_deviation: usize,
+    /// Not reproduced.
+    pub not_reproduced: usize,
+    /// Not attempted (with the reason).
+    pub not_attempted: usize,
+    /// Findings restating evidence counted elsewhere (not in the four above).
+    pub duplicates: usize,
+}
+
+impl FindingCounts {
+    /// The independent claims: the four verdicts' sum.
+    pub fn independent(&self) -> usize {
+        self.reproduced + self.with_deviation + self.not_reproduced + self.not_attempted
+    }
+}
+
+/// The counts of `findings` by verdict ([`FindingCounts`]).
+pub fn count_findings(findings: &[Finding]) -> FindingCounts {
+    let count = |status| {
+        findings
+            .iter()
+            .filter(|f| f.status == status && f.same_evidence_as.is_none())
+            .count()
+    };
+    FindingCounts {
+        reproduced: count(FindingStatus::Reproduced),
+        with_deviation: count(FindingStatus::ReproducedWithDeviation),
+        not_reproduced: count(FindingStatus::NotReproduced),
+        not_attempted: count(FindingStatus::NotAttempted),
+        duplicates: findings
+            .iter()
+            .filter(|f| f.same_evidence_as.is_some())
+            .count(),
+    }
 }

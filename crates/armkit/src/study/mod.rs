@@ -51,7 +51,7 @@ pub use distribution::{
     DistributionOutcome, DistributionStudy, FormulationKind, ResolvedDistribution, SecondaryKind,
     TorqueEnergies, ZeroWeightLock, DISTRIBUTION_NOTE, VARIANT_NAME,
 };
-pub use finding::{count_findings, Finding, FindingStatus};
+pub use finding::{count_findings, Finding, FindingCounts, FindingStatus};
 pub use mpc_examples::{
     ExampleCheck, MpcExampleStudy, PrismaticSettling, Seed000Example, DIRECTION_FLOOR,
     OSCILLATION_DIRECTION_CHANGES, REACHED_TOLERANCE, SEED000_PRIORITIES,
@@ -84,6 +84,20 @@ impl fmt::Display for Comparison {
     }
 }
 
+/// What a check's passing tells.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum CheckKind {
+    /// It tests a result: it could fail if the method or the claim were
+    /// wrong.
+    #[default]
+    Evidence,
+    /// It holds by construction of the implementation (a base placed to keep
+    /// the centre of mass, a bound the knots enforce, a plan kept only where
+    /// it is better): kept as a test of the code, listed apart, never
+    /// evidence for a paper's claim.
+    Invariant,
+}
+
 /// One verifiable claim of a study: a measured value against a threshold.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Check {
@@ -100,6 +114,8 @@ pub struct Check {
     /// The measured figures in words, for checks that are a yes/no claim
     /// (may be empty).
     pub detail: String,
+    /// Evidence or an invariant of the implementation.
+    pub kind: CheckKind,
 }
 
 impl Check {
@@ -112,7 +128,20 @@ impl Check {
             comparison: Comparison::AtMost,
             unit: unit.into(),
             detail: String::new(),
+            kind: CheckKind::Evidence,
         }
+    }
+
+    /// The same check marked as an invariant of the implementation
+    /// ([`CheckKind::Invariant`]): true by construction, not evidence.
+    pub fn invariant(mut self) -> Self {
+        self.kind = CheckKind::Invariant;
+        self
+    }
+
+    /// True for an invariant of the implementation.
+    pub fn is_invariant(&self) -> bool {
+        self.kind == CheckKind::Invariant
     }
 
     /// A check that passes when `value >= threshold`.

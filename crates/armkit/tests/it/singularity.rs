@@ -825,11 +825,20 @@ fn the_study_calibrates_sweeps_the_miss_and_states_the_paper_claims() {
     let rising = means.windows(2).all(|w| w[1] > w[0]) && means[0] <= 0.5 * means[2];
     // Resolved at seed 004's eps_T = 1e-8: k = 1, 5, 10 give clearly rising errors.
     assert!(rising, "{means:?}");
-    assert_eq!(inside.status, FindingStatus::Reproduced);
+    // The errors compared lie at the IK tolerance: no evidence either way.
+    let largest = means.iter().fold(0.0, |m: f64, e| m.max(*e));
     assert_eq!(
-        verdict("more computation").status,
-        FindingStatus::Reproduced
+        inside.status == FindingStatus::NotReproduced,
+        largest < 100.0 * outcome.options.ik_tolerance,
+        "{}",
+        inside.measured
     );
+    assert!(findings
+        .iter()
+        .all(|f| !f.claim.contains("more computation")));
+    assert!(checks
+        .iter()
+        .any(|c| c.is_invariant() && c.name.contains("fewer IK solves")));
     assert_eq!(verdict("conclusion 3").status, FindingStatus::Reproduced);
     assert!(verdict("conclusion 1").measured.contains("miss sweep"));
 }

@@ -59,27 +59,38 @@ pub struct MpcArgs {
     /// outside the limits is brought back in at half speed.
     #[arg(long, value_name = "Q1,Q2,...", allow_hyphen_values = true)]
     pub start: Option<String>,
-    /// Prediction horizon N, samples.
-    #[arg(long, default_value_t = 10)]
+    /// Prediction horizon N, samples (not with --example: the examples run
+    /// the paper's N = 10).
+    #[arg(long, default_value_t = 10, conflicts_with = "example")]
     pub horizon: usize,
     /// Control horizon M (1 <= M <= N), samples.
     #[arg(long, default_value_t = 1)]
     pub control_horizon: usize,
-    /// Sample time T, s.
-    #[arg(long, default_value_t = armkit::mpc::DEFAULT_SAMPLE_TIME)]
+    /// Sample time T, s (not with --example: the examples run at their own T).
+    #[arg(long, default_value_t = armkit::mpc::DEFAULT_SAMPLE_TIME, conflicts_with = "example")]
     pub dt: f64,
     /// Task weights Q: `position` (10 on x, y, z), `pose` (10 on all six),
     /// or six numbers for x, y, z, rx, ry, rz.
-    #[arg(long, default_value = "pose", value_name = "position|pose|W1,..,W6")]
+    #[arg(
+        long,
+        default_value = "pose",
+        value_name = "position|pose|W1,..,W6",
+        conflicts_with = "example"
+    )]
     pub weights: String,
     /// Terminal weight as a multiple of the task weights (seed 000: 200 / 10).
-    #[arg(long, default_value_t = 20.0)]
+    #[arg(long, default_value_t = 20.0, conflicts_with = "example")]
     pub terminal_factor: f64,
     /// Increment weights R, one per joint (the joint priorities; default 1).
-    #[arg(long, value_name = "R1,R2,...")]
+    #[arg(long, value_name = "R1,R2,...", conflicts_with = "example")]
     pub priorities: Option<String>,
     /// Velocity term W = FACTOR x R (damps self-motion; 0 = seed 000's eq 20 as printed).
-    #[arg(long, default_value_t = 0.01, value_name = "FACTOR")]
+    #[arg(
+        long,
+        default_value_t = 0.01,
+        value_name = "FACTOR",
+        conflicts_with = "example"
+    )]
     pub velocity_weight: f64,
     /// QP backend (default: active-set, with Clarabel as its fallback).
     #[arg(long, value_enum)]
@@ -101,6 +112,8 @@ pub struct MpcArgs {
     #[arg(long, default_value_t = 0.0, value_name = "M/S")]
     pub prismatic_deadband: f64,
     /// Run seed 000's example(s) instead: 1, 2, 3, ex2-paper-weights, ex3-undamped or all.
+    /// Each runs its own start, horizon, T, weights and priorities: the
+    /// flags that would change them are refused with it.
     #[arg(long, value_name = "ID", conflicts_with_all = ["robot", "robot_file", "urdf", "target", "start"])]
     pub example: Option<String>,
     /// Directory for mpc.csv and the SVG plots (created if missing).

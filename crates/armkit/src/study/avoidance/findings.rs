@@ -3,6 +3,7 @@
 use super::{AvoidanceOutcome, MissLine, MissSweep, FITTED_DETERMINANT_THRESHOLD};
 use crate::singularity::MethodRun;
 use crate::study::{Finding, FindingStatus};
+use crate::tracking::TrackingStatus;
 
 /// The paper's singular region (seed 004, sec 3), s.
 const PAPER_REGION: (f64, f64) = (8.8, 11.2);
@@ -30,6 +31,11 @@ fn peak_at(run: &MethodRun, i: usize) -> f64 {
         .fold(0.0, |m: f64, r| m.max(r.abs()))
 }
 
+/// How far above the IK tolerance an error must lie to tell two runs
+/// apart: errors below this many tolerances are the solver's, not the
+/// method's.
+const ABOVE_TOLERANCE: f64 = 100.0;
+
 /// True when `values` strictly increase.
 fn rising(values: &[f64]) -> bool {
     values.windows(2).all(|w| w[1] > w[0])
@@ -49,9 +55,16 @@ impl AvoidanceOutcome {
         if self.comparison.k_sweep.len() > 1 {
             findings.push(self.entry_finding());
             findings.push(self.in_region_finding());
-            findings.push(self.computation_finding());
         }
         findings.extend(self.conclusion_findings());
+        findings.push(Finding::new(
+            "seed 004, sec 3 (simulation): the paper's own arm and path, from its start pose Pe0 \
+             to its end pose Pef",
+            "not attempted: the paper's DH table and mass properties are not printed, so its \
+             start pose does not map onto space6r (a reconstruction from the printed lengths); \
+             every row above runs our own line through a singular pose",
+            FindingStatus::NotAttempted,
+        ));
         findings
     }
 
@@ -129,19 +142,40 @@ impl AvoidanceOutcome {
                 (lo.min(r * degrees), hi.max(r * degrees))
             });
         let ratio = c.plain.summary.peak_joint_rate / avoidance.summary.peak_joint_rate;
-        let status = if low >= FIG6_BAND.0 && high <= FIG6_BAND.1 {
+        // The demo's line is built to pass exactly through the singular
+        // pose; on the near-miss lines the avoidance may run at its bound.
+        let bound = MissSweep::rate_bound(&self.options);
+        let near_misses: Vec<&MissLine> =
+            self.sweep.lines.iter().filter(|l| l.miss != 0.0).collect();
+        let at_bound = near_misses
+            .iter()
+            .filter(|l| l.avoidance.peak_joint_rate >= bound * (1.0 - 1e-6))
+            .count();
+        let within = |lo: f64, hi: f64| lo >= FIG6_BAND.0 && hi <= FIG6_BAND.1;
+        let status = if within(low, high) && at_bound == 0 {
             FindingStatus::Reproduced
         } else if low.abs().max(high.abs()) <= FIG6_BAND.0.abs() {
             FindingStatus::ReproducedWithDeviation
         } else {
             FindingStatus::NotReproduced
         };
+        let sweep_text = if near_misses.is_empty() {
+            String::new()
+        } else {
+            format!(
+                ". This line passes exactly through the singular pose, where plain tracking spikes \
+                 at one sample; on {at_bound} of the {} near-miss lines of the sweep the \
+                 avoidance runs at its rate bound {bound:.2} rad/s ({:.0} deg/s)",
+                near_misses.len(),
+                bound.to_degrees()
+            )
+        };
         Finding::new(
             "seed 004, Fig 6: with the avoidance, joints 4 to 6 stay within -5 to 3 deg/s through \
              the region where plain tracking jumps",
             format!(
                 "{}: joints 4 to 6 within {low:.2} to {high:.2} deg/s; peak joint rate plain \
-                 {:.3} rad/s, {} {:.4} rad/s (ratio {ratio:.0})",
+                 {:.3} rad/s, {} {:.4} rad/s (ratio {ratio:.0}){sweep_text}",
                 avoidance.method.label(),
                 c.plain.summary.peak_joint_rate,
                 avoidance.method.label(),
@@ -182,13 +216,15 @@ impl AvoidanceOutcome {
         let errors = self.entry_errors();
         let position: Vec<f64> = errors.iter().map(|e| -e.0).collect();
         let orientation: Vec<f64> = errors.iter().map(|e| -e.1).collect();
-        let holds = self.sorted_ks() && rising(&position) && rising(&orientation);
+        let above = self.above_tolerance(&errors);
+        let holds = above && self.sorted_ks() && rising(&position) && rising(&orientation);
         Finding::new(
             "seed 004, Figs 7-8: the smaller k, the larger the error on entering the region",
             format!(
                 "error at the entry sample {} (tracking before the entry is the same for every k \
-                 here)",
-                self.per_k(&errors)
+                 here){}",
+                self.per_k(&errors),
+                self.tolerance_text(above)
             ),
             FindingStatus::from_holds(holds),
         )
@@ -212,7 +248,9 @@ impl AvoidanceOutcome {
             (Some(a), Some(b)) => *a <= CLEARLY * b,
             _ => false,
         };
-        let holds = self.sorted_ks()
+        let above = self.above_tolerance(&errors);
+        let holds = above
+            && self.sorted_ks()
             && rising(&position)
             && rising(&orientation)
             && clearly(&position)
@@ -221,29 +259,34 @@ impl AvoidanceOutcome {
             "seed 004, Figs 7-8: the smaller k, the clearly smaller the error inside the region",
             format!(
                 "mean error over the region's samples {} (IK tolerance {:.0e}; clearly: the \
-                 smallest k's at most {CLEARLY} of the largest k's)",
+                 smallest k's at most {CLEARLY} of the largest k's){}",
                 self.per_k(&errors),
-                self.options.ik_tolerance
+                self.options.ik_tolerance,
+                self.tolerance_text(above)
             ),
             FindingStatus::from_holds(holds),
         )
     }
 
-    fn computation_finding(&self) -> Finding {
-        let solves: Vec<f64> = self
-            .comparison
-            .k_sweep
-            .iter()
-            .map(|r| -(r.summary.ik_solves as f64))
-            .collect();
-        Finding::new(
-            "seed 004, sec 2.3 step 4: the smaller k, the more computation",
+    /// True when the largest of `errors` (m, rad) lies at least
+    /// [`ABOVE_TOLERANCE`] IK tolerances up: only then can two runs' errors
+    /// be told apart from the solver's.
+    fn above_tolerance(&self, errors: &[(f64, f64)]) -> bool {
+        let largest = errors.iter().fold(0.0, |m: f64, e| m.max(e.0).max(e.1));
+        largest >= ABOVE_TOLERANCE * self.options.ik_tolerance
+    }
+
+    /// Why a comparison at the solver's tolerance is no evidence.
+    fn tolerance_text(&self, above: bool) -> String {
+        if above {
+            String::new()
+        } else {
             format!(
-                "IK solves {}",
-                self.sweep_detail(|r| r.summary.ik_solves.to_string())
-            ),
-            FindingStatus::from_holds(self.sorted_ks() && rising(&solves)),
-        )
+                "; every error compared lies below {ABOVE_TOLERANCE} IK tolerances ({:.0e}): the \
+                 ordering is the solver's, not evidence either way",
+                ABOVE_TOLERANCE * self.options.ik_tolerance
+            )
+        }
     }
 
     fn conclusion_findings(&self) -> Vec<Finding> {
@@ -332,26 +375,49 @@ impl AvoidanceOutcome {
             };
             findings.push(Finding::new(
                 "seed 004, conclusion 1: the avoidance tracks with a smaller error than the \
-                 damped-inverse methods (tested here as: on every line of the miss sweep, its largest \
-                 error no worse than DLS's)",
+                 damped-inverse methods (comparators here: DLS and SRI, not the paper's reference \
+                 [9]; tested as: on every line of the miss sweep, its largest error no worse than \
+                 theirs)",
                 measured,
                 FindingStatus::from_holds(worse.is_empty()),
             ));
         }
-        let through = lines.iter().find(|l| l.miss == 0.0).map(|l| l.avoidance);
-        if let Some(summary) = through {
-            let holds = summary.max_position_error <= 1e-6 && summary.max_orientation_error <= 1e-6;
-            findings.push(Finding::new(
-                "seed 004, conclusion 3: a planned pose inside the singular region (here the \
-                 singular pose itself) is still tracked",
-                format!(
-                    "on the line through the singular pose the avoidance's largest error is \
-                     {:.2e} m / {:.2e} rad (at most 1e-6)",
-                    summary.max_position_error, summary.max_orientation_error
-                ),
-                FindingStatus::from_holds(holds),
-            ));
-        }
+        findings.push(self.singular_end_finding());
         findings
+    }
+
+    /// Conclusion 3 on a path whose desired end pose is the singular pose.
+    fn singular_end_finding(&self) -> Finding {
+        let claim =
+            "seed 004, conclusion 3: a desired end pose inside the singular region is still \
+                     reached (here a path from the line's start to the singular pose itself)";
+        match &self.singular_end {
+            Some(run) => {
+                let s = &run.summary;
+                let holds = run.status == TrackingStatus::Completed
+                    && s.final_position_error <= 1e-6
+                    && s.final_orientation_error <= 1e-6;
+                Finding::new(
+                    claim,
+                    format!(
+                        "{} ({}): final error {:.2e} m / {:.2e} rad (at most 1e-6), largest {:.2e} m \
+                         / {:.2e} rad, peak joint rate {:.3} rad/s",
+                        run.method.label(),
+                        run.status,
+                        s.final_position_error,
+                        s.final_orientation_error,
+                        s.max_position_error,
+                        s.max_orientation_error,
+                        s.peak_joint_rate
+                    ),
+                    FindingStatus::from_holds(holds),
+                )
+            }
+            None => Finding::new(
+                claim,
+                "the tracker refuses the path ending at the singular pose",
+                FindingStatus::NotReproduced,
+            ),
+        }
     }
 }

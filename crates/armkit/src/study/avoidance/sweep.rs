@@ -339,8 +339,10 @@ impl MissSweep {
                     .all(|l| l.statuses[1] == TrackingStatus::Completed),
                 self.per_line(|l| l.statuses[1].to_string()),
             ),
-            bound,
-            plan,
+            // The knots enforce the bound and the joint plan is kept only
+            // where it is better: both hold by construction.
+            bound.invariant(),
+            plan.invariant(),
         ]
     }
 

@@ -196,6 +196,29 @@ impl Seed000Example {
         }
     }
 
+    /// Runs the example with eq 20 as printed (no velocity term,
+    /// [`VelocityWeights::Zero`]) on `plant`, otherwise with its own options
+    /// and the undamped comparison's solver: the control run telling whether
+    /// an example settles without the velocity term. Errors: an invalid
+    /// plant.
+    pub fn run_without_velocity_term(self, plant: PlantModel) -> Result<MpcRun> {
+        let undamped = Seed000Example::EqualWeightsUndamped.options();
+        simulate(
+            &Self::model()?,
+            MpcOptions {
+                velocity_weights: undamped.velocity_weights,
+                solver: undamped.solver,
+                ..self.options()
+            },
+            &self.start(),
+            &self.target(),
+            &SimulationOptions {
+                plant,
+                ..self.simulation()
+            },
+        )
+    }
+
     /// Runs the example on the exact plant.
     pub fn run(self) -> Result<MpcRun> {
         self.run_on(PlantModel::Exact)
