@@ -1951,6 +1951,20 @@ const CASES: &[Case] = &[
         &["singularity", "--miss-sweep", "0,nan"],
         1,
     ),
+    case(
+        "ik",
+        "time budget too long for a duration",
+        &[
+            "ik",
+            "--robot",
+            "ur5",
+            "--pose",
+            "0.4,0.1,0.4,0,0,0",
+            "--budget-ms",
+            "1e300",
+        ],
+        1,
+    ),
 ];
 
 fn repository_root() -> PathBuf {

@@ -59,6 +59,9 @@ impl SolverArg {
     }
 }
 
+/// Largest `--budget-ms` accepted: one hour per solve, ms.
+pub const MAX_BUDGET_MS: f64 = 3.6e6;
+
 /// Tolerances shared by `ik` and `bench-ik`.
 #[derive(Args, Debug)]
 pub struct ToleranceArgs {
@@ -68,7 +71,7 @@ pub struct ToleranceArgs {
     /// Orientation tolerance, rad.
     #[arg(long, default_value_t = 1e-6)]
     pub orientation_tolerance: f64,
-    /// Time budget per solve, ms.
+    /// Time budget per solve, ms, in (0, 3.6e6] (one hour).
     #[arg(long, default_value_t = 5.0)]
     pub budget_ms: f64,
     /// Seed of the solver's random restarts.
@@ -78,17 +81,23 @@ pub struct ToleranceArgs {
 
 impl ToleranceArgs {
     fn options(&self, method: IkMethod) -> CliResult<IkOptions> {
-        if !(self.budget_ms.is_finite() && self.budget_ms > 0.0) {
-            return Err(CliError(format!(
-                "--budget-ms: must be > 0, got {}",
-                self.budget_ms
-            )));
-        }
+        // One hour bounds a single solve; the checked conversion keeps a
+        // value Duration cannot hold an error rather than a panic.
+        let budget =
+            (self.budget_ms.is_finite() && self.budget_ms > 0.0 && self.budget_ms <= MAX_BUDGET_MS)
+                .then(|| Duration::try_from_secs_f64(self.budget_ms * 1e-3).ok())
+                .flatten()
+                .ok_or_else(|| {
+                    CliError(format!(
+                        "--budget-ms: must be > 0 and <= {MAX_BUDGET_MS:e} ms (one hour), got {:e}",
+                        self.budget_ms
+                    ))
+                })?;
         let options = IkOptions {
             method,
             position_tolerance: self.position_tolerance,
             orientation_tolerance: self.orientation_tolerance,
-            time_budget: Some(Duration::from_secs_f64(self.budget_ms * 1e-3)),
+            time_budget: Some(budget),
             seed: self.seed,
             ..IkOptions::default()
         };
