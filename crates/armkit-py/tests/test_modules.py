@@ -137,6 +137,8 @@ def test_mpc_reaches_the_target_within_the_limits():
     np.testing.assert_allclose(panda.fk(run["q"][-1])[:3, 3], target[:3, 3], atol=1e-4)
     assert run["q"].shape == (len(run["time"]), 7)
     # Stepping by hand: integrate the commanded velocities (the plant).
+    with pytest.raises(ValueError, match=re.escape("MpcPlanner.step: no target; call set_target(T) first")):
+        planner.step(q)
     planner.set_target(target)
     for _ in range(100):
         step = planner.step(q)
