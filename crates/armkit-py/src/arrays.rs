@@ -6,10 +6,10 @@ use armkit::math::{Matrix4, Matrix6xX, Pose};
 use armkit::Error;
 use numpy::ndarray::Dimension;
 use numpy::{PyArray, PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArrayMethods};
-use pyo3::exceptions::PyValueError;
+use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
-use pyo3::types::{PyFloat, PyInt, PyList, PyTuple};
+use pyo3::types::{PyBool, PyFloat, PyInt, PyList, PyTuple};
 
 use crate::errors::OrRaise;
 
@@ -27,7 +27,29 @@ pub fn float_array<'py>(
     }
     let py = obj.py();
     let asarray = ASARRAY.import(py, "numpy", "asarray")?;
-    let converted = asarray.call1((obj, "float64")).map_err(|e| {
+    // NumPy casts complex to float with only a ComplexWarning (dropping the
+    // imaginary part) and bool to 0/1: both would be silent wrong answers.
+    let native = asarray.call1((obj,)).map_err(|e| {
+        PyValueError::new_err(format!(
+            "{what}: expected an array of numbers: {}",
+            e.value(py)
+        ))
+    })?;
+    let kind: String = native.getattr("dtype")?.getattr("kind")?.extract()?;
+    match kind.as_str() {
+        "c" => {
+            return Err(PyTypeError::new_err(format!(
+                "{what}: expected real numbers, got a complex array"
+            )));
+        }
+        "b" => {
+            return Err(PyTypeError::new_err(format!(
+                "{what}: expected numbers, got a bool array"
+            )));
+        }
+        _ => {}
+    }
+    let converted = asarray.call1((native, "float64")).map_err(|e| {
         PyValueError::new_err(format!(
             "{what}: expected an array of numbers: {}",
             e.value(py)
@@ -47,7 +69,10 @@ pub fn read_flat_sequence(obj: &Bound<'_, PyAny>, out: &mut Vec<f64>) -> bool {
     let read = |item: Bound<'_, PyAny>, out: &mut Vec<f64>| {
         // Floats and ints only: anything else (a string, a nested list)
         // takes the NumPy path, which reports it.
-        if item.is_instance_of::<PyFloat>() || item.is_instance_of::<PyInt>() {
+        // (bool is an int subclass; it takes the NumPy path, which refuses it.)
+        if item.is_instance_of::<PyFloat>()
+            || (item.is_instance_of::<PyInt>() && !item.is_instance_of::<PyBool>())
+        {
             if let Ok(value) = item.extract::<f64>() {
                 out.push(value);
                 return true;

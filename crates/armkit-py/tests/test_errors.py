@@ -96,3 +96,18 @@ def test_unreachable_target_is_a_status_not_an_exception():
     Q, converged = ROBOT.ik_batch(np.stack([T, far]), time_budget=None, max_restarts=20)
     assert converged.tolist() == [True, False]
     ROBOT.check_limits(Q[1])
+
+
+@pytest.mark.parametrize(
+    "call, what",
+    [
+        (lambda ur5: ur5.fk(np.zeros(6) + 1j), "complex"),
+        (lambda ur5: ur5.jacobian(np.zeros(6, dtype=complex)), "complex"),
+        (lambda ur5: ur5.fk(np.zeros(6, dtype=bool)), "bool"),
+        (lambda ur5: ur5.fk([True, False, 0.0, 0.0, 0.0, 0.0]), "bool"),
+    ],
+)
+def test_complex_and_bool_arrays_are_refused(call, what):
+    ur5 = armkit.Robot.builtin("ur5")
+    with pytest.raises(TypeError, match=f"got a {what} array"):
+        call(ur5)
