@@ -111,3 +111,14 @@ def test_complex_and_bool_arrays_are_refused(call, what):
     ur5 = armkit.Robot.builtin("ur5")
     with pytest.raises(TypeError, match=f"got a {what} array"):
         call(ur5)
+
+
+def test_a_ten_billion_value_request_is_refused_quickly():
+    import time
+
+    ur5 = armkit.Robot.builtin("ur5")
+    huge = np.broadcast_to(np.zeros(6), (4_000_000_000, 6))  # 2.4e10 values, no memory
+    start = time.monotonic()
+    with pytest.raises(MemoryError, match="would hold 24000000000 values"):
+        ur5.fk(huge)
+    assert time.monotonic() - start < 1.0
