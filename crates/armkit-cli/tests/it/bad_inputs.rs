@@ -1965,6 +1965,38 @@ const CASES: &[Case] = &[
         ],
         1,
     ),
+    case(
+        "ik",
+        "sweep too long to list",
+        &[
+            "ik",
+            "--robot",
+            "panda",
+            "--pose",
+            "0.4,0.1,0.5,pi,0,0",
+            "--solver",
+            "analytic",
+            "--sweep",
+            "100000000",
+        ],
+        1,
+    ),
+    case(
+        "ik",
+        "held joint with a numeric solver (it would be ignored)",
+        &[
+            "ik",
+            "--robot",
+            "panda",
+            "--pose",
+            "0.4,0.1,0.5,pi,0,0",
+            "--solver",
+            "lm",
+            "--fixed-joint",
+            "3",
+        ],
+        1,
+    ),
 ];
 
 fn repository_root() -> PathBuf {

@@ -59,6 +59,9 @@ impl SolverArg {
     }
 }
 
+/// Largest `--sweep` accepted: the parameter values of one run.
+pub const MAX_SWEEP: usize = 100_000;
+
 /// Largest `--budget-ms` accepted: one hour per solve, ms.
 pub const MAX_BUDGET_MS: f64 = 3.6e6;
 
@@ -120,7 +123,8 @@ pub struct RedundancyArgs {
     #[arg(long, value_name = "VALUE", allow_hyphen_values = true)]
     pub parameter: Option<f64>,
     /// Sweep the parameter over N values (the elbow angle's circle, or the
-    /// held joint's range) and list the solutions of all of them.
+    /// held joint's range) and list the solutions of all of them; N in
+    /// 1..=100000.
     #[arg(long, value_name = "N")]
     pub sweep: Option<usize>,
     /// How the analytic solver solves 6R arms without a closed form:
@@ -216,6 +220,17 @@ pub fn run(args: &IkArgs) -> CliResult<Outcome> {
         None => model.neutral_configuration(),
     };
     let options = args.tolerances.options(args.solver.method())?;
+    let redundancy = &args.redundancy;
+    if args.solver != SolverArg::Analytic
+        && (redundancy.fixed_joint.is_some()
+            || redundancy.parameter.is_some()
+            || redundancy.sweep.is_some())
+    {
+        return Err(CliError(format!(
+            "--fixed-joint / --parameter / --sweep: only with --solver analytic (the {} solver does not take them)",
+            args.solver.name()
+        )));
+    }
     match args.solver {
         SolverArg::Analytic => analytic::run(args, &model, &target, &start, options),
         SolverArg::Auto => {
