@@ -1997,6 +1997,12 @@ const CASES: &[Case] = &[
         ],
         1,
     ),
+    case(
+        "redundancy",
+        "every joint locked",
+        &["redundancy", "--robot", "panda", "--lock", "1,2,3,4,5,6,7"],
+        1,
+    ),
 ];
 
 fn repository_root() -> PathBuf {
