@@ -2003,6 +2003,19 @@ const CASES: &[Case] = &[
         &["redundancy", "--robot", "panda", "--lock", "1,2,3,4,5,6,7"],
         1,
     ),
+    case(
+        "beam",
+        "more samples than a sweep takes",
+        &[
+            "beam",
+            "error-along-beam",
+            "--samples",
+            "100000000000",
+            "--out",
+            "beam-out",
+        ],
+        1,
+    ),
 ];
 
 fn repository_root() -> PathBuf {
