@@ -109,7 +109,10 @@ impl SpaceRobot {
         if !(dt.is_finite() && dt > 0.0 && dt <= MAX_STEP_SECONDS) {
             return Err::<_, Error>(Error::invalid_argument(
                 "dt",
-                format!("must be > 0 and <= {MAX_STEP_SECONDS} s, got {dt:e} s"),
+                format!(
+                    "must be > 0 and <= {MAX_STEP_SECONDS} s, got {} s",
+                    armkit::error::brief(dt)
+                ),
             ))
             .or_raise();
         }

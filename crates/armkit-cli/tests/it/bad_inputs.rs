@@ -2016,6 +2016,20 @@ const CASES: &[Case] = &[
         ],
         1,
     ),
+    case(
+        "mpc",
+        "sample time beyond a minute",
+        &[
+            "mpc",
+            "--robot",
+            "ur5",
+            "--target",
+            "0.4,0.1,0.5,0,0,0",
+            "--dt",
+            "1e300",
+        ],
+        1,
+    ),
 ];
 
 fn repository_root() -> PathBuf {
