@@ -266,7 +266,17 @@ pub fn format_rows(rows: &[Vec<f64>]) -> String {
         .map(|row| {
             let cells: Vec<String> = row
                 .iter()
-                .map(|v| format!("{:>11.6}", clean_zero(*v)))
+                .map(|v| {
+                    // A value of 11 characters or more (-100 and beyond)
+                    // fills its column: a space keeps it from running into
+                    // the one before.
+                    let cell = format!("{:>11.6}", clean_zero(*v));
+                    if cell.starts_with(' ') {
+                        cell
+                    } else {
+                        format!(" {cell}")
+                    }
+                })
                 .collect();
             format!("  [{} ]", cells.join(""))
         })
@@ -343,6 +353,15 @@ mod tests {
         assert_eq!(
             parse_fixed_numbers("1,2", "--pose", 6).unwrap_err().0,
             "--pose: expected 6 values, got 2"
+        );
+    }
+
+    #[test]
+    fn wide_numbers_stay_apart_in_a_row() {
+        let text = format_rows(&[vec![225.974494, -636.429721, -1234567.0, 1.0]]);
+        assert_eq!(
+            text,
+            "  [ 225.974494 -636.429721 -1234567.000000   1.000000 ]"
         );
     }
 }

@@ -6,10 +6,10 @@ use armkit::math::{Matrix4, Matrix6xX, Pose};
 use armkit::Error;
 use numpy::ndarray::Dimension;
 use numpy::{PyArray, PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArrayMethods};
-use pyo3::exceptions::PyValueError;
+use pyo3::exceptions::{PyMemoryError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
-use pyo3::types::{PyFloat, PyInt, PyList, PyTuple};
+use pyo3::types::{PyBool, PyFloat, PyInt, PyList, PyTuple};
 
 use crate::errors::OrRaise;
 
@@ -27,7 +27,29 @@ pub fn float_array<'py>(
     }
     let py = obj.py();
     let asarray = ASARRAY.import(py, "numpy", "asarray")?;
-    let converted = asarray.call1((obj, "float64")).map_err(|e| {
+    // NumPy casts complex to float with only a ComplexWarning (dropping the
+    // imaginary part) and bool to 0/1: both would be silent wrong answers.
+    let native = asarray.call1((obj,)).map_err(|e| {
+        PyValueError::new_err(format!(
+            "{what}: expected an array of numbers: {}",
+            e.value(py)
+        ))
+    })?;
+    let kind: String = native.getattr("dtype")?.getattr("kind")?.extract()?;
+    match kind.as_str() {
+        "c" => {
+            return Err(PyTypeError::new_err(format!(
+                "{what}: expected real numbers, got a complex array"
+            )));
+        }
+        "b" => {
+            return Err(PyTypeError::new_err(format!(
+                "{what}: expected numbers, got a bool array"
+            )));
+        }
+        _ => {}
+    }
+    let converted = asarray.call1((native, "float64")).map_err(|e| {
         PyValueError::new_err(format!(
             "{what}: expected an array of numbers: {}",
             e.value(py)
@@ -47,7 +69,10 @@ pub fn read_flat_sequence(obj: &Bound<'_, PyAny>, out: &mut Vec<f64>) -> bool {
     let read = |item: Bound<'_, PyAny>, out: &mut Vec<f64>| {
         // Floats and ints only: anything else (a string, a nested list)
         // takes the NumPy path, which reports it.
-        if item.is_instance_of::<PyFloat>() || item.is_instance_of::<PyInt>() {
+        // (bool is an int subclass; it takes the NumPy path, which refuses it.)
+        if item.is_instance_of::<PyFloat>()
+            || (item.is_instance_of::<PyInt>() && !item.is_instance_of::<PyBool>())
+        {
             if let Ok(value) = item.extract::<f64>() {
                 out.push(value);
                 return true;
@@ -119,7 +144,8 @@ impl<'py> RowMajor<'py> {
                 return Ok(RowMajor::Borrowed(readonly));
             }
         }
-        let mut values = Vec::with_capacity(array.len());
+        let mut values = Vec::new();
+        reserve_values(&mut values, array.len(), "the input's copy")?;
         copy_values(array, &mut values);
         Ok(RowMajor::Copied(values))
     }
@@ -133,6 +159,31 @@ impl<'py> RowMajor<'py> {
     }
 }
 
+/// Most float64 values one result or input copy may hold: 2^31 (16 GiB), so
+/// that a request beyond it is a MemoryError before any work, not an abort
+/// of the interpreter when the allocation fails.
+pub const MAX_RESULT_ELEMENTS: usize = 1 << 31;
+
+/// The MemoryError for `what` of `elements` float64 values, with the size it
+/// would need.
+fn too_large(what: &str, elements: usize) -> PyErr {
+    PyMemoryError::new_err(format!(
+        "{what} would hold {elements} values ({:.3e} bytes), more than the {MAX_RESULT_ELEMENTS} allowed",
+        elements as f64 * 8.0
+    ))
+}
+
+/// Reserves room for `elements` values in `values`, fallibly: a MemoryError
+/// naming `what` above [`MAX_RESULT_ELEMENTS`] or when the allocation fails.
+pub fn reserve_values(values: &mut Vec<f64>, elements: usize, what: &str) -> PyResult<()> {
+    if elements > MAX_RESULT_ELEMENTS {
+        return Err(too_large(what, elements));
+    }
+    values
+        .try_reserve_exact(elements)
+        .map_err(|_| too_large(what, elements))
+}
+
 /// A new C-ordered float64 array of shape `dims`, filled by `fill` with its
 /// values in row-major order (`fill` may release the GIL: it gets a plain slice).
 pub fn new_array<'py, D: Dimension>(
@@ -140,6 +191,15 @@ pub fn new_array<'py, D: Dimension>(
     dims: D,
     fill: impl FnOnce(&mut [f64]) -> PyResult<()>,
 ) -> PyResult<Bound<'py, PyArray<f64, D>>> {
+    let elements = dims.size_checked().filter(|&n| n <= MAX_RESULT_ELEMENTS);
+    if elements.is_none() {
+        return Err(too_large(
+            "the result",
+            dims.slice()
+                .iter()
+                .fold(1, |n: usize, &d| n.saturating_mul(d)),
+        ));
+    }
     let array = PyArray::<f64, D>::zeros(py, dims, false);
     {
         // SAFETY: the array is new (no other view of it exists) and C-contiguous.

@@ -7,6 +7,7 @@ use armkit::mpc::{
 };
 use armkit::Error;
 use numpy::ndarray::Dim;
+use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -22,6 +23,15 @@ use crate::robot::Robot;
 pub struct MpcPlanner {
     planner: LibraryPlanner,
     options: MpcOptions,
+    target: Target,
+}
+
+/// Whether `set_target` has been called: `step` before it would track the
+/// library's placeholder target (the neutral pose) and report "solved".
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Target {
+    Unset,
+    Set,
 }
 
 #[pymethods]
@@ -85,7 +95,11 @@ impl MpcPlanner {
             ..MpcOptions::default()
         };
         let planner = LibraryPlanner::new(&robot.model, options.clone()).or_raise()?;
-        Ok(MpcPlanner { planner, options })
+        Ok(MpcPlanner {
+            planner,
+            options,
+            target: Target::Unset,
+        })
     }
 
     /// The QP backend's name.
@@ -98,10 +112,13 @@ impl MpcPlanner {
     #[allow(non_snake_case)]
     fn set_target(&mut self, T: &Bound<'_, PyAny>) -> PyResult<()> {
         let target = pose_argument(T, "T")?;
-        self.planner.set_target(&target).or_raise()
+        self.planner.set_target(&target).or_raise()?;
+        self.target = Target::Set;
+        Ok(())
     }
 
-    /// One planner step at measured joint positions `q` (dof,). Returns a
+    /// One planner step at measured joint positions `q` (dof,), after
+    /// `set_target` (ValueError before it). Returns a
     /// dict: `status` (`"solved"`, `"clamped"`, `"recovering"` or
     /// `"stopped"`), `velocity` (dof,) to apply for one sample (rad/s or
     /// m/s), `position_error` (m), `orientation_error` (rad),
@@ -111,6 +128,11 @@ impl MpcPlanner {
         py: Python<'py>,
         q: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, PyDict>> {
+        if self.target == Target::Unset {
+            return Err(PyValueError::new_err(
+                "MpcPlanner.step: no target; call set_target(T) first",
+            ));
+        }
         let q = vector_argument(q, "joint_positions", self.planner.model().dof())?;
         let report = self.planner.step(&q).or_raise()?;
         let out = PyDict::new(py);

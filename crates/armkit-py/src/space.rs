@@ -16,6 +16,10 @@ use crate::arrays::{
 };
 use crate::errors::OrRaise;
 
+/// Longest `SpaceRobot.step` interval, s: the joint rates are held over one
+/// step, so a longer interval is a trajectory, not a step.
+const MAX_STEP_SECONDS: f64 = 1.0;
+
 fn base_mode(name: &str) -> armkit::Result<BaseMode> {
     match name {
         "attitude-held" | "attitude_held" => Ok(BaseMode::AttitudeHeld),
@@ -87,8 +91,8 @@ impl SpaceRobot {
         })
     }
 
-    /// Integrates the system for `joint_rates` (dof,) held over `dt` s from
-    /// (`base`, `q`). Returns the new `(base (4, 4), q (dof,))`.
+    /// Integrates the system for `joint_rates` (dof,) held over `dt` s
+    /// (0 < `dt` <= 1 s) from (`base`, `q`). Returns the new `(base (4, 4), q (dof,))`.
     #[pyo3(signature = (q, joint_rates, dt, base=None, mode="attitude-held"))]
     #[allow(clippy::type_complexity)]
     fn step<'py>(
@@ -100,6 +104,18 @@ impl SpaceRobot {
         base: Option<&Bound<'py, PyAny>>,
         mode: &str,
     ) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyArray1<f64>>)> {
+        // One step is one integration interval: a zero step does nothing and a
+        // step beyond the bound is no longer a step of this integrator.
+        if !(dt.is_finite() && dt > 0.0 && dt <= MAX_STEP_SECONDS) {
+            return Err::<_, Error>(Error::invalid_argument(
+                "dt",
+                format!(
+                    "must be > 0 and <= {MAX_STEP_SECONDS} s, got {} s",
+                    armkit::error::brief(dt)
+                ),
+            ))
+            .or_raise();
+        }
         let dof = self.model.dof();
         let q = vector_argument(q, "joint_positions", dof)?;
         let rates = vector_argument(joint_rates, "joint_rates", dof)?;

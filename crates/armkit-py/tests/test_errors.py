@@ -96,3 +96,29 @@ def test_unreachable_target_is_a_status_not_an_exception():
     Q, converged = ROBOT.ik_batch(np.stack([T, far]), time_budget=None, max_restarts=20)
     assert converged.tolist() == [True, False]
     ROBOT.check_limits(Q[1])
+
+
+@pytest.mark.parametrize(
+    "call, what",
+    [
+        (lambda ur5: ur5.fk(np.zeros(6) + 1j), "complex"),
+        (lambda ur5: ur5.jacobian(np.zeros(6, dtype=complex)), "complex"),
+        (lambda ur5: ur5.fk(np.zeros(6, dtype=bool)), "bool"),
+        (lambda ur5: ur5.fk([True, False, 0.0, 0.0, 0.0, 0.0]), "bool"),
+    ],
+)
+def test_complex_and_bool_arrays_are_refused(call, what):
+    ur5 = armkit.Robot.builtin("ur5")
+    with pytest.raises(TypeError, match=f"got a {what} array"):
+        call(ur5)
+
+
+def test_a_ten_billion_value_request_is_refused_quickly():
+    import time
+
+    ur5 = armkit.Robot.builtin("ur5")
+    huge = np.broadcast_to(np.zeros(6), (4_000_000_000, 6))  # 2.4e10 values, no memory
+    start = time.monotonic()
+    with pytest.raises(MemoryError, match="would hold 24000000000 values"):
+        ur5.fk(huge)
+    assert time.monotonic() - start < 1.0

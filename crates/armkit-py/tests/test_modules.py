@@ -137,6 +137,8 @@ def test_mpc_reaches_the_target_within_the_limits():
     np.testing.assert_allclose(panda.fk(run["q"][-1])[:3, 3], target[:3, 3], atol=1e-4)
     assert run["q"].shape == (len(run["time"]), 7)
     # Stepping by hand: integrate the commanded velocities (the plant).
+    with pytest.raises(ValueError, match=re.escape("MpcPlanner.step: no target; call set_target(T) first")):
+        planner.step(q)
     planner.set_target(target)
     for _ in range(100):
         step = planner.step(q)
@@ -184,6 +186,9 @@ def test_space_robot_base_reacts_as_its_mode_says():
     assert np.abs(base[:3, :3] - np.eye(3)).max() > 1e-9  # the base turned
     J = space.generalized_jacobian(q)
     assert J.shape == (6, 6)
+    for dt, shown in [(0.0, "0"), (-0.01, "-0.01"), (1e300, "1e300"), (float("nan"), "NaN")]:
+        with pytest.raises(ValueError, match=re.escape(f"invalid argument `dt`: must be > 0 and <= 1 s, got {shown} s")):
+            space.step(q, rates, dt)
     with pytest.raises(ValueError, match=re.escape('invalid argument `mode`: expected "attitude-held" or "free-floating", got "fixed"')):
         space.generalized_jacobian(q, mode="fixed")
 

@@ -154,6 +154,17 @@ pub fn check_finite(what: &'static str, values: &[f64]) -> Result<()> {
     }
 }
 
+/// `value` as a message prints it: plain between 1e-4 and 1e6 (and 0, NaN,
+/// infinities), in exponent form outside (`1e300`, not 301 digits).
+pub fn brief(value: f64) -> String {
+    let size = value.abs();
+    if value != 0.0 && size.is_finite() && !(1e-4..1e6).contains(&size) {
+        format!("{value:e}")
+    } else {
+        format!("{value}")
+    }
+}
+
 /// Checks that `value` is finite and > 0; the error names the argument:
 /// ``invalid argument `name`: must be finite and > 0, got -1``.
 pub fn check_positive(name: &str, value: f64) -> Result<()> {

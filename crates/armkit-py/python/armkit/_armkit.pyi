@@ -382,7 +382,7 @@ class SpaceRobot:
         self, q: _ArrayLike, joint_rates: _ArrayLike, dt: float, base: Optional[_ArrayLike] = None,
         mode: Literal["attitude-held", "free-floating"] = "attitude-held",
     ) -> Tuple[_FloatArray, _FloatArray]:
-        """Integrates ``joint_rates`` held over ``dt`` s: the new (base (4, 4), q (dof,))."""
+        """Integrates ``joint_rates`` held over ``dt`` s (0 < dt <= 1): the new (base (4, 4), q (dof,))."""
 
 dynamics: ModuleType
 redundancy: ModuleType

@@ -91,7 +91,9 @@ mod solver;
 mod timing;
 
 pub use clarabel_qp::{ClarabelAccuracy, ClarabelQp};
-pub use options::{GoalPostureOptions, MpcOptions, ReachAid, TaskWeights, VelocityWeights};
+pub use options::{
+    GoalPostureOptions, MpcOptions, ReachAid, TaskWeights, VelocityWeights, MAX_SAMPLE_TIME,
+};
 #[cfg(feature = "osqp")]
 pub use osqp_qp::OsqpQp;
 pub use outcome::{diagnose_run, RunStatus};

@@ -83,6 +83,11 @@ impl Default for TaskWeights {
     }
 }
 
+/// Longest sample time accepted, s: one sample holds a joint velocity
+/// constant, and beyond a minute the prediction's squared terms (`T^2` in
+/// the QP's Hessian) leave the range the solvers are tuned for.
+pub const MAX_SAMPLE_TIME: f64 = 60.0;
+
 /// Options of the [`super::MpcPlanner`], with seed 000's defaults.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MpcOptions {
@@ -91,7 +96,8 @@ pub struct MpcOptions {
     /// Control horizon `M`, `1 <= M <= N`: increments after `M` are zero.
     /// Default 1 (seed 000).
     pub control_horizon: usize,
-    /// Sample time `T`, s (> 0). Default [`DEFAULT_SAMPLE_TIME`].
+    /// Sample time `T`, s, in (0, [`MAX_SAMPLE_TIME`]]. Default
+    /// [`DEFAULT_SAMPLE_TIME`].
     pub sample_time: f64,
     /// Task-space weights `Q` (eq 20). Default: full pose, 10 and 200.
     pub task_weights: TaskWeights,
@@ -143,10 +149,16 @@ impl MpcOptions {
     /// [`crate::mpc::MpcPlanner::new`]).
     pub fn validate(&self) -> Result<()> {
         prediction::check_horizons(self.horizon, self.control_horizon)?;
-        if !(self.sample_time.is_finite() && self.sample_time > 0.0) {
+        if !(self.sample_time.is_finite()
+            && self.sample_time > 0.0
+            && self.sample_time <= MAX_SAMPLE_TIME)
+        {
             return Err(Error::invalid_argument(
                 "sample_time",
-                format!("must be finite and > 0 s, got {}", self.sample_time),
+                format!(
+                    "must be > 0 and <= {MAX_SAMPLE_TIME} s, got {} s",
+                    crate::error::brief(self.sample_time)
+                ),
             ));
         }
         self.task_weights.validate()?;

@@ -60,7 +60,7 @@ pub struct LoadArgs {
 pub struct BeamStudyArgs {
     #[command(flatten)]
     pub load: LoadArgs,
-    /// Number of carriage positions in the rigid-model error sweep (>= 2).
+    /// Number of carriage positions in the rigid-model error sweep (2..=100000).
     #[arg(long, default_value_t = 51)]
     pub samples: usize,
 }
@@ -83,7 +83,7 @@ pub struct ErrorAlongBeamArgs {
     pub out: PathBuf,
     #[command(flatten)]
     pub load: LoadArgs,
-    /// Number of carriage positions over d2's range (>= 2).
+    /// Number of carriage positions over d2's range (2..=100000).
     #[arg(long, default_value_t = 51)]
     pub samples: usize,
     /// gantry9 joint positions (9 values; d2 is swept). Default: mid-range.

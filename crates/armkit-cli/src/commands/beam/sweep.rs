@@ -17,14 +17,18 @@ pub struct ErrorSample {
     pub(super) two_arm_deflection: f64,
 }
 
+/// Most carriage positions one sweep takes (each is a kinematics solve and
+/// a row of the CSV and the figure).
+pub const MAX_SAMPLES: usize = 100_000;
+
 pub(super) fn error_along_beam(
     load: LoadArgs,
     count: usize,
     q_text: Option<&str>,
 ) -> CliResult<Vec<ErrorSample>> {
-    if count < 2 {
+    if !(2..=MAX_SAMPLES).contains(&count) {
         return Err(CliError(format!(
-            "--samples: expected at least 2, got {count}"
+            "--samples: expected 2..={MAX_SAMPLES}, got {count}"
         )));
     }
     let beam = SimplySupportedBeam::seed000();

@@ -7,7 +7,7 @@ use armkit::math::Pose;
 use armkit::Model;
 
 use super::report::{errors, fit_json, format_q, outcome};
-use super::{failure_reason, IkArgs, RedundancyArgs};
+use super::{failure_reason, IkArgs, RedundancyArgs, MAX_SWEEP};
 use crate::common::{print_json, CliError, CliResult, Outcome};
 
 /// The analytic route of `model` (the library's [`AnalyticRoute`]) after
@@ -39,8 +39,10 @@ pub(super) fn route(
             )));
         }
     }
-    if redundancy.sweep == Some(0) {
-        return Err(CliError("--sweep: must be >= 1".into()));
+    if let Some(n) = redundancy.sweep.filter(|&n| n == 0 || n > MAX_SWEEP) {
+        return Err(CliError(format!(
+            "--sweep: must be in 1..={MAX_SWEEP}, got {n}"
+        )));
     }
     let choice = analytic::Redundancy {
         fixed_joint: redundancy.fixed_joint.map(|joint| joint - 1),

@@ -59,6 +59,12 @@ impl SolverArg {
     }
 }
 
+/// Largest `--sweep` accepted: the parameter values of one run.
+pub const MAX_SWEEP: usize = 100_000;
+
+/// Largest `--budget-ms` accepted: one hour per solve, ms.
+pub const MAX_BUDGET_MS: f64 = 3.6e6;
+
 /// Tolerances shared by `ik` and `bench-ik`.
 #[derive(Args, Debug)]
 pub struct ToleranceArgs {
@@ -68,7 +74,7 @@ pub struct ToleranceArgs {
     /// Orientation tolerance, rad.
     #[arg(long, default_value_t = 1e-6)]
     pub orientation_tolerance: f64,
-    /// Time budget per solve, ms.
+    /// Time budget per solve, ms, in (0, 3.6e6] (one hour).
     #[arg(long, default_value_t = 5.0)]
     pub budget_ms: f64,
     /// Seed of the solver's random restarts.
@@ -78,17 +84,23 @@ pub struct ToleranceArgs {
 
 impl ToleranceArgs {
     fn options(&self, method: IkMethod) -> CliResult<IkOptions> {
-        if !(self.budget_ms.is_finite() && self.budget_ms > 0.0) {
-            return Err(CliError(format!(
-                "--budget-ms: must be > 0, got {}",
-                self.budget_ms
-            )));
-        }
+        // One hour bounds a single solve; the checked conversion keeps a
+        // value Duration cannot hold an error rather than a panic.
+        let budget =
+            (self.budget_ms.is_finite() && self.budget_ms > 0.0 && self.budget_ms <= MAX_BUDGET_MS)
+                .then(|| Duration::try_from_secs_f64(self.budget_ms * 1e-3).ok())
+                .flatten()
+                .ok_or_else(|| {
+                    CliError(format!(
+                        "--budget-ms: must be > 0 and <= {MAX_BUDGET_MS:e} ms (one hour), got {:e}",
+                        self.budget_ms
+                    ))
+                })?;
         let options = IkOptions {
             method,
             position_tolerance: self.position_tolerance,
             orientation_tolerance: self.orientation_tolerance,
-            time_budget: Some(Duration::from_secs_f64(self.budget_ms * 1e-3)),
+            time_budget: Some(budget),
             seed: self.seed,
             ..IkOptions::default()
         };
@@ -111,7 +123,8 @@ pub struct RedundancyArgs {
     #[arg(long, value_name = "VALUE", allow_hyphen_values = true)]
     pub parameter: Option<f64>,
     /// Sweep the parameter over N values (the elbow angle's circle, or the
-    /// held joint's range) and list the solutions of all of them.
+    /// held joint's range) and list the solutions of all of them; N in
+    /// 1..=100000.
     #[arg(long, value_name = "N")]
     pub sweep: Option<usize>,
     /// How the analytic solver solves 6R arms without a closed form:
@@ -207,6 +220,17 @@ pub fn run(args: &IkArgs) -> CliResult<Outcome> {
         None => model.neutral_configuration(),
     };
     let options = args.tolerances.options(args.solver.method())?;
+    let redundancy = &args.redundancy;
+    if args.solver != SolverArg::Analytic
+        && (redundancy.fixed_joint.is_some()
+            || redundancy.parameter.is_some()
+            || redundancy.sweep.is_some())
+    {
+        return Err(CliError(format!(
+            "--fixed-joint / --parameter / --sweep: only with --solver analytic (the {} solver does not take them)",
+            args.solver.name()
+        )));
+    }
     match args.solver {
         SolverArg::Analytic => analytic::run(args, &model, &target, &start, options),
         SolverArg::Auto => {

@@ -3,7 +3,7 @@
 //! scenario's `[mpc]` table without `example`.
 
 use armkit::mpc::scenario::SimulationOptions;
-use armkit::mpc::{MpcOptions, MpcPlanner, TaskWeights, VelocityWeights};
+use armkit::mpc::{MpcOptions, MpcPlanner, TaskWeights, VelocityWeights, MAX_SAMPLE_TIME};
 
 use super::MpcArgs;
 use crate::common::{
@@ -57,6 +57,12 @@ pub(crate) fn target_setup(args: &MpcArgs) -> CliResult<TargetSetup> {
         Some(text) => Some(parse_fixed_numbers(text, "--priorities", model.dof())?),
         None => None,
     };
+    if !(args.dt.is_finite() && args.dt > 0.0 && args.dt <= MAX_SAMPLE_TIME) {
+        return Err(CliError(format!(
+            "--dt: must be > 0 and <= {MAX_SAMPLE_TIME} s, got {} s",
+            armkit::error::brief(args.dt)
+        )));
+    }
     let mut options = MpcOptions {
         horizon: args.horizon,
         sample_time: args.dt,

@@ -303,7 +303,7 @@ fn parse_joint_list(text: &str, dof: usize) -> CliResult<Vec<usize>> {
     if text.trim().eq_ignore_ascii_case("none") {
         return Ok(Vec::new());
     }
-    parse_numbers(text, "--lock")?
+    let locked = parse_numbers(text, "--lock")?
         .into_iter()
         .map(|v| {
             if v.fract() == 0.0 && v >= 1.0 && v <= dof as f64 {
@@ -314,5 +314,17 @@ fn parse_joint_list(text: &str, dof: usize) -> CliResult<Vec<usize>> {
                 )))
             }
         })
-        .collect()
+        .collect::<CliResult<Vec<usize>>>()?;
+    // The move is a 6-D pose change: fewer than six free joints cannot
+    // follow it, and a run of them would only stop at its first step.
+    let mut distinct = locked.clone();
+    distinct.sort_unstable();
+    distinct.dedup();
+    let free = dof - distinct.len();
+    if free < 6 {
+        return Err(CliError(format!(
+            "--lock: leaves {free} of {dof} joints free; the pose move needs at least 6"
+        )));
+    }
+    Ok(locked)
 }

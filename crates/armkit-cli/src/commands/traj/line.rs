@@ -333,7 +333,7 @@ pub(super) fn run_line(args: &LineArgs) -> CliResult<Outcome> {
     report_summary(&summary, args.output.json)?;
     torques.print(args.output.json);
     Ok(if report.status == PathStatus::ToleranceMet {
-        Outcome::Success
+        torques.outcome()
     } else {
         Outcome::NotConverged
     })

@@ -141,5 +141,5 @@ fn run_joint(args: &JointArgs) -> CliResult<Outcome> {
     summary["files"] = serde_json::json!(files);
     report_summary(&summary, args.output.json)?;
     torques.print(args.output.json);
-    Ok(Outcome::Success)
+    Ok(torques.outcome())
 }

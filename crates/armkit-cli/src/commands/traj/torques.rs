@@ -11,7 +11,7 @@ use armkit::Model;
 use clap::Args;
 
 use super::output::OutputArgs;
-use crate::common::{parse_fixed_numbers, CliResult};
+use crate::common::{parse_fixed_numbers, CliResult, Outcome};
 use crate::plot::Figure;
 
 /// The torque options of `armkit traj joint`.
@@ -35,6 +35,8 @@ pub struct TorqueArgs {
 pub struct TorqueSummary {
     json: serde_json::Value,
     text: Vec<String>,
+    /// The limits asked for are not met (exit 3), and why.
+    unmet: Option<String>,
 }
 
 impl TorqueSummary {
@@ -43,12 +45,26 @@ impl TorqueSummary {
         self.json.clone()
     }
 
-    /// Prints the text lines (nothing in JSON mode: the summary holds them).
+    /// Prints the text lines (nothing in JSON mode: the summary holds them),
+    /// and on stderr why the limits are not met when they are not.
     pub fn print(&self, json: bool) {
         if !json {
             for line in &self.text {
                 println!("{line}");
             }
+        }
+        if let Some(reason) = &self.unmet {
+            eprintln!("{reason}");
+        }
+    }
+
+    /// Success, or not converged (exit 3) when `--fit-torque-limits` could
+    /// not meet the limits.
+    pub fn outcome(&self) -> Outcome {
+        if self.unmet.is_some() {
+            Outcome::NotConverged
+        } else {
+            Outcome::Success
         }
     }
 }
@@ -132,7 +148,18 @@ fn describe(report: &TorqueReport, factor: Option<f64>) -> TorqueSummary {
                 .into(),
         );
     }
+    // A fit promises limits met; a plain `--torques` check reports peaks.
+    let unmet = match report.status {
+        TorqueStatus::GravityExceedsLimits => Some(
+            "torque limits not met: gravity alone exceeds a limit on this path, no timing can meet it"
+                .to_string(),
+        ),
+        TorqueStatus::ExceedsLimits => Some("torque limits not met: a joint exceeds its limit".to_string()),
+        _ => None,
+    }
+    .filter(|_| factor.is_some());
     TorqueSummary {
+        unmet,
         json: serde_json::json!({
             "status": report.status.as_str(),
             "time_scaling_factor": factor,
