@@ -28,7 +28,11 @@ pub fn float_array<'py>(
     let py = obj.py();
     let asarray = ASARRAY.import(py, "numpy", "asarray")?;
     // NumPy casts complex to float with only a ComplexWarning (dropping the
-    // imaginary part) and bool to 0/1: both would be silent wrong answers.
+    // imaginary part) and bool to 0/1, also a bool beside floats in a list:
+    // silent wrong answers.
+    if holds_bool(obj, 0) {
+        return Err(bool_error(what));
+    }
     let native = asarray.call1((obj,)).map_err(|e| {
         PyValueError::new_err(format!(
             "{what}: expected an array of numbers: {}",
@@ -42,22 +46,50 @@ pub fn float_array<'py>(
                 "{what}: expected real numbers, got a complex array"
             )));
         }
-        "b" => {
-            return Err(PyTypeError::new_err(format!(
-                "{what}: expected numbers, got a bool array"
-            )));
-        }
+        "b" => return Err(bool_error(what)),
         _ => {}
     }
-    let converted = asarray.call1((native, "float64")).map_err(|e| {
-        PyValueError::new_err(format!(
-            "{what}: expected an array of numbers: {}",
-            e.value(py)
-        ))
-    })?;
+    // On failure, convert `obj` itself again for NumPy's message about the
+    // user's value ('abc', not np.str_('abc')).
+    let converted = asarray
+        .call1((native, "float64"))
+        .or_else(|_| asarray.call1((obj, "float64")))
+        .map_err(|e| {
+            PyValueError::new_err(format!(
+                "{what}: expected an array of numbers: {}",
+                e.value(py)
+            ))
+        })?;
     converted
         .cast_into::<PyArrayDyn<f64>>()
         .map_err(|_| PyValueError::new_err(format!("{what}: expected an array of numbers")))
+}
+
+/// The TypeError for a bool where numbers are expected.
+fn bool_error(what: &str) -> PyErr {
+    PyTypeError::new_err(format!("{what}: expected numbers, got a bool array"))
+}
+
+/// Deepest list nesting [`holds_bool`] looks into: NumPy's own limit on
+/// dimensions, beyond which the conversion fails anyway.
+const MAX_NESTING: usize = 64;
+
+/// True when `obj` is a bool or a list or tuple holding one, at any depth up
+/// to [`MAX_NESTING`].
+fn holds_bool(obj: &Bound<'_, PyAny>, depth: usize) -> bool {
+    if obj.is_instance_of::<PyBool>() {
+        return true;
+    }
+    if depth >= MAX_NESTING {
+        return false;
+    }
+    if let Ok(list) = obj.cast::<PyList>() {
+        list.iter().any(|item| holds_bool(&item, depth + 1))
+    } else if let Ok(tuple) = obj.cast::<PyTuple>() {
+        tuple.iter().any(|item| holds_bool(&item, depth + 1))
+    } else {
+        false
+    }
 }
 
 /// Reads a flat list or tuple of numbers into `out` without going through
