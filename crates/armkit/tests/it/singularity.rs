@@ -977,7 +977,9 @@ fn the_separation_step_damps_only_the_smallest_wrist_reciprocal() {
 /// are damped.
 #[test]
 fn the_separation_step_on_space6r_decouples_the_wrist() {
-    use armkit::ik::{damped_least_squares_step, separated_damped_reciprocal_step, DampedReciprocal};
+    use armkit::ik::{
+        damped_least_squares_step, separated_damped_reciprocal_step, DampedReciprocal,
+    };
     use armkit::math::Vector6;
     let arm = armkit::robots::space6r().unwrap();
     let mut data = Data::new(&arm);
@@ -986,7 +988,9 @@ fn the_separation_step_on_space6r_decouples_the_wrist() {
     let (mut exact, mut separated) = ([0.0; 6], [0.0; 6]);
     for (q5, damped) in [(0.9, false), (1e-3, true)] {
         let q = [0.4, 1.2, -0.5, 0.6, q5, -0.3];
-        let j = jacobian(&arm, &mut data, &q, JacobianFrame::World).unwrap().clone();
+        let j = jacobian(&arm, &mut data, &q, JacobianFrame::World)
+            .unwrap()
+            .clone();
         damped_least_squares_step(&j, &twist, 0.0, &mut exact).unwrap();
         let sigma = separated_damped_reciprocal_step(&j, &twist, &damping, &mut separated).unwrap();
         assert_eq!(sigma < damping.threshold, damped, "sigma {sigma}");
@@ -1001,10 +1005,16 @@ fn the_separation_step_on_space6r_decouples_the_wrist() {
             separated[3..].iter().fold(0.0f64, |m, r| m.max(r.abs())),
         );
         if damped {
-            assert!(wrist_separated < 0.1 * wrist_exact, "{exact:?} vs {separated:?}");
+            assert!(
+                wrist_separated < 0.1 * wrist_exact,
+                "{exact:?} vs {separated:?}"
+            );
         } else {
             for i in 3..6 {
-                assert!((exact[i] - separated[i]).abs() <= 1e-9, "{exact:?} vs {separated:?}");
+                assert!(
+                    (exact[i] - separated[i]).abs() <= 1e-9,
+                    "{exact:?} vs {separated:?}"
+                );
             }
         }
     }
@@ -1069,7 +1079,10 @@ fn the_study_rows_on_joints_eps_dq_runge_and_the_reference_method() {
     // and the verdict is whether it shrinks at every step.
     assert_eq!(outcome.eps_sweep.len(), study.joint_step_sweep.len());
     let lengths: Vec<f64> = outcome.eps_sweep.iter().map(|r| r.region_length).collect();
-    assert!(lengths.windows(2).all(|w| w[1] <= w[0] + 1e-9), "{lengths:?}");
+    assert!(
+        lengths.windows(2).all(|w| w[1] <= w[0] + 1e-9),
+        "{lengths:?}"
+    );
     let shrinking = verdict("the larger eps_dq");
     assert_eq!(
         shrinking.status == FindingStatus::Reproduced,
@@ -1104,13 +1117,11 @@ fn the_study_rows_on_joints_eps_dq_runge_and_the_reference_method() {
     let nodes: Vec<f64> = samples.iter().map(|&i| (i - samples[0]) as f64).collect();
     let (mut polynomial, mut fit) = (0.0f64, 0.0f64);
     for j in 0..6 {
-        let values: Vec<f64> = samples
-            .iter()
-            .map(|&i| run.joint_positions[j][i])
-            .collect();
+        let values: Vec<f64> = samples.iter().map(|&i| run.joint_positions[j][i]).collect();
         for i in samples[0]..*samples.last().unwrap() {
             let x = (i - samples[0]) as f64 + 0.5;
-            polynomial = polynomial.max((interpolating_polynomial_rate(&nodes, &values, x) / h).abs());
+            polynomial =
+                polynomial.max((interpolating_polynomial_rate(&nodes, &values, x) / h).abs());
             fit = fit.max(run.joint_rates[j][i].abs());
         }
     }
@@ -1125,7 +1136,11 @@ fn the_study_rows_on_joints_eps_dq_runge_and_the_reference_method() {
     let reference = verdict("comparator: separation");
     let damped = verdict("comparator: DLS and SRI");
     let no_worse = |other: fn(&armkit::study::MissLine) -> &armkit::singularity::MethodSummary| {
-        outcome.sweep.lines.iter().all(|l| l.avoidance_errs_no_more_than(other(l)))
+        outcome
+            .sweep
+            .lines
+            .iter()
+            .all(|l| l.avoidance_errs_no_more_than(other(l)))
     };
     assert_eq!(
         reference.status == FindingStatus::Reproduced,

@@ -31,7 +31,11 @@ pub(super) fn figures(study: &Study) -> Vec<(String, Figure)> {
         ("joint_rates_sri", &c.singularity_robust),
     ]
     .into_iter()
-    .chain(c.separation.iter().map(|run| ("joint_rates_separation", run)));
+    .chain(
+        c.separation
+            .iter()
+            .map(|run| ("joint_rates_separation", run)),
+    );
     for (stem, run) in runs {
         let mut figure = Figure::new(
             format!(

@@ -47,8 +47,12 @@ impl AvoidanceStudy {
         let Some(&k) = self.ks.first() else {
             return Ok(Vec::new());
         };
-        let line =
-            crate::singularity::line_through(&manipulator, &self.through, &self.direction, self.miss)?;
+        let line = crate::singularity::line_through(
+            &manipulator,
+            &self.through,
+            &self.direction,
+            self.miss,
+        )?;
         let task = line.task(self.duration, self.acceleration_time);
         let placed = super::place(manipulator, &line);
         let mut rows = Vec::with_capacity(self.joint_step_sweep.len());
@@ -120,10 +124,12 @@ pub fn interpolating_polynomial_rate(nodes: &[f64], values: &[f64], x: f64) -> f
     let n = nodes.len();
     let logs: Vec<(f64, f64)> = (0..n)
         .map(|j| {
-            (0..n).filter(|&k| k != j).fold((0.0, 1.0), |(log, sign), k| {
-                let d = nodes[j] - nodes[k];
-                (log - d.abs().ln(), sign * d.signum())
-            })
+            (0..n)
+                .filter(|&k| k != j)
+                .fold((0.0, 1.0), |(log, sign), k| {
+                    let d = nodes[j] - nodes[k];
+                    (log - d.abs().ln(), sign * d.signum())
+                })
         })
         .collect();
     let top = logs.iter().fold(f64::NEG_INFINITY, |m, l| m.max(l.0));
@@ -190,9 +196,9 @@ impl AvoidanceOutcome {
             .eps_sweep
             .iter()
             .map(|r| {
-                let span = r.region.map_or("no region".into(), |(a, b)| {
-                    format!("{a:.2} to {b:.2} s")
-                });
+                let span = r
+                    .region
+                    .map_or("no region".into(), |(a, b)| format!("{a:.2} to {b:.2} s"));
                 format!(
                     "{:.4} | {:.3e} | {span} | {:.2} s",
                     r.joint_step_threshold, r.determinant_threshold, r.region_length
@@ -207,7 +213,10 @@ impl AvoidanceOutcome {
         let lengths: Vec<f64> = self.eps_sweep.iter().map(|r| r.region_length).collect();
         let strictly = lengths.windows(2).all(|w| w[1] < w[0]);
         let never_grows = lengths.windows(2).all(|w| w[1] <= w[0] + 1e-9);
-        let shrinks = lengths.first().zip(lengths.last()).is_some_and(|(a, b)| b < a);
+        let shrinks = lengths
+            .first()
+            .zip(lengths.last())
+            .is_some_and(|(a, b)| b < a);
         let status = if strictly {
             FindingStatus::Reproduced
         } else if never_grows && shrinks {
