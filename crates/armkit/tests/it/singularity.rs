@@ -996,7 +996,9 @@ fn the_separation_step_on_space6r_decouples_the_wrist() {
         assert_eq!(sigma < damping.threshold, damped, "sigma {sigma}");
         for i in 0..3 {
             assert!(
-                (exact[i] - separated[i]).abs() <= 1e-9 * exact[i].abs().max(1.0),
+                // The exact inverse at q5 = 1e-3 carries cond(J) ~ 1e4 times
+                // the rounding error.
+                (exact[i] - separated[i]).abs() <= 1e-7 * exact[i].abs().max(1.0),
                 "q5 = {q5}: arm joint {i}: {exact:?} vs {separated:?}"
             );
         }
@@ -1104,11 +1106,8 @@ fn the_study_rows_on_joints_eps_dq_runge_and_the_reference_method() {
         avoidance.regions.last().unwrap().end_time,
     );
     assert_eq!(own.region, Some(span));
-    // Runge: the polynomial through the largest k's knots against its run.
-    let (k, run) = (
-        *study.ks.last().unwrap(),
-        outcome.comparison.k_sweep.last().unwrap(),
-    );
+    // Runge: the polynomial through the first k's knots against its run.
+    let (k, run) = (study.ks[0], &outcome.comparison.k_sweep[0]);
     let samples: Vec<usize> = run.regions[0]
         .knot_times
         .iter()
@@ -1130,6 +1129,11 @@ fn the_study_rows_on_joints_eps_dq_runge_and_the_reference_method() {
     assert!(runge.measured.contains(&row), "{row}: {runge}");
     if polynomial >= 10.0 * fit {
         assert_eq!(runge.status, FindingStatus::Reproduced, "{runge}");
+    }
+    if runge.status == FindingStatus::Reproduced {
+        assert!(
+            runge.measured.contains("Runge shown for k = ") && !runge.measured.contains("k = none")
+        );
     }
     // Conclusion 1: one finding per comparator, each naming it; the
     // reference [9] run on every line of the sweep.
