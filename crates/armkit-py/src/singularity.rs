@@ -2,12 +2,12 @@
 //! classification of a configuration, and seed 004's tracking of a pose
 //! line through a singularity (plain, avoidance, DLS, SRI) on a fixed base.
 
-use armkit::ik::{ChiaveriniFilter, NakamuraDamping};
+use armkit::ik::{ChiaveriniFilter, DampedReciprocal, NakamuraDamping};
 use armkit::kinematics::{jacobian, Data, JacobianFrame};
 use armkit::singularity::{
     classify as library_classify, jacobian_determinant, line_through as library_line_through,
     AvoidanceOptions, ClassifyOptions, DetectionOptions, LineTask, Manipulator, Method,
-    PathTracker, RegionPlan,
+    PathTracker, RegionPlan, SEPARATION,
 };
 use armkit::study::FITTED_DETERMINANT_THRESHOLD;
 use armkit::tracking::TrackingOptions;
@@ -67,10 +67,11 @@ fn tracking_method(name: &str, k: usize, max_rate: f64) -> armkit::Result<Method
             max_rate,
         }),
         "sri" => Ok(Method::SingularityRobust(ChiaveriniFilter::default())),
+        SEPARATION => Ok(Method::SeparatedDampedReciprocal(DampedReciprocal::default())),
         other => Err(armkit::Error::invalid_argument(
             "method",
             format!(
-                "expected \"plain\", \"avoidance\", \"dls\", \"dls_clamped\" or \"sri\", got \"{other}\""
+                "expected \"plain\", \"avoidance\", \"dls\", \"dls_clamped\", \"sri\" or \"{SEPARATION}\", got \"{other}\""
             ),
         )),
     }
@@ -127,8 +128,9 @@ pub fn line_through<'py>(
 /// with `method`: `"plain"` (J^-1), `"avoidance"` (seed 004: NR knots every
 /// `k`-th pose of the singular region, joined by a C2 cubic), `"dls"`,
 /// `"dls_clamped"` (DLS with its rates scaled so that none exceeds
-/// `max_rate` rad/s: the damped baseline at the arm's speed limit) or
-/// `"sri"`. `region_plan`: how the avoidance chooses a region's knots when
+/// `max_rate` rad/s: the damped baseline at the arm's speed limit), `"sri"`
+/// or `"separation"` (singularity separation with a damped reciprocal, seed
+/// 004's reference [9]; 6-joint arms). `region_plan`: how the avoidance chooses a region's knots when
 /// the arm cannot reach them exactly, `"joint"` (all knots together, the
 /// default) or `"greedy"` (knot by knot). The region is entered when |det J| < `determinant_threshold`
 /// (m^3 for a 6R arm) or a plain joint step exceeds `joint_step_threshold`

@@ -254,3 +254,17 @@ def test_near_miss_lines_joint_region_plan_and_clamped_dls():
         singularity.track_line(arm, q_start, goal, region_plan="together")
     with pytest.raises(ValueError, match="max_rate"):
         singularity.track_line(arm, q_start, goal, method="dls_clamped", max_rate=0.0)
+
+
+def test_the_reference_method_separation_by_name():
+    # Seed 004's reference [9]: singularity separation with a damped
+    # reciprocal, selected by name; it crosses the wrist singularity with
+    # bounded rates where plain tracking blows up, and refuses other names.
+    arm = armkit.Robot.builtin("space6r")
+    q_start, goal = singularity.line_through(arm, [0.4, 1.2, -0.5, 0.6, 0.0, -0.3], [0.5, -0.3, 0.4, 0.0, 0.8, 0.0])
+    plain = singularity.track_line(arm, q_start, goal, method="plain")
+    separation = singularity.track_line(arm, q_start, goal, method="separation")
+    assert separation["status"] == "completed"
+    assert separation["peak_joint_rate"] < plain["peak_joint_rate"]
+    with pytest.raises(ValueError, match="separation"):
+        singularity.track_line(arm, q_start, goal, method="separated")

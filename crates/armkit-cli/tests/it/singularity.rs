@@ -66,6 +66,7 @@ fn default_json_matches_the_library_on_the_held_space6r() {
             "avoidance k=1",
             "dls",
             "sri",
+            "separation",
             "avoidance k=5",
             "avoidance k=10"
         ]
@@ -209,6 +210,7 @@ fn the_table_csv_svg_and_report_agree() {
             "avoidance k=1",
             "dls",
             "sri",
+            "separation",
             "avoidance k=5",
             "avoidance k=10"
         ]
@@ -339,7 +341,14 @@ fn fixed_base_and_options_are_used() {
         .collect();
     assert_eq!(
         labels,
-        ["plain", "avoidance k=2", "dls", "sri", "avoidance k=4"]
+        [
+            "plain",
+            "avoidance k=2",
+            "dls",
+            "sri",
+            "separation",
+            "avoidance k=4"
+        ]
     );
     let plain = method(&value, "plain")["peak_joint_rate"].as_f64().unwrap();
     let avoidance = method(&value, "avoidance k=2")["peak_joint_rate"]

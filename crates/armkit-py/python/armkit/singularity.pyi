@@ -24,7 +24,7 @@ def line_through(
 
 def track_line(
     robot: Robot, q_start: npt.ArrayLike, T_goal: npt.ArrayLike,
-    method: Literal["plain", "avoidance", "dls", "dls_clamped", "sri"] = "avoidance", k: int = 5,
+    method: Literal["plain", "avoidance", "dls", "dls_clamped", "sri", "separation"] = "avoidance", k: int = 5,
     duration: float = 20.0, acceleration_time: float = 4.0, dt: float = 0.01,
     determinant_threshold: Optional[float] = None, joint_step_threshold: float = 0.005,
     max_rate: float = 0.5, region_plan: Literal["joint", "greedy"] = "joint",

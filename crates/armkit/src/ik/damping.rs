@@ -99,9 +99,68 @@ impl ChiaveriniFilter {
 
     /// The damping `lambda` applied to the smallest singular value `sigma_m`.
     pub fn damping(&self, smallest_singular_value: f64) -> f64 {
-        let ratio = smallest_singular_value.max(0.0) / self.threshold;
-        if ratio < 1.0 {
-            self.max_damping * (1.0 - ratio * ratio).sqrt()
+        variable_damping(self.threshold, self.max_damping, smallest_singular_value)
+    }
+}
+
+/// `lambda = lambda_max sqrt(1 - (sigma / epsilon)^2)` for `sigma < epsilon`,
+/// else 0: the variable damping of the smallest singular value shared by
+/// [`ChiaveriniFilter`] and [`DampedReciprocal`].
+fn variable_damping(threshold: f64, max_damping: f64, smallest_singular_value: f64) -> f64 {
+    let ratio = smallest_singular_value.max(0.0) / threshold;
+    if ratio < 1.0 {
+        max_damping * (1.0 - ratio * ratio).sqrt()
+    } else {
+        0.0
+    }
+}
+
+/// The damped reciprocal of the singularity-separation method (seed 004's
+/// reference [9], Xu Wenfu et al.): in the wrist block's inverse
+/// `V diag(1 / sigma_i) U'`, only the smallest singular value's reciprocal
+/// becomes `sigma_m / (sigma_m^2 + lambda^2)`, with
+/// `lambda = lambda_max sqrt(1 - (sigma_m / epsilon)^2)` while
+/// `sigma_m < epsilon` (0 above: the exact inverse). The other directions
+/// keep their exact reciprocals, so only the end effector's motion along the
+/// lost direction is sacrificed.
+///
+/// Singular values are those of the wrist block (rad/rad for a revolute
+/// wrist: dimensionless).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DampedReciprocal {
+    /// Width of the singular region, `epsilon` (> 0). Default 0.05.
+    pub threshold: f64,
+    /// Damping at `sigma_m = 0`, `lambda_max` (> 0). Default 0.05.
+    pub max_damping: f64,
+}
+
+impl Default for DampedReciprocal {
+    fn default() -> Self {
+        DampedReciprocal {
+            threshold: 0.05,
+            max_damping: 0.05,
+        }
+    }
+}
+
+impl DampedReciprocal {
+    /// Checks both parameters are finite and > 0.
+    pub fn validate(&self) -> Result<()> {
+        check_positive("DampedReciprocal.threshold", self.threshold)?;
+        check_positive("DampedReciprocal.max_damping", self.max_damping)
+    }
+
+    /// The damping `lambda` of the smallest singular value `sigma_m` (>= 0).
+    pub fn damping(&self, smallest_singular_value: f64) -> f64 {
+        variable_damping(self.threshold, self.max_damping, smallest_singular_value)
+    }
+
+    /// The damped reciprocal `sigma / (sigma^2 + lambda^2)` of a singular
+    /// value `sigma` whose damping is `lambda` (0 when both are 0).
+    pub fn reciprocal(sigma: f64, lambda: f64) -> f64 {
+        let denominator = sigma * sigma + lambda * lambda;
+        if denominator > 0.0 {
+            sigma / denominator
         } else {
             0.0
         }

@@ -58,14 +58,14 @@ use std::time::Duration;
 
 pub use crate::math::rotation_log;
 pub use auto::{AutoReport, AutoSolver, IkRoute, SWEEP_VALUES};
-pub use damping::{ChiaveriniFilter, LmDamping, NakamuraDamping};
+pub use damping::{ChiaveriniFilter, DampedReciprocal, LmDamping, NakamuraDamping};
 pub use numeric::IkSolver;
 pub use pose_error::{masked_error_norms, orientation_error, pose_error};
 pub use protocol::{benchmark_targets, random_configuration};
 pub use reach::{ReachBound, REACH_MARGIN};
 pub use steps::{
-    damped_least_squares_step, damped_pseudo_inverse, singularity_robust_inverse,
-    singularity_robust_step,
+    damped_least_squares_step, damped_pseudo_inverse, separated_damped_reciprocal_step,
+    singularity_robust_inverse, singularity_robust_step,
 };
 
 use crate::error::{check_positive, Error, Result};

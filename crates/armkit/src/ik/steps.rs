@@ -1,11 +1,12 @@
 //! The velocity-level pseudo-inverses the numeric methods are built from,
 //! usable on their own: damped least squares and Chiaverini's
-//! singularity-robust inverse, as one step or as a matrix.
+//! singularity-robust inverse, as one step or as a matrix, and the
+//! singularity separation with a damped reciprocal (one step).
 
-use super::damping::ChiaveriniFilter;
+use super::damping::{ChiaveriniFilter, DampedReciprocal};
 use super::kernel::Kernel;
 use crate::error::{check_finite, Error, Result};
-use crate::math::{DMatrix, Matrix6xX, Vector6};
+use crate::math::{DMatrix, Matrix3, Matrix6xX, Vector3, Vector6};
 
 fn check_step_arguments(
     jacobian: &Matrix6xX<f64>,
@@ -82,6 +83,105 @@ pub fn singularity_robust_step(
     let rhs = kernel.rhs(jacobian, twist);
     let (y, sigma_min) = kernel.solve_filtered(&a0, &rhs, |s| filter.damping(s), filter.filter);
     kernel.map_back(jacobian, &y, step);
+    Ok(sigma_min)
+}
+
+/// The singularity-separation step with a damped reciprocal (seed 004's
+/// reference [9], the comparator of its conclusion 1), for a 6-joint arm
+/// whose last three axes meet (a spherical wrist): writes `dq` into `step`
+/// and returns the smallest singular value of the wrist block.
+///
+/// The twist is moved to the wrist centre `c` (`v_c = v + w x (c - p_e)`),
+/// where the Jacobian is block triangular, `[A B; C D]` with `A` the arm's
+/// three columns' linear part, `B` the wrist's (zero on a fixed base: the
+/// wrist axes pass through `c`), `C`, `D` the angular parts. The wrist is
+/// solved first on the Schur complement `S = D - C A^-1 B` (`= D` when
+/// `B = 0`, [9]'s separation), `dq_w = S^+ (w - C A^-1 v_c)`, with the SVD
+/// `S = U diag(sigma) V'` and only the smallest singular value's reciprocal
+/// damped ([`DampedReciprocal`]); then the arm, `dq_a = A^-1 (v_c - B dq_w)`.
+/// The wrist centre is the point that the wrist columns move least (the
+/// least-squares solution of `z_i x (c - p_e) = -J_v,i`, i = 4, 5, 6): the
+/// axes' meeting point on a spherical wrist, read from the Jacobian alone.
+/// On an attitude-held base (`J*`) the wrist columns' linear part at `c` is
+/// the base's recoil, `B != 0`, which the Schur complement takes exactly.
+///
+/// `jacobian`: 6 x 6, rows `[vx, vy, vz, wx, wy, wz]` (world frame, at the
+/// end effector); `twist`: `[v; w]` in the same rows; `step`: 6 entries,
+/// rad/s (or rad per unit of the twist). Allocates nothing.
+///
+/// Errors: sizes (not 6 columns), non-finite input, bad damping parameters;
+/// `Error::Numerical` when the wrist axes are all parallel (no centre) or
+/// the arm block `A` is singular (an elbow or shoulder singularity, which
+/// the method does not treat).
+pub fn separated_damped_reciprocal_step(
+    jacobian: &Matrix6xX<f64>,
+    twist: &Vector6<f64>,
+    damping: &DampedReciprocal,
+    step: &mut [f64],
+) -> Result<f64> {
+    check_step_arguments(jacobian, twist, step.len())?;
+    damping.validate()?;
+    if jacobian.ncols() != 6 {
+        return Err(Error::DimensionMismatch {
+            what: "jacobian columns (singularity separation needs a 6-joint arm)",
+            expected: 6,
+            got: jacobian.ncols(),
+        });
+    }
+    let numerical = |reason: &str| Error::Numerical {
+        context: "singularity separation step".into(),
+        reason: reason.into(),
+    };
+    let linear = |i: usize| jacobian.fixed_view::<3, 1>(0, i).into_owned();
+    let angular = |i: usize| jacobian.fixed_view::<3, 1>(3, i).into_owned();
+    // Wrist centre offset r = c - p_e: sum_i (|z_i|^2 I - z_i z_i') r =
+    // sum_i z_i x J_v,i (normal equations of skew(z_i) r = -J_v,i).
+    let mut normal = Matrix3::zeros();
+    let mut rhs = Vector3::zeros();
+    for i in 3..6 {
+        let z = angular(i);
+        normal += Matrix3::identity() * z.norm_squared() - z * z.transpose();
+        rhs += z.cross(&linear(i));
+    }
+    let r = normal
+        .try_inverse()
+        .ok_or_else(|| numerical("the wrist axes are parallel: no wrist centre"))?
+        * rhs;
+    // Linear velocity of the wrist centre: v + w x r, column by column.
+    let shifted = |i: usize| linear(i) + angular(i).cross(&r);
+    let a = Matrix3::from_columns(&[shifted(0), shifted(1), shifted(2)]);
+    let b = Matrix3::from_columns(&[shifted(3), shifted(4), shifted(5)]);
+    let c = Matrix3::from_columns(&[angular(0), angular(1), angular(2)]);
+    let d = Matrix3::from_columns(&[angular(3), angular(4), angular(5)]);
+    let v = Vector3::new(twist[0], twist[1], twist[2]);
+    let w = Vector3::new(twist[3], twist[4], twist[5]);
+    let v_c = v + w.cross(&r);
+    let a_inverse = a
+        .try_inverse()
+        .ok_or_else(|| numerical("the arm block is singular (elbow or shoulder singularity)"))?;
+    let schur = d - c * a_inverse * b;
+    let wrist_twist = w - c * (a_inverse * v_c);
+    let svd = schur.svd(true, true);
+    let (Some(u), Some(v_t)) = (svd.u, svd.v_t) else {
+        return Err(numerical("the SVD of the wrist block did not converge"));
+    };
+    let sigma = svd.singular_values;
+    let smallest = sigma.imin();
+    let sigma_min = sigma[smallest];
+    let lambda = damping.damping(sigma_min);
+    let mut dq_w = Vector3::zeros();
+    for i in 0..3 {
+        let reciprocal = if i == smallest {
+            DampedReciprocal::reciprocal(sigma[i], lambda)
+        } else {
+            DampedReciprocal::reciprocal(sigma[i], 0.0)
+        };
+        let projection = u.column(i).dot(&wrist_twist);
+        dq_w += v_t.row(i).transpose() * (reciprocal * projection);
+    }
+    let dq_a = a_inverse * (v_c - b * dq_w);
+    step[..3].copy_from_slice(dq_a.as_slice());
+    step[3..].copy_from_slice(dq_w.as_slice());
     Ok(sigma_min)
 }
 

@@ -11,7 +11,9 @@ use super::method::{
 use super::plant::Plant;
 use super::Manipulator;
 use crate::error::{check_finite_vector, check_positive, Error, Result};
-use crate::ik::{damped_least_squares_step, singularity_robust_step};
+use crate::ik::{
+    damped_least_squares_step, separated_damped_reciprocal_step, singularity_robust_step,
+};
 use crate::math::Vector6;
 use crate::tracking::{track, RateLaw, RateOutcome, Step, TrackingStatus};
 use crate::trajectory::{CartesianTrajectory, JointState, LinePath, TimeLaw, Trajectory};
@@ -168,12 +170,23 @@ impl<'m> PathTracker<'m> {
         ))
     }
 
-    /// Errors: bad method parameters, and numerical failures of the model
+    /// Errors: bad method parameters, [`Method::SeparatedDampedReciprocal`]
+    /// on an arm without 6 joints, and numerical failures of the model
     /// evaluation. An exactly singular Jacobian under the plain method is a
     /// status ([`TrackingStatus::Singular`]).
     pub fn run(&self, method: &Method) -> Result<MethodRun> {
         method.validate()?;
         let n = self.manipulator.dof();
+        if matches!(method, Method::SeparatedDampedReciprocal(_)) && n != 6 {
+            return Err(Error::invalid_argument(
+                "method",
+                format!(
+                    "{} (singularity separation) needs a 6-joint arm with a spherical wrist, \
+                     this one has {n} joints",
+                    method.label()
+                ),
+            ));
+        }
         let mut plant = Plant::new(
             &self.manipulator,
             &self.task.start,
@@ -249,6 +262,9 @@ impl<'m> PathTracker<'m> {
             }
             Method::SingularityRobust(filter) => {
                 singularity_robust_step(j, twist, filter, rates).map(|_| ())
+            }
+            Method::SeparatedDampedReciprocal(damping) => {
+                separated_damped_reciprocal_step(j, twist, damping, rates).map(|_| ())
             }
         };
         outcome.is_ok() && rates.iter().all(|r| r.is_finite())

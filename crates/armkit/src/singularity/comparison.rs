@@ -1,16 +1,17 @@
 //! Comparing the methods on one path (seed 004, Table 1 and Figs 5-8):
-//! plain resolved rate, the avoidance for several `k`, and the two damped
-//! baselines, with a plain-text table.
+//! plain resolved rate, the avoidance for several `k`, and the three damped
+//! baselines (DLS, SRI and the paper's reference [9], singularity separation
+//! with a damped reciprocal), with a plain-text table.
 
 use super::avoidance::PathTracker;
 use super::detection::DetectionOptions;
 use super::method::{Method, MethodRun};
 use crate::error::{Error, Result};
-use crate::ik::{ChiaveriniFilter, NakamuraDamping};
+use crate::ik::{ChiaveriniFilter, DampedReciprocal, NakamuraDamping};
 
 impl PathTracker<'_> {
     /// Runs plain tracking, the avoidance method with `k` = `ks[0]`, the
-    /// two baselines, and the avoidance method for every `k` of `ks` (the
+    /// three baselines (the separation only on a 6-joint arm), and the avoidance method for every `k` of `ks` (the
     /// error against `k`, seed 004 Figs 7-8), all from the same start.
     ///
     /// Errors: an empty `ks`, a `k` of 0, bad baseline parameters, and the
@@ -27,6 +28,7 @@ impl PathTracker<'_> {
         }
         baselines.nakamura.validate()?;
         baselines.chiaverini.validate()?;
+        baselines.reciprocal.validate()?;
         let mut k_sweep = Vec::with_capacity(ks.len());
         for &k in ks {
             k_sweep.push(self.run(&Method::Avoidance { k })?);
@@ -43,25 +45,34 @@ impl PathTracker<'_> {
             avoidance,
             damped_least_squares: self.run(&Method::DampedLeastSquares(baselines.nakamura))?,
             singularity_robust: self.run(&Method::SingularityRobust(baselines.chiaverini))?,
+            separation: match self.manipulator().dof() {
+                6 => Some(self.run(&Method::SeparatedDampedReciprocal(baselines.reciprocal))?),
+                _ => None,
+            },
             k_sweep,
         })
     }
 }
 
-/// Parameters of the two baselines of [`PathTracker::compare`].
+/// Parameters of the three baselines of [`PathTracker::compare`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Baselines {
     /// Damped least squares with Nakamura's adaptive damping.
     pub nakamura: NakamuraDamping,
     /// Chiaverini's singularity-robust inverse.
     pub chiaverini: ChiaveriniFilter,
+    /// The damped reciprocal of the singularity separation (seed 004's
+    /// reference [9]).
+    pub reciprocal: DampedReciprocal,
 }
 
 impl Baselines {
     /// Baselines damping the same region as the detection: Nakamura's
     /// threshold `w_0` = the determinant threshold (`|det J|` is the
     /// manipulability of a square Jacobian), `lambda_0` = 0.05; Chiaverini's
-    /// defaults (`epsilon` = 0.05, `lambda_max` = 0.05, `beta` = 1e-4).
+    /// defaults (`epsilon` = 0.05, `lambda_max` = 0.05, `beta` = 1e-4); the
+    /// damped reciprocal's defaults (`epsilon` = 0.05, `lambda_max` = 0.05:
+    /// the same damping law as SRI's, on the wrist block alone).
     /// ([`NakamuraDamping::default`]'s threshold, 1e-3 m^3, would start
     /// damping only at a 4 times smaller `|det J|`, inside the region.)
     pub fn for_detection(detection: &DetectionOptions) -> Baselines {
@@ -71,6 +82,7 @@ impl Baselines {
                 max_damping: 0.05,
             },
             chiaverini: ChiaveriniFilter::default(),
+            reciprocal: DampedReciprocal::default(),
         }
     }
 }
@@ -86,23 +98,31 @@ pub struct Comparison {
     pub damped_least_squares: MethodRun,
     /// Singularity-robust inverse (Chiaverini).
     pub singularity_robust: MethodRun,
+    /// Singularity separation with a damped reciprocal (seed 004's
+    /// reference [9]); `None` on an arm without 6 joints.
+    pub separation: Option<MethodRun>,
     /// Seed 004's avoidance for each `k` given.
     pub k_sweep: Vec<MethodRun>,
 }
 
 impl Comparison {
-    /// The four methods of the table, in order: plain, avoidance, dls, sri.
-    pub fn methods(&self) -> [&MethodRun; 4] {
+    /// The methods of the table, in order: plain, avoidance, dls, sri,
+    /// then separation when it ran.
+    pub fn methods(&self) -> Vec<&MethodRun> {
         [
             &self.plain,
             &self.avoidance,
             &self.damped_least_squares,
             &self.singularity_robust,
         ]
+        .into_iter()
+        .chain(&self.separation)
+        .collect()
     }
 }
 
-/// A plain-text table: one row per run (plain, each `k`, DLS, SRI) with the
+/// A plain-text table: one row per run (plain, each `k`, DLS, SRI,
+/// separation) with the
 /// peak joint rate (rad/s), the maximum and final position (m) and
 /// orientation (rad) errors, the time in the singular region (s) and the IK
 /// solves; then one line per singular region of the avoidance runs.
@@ -122,7 +142,8 @@ impl std::fmt::Display for Comparison {
         )?;
         let rows = std::iter::once(&self.plain)
             .chain(&self.k_sweep)
-            .chain([&self.damped_least_squares, &self.singularity_robust]);
+            .chain([&self.damped_least_squares, &self.singularity_robust])
+            .chain(&self.separation);
         for run in rows {
             let s = &run.summary;
             writeln!(

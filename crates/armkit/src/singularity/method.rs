@@ -6,9 +6,12 @@
 use super::detection::{jacobian_determinant, DetectionOptions, Trigger};
 use super::region_plan::RegionPlan;
 use crate::error::{check_positive, Error, Result};
-use crate::ik::{ChiaveriniFilter, NakamuraDamping};
+use crate::ik::{ChiaveriniFilter, DampedReciprocal, NakamuraDamping};
 use crate::math::Pose;
 use crate::tracking::{RateOutcome, Recorder, SampleState, TrackingOptions, TrackingStatus};
+
+/// The label and name of [`Method::SeparatedDampedReciprocal`].
+pub const SEPARATION: &str = "separation";
 
 /// How the joint rates are obtained from the commanded end-effector twist.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -38,10 +41,18 @@ pub enum Method {
     },
     /// Chiaverini's singularity-robust inverse with numerical filtering.
     SingularityRobust(ChiaveriniFilter),
+    /// Singularity separation with a damped reciprocal, seed 004's
+    /// reference [9] (the comparator of its conclusion 1): the arm and
+    /// wrist blocks solved apart at the wrist centre, only the wrist block's
+    /// smallest singular value's reciprocal damped
+    /// ([`crate::ik::separated_damped_reciprocal_step`]). 6-joint arms with
+    /// a spherical wrist.
+    SeparatedDampedReciprocal(DampedReciprocal),
 }
 
 impl Method {
-    /// A short label: `plain`, `avoidance k=5`, `dls`, `dls clamped`, `sri`.
+    /// A short label: `plain`, `avoidance k=5`, `dls`, `dls clamped`, `sri`,
+    /// `separation` (the name it is selected by, too).
     pub fn label(&self) -> String {
         match self {
             Method::Plain => "plain".into(),
@@ -49,6 +60,7 @@ impl Method {
             Method::DampedLeastSquares(_) => "dls".into(),
             Method::ClampedDampedLeastSquares { .. } => "dls clamped".into(),
             Method::SingularityRobust(_) => "sri".into(),
+            Method::SeparatedDampedReciprocal(_) => SEPARATION.into(),
         }
     }
 
@@ -73,6 +85,7 @@ impl Method {
                 check_positive("max_rate", *max_rate)
             }
             Method::SingularityRobust(f) => f.validate(),
+            Method::SeparatedDampedReciprocal(d) => d.validate(),
         }
     }
 }

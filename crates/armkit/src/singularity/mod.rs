@@ -26,6 +26,10 @@
 //!   [`Method::SingularityRobust`] (Chiaverini's filtered inverse): the
 //!   baselines, over the whole path; [`Method::ClampedDampedLeastSquares`]
 //!   is DLS held to a joint speed bound.
+//! * [`Method::SeparatedDampedReciprocal`]: seed 004's reference [9], the
+//!   comparator its conclusion 1 names: the arm and wrist blocks solved
+//!   apart at the wrist centre, only the wrist block's smallest singular
+//!   value's reciprocal damped (6-joint arms with a spherical wrist).
 //!
 //! [`PathTracker::compare`] runs them all from the same start and a sweep of
 //! `k` (Figs 7-8); each [`MethodRun`] records, per sample, the time, joint
@@ -172,7 +176,7 @@ pub use ellipsoid::{manipulability_ellipsoid, Ellipsoid, JacobianPart};
 pub use gap::SingularGap;
 pub use method::{
     calibrate_determinant_threshold, AvoidanceOptions, LineTask, Method, MethodRun, MethodSummary,
-    SingularRegion,
+    SingularRegion, SEPARATION,
 };
 pub use region_plan::RegionPlan;
 pub use scenario::{line_through, seed004_path, LineThrough, SEED004_DIRECTION, SEED004_THROUGH};

@@ -12,7 +12,7 @@
 //! | [`MpcExampleStudy`] | 000, sec 4.4 | the MPC examples on the flexible gantry |
 //! | [`DistributionStudy`] | 001 (+ 000's priorities) | one motion distributed four ways, energy measure eq 9 |
 //! | [`ContinuousPathStudy`] | 002, sec 3 | a line by the continuous-path method, Fig 6's segmentation, the paper's variants, torques |
-//! | [`AvoidanceStudy`] | 004, sec 2 | singularity avoidance vs plain, DLS, SRI (Table 1, Figs 5-8) |
+//! | [`AvoidanceStudy`] | 004, sec 2 | singularity avoidance vs plain, DLS, SRI, separation [9] (Table 1, Figs 5-8) |
 //! | [`SpaceRobotStudy`] | 004, sec 1 | the free-floating space robot: momenta, centre of mass, `J*` |
 //!
 //! ```
@@ -35,8 +35,8 @@ mod mpc_examples;
 mod space_robot;
 
 pub use avoidance::{
-    AvoidanceOutcome, AvoidanceStudy, MissLine, MissSweep, ThresholdRule,
-    FITTED_DETERMINANT_THRESHOLD, SEED004_MISS_SWEEP,
+    interpolating_polynomial_rate, AvoidanceOutcome, AvoidanceStudy, EpsRegion, MissLine,
+    MissSweep, ThresholdRule, FITTED_DETERMINANT_THRESHOLD, SEED004_EPS_SWEEP, SEED004_MISS_SWEEP,
 };
 pub use beam_table::{
     BeamTableStudy, Table1Row, TABLE1_ROUNDING, TABLE1_SIMULATION, TABLE1_SPAN_GRID,

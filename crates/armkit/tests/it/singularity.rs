@@ -924,3 +924,239 @@ fn a_near_miss_planned_jointly_errs_the_floor() {
     let bad = tracker.singular_gap(4, 0.0, &SEED004_THROUGH, 10.0, f64::NAN);
     assert!(error_message(bad).contains("window"));
 }
+
+/// Seed 004's reference [9] (singularity separation with a damped
+/// reciprocal) on a Jacobian whose step is worked by hand: arm block
+/// `A = 2 I`, wrist linear block 0 (the wrist centre is the end effector),
+/// `C` with one entry, wrist block `D = diag(1, 0.5, 0.01)`.
+#[test]
+fn the_separation_step_damps_only_the_smallest_wrist_reciprocal() {
+    use armkit::ik::{separated_damped_reciprocal_step, DampedReciprocal};
+    use armkit::math::{Matrix6xX, Vector6};
+    let mut j = Matrix6xX::<f64>::zeros(6);
+    for i in 0..3 {
+        j[(i, i)] = 2.0;
+    }
+    j[(3, 0)] = 1.0;
+    j[(3, 3)] = 1.0;
+    j[(4, 4)] = 0.5;
+    j[(5, 5)] = 0.01;
+    let twist = Vector6::new(0.2, 0.4, -0.6, 1.0, 0.5, 0.02);
+    let mut dq = [0.0; 6];
+    let damping = DampedReciprocal::default(); // epsilon 0.05, lambda_max 0.05
+    let sigma = separated_damped_reciprocal_step(&j, &twist, &damping, &mut dq).unwrap();
+    // Arm: dq_a = v / 2. Wrist: w - C dq_a = (0.9, 0.5, 0.02); sigma = 0.01
+    // < 0.05, lambda^2 = 0.05^2 (1 - 0.2^2) = 0.0024, reciprocal
+    // 0.01 / (0.0001 + 0.0024) = 4 (the exact one: 100); the other two exact.
+    let by_hand = [0.1, 0.2, -0.3, 0.9, 1.0, 0.08];
+    assert!((sigma - 0.01).abs() < 1e-15, "{sigma}");
+    for (got, want) in dq.iter().zip(by_hand) {
+        assert!((got - want).abs() < 1e-12, "{dq:?} vs {by_hand:?}");
+    }
+    // Errors name what is wrong.
+    let narrow = Matrix6xX::<f64>::zeros(5);
+    let mut five = [0.0; 5];
+    let message = separated_damped_reciprocal_step(&narrow, &twist, &damping, &mut five)
+        .unwrap_err()
+        .to_string();
+    assert!(message.contains("6"), "{message}");
+    let bad = DampedReciprocal {
+        threshold: 0.0,
+        ..damping
+    };
+    let message = separated_damped_reciprocal_step(&j, &twist, &bad, &mut dq)
+        .unwrap_err()
+        .to_string();
+    assert!(message.contains("DampedReciprocal.threshold"), "{message}");
+}
+
+/// On space6r (tool offset: the end effector is not the wrist centre) the
+/// separation finds the wrist centre from the Jacobian: at a regular pose it
+/// is the exact inverse; near the wrist singularity its arm joints keep the
+/// exact inverse's rates (the wrist block decoupled) while the wrist rates
+/// are damped.
+#[test]
+fn the_separation_step_on_space6r_decouples_the_wrist() {
+    use armkit::ik::{
+        damped_least_squares_step, separated_damped_reciprocal_step, DampedReciprocal,
+    };
+    use armkit::math::Vector6;
+    let arm = armkit::robots::space6r().unwrap();
+    let mut data = Data::new(&arm);
+    let twist = Vector6::new(0.05, -0.02, 0.03, 0.1, -0.2, 0.15);
+    let damping = DampedReciprocal::default();
+    let (mut exact, mut separated) = ([0.0; 6], [0.0; 6]);
+    for (q5, damped) in [(0.9, false), (1e-3, true)] {
+        let q = [0.4, 1.2, -0.5, 0.6, q5, -0.3];
+        let j = jacobian(&arm, &mut data, &q, JacobianFrame::World)
+            .unwrap()
+            .clone();
+        damped_least_squares_step(&j, &twist, 0.0, &mut exact).unwrap();
+        let sigma = separated_damped_reciprocal_step(&j, &twist, &damping, &mut separated).unwrap();
+        assert_eq!(sigma < damping.threshold, damped, "sigma {sigma}");
+        for i in 0..3 {
+            assert!(
+                // The exact inverse at q5 = 1e-3 carries cond(J) ~ 1e4 times
+                // the rounding error.
+                (exact[i] - separated[i]).abs() <= 1e-7 * exact[i].abs().max(1.0),
+                "q5 = {q5}: arm joint {i}: {exact:?} vs {separated:?}"
+            );
+        }
+        let (wrist_exact, wrist_separated) = (
+            exact[3..].iter().fold(0.0f64, |m, r| m.max(r.abs())),
+            separated[3..].iter().fold(0.0f64, |m, r| m.max(r.abs())),
+        );
+        if damped {
+            assert!(
+                wrist_separated < 0.1 * wrist_exact,
+                "{exact:?} vs {separated:?}"
+            );
+        } else {
+            for i in 3..6 {
+                assert!(
+                    (exact[i] - separated[i]).abs() <= 1e-9,
+                    "{exact:?} vs {separated:?}"
+                );
+            }
+        }
+    }
+}
+
+/// Seed 004's rows on the joints, the eps_dq sweep, eq 30's polynomial and
+/// the reference-[9] comparator: each verdict against the figures
+/// recomputed here from the runs.
+#[test]
+fn the_study_rows_on_joints_eps_dq_runge_and_the_reference_method() {
+    use armkit::study::{interpolating_polynomial_rate, AvoidanceStudy, FindingStatus};
+    let arm = armkit::robots::space6r().unwrap();
+    let study = AvoidanceStudy {
+        base: armkit::singularity::BaseKind::Fixed,
+        miss_sweep: vec![0.0, 0.003],
+        ..AvoidanceStudy::default()
+    };
+    let outcome = study.compare(Manipulator::FixedBase(&arm)).unwrap();
+    let findings = outcome.findings();
+    let verdict = |claim: &str| {
+        findings
+            .iter()
+            .find(|f| f.claim.contains(claim))
+            .unwrap_or_else(|| panic!("no finding on {claim}: {findings:#?}"))
+    };
+    let eps = outcome.options.detection.joint_step_threshold;
+    let h = outcome.options.tracking.dt;
+    // Jumping joints: plain's steps above eps_dq, joint by joint.
+    let plain = &outcome.comparison.plain;
+    let jumping: Vec<usize> = (0..6)
+        .filter(|&j| plain.joint_rates[j].iter().any(|r| (r * h).abs() > eps))
+        .collect();
+    let jumps = verdict("the joints that jump");
+    assert_eq!(
+        jumps.status == FindingStatus::Reproduced,
+        jumping == [3, 5],
+        "{jumps}"
+    );
+    // Joints 1 to 3: the largest period-to-period change of their rates
+    // inside the region against anywhere else.
+    let avoidance = &outcome.comparison.avoidance;
+    let unaffected = (0..3).all(|j| {
+        let rates = &avoidance.joint_rates[j];
+        let (mut inside, mut outside) = (0.0f64, 0.0f64);
+        for i in 0..rates.len() - 2 {
+            let change = (rates[i + 1] - rates[i]).abs();
+            if avoidance.in_region[i] || avoidance.in_region[i + 1] {
+                inside = inside.max(change);
+            } else {
+                outside = outside.max(change);
+            }
+        }
+        inside <= 2.0 * outside
+    });
+    let joints = verdict("joints 1 to 3 are unaffected");
+    assert_eq!(
+        joints.status == FindingStatus::Reproduced,
+        unaffected,
+        "{joints}"
+    );
+    // eps_dq sweep: one row per value; the region never grows (invariant),
+    // and the verdict is whether it shrinks at every step.
+    assert_eq!(outcome.eps_sweep.len(), study.joint_step_sweep.len());
+    let lengths: Vec<f64> = outcome.eps_sweep.iter().map(|r| r.region_length).collect();
+    assert!(
+        lengths.windows(2).all(|w| w[1] <= w[0] + 1e-9),
+        "{lengths:?}"
+    );
+    let shrinking = verdict("the larger eps_dq");
+    assert_eq!(
+        shrinking.status == FindingStatus::Reproduced,
+        lengths.windows(2).all(|w| w[1] < w[0]),
+        "{shrinking}"
+    );
+    assert!(outcome
+        .checks()
+        .iter()
+        .any(|c| c.is_invariant() && c.name.contains("eps_dq")));
+    // The row of the default eps_dq is the study's own run.
+    let own = outcome
+        .eps_sweep
+        .iter()
+        .find(|r| r.joint_step_threshold == eps)
+        .unwrap();
+    let span = (
+        avoidance.regions[0].start_time,
+        avoidance.regions.last().unwrap().end_time,
+    );
+    assert_eq!(own.region, Some(span));
+    // Runge: the polynomial through the first k's knots against its run.
+    let (k, run) = (study.ks[0], &outcome.comparison.k_sweep[0]);
+    let samples: Vec<usize> = run.regions[0]
+        .knot_times
+        .iter()
+        .map(|t| (t / h).round() as usize)
+        .collect();
+    let nodes: Vec<f64> = samples.iter().map(|&i| (i - samples[0]) as f64).collect();
+    let (mut polynomial, mut fit) = (0.0f64, 0.0f64);
+    for j in 0..6 {
+        let values: Vec<f64> = samples.iter().map(|&i| run.joint_positions[j][i]).collect();
+        for i in samples[0]..*samples.last().unwrap() {
+            let x = (i - samples[0]) as f64 + 0.5;
+            polynomial =
+                polynomial.max((interpolating_polynomial_rate(&nodes, &values, x) / h).abs());
+            fit = fit.max(run.joint_rates[j][i].abs());
+        }
+    }
+    let runge = verdict("Runge");
+    let row = format!("{k} | {} | {polynomial:.3e} | {fit:.3e}", samples.len());
+    assert!(runge.measured.contains(&row), "{row}: {runge}");
+    if polynomial >= 10.0 * fit {
+        assert_eq!(runge.status, FindingStatus::Reproduced, "{runge}");
+    }
+    if runge.status == FindingStatus::Reproduced {
+        assert!(
+            runge.measured.contains("Runge shown for k = ") && !runge.measured.contains("k = none")
+        );
+    }
+    // Conclusion 1: one finding per comparator, each naming it; the
+    // reference [9] run on every line of the sweep.
+    let reference = verdict("comparator: separation");
+    let damped = verdict("comparator: DLS and SRI");
+    let no_worse = |other: fn(&armkit::study::MissLine) -> &armkit::singularity::MethodSummary| {
+        outcome
+            .sweep
+            .lines
+            .iter()
+            .all(|l| l.avoidance_errs_no_more_than(other(l)))
+    };
+    assert_eq!(
+        reference.status == FindingStatus::Reproduced,
+        no_worse(|l| &l.separation),
+        "{reference}"
+    );
+    assert_eq!(
+        damped.status == FindingStatus::Reproduced,
+        no_worse(|l| &l.damped_least_squares) && no_worse(|l| &l.singularity_robust),
+        "{damped}"
+    );
+    let separation = outcome.comparison.separation.as_ref().unwrap();
+    assert_eq!(separation.method.label(), "separation");
+    assert_eq!(separation.status, TrackingStatus::Completed);
+}

@@ -24,12 +24,19 @@ pub(super) fn figures(study: &Study) -> Vec<(String, Figure)> {
     let arm = study.plant.arm();
     let threshold = study.outcome.options.detection.determinant_threshold;
     let mut figures = Vec::new();
-    for (stem, run) in [
+    let runs = [
         ("joint_rates_plain", &c.plain),
         ("joint_rates_avoidance", &c.avoidance),
         ("joint_rates_dls", &c.damped_least_squares),
         ("joint_rates_sri", &c.singularity_robust),
-    ] {
+    ]
+    .into_iter()
+    .chain(
+        c.separation
+            .iter()
+            .map(|run| ("joint_rates_separation", run)),
+    );
+    for (stem, run) in runs {
         let mut figure = Figure::new(
             format!(
                 "{}: joint rates ({}, {})",

@@ -2,8 +2,9 @@
 //! singularity, tracked four ways: plain resolved rate, seed 004's avoidance
 //! (detection of the singular region, Newton-Raphson IK every k-th planned
 //! pose, C2 cubic fit), damped least squares (Nakamura) and the
-//! singularity-robust inverse (Chiaverini); and the avoidance for several k
-//! (the error against k, seed 004 Figs 7-8).
+//! singularity-robust inverse (Chiaverini), singularity separation with a
+//! damped reciprocal (the paper's reference [9]); and the avoidance for
+//! several k (the error against k, seed 004 Figs 7-8).
 //!
 //! The command prints a table per method (peak joint rate, maximum and final
 //! tracking error, time in the singular region, IK solves) and the singular
@@ -38,7 +39,7 @@ use page::build_report;
 pub use page::report;
 
 /// Track a straight-line pose path through a wrist singularity (seed 004):
-/// plain, avoidance, damped least squares and singularity-robust inverse.
+/// plain, avoidance, DLS, SRI and singularity separation (reference [9]).
 ///
 /// Exit code 3 when an avoidance or damped run stops before the end of the
 /// path (plain tracking stopping at an exactly singular Jacobian is a
@@ -73,7 +74,7 @@ pub struct SingularityArgs {
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub miss: f64,
     /// Misses of the sweep's parallel lines (m and rad, like --miss), each
-    /// tracked by plain, the avoidance (first k), DLS and SRI.
+    /// tracked by plain, the avoidance (first k) and the baselines.
     #[arg(
         long,
         value_name = "M1,M2,...",
@@ -286,6 +287,7 @@ pub fn study(args: &SingularityArgs) -> CliResult<Study> {
         threshold,
         joint_step_threshold,
         dt,
+        ..AvoidanceStudy::default()
     };
     let outcome = library
         .compare(plant.manipulator(Pose::identity()))

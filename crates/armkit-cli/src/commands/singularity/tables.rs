@@ -5,11 +5,11 @@ use armkit::singularity::MethodRun;
 use super::Study;
 use crate::report::Table;
 
-/// The runs of the table: plain, avoidance (first k), dls, sri, then the
-/// other k of the sweep.
+/// The runs of the table: plain, avoidance (first k), dls, sri,
+/// separation, then the other k of the sweep.
 pub(super) fn table_runs(study: &Study) -> Vec<&MethodRun> {
     let c = &study.outcome.comparison;
-    let mut runs: Vec<&MethodRun> = c.methods().to_vec();
+    let mut runs: Vec<&MethodRun> = c.methods();
     runs.extend(c.k_sweep.iter().filter(|r| r.method != c.avoidance.method));
     runs
 }

@@ -1,7 +1,7 @@
 //! Seed 004's claims, as the paper states them, against the study's runs.
 
 use super::{AvoidanceOutcome, MissLine, MissSweep, FITTED_DETERMINANT_THRESHOLD};
-use crate::singularity::MethodRun;
+use crate::singularity::{MethodRun, MethodSummary, SEPARATION};
 use crate::study::{Finding, FindingStatus};
 use crate::tracking::TrackingStatus;
 
@@ -36,6 +36,47 @@ fn peak_at(run: &MethodRun, i: usize) -> f64 {
 /// method's.
 const ABOVE_TOLERANCE: f64 = 100.0;
 
+/// The comparators of a conclusion-1 finding.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Comparators {
+    /// The paper's own: singularity separation with a damped reciprocal,
+    /// its reference [9].
+    Reference,
+    /// The damped inverses the seed's scenario names beside it: DLS and SRI.
+    Damped,
+}
+
+impl Comparators {
+    /// `(name, summary)` of each comparator on `line`.
+    fn of(self, line: &MissLine) -> Vec<(&'static str, &MethodSummary)> {
+        match self {
+            Comparators::Reference => vec![(SEPARATION, &line.separation)],
+            Comparators::Damped => vec![
+                ("dls", &line.damped_least_squares),
+                ("sri", &line.singularity_robust),
+            ],
+        }
+    }
+
+    /// The comparators' names, for the finding's text.
+    fn names(self) -> &'static str {
+        match self {
+            Comparators::Reference => "separation (the paper's reference [9])",
+            Comparators::Damped => "DLS and SRI (not the paper's reference [9])",
+        }
+    }
+
+    /// What the claim compares with, in the paper's words.
+    fn claim(self) -> &'static str {
+        match self {
+            Comparators::Reference => {
+                "the traditional method of singularity separation and damped reciprocal"
+            }
+            Comparators::Damped => "the damped-inverse methods",
+        }
+    }
+}
+
 /// True when `values` strictly increase.
 fn rising(values: &[f64]) -> bool {
     values.windows(2).all(|w| w[1] > w[0])
@@ -56,6 +97,7 @@ impl AvoidanceOutcome {
             findings.push(self.entry_finding());
             findings.push(self.in_region_finding());
         }
+        findings.extend(self.joint_and_fit_findings());
         findings.extend(self.conclusion_findings());
         findings.push(Finding::new(
             "seed 004, sec 3 (simulation): the paper's own arm and path, from its start pose Pe0 \
@@ -291,99 +333,116 @@ impl AvoidanceOutcome {
 
     fn conclusion_findings(&self) -> Vec<Finding> {
         let mut findings = Vec::new();
-        let lines = &self.sweep.lines;
-        if !lines.is_empty() {
-            let label = self.sweep.avoidance_label();
-            let figures = |s: &crate::singularity::MethodSummary| {
-                format!(
-                    "{:.2e} m / {:.2e} rad at {:.3} rad/s",
-                    s.max_position_error, s.max_orientation_error, s.peak_joint_rate
-                )
-            };
-            let bound = MissSweep::rate_bound(&self.options);
-            let worse_lines: Vec<&MissLine> = lines
-                .iter()
-                .filter(|l| {
-                    !(l.avoidance_errs_no_more_than(&l.damped_least_squares)
-                        && l.avoidance_errs_no_more_than(&l.singularity_robust))
-                })
-                .collect();
-            let worse: Vec<String> = worse_lines
-                .iter()
-                .map(|l| {
-                    let floor = l.floor.map_or(String::new(), |f| {
-                        format!(
-                            ", floor of a wrist-branch switch {:.2e} m / {:.2e} rad",
-                            f.position, f.orientation
-                        )
-                    });
-                    format!(
-                        "{:+} mm ({label} {}, dls {}, sri {}; dls clamped to {bound:.1} rad/s \
-                         {}{floor})",
-                        l.miss * 1e3,
-                        figures(&l.avoidance),
-                        figures(&l.damped_least_squares),
-                        figures(&l.singularity_robust),
-                        figures(&l.clamped_damped_least_squares),
-                    )
-                })
-                .collect();
-            // Why, from the figures: the methods that err less move faster
-            // than the bound, and DLS held to it errs more.
-            let faster = worse_lines.iter().all(|l| {
-                [&l.damped_least_squares, &l.singularity_robust]
-                    .into_iter()
-                    .filter(|m| !l.avoidance_errs_no_more_than(m))
-                    .all(|m| m.peak_joint_rate > bound * (1.0 + 1e-9))
-            });
-            let clamped_worse = worse_lines.iter().all(|l| {
-                l.clamped_damped_least_squares.max_pose_error > l.avoidance.max_pose_error
-            });
-            let mut why = Vec::new();
-            if faster {
-                why.push(format!(
-                    "On each of these lines the method that errs less moves a joint faster than \
-                     {bound:.1} rad/s"
-                ));
-            }
-            if clamped_worse {
-                why.push(format!(
-                    "DLS clamped to {bound:.1} rad/s errs more than {label} on each"
-                ));
-            }
-            let why = if why.is_empty() {
-                String::new()
-            } else {
-                format!(". {}", why.join("; "))
-            };
-            let holding = lines.len() - worse_lines.len();
-            let measured = if worse.is_empty() {
-                format!(
-                    "on all {} lines of the miss sweep {label}'s largest position and orientation \
-                     errors are at most DLS's and SRI's",
-                    lines.len()
-                )
-            } else {
-                format!(
-                    "holds on {holding} of {} lines of the miss sweep; on the other {} {label} \
-                     (joints within {bound:.1} rad/s, regions planned jointly) errs more than \
-                     DLS or SRI: {}{why}",
-                    lines.len(),
-                    worse.len(),
-                    worse.join("; ")
-                )
-            };
-            findings.push(Finding::new(
-                "seed 004, conclusion 1: the avoidance tracks with a smaller error than the \
-                 damped-inverse methods (comparators here: DLS and SRI, not the paper's reference \
-                 [9]; tested as: on every line of the miss sweep, its largest error no worse than \
-                 theirs)",
-                measured,
-                FindingStatus::from_holds(worse.is_empty()),
-            ));
+        if !self.sweep.lines.is_empty() {
+            findings.push(self.conclusion1_finding(Comparators::Reference));
+            findings.push(self.conclusion1_finding(Comparators::Damped));
         }
         findings.push(self.singular_end_finding());
         findings
+    }
+
+    /// Conclusion 1 against one set of comparators, on every line of the
+    /// miss sweep: the avoidance's largest errors no worse than each
+    /// comparator's.
+    fn conclusion1_finding(&self, comparators: Comparators) -> Finding {
+        let lines = &self.sweep.lines;
+        let label = self.sweep.avoidance_label();
+        let figures = |s: &MethodSummary| {
+            format!(
+                "{:.2e} m / {:.2e} rad at {:.3} rad/s",
+                s.max_position_error, s.max_orientation_error, s.peak_joint_rate
+            )
+        };
+        let bound = MissSweep::rate_bound(&self.options);
+        let worse_lines: Vec<&MissLine> = lines
+            .iter()
+            .filter(|l| {
+                !comparators
+                    .of(l)
+                    .iter()
+                    .all(|(_, m)| l.avoidance_errs_no_more_than(m))
+            })
+            .collect();
+        let worse: Vec<String> = worse_lines
+            .iter()
+            .map(|l| {
+                let floor = l.floor.map_or(String::new(), |f| {
+                    format!(
+                        ", floor of a wrist-branch switch {:.2e} m / {:.2e} rad",
+                        f.position, f.orientation
+                    )
+                });
+                let others = comparators
+                    .of(l)
+                    .iter()
+                    .map(|(name, m)| format!("{name} {}", figures(*m)))
+                    .collect::<Vec<_>>()
+                    .join(", ");
+                format!(
+                    "{:+} mm ({label} {}, {others}; dls clamped to {bound:.1} rad/s {}{floor})",
+                    l.miss * 1e3,
+                    figures(&l.avoidance),
+                    figures(&l.clamped_damped_least_squares),
+                )
+            })
+            .collect();
+        // Why, from the figures: the methods that err less move faster
+        // than the bound, and DLS held to it errs more.
+        let faster = worse_lines.iter().all(|l| {
+            comparators
+                .of(l)
+                .iter()
+                .filter(|(_, m)| !l.avoidance_errs_no_more_than(m))
+                .all(|(_, m)| m.peak_joint_rate > bound * (1.0 + 1e-9))
+        });
+        let clamped_worse = worse_lines
+            .iter()
+            .all(|l| l.clamped_damped_least_squares.max_pose_error > l.avoidance.max_pose_error);
+        let mut why = Vec::new();
+        if faster {
+            why.push(format!(
+                "On each of these lines the method that errs less moves a joint faster than \
+                 {bound:.1} rad/s"
+            ));
+        }
+        if clamped_worse {
+            why.push(format!(
+                "DLS clamped to {bound:.1} rad/s errs more than {label} on each"
+            ));
+        }
+        let why = if why.is_empty() {
+            String::new()
+        } else {
+            format!(". {}", why.join("; "))
+        };
+        let names = comparators.names();
+        let holding = lines.len() - worse_lines.len();
+        let measured = if worse.is_empty() {
+            format!(
+                "on all {} lines of the miss sweep {label}'s largest position and orientation \
+                 errors are at most {names}'s",
+                lines.len()
+            )
+        } else {
+            format!(
+                "holds on {holding} of {} lines of the miss sweep; on the other {} {label} \
+                 (joints within {bound:.1} rad/s, regions planned jointly) errs more than \
+                 {names}: {}{why}",
+                lines.len(),
+                worse.len(),
+                worse.join("; ")
+            )
+        };
+        Finding::new(
+            format!(
+                "seed 004, conclusion 1: the avoidance tracks with a smaller error than {} \
+                 (comparator: {names}; tested as: on every line of the miss sweep, its largest \
+                 error no worse than theirs)",
+                comparators.claim()
+            ),
+            measured,
+            FindingStatus::from_holds(worse.is_empty()),
+        )
     }
 
     /// Conclusion 3 on a path whose desired end pose is the singular pose.

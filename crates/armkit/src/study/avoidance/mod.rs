@@ -3,8 +3,10 @@
 //! checks of the demo and the paper's claims as findings.
 
 mod findings;
+mod rows;
 mod sweep;
 
+pub use rows::{interpolating_polynomial_rate, EpsRegion, SEED004_EPS_SWEEP};
 pub use sweep::{MissLine, MissSweep, SEED004_MISS_SWEEP};
 
 use super::{Check, StudyReport};
@@ -68,6 +70,11 @@ pub struct AvoidanceStudy {
     pub joint_step_threshold: f64,
     /// Control period, s. Default 0.01.
     pub dt: f64,
+    /// The `eps_dq` values of the sweep of sec 2.3.1 ("the larger eps_dq,
+    /// the smaller the singular region"; rad or m per control period), each
+    /// run by the avoidance with the first `k`, the threshold by the
+    /// study's rule. Default [`SEED004_EPS_SWEEP`]; empty: no sweep.
+    pub joint_step_sweep: Vec<f64>,
 }
 
 impl Default for AvoidanceStudy {
@@ -84,6 +91,7 @@ impl Default for AvoidanceStudy {
             threshold: ThresholdRule::Calibrated,
             joint_step_threshold: DetectionOptions::default().joint_step_threshold,
             dt: TrackingOptions::default().dt,
+            joint_step_sweep: SEED004_EPS_SWEEP.to_vec(),
         }
     }
 }
@@ -157,6 +165,9 @@ pub struct AvoidanceOutcome {
     /// the singular pose itself (no miss): a path whose desired end pose is
     /// singular (seed 004, conclusion 3).
     pub singular_end: Option<MethodRun>,
+    /// The `eps_dq` sweep (sec 2.3.1), in the order of the study's
+    /// `joint_step_sweep`.
+    pub eps_sweep: Vec<EpsRegion>,
 }
 
 impl AvoidanceStudy {
@@ -216,6 +227,16 @@ impl AvoidanceStudy {
                 "give knot strides k >= 1 (IK every k-th planned pose of the singular region)",
             ));
         }
+        if let Some(bad) = self
+            .joint_step_sweep
+            .iter()
+            .find(|e| !(e.is_finite() && **e > 0.0))
+        {
+            return Err(Error::invalid_argument(
+                "joint_step_sweep",
+                format!("every eps_dq must be finite and > 0 (rad per period), got {bad}"),
+            ));
+        }
         if let Some(bad) = self.miss_sweep.iter().find(|m| !m.is_finite()) {
             return Err(Error::invalid_argument(
                 "miss_sweep",
@@ -260,6 +281,7 @@ impl AvoidanceStudy {
         };
         let sweep = MissSweep::run(self, manipulator, options, &baselines)?;
         let singular_end = self.singular_end(manipulator, options, &comparison.avoidance.method)?;
+        let eps_sweep = self.eps_sweep(manipulator)?;
         Ok(AvoidanceOutcome {
             line,
             comparison,
@@ -270,6 +292,7 @@ impl AvoidanceStudy {
             fitted,
             sweep,
             singular_end,
+            eps_sweep,
         })
     }
 
@@ -427,6 +450,7 @@ impl AvoidanceOutcome {
             );
         }
         checks.extend(self.sweep.checks(&self.options));
+        checks.extend(self.eps_checks());
         checks
     }
 

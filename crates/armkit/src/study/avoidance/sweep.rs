@@ -1,15 +1,16 @@
 //! The miss sweep of seed 004's study: parallel lines that pass through the
 //! singular pose or miss it by a little, each tracked by plain resolved
 //! rate, the avoidance (its regions planned jointly, and the greedy plan as
-//! a labelled comparison), DLS, DLS clamped to the joint speed bound and
-//! SRI, with the error floor of a wrist-branch switch on each line.
+//! a labelled comparison), DLS, DLS clamped to the joint speed bound, SRI
+//! and the singularity separation with a damped reciprocal (the paper's
+//! reference [9]), with the error floor of a wrist-branch switch on each line.
 
 use super::{place, AvoidanceStudy};
 use crate::error::Result;
 use crate::kinematics::Data;
 use crate::singularity::{
     classify, line_through, AvoidanceOptions, Baselines, ClassifyOptions, Manipulator, Method,
-    MethodSummary, PathTracker, RegionPlan, SingularGap, SingularityKind,
+    MethodSummary, PathTracker, RegionPlan, SingularGap, SingularityKind, SEPARATION,
 };
 use crate::study::{Check, Series};
 use crate::tracking::TrackingStatus;
@@ -63,8 +64,11 @@ pub struct MissLine {
     pub clamped_damped_least_squares: MethodSummary,
     /// Singularity-robust inverse (Chiaverini).
     pub singularity_robust: MethodSummary,
+    /// Singularity separation with a damped reciprocal
+    /// ([`Method::SeparatedDampedReciprocal`], seed 004's reference [9]).
+    pub separation: MethodSummary,
     /// Status of each method, in the order of [`MissLine::methods`].
-    pub statuses: [TrackingStatus; 6],
+    pub statuses: [TrackingStatus; 7],
     /// Least-squares knots of the avoidance's regions (knots the arm could
     /// not reach within `eps_dq` per period).
     pub bounded_knots: usize,
@@ -80,8 +84,8 @@ pub struct MissLine {
 
 impl MissLine {
     /// `(label, summary)` of plain, avoidance, avoidance greedy, dls,
-    /// dls clamped, sri.
-    pub fn methods(&self) -> [(&'static str, &MethodSummary); 6] {
+    /// dls clamped, sri, separation.
+    pub fn methods(&self) -> [(&'static str, &MethodSummary); 7] {
         [
             ("plain", &self.plain),
             ("avoidance", &self.avoidance),
@@ -89,6 +93,7 @@ impl MissLine {
             ("dls", &self.damped_least_squares),
             ("dls clamped", &self.clamped_damped_least_squares),
             ("sri", &self.singularity_robust),
+            (SEPARATION, &self.separation),
         ]
     }
 
@@ -119,7 +124,7 @@ pub struct MissSweep {
 }
 
 impl MissSweep {
-    /// Tracks every line of `study.miss_sweep` with the four methods
+    /// Tracks every line of `study.miss_sweep` with every method
     /// (`manipulator` with its base at `study.through`).
     pub(super) fn run(
         study: &AvoidanceStudy,
@@ -154,6 +159,7 @@ impl MissSweep {
                 tracker.run(&Method::DampedLeastSquares(baselines.nakamura))?,
                 tracker.run(&clamped)?,
                 tracker.run(&Method::SingularityRobust(baselines.chiaverini))?,
+                tracker.run(&Method::SeparatedDampedReciprocal(baselines.reciprocal))?,
             ];
             let floor = if wrist {
                 Some(tracker.singular_gap(
@@ -174,14 +180,8 @@ impl MissSweep {
                 damped_least_squares: runs[3].summary,
                 clamped_damped_least_squares: runs[4].summary,
                 singularity_robust: runs[5].summary,
-                statuses: [
-                    runs[0].status,
-                    runs[1].status,
-                    runs[2].status,
-                    runs[3].status,
-                    runs[4].status,
-                    runs[5].status,
-                ],
+                separation: runs[6].summary,
+                statuses: std::array::from_fn(|m| runs[m].status),
                 bounded_knots: runs[1].regions.iter().map(|r| r.bounded_knots).sum(),
                 joint_planned_regions: runs[1]
                     .regions
