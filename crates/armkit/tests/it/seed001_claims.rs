@@ -63,10 +63,11 @@ fn gantry9_duration_sweep_has_a_crossover_and_a_moderate_speed() {
 /// and a sweep without a winning end is not reproduced.
 #[test]
 fn duration_sweep_logic_on_given_points() {
+    // Both runs' F grows by `share` from static to dynamic torques.
     let point = |duration: f64, dynamic_margin: f64, share: f64| DurationPoint {
         duration,
         optimal_static: 1.0,
-        baseline_static: 1.0 / (1.0 - 0.1),
+        baseline_static: 1.0 / (1.0 - dynamic_margin / 100.0),
         optimal_dynamic: 1.0 + share,
         baseline_dynamic: (1.0 + share) / (1.0 - dynamic_margin / 100.0),
     };

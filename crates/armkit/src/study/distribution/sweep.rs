@@ -93,7 +93,7 @@ impl DurationSweep {
     /// (s): F of both runs under both torque models (W^2 s), the margins
     /// and the inertia share (%).
     pub fn series(&self) -> Series {
-        let column = |f: &dyn Fn(&DurationPoint) -> f64| self.points.iter().map(f).collect();
+        let column = |f: &dyn Fn(&DurationPoint) -> f64| -> Vec<f64> { self.points.iter().map(f).collect() };
         Series::new(
             "duration-sweep",
             "Seed 001: energy-optimal against the baseline over the move's duration",
