@@ -117,9 +117,11 @@ fn ik_finding(model: &Model, solver: &Arm4Solver) -> Result<Finding> {
             "{IK_SAMPLES} configurations over {}'s joint ranges (a low-discrepancy grid), the \
              paper's equations in DH angles, 16 sign choices each: {exact_min} to {exact_max} \
              reproduce the pose (forward-kinematics error <= {worst_exact:.1e} m or rad), the \
-             others miss it by >= {best_extraneous:.2e} (extraneous roots); the configuration \
-             that made the pose is among them for {recovered} of {IK_SAMPLES}; they are exactly \
-             armkit's closed-form solutions for {agree} of {IK_SAMPLES}",
+             others miss it by >= {best_extraneous:.2e} (extraneous roots; eq 11's other \
+             elbow turns theta12 and so the tool's heading, which the roll and pitch cannot \
+             undo); the configuration that made the pose is among them for {recovered} of \
+             {IK_SAMPLES}; they are exactly armkit's closed-form solutions for {agree} of \
+             {IK_SAMPLES}",
             model.name()
         ),
         FindingStatus::from_holds(holds),
