@@ -101,6 +101,7 @@ fn eq17_is_minimal_at_each_instant_and_unit_weights_are_the_pseudo_inverse() {
     let outcome = DistributionStudy::default().compare(&model).unwrap();
     let instant = outcome.instant.as_ref().unwrap();
     assert!(instant.samples >= 390, "{}", instant.samples);
+    assert_eq!(instant.singular_samples, 0);
     assert_eq!(instant.rivals.len(), 3);
     for rival in &instant.rivals {
         assert_eq!(rival.lower_samples, 0, "{rival:?}");
@@ -132,6 +133,7 @@ fn instant_findings_fail_when_the_figures_do() {
     };
     let holds = InstantComparison {
         samples: 10,
+        singular_samples: 0,
         rivals: vec![rival(0)],
         unit_weight_difference: 1e-14,
         energy_rates_difference: 0.5,

@@ -47,6 +47,9 @@ pub struct InstantComparison {
     /// Samples compared (every sample of the energy-optimal run with a
     /// nonzero twist).
     pub samples: usize,
+    /// Samples left out because eq 17's matrix is singular there (zero
+    /// torques; see [`PartitionedSolver::solve_energy_optimal`]).
+    pub singular_samples: usize,
     /// Eq 17 (the paper's closed form, the load's static torques squared as
     /// weights, no floor) against each other distribution at the same `(q, V)`.
     pub rivals: Vec<InstantRival>,
@@ -81,7 +84,7 @@ pub(super) fn instant_comparison(
     let mut ratios: Vec<Vec<f64>> = vec![Vec::new(); rivals.len()];
     let (mut unit_weight_difference, mut energy_rates_difference) = (0.0_f64, 0.0_f64);
     let ones = vec![1.0; dof];
-    let mut samples = 0;
+    let (mut samples, mut singular_samples) = (0, 0);
     for sample in &path_run.report.samples {
         joint_torques(model, &mut data, &sample.q, load, &mut torques)?;
         let j: Matrix6xX<f64> = jacobian(model, &mut data, &sample.q, JacobianFrame::World)?.clone();
@@ -90,13 +93,20 @@ pub(super) fn instant_comparison(
         if twist.amax() < 1e-9 {
             continue; // at rest: every distribution gives q_dot = 0
         }
-        samples += 1;
         let partition = best_partition(&j, None, MAX_BLOCK_CONDITION)?.partition;
         // Seed 001, eq 17, as derived (eq 19 with A = T^2; the G0 of the
         // erratum restored).
-        let optimal = partitioned
-            .solve_energy_optimal(&j, &torques, &twist, &partition)?
-            .to_vec();
+        // Eq 17 has no answer where zero-torque joints alone can move
+        // without moving the end effector (its k x k matrix is singular):
+        // such samples are counted, not compared.
+        let optimal = match partitioned.solve_energy_optimal(&j, &torques, &twist, &partition) {
+            Ok(rates) => rates.to_vec(),
+            Err(_) => {
+                singular_samples += 1;
+                continue;
+            }
+        };
+        samples += 1;
         let f_optimal = energy_measure(&optimal, &torques)?;
         for ((_, weights), ratio) in rivals.iter().zip(ratios.iter_mut()) {
             let rates = least_norm
@@ -138,6 +148,7 @@ pub(super) fn instant_comparison(
         .collect();
     Ok(InstantComparison {
         samples,
+        singular_samples,
         rivals,
         unit_weight_difference,
         energy_rates_difference,
@@ -183,8 +194,9 @@ impl InstantComparison {
                 format!(
                     "at the {} configurations and realised twists of the energy-optimal run, \
                      the load's static torques, eq 17 (no torque floor, best-conditioned \
-                     partition) against each distribution solved at the same (q, V): {listed}",
-                    self.samples
+                     partition) against each distribution solved at the same (q, V): {listed}; \
+                     eq 17 singular (zero torques) at {} samples, left out",
+                    self.samples, self.singular_samples
                 ),
                 FindingStatus::from_holds(minimal),
             ),
