@@ -221,10 +221,18 @@ fn durations_run_the_sweep_and_none_turns_it_off() {
     let out = scratch("durations");
     let dir = out.to_str().unwrap();
     let value = json(&armkit(&[
-        "redundancy", "--out", dir, "--json", "--durations", "16,4",
+        "redundancy",
+        "--out",
+        dir,
+        "--json",
+        "--durations",
+        "16,4",
     ]));
     let points = value["sweep"]["points"].as_array().unwrap();
-    let durations: Vec<f64> = points.iter().map(|p| p["duration"].as_f64().unwrap()).collect();
+    let durations: Vec<f64> = points
+        .iter()
+        .map(|p| p["duration"].as_f64().unwrap())
+        .collect();
     assert_eq!(durations, [4.0, 16.0]);
     let margins: Vec<f64> = points
         .iter()
@@ -236,7 +244,12 @@ fn durations_run_the_sweep_and_none_turns_it_off() {
     let crossover = value["sweep"]["crossover_s"].as_f64().unwrap();
     assert!(crossover > 4.0 && crossover < 16.0, "{crossover}");
     let value = json(&armkit(&[
-        "redundancy", "--out", dir, "--json", "--durations", "none",
+        "redundancy",
+        "--out",
+        dir,
+        "--json",
+        "--durations",
+        "none",
     ]));
     assert!(value["sweep"].is_null(), "{}", value["sweep"]);
     let _ = std::fs::remove_dir_all(out);

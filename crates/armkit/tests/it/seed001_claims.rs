@@ -5,8 +5,7 @@
 
 use armkit::redundancy::TorqueModel;
 use armkit::study::{
-    DistributionStudy, DurationPoint, DurationSweep, FindingStatus, InstantComparison,
-    InstantRival,
+    DistributionStudy, DurationPoint, DurationSweep, FindingStatus, InstantComparison, InstantRival,
 };
 
 fn finding<'a>(findings: &'a [armkit::study::Finding], word: &str) -> &'a armkit::study::Finding {
@@ -30,7 +29,10 @@ fn gantry9_duration_sweep_has_a_crossover_and_a_moderate_speed() {
     assert!(at(4.0).margin(TorqueModel::Dynamic) < 0.0);
     assert!(at(8.0).margin(TorqueModel::Dynamic) > 5.0);
     // Under the load's static torques the energy-optimal run wins everywhere.
-    assert!(sweep.points.iter().all(|p| p.margin(TorqueModel::Static) > 0.0));
+    assert!(sweep
+        .points
+        .iter()
+        .all(|p| p.margin(TorqueModel::Static) > 0.0));
     // The 4 s point is the main run's: the same figures.
     let main = outcome
         .torque_energies
@@ -41,7 +43,11 @@ fn gantry9_duration_sweep_has_a_crossover_and_a_moderate_speed() {
     let crossover = sweep.crossover().unwrap();
     assert!(crossover > 4.0 && crossover < 8.0, "{crossover}");
     // Inertia matters less the slower the move.
-    let shares: Vec<f64> = sweep.points.iter().map(DurationPoint::inertia_share).collect();
+    let shares: Vec<f64> = sweep
+        .points
+        .iter()
+        .map(DurationPoint::inertia_share)
+        .collect();
     assert!(shares.windows(2).all(|w| w[1] < w[0]), "{shares:?}");
     let moderate = sweep.moderate().unwrap();
     assert!(moderate.inertia_share() <= armkit::study::MODERATE_SPEED_MARGIN);
@@ -72,14 +78,25 @@ fn duration_sweep_logic_on_given_points() {
         baseline_dynamic: (1.0 + share) / (1.0 - dynamic_margin / 100.0),
     };
     let sweep = DurationSweep {
-        points: vec![point(4.0, -1.4, 0.2), point(8.0, 11.0, 0.03), point(16.0, 11.8, 0.01)],
+        points: vec![
+            point(4.0, -1.4, 0.2),
+            point(8.0, 11.0, 0.03),
+            point(16.0, 11.8, 0.01),
+        ],
     };
     let crossover = sweep.crossover().unwrap();
-    assert!((crossover - (4.0 + 4.0 * 1.4 / 12.4)).abs() < 1e-9, "{crossover}");
+    assert!(
+        (crossover - (4.0 + 4.0 * 1.4 / 12.4)).abs() < 1e-9,
+        "{crossover}"
+    );
     assert_eq!(sweep.moderate().unwrap().duration, 8.0);
     // A fast point between slow ones: moderate speed starts after it.
     let sweep = DurationSweep {
-        points: vec![point(4.0, 1.0, 0.01), point(8.0, 2.0, 0.2), point(16.0, 3.0, 0.01)],
+        points: vec![
+            point(4.0, 1.0, 0.01),
+            point(8.0, 2.0, 0.2),
+            point(16.0, 3.0, 0.01),
+        ],
     };
     assert_eq!(sweep.moderate().unwrap().duration, 16.0);
     let losing = DurationSweep {

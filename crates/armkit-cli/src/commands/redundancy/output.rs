@@ -357,7 +357,10 @@ fn sweep_table(outcome: &DistributionOutcome) -> Option<Table> {
         100.0 * MODERATE_SPEED_MARGIN,
         sweep
             .moderate()
-            .map_or("none in the sweep".into(), |p| format!("from {} s", p.duration)),
+            .map_or("none in the sweep".into(), |p| format!(
+                "from {} s",
+                p.duration
+            )),
     );
     let mut table = Table::new(
         title,

@@ -30,7 +30,10 @@ pub(super) fn arm4_findings(model: &Model) -> Result<Vec<Finding>> {
     let Ok(solver) = Arm4Solver::new(model) else {
         return Ok(Vec::new());
     };
-    Ok(vec![ik_finding(model, &solver)?, fk_example_finding(model, &solver)?])
+    Ok(vec![
+        ik_finding(model, &solver)?,
+        fk_example_finding(model, &solver)?,
+    ])
 }
 
 /// `q` wrapped to (-pi, pi] per joint, for comparing angles.
@@ -173,7 +176,10 @@ pub(super) fn orientation_law_finding(main: &PlannedPath) -> Finding {
     let end = main.path.pose_at(main.path.end_time()).rotation;
     let (residual, axis) = (0..3)
         .map(|k| (direction_angle_residual(&start, &end, k), k))
-        .fold((0.0, 0), |best, this| if this.0 > best.0 { this } else { best });
+        .fold(
+            (0.0, 0),
+            |best, this| if this.0 > best.0 { this } else { best },
+        );
     Finding::new(
         "seed 002, sec 3, eqs 20-22: the tool's angles alpha, beta, gamma with the base's X, Y \
          and Z axes move linearly in time",

@@ -87,7 +87,8 @@ pub(super) fn instant_comparison(
     let (mut samples, mut singular_samples) = (0, 0);
     for sample in &path_run.report.samples {
         joint_torques(model, &mut data, &sample.q, load, &mut torques)?;
-        let j: Matrix6xX<f64> = jacobian(model, &mut data, &sample.q, JacobianFrame::World)?.clone();
+        let j: Matrix6xX<f64> =
+            jacobian(model, &mut data, &sample.q, JacobianFrame::World)?.clone();
         let realised = &j * DVector::from_column_slice(&sample.joint_rates);
         let twist = Vector6::from_column_slice(realised.as_slice());
         if twist.amax() < 1e-9 {

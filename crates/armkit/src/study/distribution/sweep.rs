@@ -71,9 +71,8 @@ impl DurationSweep {
                 pair[0].margin(TorqueModel::Dynamic),
                 pair[1].margin(TorqueModel::Dynamic),
             );
-            (a < 0.0 && b >= 0.0).then(|| {
-                pair[0].duration + (pair[1].duration - pair[0].duration) * (-a) / (b - a)
-            })
+            (a < 0.0 && b >= 0.0)
+                .then(|| pair[0].duration + (pair[1].duration - pair[0].duration) * (-a) / (b - a))
         })
     }
 
@@ -93,7 +92,8 @@ impl DurationSweep {
     /// (s): F of both runs under both torque models (W^2 s), the margins
     /// and the inertia share (%).
     pub fn series(&self) -> Series {
-        let column = |f: &dyn Fn(&DurationPoint) -> f64| -> Vec<f64> { self.points.iter().map(f).collect() };
+        let column =
+            |f: &dyn Fn(&DurationPoint) -> f64| -> Vec<f64> { self.points.iter().map(f).collect() };
         Series::new(
             "duration-sweep",
             "Seed 001: energy-optimal against the baseline over the move's duration",
@@ -105,8 +105,14 @@ impl DurationSweep {
         .with("F static baseline", column(&|p| p.baseline_static))
         .with("F dynamic energy-optimal", column(&|p| p.optimal_dynamic))
         .with("F dynamic baseline", column(&|p| p.baseline_dynamic))
-        .with("margin static %", column(&|p| p.margin(TorqueModel::Static)))
-        .with("margin dynamic %", column(&|p| p.margin(TorqueModel::Dynamic)))
+        .with(
+            "margin static %",
+            column(&|p| p.margin(TorqueModel::Static)),
+        )
+        .with(
+            "margin dynamic %",
+            column(&|p| p.margin(TorqueModel::Dynamic)),
+        )
         .with("inertia share %", column(&|p| 100.0 * p.inertia_share()))
     }
 
@@ -142,7 +148,8 @@ impl DurationSweep {
                 ),
                 // The claim holds, with the paper's speed condition made
                 // quantitative: a deviation, stated.
-                FindingStatus::ReproducedWithDeviation.if_holds(last.margin(TorqueModel::Dynamic) > 0.0),
+                FindingStatus::ReproducedWithDeviation
+                    .if_holds(last.margin(TorqueModel::Dynamic) > 0.0),
             ),
             None if wins_everywhere => (
                 "the energy-optimal distribution wins at every duration (no crossover)".into(),
