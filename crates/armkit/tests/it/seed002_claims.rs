@@ -10,7 +10,7 @@ use armkit::study::{ContinuousPathStudy, FindingStatus};
 /// 11's other elbow turns theta12 and with it the tool's heading, which the
 /// roll and pitch cannot undo. The 15 others miss it by far.
 #[test]
-fn paper_closed_form_has_two_exact_candidates_of_sixteen() {
+fn paper_closed_form_has_one_exact_candidate_of_sixteen() {
     let model = armkit::robots::by_name("arm4").unwrap();
     let solver = Arm4Solver::new(&model).unwrap();
     let mut data = armkit::Data::new(&model);
