@@ -176,7 +176,15 @@ fn panda_with_a_null_space_objective_and_the_partitioned_form() {
 fn bad_arguments_get_clear_errors() {
     let out = scratch("errors");
     let dir = out.to_str().unwrap();
-    let cases: [(&[&str], &str); 5] = [
+    let cases: [(&[&str], &str); 7] = [
+        (
+            &["--durations", "4,-1"],
+            "error: --durations: every duration must be > 0 s, got -1",
+        ),
+        (
+            &["--durations", "4,x"],
+            "error: --durations: value 2: `x` is not a number",
+        ),
         (
             &["--lock", "1,10"],
             "error: --lock: joint 10 is not a joint number in 1..=9",
@@ -202,5 +210,47 @@ fn bad_arguments_get_clear_errors() {
         assert!(!output.status.success(), "{extra:?} succeeded");
         assert_eq!(stderr(&output), message, "{extra:?}");
     }
+    let _ = std::fs::remove_dir_all(out);
+}
+
+/// `--durations` reaches the library's sweep: the JSON lists one point per
+/// duration (sorted), the crossover where the dynamic-torque margin turns
+/// positive between them, and `none` turns the sweep off.
+#[test]
+fn durations_run_the_sweep_and_none_turns_it_off() {
+    let out = scratch("durations");
+    let dir = out.to_str().unwrap();
+    let value = json(&armkit(&[
+        "redundancy",
+        "--out",
+        dir,
+        "--json",
+        "--durations",
+        "16,4",
+    ]));
+    let points = value["sweep"]["points"].as_array().unwrap();
+    let durations: Vec<f64> = points
+        .iter()
+        .map(|p| p["duration"].as_f64().unwrap())
+        .collect();
+    assert_eq!(durations, [4.0, 16.0]);
+    let margins: Vec<f64> = points
+        .iter()
+        .map(|p| p["margin_dynamic_percent"].as_f64().unwrap())
+        .collect();
+    // At 4 s the baseline wins under dynamic torques, at 16 s the
+    // energy-optimal distribution: the crossover lies between.
+    assert!(margins[0] < 0.0 && margins[1] > 0.0, "{margins:?}");
+    let crossover = value["sweep"]["crossover_s"].as_f64().unwrap();
+    assert!(crossover > 4.0 && crossover < 16.0, "{crossover}");
+    let value = json(&armkit(&[
+        "redundancy",
+        "--out",
+        dir,
+        "--json",
+        "--durations",
+        "none",
+    ]));
+    assert!(value["sweep"].is_null(), "{}", value["sweep"]);
     let _ = std::fs::remove_dir_all(out);
 }

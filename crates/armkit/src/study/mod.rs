@@ -48,8 +48,9 @@ pub use continuous_path::{
     ARM4_LINE_END, ARM4_LINE_START, MEASURE_POINTS,
 };
 pub use distribution::{
-    DistributionOutcome, DistributionStudy, FormulationKind, ResolvedDistribution, SecondaryKind,
-    TorqueEnergies, ZeroWeightLock, DISTRIBUTION_NOTE, VARIANT_NAME,
+    DistributionOutcome, DistributionStudy, DurationPoint, DurationSweep, FormulationKind,
+    InstantComparison, InstantRival, ResolvedDistribution, SecondaryKind, TorqueEnergies,
+    ZeroWeightLock, DISTRIBUTION_NOTE, DURATION_FACTORS, MODERATE_SPEED_MARGIN, VARIANT_NAME,
 };
 pub use finding::{count_findings, Finding, FindingCounts, FindingStatus};
 pub use mpc_examples::{

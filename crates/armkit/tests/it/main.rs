@@ -25,6 +25,8 @@ mod redundancy;
 mod reference_dh;
 mod seed000_claims;
 mod seed000_precision;
+mod seed001_claims;
+mod seed002_claims;
 mod singularity;
 mod space;
 mod studies;

@@ -51,6 +51,12 @@ pub struct RedundancyArgs {
     /// Duration of the motion, s (quintic timing: starts and ends at rest).
     #[arg(long, default_value_t = 4.0)]
     pub duration: f64,
+    /// Durations of the sweep, s, comma-separated, or `none`: the
+    /// energy-optimal run and the baseline repeated at each (F under static
+    /// and dynamic torques, the crossover, the moderate speed). Default: the
+    /// duration times 0.5, 0.75, 1, 1.5, 2, 3, 4. Robots with masses only.
+    #[arg(long, value_name = "T1,T2,...")]
+    pub durations: Option<String>,
     /// Payload weight held at the end effector, N (seed 001's load).
     #[arg(long, default_value_t = 50.0)]
     pub payload: f64,
@@ -174,6 +180,18 @@ pub fn run(args: &RedundancyArgs) -> CliResult<Outcome> {
                 "velocity_scaled_steps": r.report.velocity_scaled_steps,
                 "limit_locked_steps": r.report.limit_locked_steps,
             })).collect::<Vec<_>>(),
+            "sweep": study.outcome.sweep.as_ref().map(|sweep| serde_json::json!({
+                "crossover_s": sweep.crossover(),
+                "moderate_s": sweep.moderate().map(|p| p.duration),
+                "points": sweep.points.iter().map(|p| serde_json::json!({
+                    "duration": p.duration,
+                    "energy_optimal_static": p.optimal_static,
+                    "baseline_static": p.baseline_static,
+                    "energy_optimal_dynamic": p.optimal_dynamic,
+                    "baseline_dynamic": p.baseline_dynamic,
+                    "margin_dynamic_percent": p.margin(TorqueModel::Dynamic),
+                })).collect::<Vec<_>>(),
+            })),
             "files": files,
         }))?;
     } else {
@@ -236,6 +254,11 @@ pub fn study(args: &RedundancyArgs) -> CliResult<Study> {
         },
         rotation: three(&args.rotate, "--rotate")?,
         duration: args.duration,
+        durations: match args.durations.as_deref().map(str::trim) {
+            Some(text) if text.eq_ignore_ascii_case("none") => Some(Vec::new()),
+            Some(text) => Some(parse_durations(text)?),
+            None => None,
+        },
         payload: args.payload,
         link_weights: !args.no_gravity,
         priorities: match &args.priorities {
@@ -296,6 +319,17 @@ fn load_robot(robot: &RobotArgs) -> CliResult<Model> {
         return Ok(armkit::robots::by_name("gantry9")?);
     }
     robot.load()
+}
+
+/// Parses `--durations`: positive durations, s.
+fn parse_durations(text: &str) -> CliResult<Vec<f64>> {
+    let durations = parse_numbers(text, "--durations")?;
+    match durations.iter().find(|&&d| !(d > 0.0)) {
+        Some(bad) => Err(CliError(format!(
+            "--durations: every duration must be > 0 s, got {bad}"
+        ))),
+        None => Ok(durations),
+    }
 }
 
 /// Parses 1-based joint numbers into 0-based indices.

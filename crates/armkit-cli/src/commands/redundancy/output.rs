@@ -11,7 +11,7 @@ use super::{study, RedundancyArgs};
 use crate::common::{CliError, CliResult};
 use crate::plot::Figure;
 use crate::report::{Animation, Report, Table};
-use armkit::study::{TorqueEnergies, DISTRIBUTION_NOTE, VARIANT_NAME};
+use armkit::study::{TorqueEnergies, DISTRIBUTION_NOTE, MODERATE_SPEED_MARGIN, VARIANT_NAME};
 
 /// F under dynamic torques of the run named `name`, if computed.
 fn dynamic_energy(energies: &[TorqueEnergies], name: &str) -> Option<f64> {
@@ -251,6 +251,9 @@ pub fn report(args: &RedundancyArgs) -> CliResult<Report> {
     if let Some(torques) = torque_table(&study.outcome) {
         tables.push(torques);
     }
+    if let Some(sweep) = sweep_table(&study.outcome) {
+        tables.push(sweep);
+    }
     let samples = &energy_optimal.report.samples;
     let times: Vec<f64> = samples.iter().map(|s| s.time).collect();
     let configurations: Vec<Vec<f64>> = samples.iter().map(|s| s.q.clone()).collect();
@@ -336,6 +339,52 @@ fn torque_table(outcome: &DistributionOutcome) -> Option<Table> {
                 "{:+.2} %",
                 100.0 * (e.dynamic_energy / e.static_energy - 1.0)
             ),
+        ]);
+    }
+    Some(table)
+}
+
+/// The duration sweep (seed 001's energy claim against the move's speed),
+/// one row per duration; `None` without a sweep.
+fn sweep_table(outcome: &DistributionOutcome) -> Option<Table> {
+    let sweep = outcome.sweep.as_ref()?;
+    let title = format!(
+        "Duration sweep: energy-optimal against the paper's baseline (F in W^2 s); crossover \
+         under dynamic torques: {}; moderate speed (inertia within {:.0} % of F): {}",
+        sweep
+            .crossover()
+            .map_or("none in the sweep".into(), |t| format!("{t:.2} s")),
+        100.0 * MODERATE_SPEED_MARGIN,
+        sweep
+            .moderate()
+            .map_or("none in the sweep".into(), |p| format!(
+                "from {} s",
+                p.duration
+            )),
+    );
+    let mut table = Table::new(
+        title,
+        &[
+            "duration (s)",
+            "F static, energy-optimal",
+            "F static, baseline",
+            "F dynamic, energy-optimal",
+            "F dynamic, baseline",
+            "margin static",
+            "margin dynamic",
+            "inertia share",
+        ],
+    );
+    for p in &sweep.points {
+        table.push(vec![
+            format!("{}", p.duration),
+            format!("{:.4e}", p.optimal_static),
+            format!("{:.4e}", p.baseline_static),
+            format!("{:.4e}", p.optimal_dynamic),
+            format!("{:.4e}", p.baseline_dynamic),
+            format!("{:+.1} %", p.margin(TorqueModel::Static)),
+            format!("{:+.1} %", p.margin(TorqueModel::Dynamic)),
+            format!("{:.1} %", 100.0 * p.inertia_share()),
         ]);
     }
     Some(table)

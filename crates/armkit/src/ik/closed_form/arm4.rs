@@ -34,6 +34,8 @@
 //!
 //! [`Fit::Approximate`]: super::Fit::Approximate
 
+mod paper;
+
 use super::{
     angle_is, check_arguments, dh_angle, finish, joint_value, quarter_turn_sign, representation,
     rot_x_quarter, solve_cos_sin, standard_dh_table, ClosedFormSolution, Fit, RangeFilter,

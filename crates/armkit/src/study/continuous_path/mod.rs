@@ -25,6 +25,7 @@ use crate::trajectory::{
 use crate::trajectory::{CartesianTrajectory, LinePath, OrientationLaw, TimeLaw};
 
 mod outcome;
+mod seed002;
 
 pub use outcome::{ContinuousPathOutcome, PlannedPath, SchemeRun, SweepRow, TorqueOutcome};
 
@@ -510,6 +511,11 @@ impl ContinuousPathStudy {
             Some(study) => Some(torque_outcome(model, dynamics, &main.report, study)?),
             None => None,
         };
+        let mut seed002_findings = seed002::arm4_findings(model)?;
+        // The orientation law matters where the orientation is followed.
+        if matches!(task, IkTask::Pose) {
+            seed002_findings.push(seed002::orientation_law_finding(&main));
+        }
         Ok(ContinuousPathOutcome {
             robot: model.name().to_string(),
             task,
@@ -523,6 +529,7 @@ impl ContinuousPathStudy {
             sweep,
             limit_violations,
             torques,
+            seed002_findings,
         })
     }
 

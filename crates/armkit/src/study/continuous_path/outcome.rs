@@ -113,6 +113,11 @@ pub struct ContinuousPathOutcome {
     pub limit_violations: usize,
     /// The torque check, if asked for.
     pub torques: Option<TorqueOutcome>,
+    /// Seed 002's claims beyond the path: on a model of the seed's
+    /// structure its closed-form inverse kinematics (eqs 10-18) and
+    /// forward-kinematics example (sec 2.1); on pose tasks the reading of
+    /// the orientation angles (eqs 20-22).
+    pub seed002_findings: Vec<Finding>,
 }
 
 fn ratio(error: &PathError, tolerance: &PathTolerance) -> f64 {
@@ -235,6 +240,7 @@ impl ContinuousPathOutcome {
         if let Some(finding) = self.cubic_quintic_finding() {
             findings.push(finding);
         }
+        findings.extend(self.seed002_findings.iter().cloned());
         let jumps = self.main.report.trajectory.knot_discontinuities();
         if self.main.report.trajectory.segment_count() >= 2 {
             findings.push(Finding::new(

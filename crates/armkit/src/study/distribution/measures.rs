@@ -249,8 +249,10 @@ impl DistributionOutcome {
     /// Seed 001's claims as this run shows them: the energy-optimal
     /// distribution spends the least energy F (under the static torques the
     /// paper uses, and under the full dynamics), against every other run
-    /// and the paper's baseline; and locking as the zero weight `A_Q` of
-    /// eq 19.
+    /// and the paper's baseline; locking as the zero weight `A_Q` of eq 19;
+    /// eq 17's F at each instant and unit weights as the minimum norm
+    /// ([`super::InstantComparison`]); the crossover duration and the
+    /// moderate speed ([`super::DurationSweep`]).
     pub fn findings(&self) -> Vec<Finding> {
         let mut findings = Vec::new();
         let locked = self
@@ -344,6 +346,12 @@ impl DistributionOutcome {
                 ),
                 FindingStatus::from_holds(holds),
             ));
+        }
+        if let Some(instant) = &self.instant {
+            findings.extend(instant.findings());
+        }
+        if let Some(sweep) = &self.sweep {
+            findings.extend(sweep.findings());
         }
         findings
     }

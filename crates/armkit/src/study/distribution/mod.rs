@@ -19,10 +19,15 @@ use crate::seeds::{SEED000_PRIORITY_WEIGHTS, SEED001_GANTRY_MOVE, SEED001_GANTRY
 use crate::tracking::{TrackingOptions, TrackingStatus};
 use crate::trajectory::{CartesianTrajectory, TimeLaw};
 
+mod instant;
 mod measures;
+mod sweep;
 
+use instant::instant_comparison;
+pub use instant::{InstantComparison, InstantRival};
 use measures::{torque_energies, zero_weight_lock};
 pub use measures::{TorqueEnergies, ZeroWeightLock};
+pub use sweep::{DurationPoint, DurationSweep, DURATION_FACTORS, MODERATE_SPEED_MARGIN};
 
 /// The null-space objective of a [`DistributionStudy`], by name.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -87,6 +92,12 @@ pub struct DistributionStudy {
     pub rotation: [f64; 3],
     /// Duration, s. Default 4.
     pub duration: f64,
+    /// Durations of the sweep (s): the energy-optimal run and the paper's
+    /// baseline repeated at each, F under static and dynamic torques, the
+    /// crossover and the moderate speed ([`DurationSweep`]). Default:
+    /// `duration` times [`DURATION_FACTORS`] (2 to 16 s on gantry9);
+    /// `Some(vec![])` for none. Needs mass properties (dynamic torques).
+    pub durations: Option<Vec<f64>>,
     /// Payload weight at the end effector, N. Default 50.
     pub payload: f64,
     /// Count the links' own weight when the robot has mass properties. Default true.
@@ -125,6 +136,7 @@ impl Default for DistributionStudy {
             displacement: None,
             rotation: [0.0; 3],
             duration: 4.0,
+            durations: None,
             payload: 50.0,
             link_weights: true,
             priorities: None,
@@ -177,6 +189,11 @@ pub struct DistributionOutcome {
     /// Seed 001's zero-weight lock along the locked run, when exactly
     /// `n - 6` joints are locked and that run completed.
     pub zero_weight_lock: Option<ZeroWeightLock>,
+    /// Seed 001's instantaneous claims (eqs 17 and 19) at the energy-optimal
+    /// run's configurations, when that run completed.
+    pub instant: Option<InstantComparison>,
+    /// The duration sweep, with dynamics and at least one duration.
+    pub sweep: Option<DurationSweep>,
 }
 
 /// Name of the labelled extra run.
@@ -274,18 +291,27 @@ impl DistributionStudy {
         })
     }
 
-    /// Runs the four distributions on `model`.
+    /// Runs the four distributions on `model`, the instantaneous
+    /// comparison along the energy-optimal run and the duration sweep.
     pub fn compare(&self, model: &Model) -> Result<DistributionOutcome> {
         let settings = self.resolve(model)?;
         check_finite_vector("rotation", &self.rotation, 3)?;
-        let mut data = Data::new(model);
-        let start = *forward_kinematics(model, &mut data, &settings.start)?;
-        let turn = Rotation3::from_scaled_axis(Vector3::from(self.rotation));
-        let goal = Pose::new(
-            turn.into_inner() * start.rotation,
-            start.translation + Vector3::from(settings.displacement),
-        );
-        let path = CartesianTrajectory::line(start, goal, TimeLaw::Quintic, self.duration)?;
+        let durations = match &self.durations {
+            Some(list) => {
+                check_finite_vector("durations", list, list.len())?;
+                if let Some(bad) = list.iter().find(|&&d| d <= 0.0) {
+                    return Err(Error::invalid_argument(
+                        "durations",
+                        format!("every duration must be > 0 s, got {bad}"),
+                    ));
+                }
+                let mut sorted = list.clone();
+                sorted.sort_by(f64::total_cmp);
+                sorted.dedup();
+                sorted
+            }
+            None => DURATION_FACTORS.iter().map(|f| f * self.duration).collect(),
+        };
         let mut cases = ComparisonCase::four_way(
             model.dof(),
             settings.load,
@@ -293,6 +319,11 @@ impl DistributionStudy {
             settings.priorities.clone(),
             &settings.locked,
         )?;
+        let sweep_cases: Vec<ComparisonCase> = cases
+            .iter()
+            .filter(|c| c.name == "energy-optimal" || c.name == "locked")
+            .cloned()
+            .collect();
         if !settings.variant_locked.is_empty() {
             cases.push(ComparisonCase {
                 name: VARIANT_NAME.into(),
@@ -301,15 +332,9 @@ impl DistributionStudy {
                 ),
             });
         }
-        let results = compare_distributions(
-            model,
-            &settings.start,
-            &path,
-            &settings.load,
-            &cases,
-            &settings.options,
-        )?;
-        let torque_energies = if check_dynamics_model(model).is_ok() {
+        let results = self.run_cases(model, &settings, self.duration, &cases)?;
+        let dynamics = check_dynamics_model(model).is_ok();
+        let torque_energies = if dynamics {
             results
                 .iter()
                 .map(|r| torque_energies(model, r, &settings.load))
@@ -317,21 +342,94 @@ impl DistributionStudy {
         } else {
             Vec::new()
         };
-        let zero_weight_lock = match results.iter().find(|r| r.name == "locked") {
-            Some(run)
-                if settings.locked.len() + 6 == model.dof()
-                    && run.report.status == TrackingStatus::Completed =>
-            {
+        let completed = |name: &str| {
+            results
+                .iter()
+                .find(|r| r.name == name && r.report.status == TrackingStatus::Completed)
+        };
+        let zero_weight_lock = match completed("locked") {
+            Some(run) if settings.locked.len() + 6 == model.dof() => {
                 Some(zero_weight_lock(model, run, &settings.locked)?)
             }
             _ => None,
+        };
+        let instant = match completed("energy-optimal") {
+            Some(run) => Some(instant_comparison(
+                model,
+                run,
+                &settings.load,
+                &settings.priorities,
+                &settings.locked,
+            )?),
+            None => None,
+        };
+        let sweep = if dynamics && !durations.is_empty() && sweep_cases.len() == 2 {
+            Some(self.sweep(model, &settings, &durations, &sweep_cases)?)
+        } else {
+            None
         };
         Ok(DistributionOutcome {
             settings,
             results,
             torque_energies,
             zero_weight_lock,
+            instant,
+            sweep,
         })
+    }
+
+    /// The straight line of `duration` s (quintic timing) from the start,
+    /// each case tracking it.
+    fn run_cases(
+        &self,
+        model: &Model,
+        settings: &ResolvedDistribution,
+        duration: f64,
+        cases: &[ComparisonCase],
+    ) -> Result<Vec<ComparisonResult>> {
+        let mut data = Data::new(model);
+        let start = *forward_kinematics(model, &mut data, &settings.start)?;
+        let turn = Rotation3::from_scaled_axis(Vector3::from(self.rotation));
+        let goal = Pose::new(
+            turn.into_inner() * start.rotation,
+            start.translation + Vector3::from(settings.displacement),
+        );
+        let path = CartesianTrajectory::line(start, goal, TimeLaw::Quintic, duration)?;
+        compare_distributions(
+            model,
+            &settings.start,
+            &path,
+            &settings.load,
+            cases,
+            &settings.options,
+        )
+    }
+
+    /// The energy-optimal run and the baseline (`cases`, in that order) at
+    /// each of `durations`, F under both torque models.
+    fn sweep(
+        &self,
+        model: &Model,
+        settings: &ResolvedDistribution,
+        durations: &[f64],
+        cases: &[ComparisonCase],
+    ) -> Result<DurationSweep> {
+        let points = durations
+            .iter()
+            .map(|&duration| {
+                let runs = self.run_cases(model, settings, duration, cases)?;
+                let optimal = torque_energies(model, &runs[0], &settings.load)?;
+                let baseline = torque_energies(model, &runs[1], &settings.load)?;
+                Ok(DurationPoint {
+                    duration,
+                    optimal_static: optimal.static_energy,
+                    baseline_static: baseline.static_energy,
+                    optimal_dynamic: optimal.dynamic_energy,
+                    baseline_dynamic: baseline.dynamic_energy,
+                })
+            })
+            .collect::<Result<Vec<_>>>()?;
+        Ok(DurationSweep { points })
     }
 
     /// The study on gantry9.
@@ -341,7 +439,7 @@ impl DistributionStudy {
         Ok(StudyReport {
             checks: outcome.checks()?,
             findings: outcome.findings(),
-            series: Vec::new(),
+            series: outcome.sweep.iter().map(DurationSweep::series).collect(),
             notes: vec![DISTRIBUTION_NOTE.into()],
         })
     }
@@ -355,7 +453,12 @@ pub const DISTRIBUTION_NOTE: &str = "A zero torque would make a joint free of co
      adds the motion's inertia to the same runs. The baseline is the paper's usual practice: \
      joints locked so that six remain (n - 6 of them). A locked joint has an infinite weight in \
      the weighted least norm over all joints; in the paper's partitioned form it is A_Q = 0 in \
-     eq 19, which gives the extra joints phi_p_dot = 0: the same lock (a finding measures it).";
+     eq 19, which gives the extra joints phi_p_dot = 0: the same lock (a finding measures it). Whole runs visit different configurations, so \
+     eq 17's claim at each instant is tested apart: every distribution solved at the \
+     energy-optimal run's configurations and twists. The duration sweep repeats the \
+     energy-optimal run and the baseline at several durations: the inertia share is how much \
+     the motion's inertia changes F, and 'moderate speed' is read as the durations from \
+     which on it stays within 5 %.";
 
 impl DistributionOutcome {
     /// The run named `name` (`minimum-norm`, `energy-optimal`, `priorities`,
