@@ -109,8 +109,13 @@ pub const DEFAULT_GRAVITY: Vector3<f64> = Vector3::new(0.0, 0.0, -9.81);
 /// the tip; Featherstone, section 6.5), or the squared diagonal of a Cholesky
 /// factor `M = L L'` ([`mass_matrix_inverse`], coupled models). A pivot of
 /// an exactly singular `M` comes out of rounding at about 1e-16 of the
-/// largest diagonal; a ratio of 1e-10 still leaves accelerations with about
-/// six correct digits (about `1e-16 / ratio`).
+/// largest diagonal, of either sign; a ratio of 1e-10 still leaves
+/// accelerations with about six correct digits (about `1e-16 / ratio`). On
+/// 440 root-to-leaf chains of example-robot-data 6.0.0's URDFs (those
+/// without mimic joints; Pinocchio's `M` at three configurations each),
+/// the smallest pivot ratio of a regular `M`, in either order, is 1.1e-7
+/// (iCub's `imu_frame` chain), three orders above the threshold; rounding
+/// is six orders below it.
 pub const MASS_MATRIX_THRESHOLD: f64 = 1e-10;
 
 /// The error of forward dynamics on a numerically singular mass matrix:
