@@ -131,7 +131,11 @@ fn singular_mass_matrix(
     Error::Numerical {
         context: context.into(),
         reason: format!(
-            "the mass matrix is singular at joint {joint} (`{}`): its pivot there is {pivot:.3e},              not above {MASS_MATRIX_THRESHOLD:e} times the matrix's largest diagonal entry              {largest:.3e} (the bodies this joint moves have no inertia about its axis that              the other joints cannot take up, e.g. a point mass on the axis or a massless              tip)",
+            "the mass matrix is singular at joint {joint} (`{}`): its pivot there is {pivot:.3e}, \
+             not above {MASS_MATRIX_THRESHOLD:e} times the matrix's largest diagonal entry \
+             {largest:.3e} (the bodies this joint moves have no inertia about its axis that \
+             the other joints cannot take up, e.g. a point mass on the axis or a massless \
+             tip)",
             model.joints()[joint].name
         ),
     }
