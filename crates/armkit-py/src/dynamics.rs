@@ -182,6 +182,8 @@ pub fn rnea<'py>(
 
 /// Forward dynamics (ABA): the joint accelerations (rad/s^2 or m/s^2) under
 /// torques `tau` at `q`, `v`: `a = M(q)^-1 (tau - C(q, v) v - g(q))`.
+/// `ValueError` naming the joint when `M(q)` is numerically singular
+/// (`armkit::dynamics::MASS_MATRIX_THRESHOLD`), never accelerations.
 #[pyfunction]
 #[pyo3(signature = (robot, q, v, tau, gravity=None, threads=None))]
 #[allow(clippy::too_many_arguments)]

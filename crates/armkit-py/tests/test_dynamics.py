@@ -110,3 +110,36 @@ def test_gravity_between_calls_on_the_cached_workspace():
     # RNEA at rest is gravity; the same from a batch of one.
     assert np.array_equal(dynamics.rnea(robot, q, [0.0] * 7, [0.0] * 7), g)
     assert np.array_equal(dynamics.rnea(robot, [q], [[0.0] * 7], [[0.0] * 7])[0], g)
+
+
+def published(chain):
+    """The chain of reference_dynamics_<chain>.json (Pinocchio on a published URDF) and its samples."""
+    with open(data_file(f"reference_dynamics_{chain}.json")) as f:
+        ref = json.load(f)
+    robot = armkit.Robot.from_urdf(DATA / ref["urdf"], base=ref["base"], tip=ref["tip"])
+    return robot, ref["samples"]
+
+
+@pytest.mark.parametrize("chain", ["al5d", "human_leg", "bolt_leg"])
+def test_published_chains_equal_pinocchio(chain):
+    # AL5D: M singular everywhere; human leg: massless links between joints;
+    # Bolt's leg: a zero-mass foot with an inertia tensor.
+    robot, samples = published(chain)
+    for s in samples:
+        np.testing.assert_allclose(dynamics.rnea(robot, s["q"], s["v"], s["a"]), s["tau"], rtol=0, atol=1e-8)
+        np.testing.assert_allclose(dynamics.mass_matrix(robot, s["q"]), s["mass_matrix"], rtol=0, atol=1e-8)
+        np.testing.assert_allclose(dynamics.gravity_torques(robot, s["q"]), s["gravity"], rtol=0, atol=1e-8)
+        if chain != "al5d":
+            np.testing.assert_allclose(dynamics.aba(robot, s["q"], s["v"], s["tau"]), s["a"], rtol=0, atol=1e-9)
+
+
+def test_forward_dynamics_on_a_singular_mass_matrix_is_a_value_error():
+    robot, samples = published("al5d")
+    message = re.escape("the mass matrix is singular at joint 3 (`j4`)")
+    qs = [s["q"] for s in samples] + list(np.random.default_rng(32).uniform(-1.5, 1.5, (200, 4)))
+    for q in qs:
+        with pytest.raises(ValueError, match=message):
+            dynamics.aba(robot, q, np.zeros(4), np.full(4, 0.1))
+    # Batched: the row is named, and no array comes back.
+    with pytest.raises(ValueError, match=r"q\[0\]: .*" + message):
+        dynamics.aba(robot, np.array(qs), np.zeros((len(qs), 4)), np.full((len(qs), 4), 0.1))

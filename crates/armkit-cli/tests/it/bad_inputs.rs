@@ -272,6 +272,9 @@ const FILES: &[(&str, &str)] = &[
     (
         "second-link-massless.toml",
         "convention = \"standard\"\n[[links]]\ntype = \"R\"\nd = 0\na = 1\nalpha = 0\nmass = 1.0\n[[links]]\ntype = \"R\"\nd = 0\na = 1\nalpha = 0\n",
+    ),    (
+        "point-mass-on-axis.urdf",
+        "<robot name=\"r\"><link name=\"a\"/><link name=\"b\"><inertial><origin xyz=\"0.3 0 0\"/><mass value=\"1\"/><inertia ixx=\"0\" ixy=\"0\" ixz=\"0\" iyy=\"0\" iyz=\"0\" izz=\"0\"/></inertial></link><link name=\"c\"><inertial><mass value=\"1\"/><inertia ixx=\"0\" ixy=\"0\" ixz=\"0\" iyy=\"0\" iyz=\"0\" izz=\"0\"/></inertial></link><joint name=\"j1\" type=\"revolute\"><parent link=\"a\"/><child link=\"b\"/><axis xyz=\"0 0 1\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint><joint name=\"j2\" type=\"revolute\"><parent link=\"b\"/><child link=\"c\"/><origin xyz=\"0.3 0 0\"/><axis xyz=\"0 0 1\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint></robot>",
     ),
 ];
 
@@ -1882,6 +1885,20 @@ const CASES: &[Case] = &[
             "0,0,0,0,0,0",
             "--gravity",
             "0,-9.81",
+        ],
+        1,
+    ),
+    case(
+        "dynamics",
+        "forward dynamics on a singular mass matrix (a point mass on its joint's axis)",
+        &[
+            "dynamics",
+            "--urdf",
+            "point-mass-on-axis.urdf",
+            "--q",
+            "0,0",
+            "--tau",
+            "1,1",
         ],
         1,
     ),

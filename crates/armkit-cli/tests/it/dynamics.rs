@@ -230,3 +230,90 @@ fn coupled_models_work_in_their_independent_joints() {
     let result = json(&output);
     assert_eq!(result["tau"].as_array().unwrap().len(), 9);
 }
+
+/// The chain and the first two samples of `reference_dynamics_<chain>.json`
+/// (Pinocchio on a published URDF).
+fn published(chain: &str) -> (Vec<String>, Vec<serde_json::Value>) {
+    let path = format!(
+        "{}/../../tests/data/reference_dynamics_{chain}.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let reference: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let text = |key: &str| reference[key].as_str().unwrap().to_string();
+    let args = vec![
+        "dynamics".to_string(),
+        "--urdf".to_string(),
+        format!("tests/data/{}", text("urdf")),
+        "--base".to_string(),
+        text("base"),
+        "--tip".to_string(),
+        text("tip"),
+    ];
+    (args, reference["samples"].as_array().unwrap()[..2].to_vec())
+}
+
+#[test]
+fn singular_mass_matrix_gives_inverse_dynamics_and_refuses_forward_dynamics() {
+    // The AL5D's point masses lie on the joint axes: M is singular at every
+    // configuration (q = 0 and another).
+    let (chain, samples) = published("al5d");
+    for sample in &samples {
+        let vector =
+            |key: &str| -> Vec<f64> { serde_json::from_value(sample[key].clone()).unwrap() };
+        let state = [
+            "--q".to_string(),
+            join(&vector("q")),
+            "--v".to_string(),
+            join(&vector("v")),
+            "--a".to_string(),
+            join(&vector("a")),
+        ];
+        let args: Vec<&str> = chain.iter().chain(&state).map(String::as_str).collect();
+        let result = json(&armkit(&[&args[..], &["--json"]].concat()));
+        for key in ["tau", "mass_matrix", "gravity"] {
+            let error = max_difference(&result[key], &sample[key]);
+            assert!(error < 1e-9, "{key}: off by {error:e}");
+        }
+        for json_flag in [&[][..], &["--json"][..]] {
+            let output = armkit(&[&args[..], &["--tau", "0.1,0.1,0.1,0.1"], json_flag].concat());
+            assert_eq!(output.status.code(), Some(1), "{}", stdout(&output));
+            assert!(stdout(&output).is_empty(), "{}", stdout(&output));
+            let message = stderr(&output);
+            assert_eq!(message.lines().count(), 1, "{message}");
+            assert!(
+                message.contains("the mass matrix is singular at joint 3 (`j4`)"),
+                "{message}"
+            );
+        }
+    }
+}
+
+#[test]
+fn massless_links_between_joints_have_dynamics() {
+    // The human model's leg: massless links between the hip's and the
+    // ankle's joints, M positive definite.
+    let (chain, samples) = published("human_leg");
+    let sample = &samples[1];
+    let vector = |key: &str| -> Vec<f64> { serde_json::from_value(sample[key].clone()).unwrap() };
+    let state = [
+        "--q".to_string(),
+        join(&vector("q")),
+        "--v".to_string(),
+        join(&vector("v")),
+        "--a".to_string(),
+        join(&vector("a")),
+        "--tau".to_string(),
+        join(&vector("tau")),
+        "--json".to_string(),
+    ];
+    let args: Vec<&str> = chain.iter().chain(&state).map(String::as_str).collect();
+    let result = json(&armkit(&args));
+    for key in ["tau", "mass_matrix", "gravity"] {
+        let error = max_difference(&result[key], &sample[key]);
+        assert!(error < 1e-9, "{key}: off by {error:e}");
+    }
+    // Forward dynamics undoes inverse dynamics.
+    let error = max_difference(&result["ddq"], &sample["a"]);
+    assert!(error < 1e-9, "ddq: off by {error:e}");
+}

@@ -26,7 +26,11 @@ def aba(
     robot: Robot, q: npt.ArrayLike, v: npt.ArrayLike, tau: npt.ArrayLike,
     gravity: Optional[Sequence[float]] = None, threads: Optional[int] = None,
 ) -> npt.NDArray[np.float64]:
-    """Forward dynamics: a = M(q)^-1 (tau - C(q, v) v - g(q)); (dof,) or (N, dof)."""
+    """Forward dynamics: a = M(q)^-1 (tau - C(q, v) v - g(q)); (dof,) or (N, dof).
+
+    Raises ValueError when M(q) is numerically singular (a pivot at or below
+    armkit's MASS_MATRIX_THRESHOLD, 1e-10, times M's largest diagonal entry),
+    naming the joint."""
 
 def mass_matrix(robot: Robot, q: npt.ArrayLike, threads: Optional[int] = None) -> npt.NDArray[np.float64]:
     """M(q): (dof, dof) or (N, dof, dof), symmetric positive definite."""

@@ -1,9 +1,9 @@
 //! RNEA and CRBA in body frames, ABA in the world frame, and what derives
 //! from them (module documentation).
 
-use super::spatial::Motion;
-use super::{check_not_overflowed, DynamicsData};
-use crate::error::{check_finite_vector, Error, Result};
+use super::spatial::{Motion, SpatialInertia};
+use super::{check_not_overflowed, singular_mass_matrix, DynamicsData, MASS_MATRIX_THRESHOLD};
+use crate::error::{check_finite_vector, Result};
 use crate::math::{DMatrix, Matrix6, Vector3, Vector6};
 use crate::model::Model;
 
@@ -272,25 +272,22 @@ fn composite_rigid_body(data: &mut DynamicsData, out: &mut DMatrix<f64>) {
 }
 
 /// The lower Cholesky factor `L` of `data.mass_matrix` (`M = L L'`) into
-/// `data.mass_matrix_inverse`'s buffer (lower triangle). Error: `M` not
-/// positive definite, naming the joint.
-fn cholesky_factor(model: &Model, data: &mut DynamicsData) -> Result<()> {
+/// `data.mass_matrix_inverse`'s buffer (lower triangle). Error: `M`
+/// numerically singular (a pivot `L_jj^2` at or below
+/// [`MASS_MATRIX_THRESHOLD`] times `M`'s largest diagonal entry), naming the
+/// joint; `context` says what was being computed.
+fn cholesky_factor(model: &Model, data: &mut DynamicsData, context: &str) -> Result<()> {
     let n = data.dof;
     let l = &mut data.mass_matrix_inverse;
     l.copy_from(&data.mass_matrix);
+    let largest = (0..n).map(|j| l[(j, j)]).fold(0.0, f64::max);
     for j in 0..n {
         let mut diagonal = l[(j, j)];
         for k in 0..j {
             diagonal -= l[(j, k)] * l[(j, k)];
         }
-        if !(diagonal > 0.0 && diagonal.is_finite()) {
-            return Err(Error::Numerical {
-                context: "mass matrix inverse".into(),
-                reason: format!(
-                    "the mass matrix is not positive definite at joint {j} (`{}`): the bodies it moves have no inertia about its axis",
-                    model.joints()[j].name
-                ),
-            });
+        if !(diagonal > MASS_MATRIX_THRESHOLD * largest && diagonal.is_finite()) {
+            return Err(singular_mass_matrix(model, context, j, diagonal, largest));
         }
         let diagonal = diagonal.sqrt();
         l[(j, j)] = diagonal;
@@ -307,8 +304,9 @@ fn cholesky_factor(model: &Model, data: &mut DynamicsData) -> Result<()> {
 
 /// The inverse of the mass matrix, `M(q)^-1` (n x n), by a Cholesky
 /// factorization of [`mass_matrix`] done in place. Errors as [`rnea`], and
-/// [`Error::Numerical`] if `M` is not positive definite (a body without
-/// inertia about its own joint axis). Allocates nothing.
+/// [`crate::Error::Numerical`] if `M` is numerically singular (see
+/// [`MASS_MATRIX_THRESHOLD`]; a body without inertia about its own joint
+/// axis). Allocates nothing.
 pub fn mass_matrix_inverse<'d>(
     model: &Model,
     data: &'d mut DynamicsData,
@@ -316,7 +314,7 @@ pub fn mass_matrix_inverse<'d>(
 ) -> Result<&'d DMatrix<f64>> {
     mass_matrix(model, data, q)?;
     let n = data.dof;
-    cholesky_factor(model, data)?;
+    cholesky_factor(model, data, "mass matrix inverse")?;
     let l = &mut data.mass_matrix_inverse;
     // L^-1 in place (lower triangular), then M^-1 = L^-T L^-1.
     for j in 0..n {
@@ -360,8 +358,10 @@ pub fn mass_matrix_inverse<'d>(
 ///
 /// Returns one acceleration per joint (also kept in
 /// [`DynamicsData::accelerations`]). Errors as [`rnea`], and
-/// [`Error::Numerical`] if a joint's articulated inertia about its axis is not
-/// positive (bodies without inertia about that axis). Allocates nothing.
+/// [`crate::Error::Numerical`] if `M(q)` is numerically singular: a joint's
+/// articulated inertia about its axis at or below [`MASS_MATRIX_THRESHOLD`]
+/// times `M`'s largest diagonal entry (bodies without inertia about that
+/// axis), at any configuration. Allocates nothing.
 pub fn aba<'d>(
     model: &Model,
     data: &'d mut DynamicsData,
@@ -398,23 +398,21 @@ pub fn aba<'d>(
     // running pair suffices.
     let mut articulated = Matrix6::zeros();
     let mut bias = Vector6::zeros();
+    // The composite inertia of bodies j..n-1 gives M's diagonal entry
+    // S_j' Ic_j S_j, the scale the pivots D_j are judged against.
+    let mut composite = SpatialInertia::ZERO;
+    let mut largest_diagonal = 0.0_f64;
     for j in (0..data.dof).rev() {
         let body = &data.world_inertias[j];
         let velocity = data.world_velocities[j];
         articulated += body.to_matrix();
+        composite += *body;
+        let axis = &data.world_axes[j];
+        largest_diagonal = largest_diagonal.max(axis.dot(&composite.apply(axis)));
         bias += velocity.cross_force(&body.apply(&velocity)).to_vector();
-        let s = data.world_axes[j].to_vector();
+        let s = axis.to_vector();
         let u_column = articulated * s;
         let d = s.dot(&u_column);
-        if !(d > 0.0 && d.is_finite()) {
-            return Err(Error::Numerical {
-                context: "forward dynamics (ABA)".into(),
-                reason: format!(
-                    "the articulated inertia about joint {j} (`{}`) is {d:e}: the bodies it moves have no inertia about its axis",
-                    model.joints()[j].name
-                ),
-            });
-        }
         let u = tau[j] - s.dot(&bias);
         data.u_columns[j] = u_column;
         data.d_values[j] = d;
@@ -422,6 +420,21 @@ pub fn aba<'d>(
         let inverse_d = 1.0 / d;
         articulated -= u_column * (u_column.transpose() * inverse_d);
         bias += articulated * data.accelerations[j].to_vector() + u_column * (u * inverse_d);
+    }
+    // Judged once every diagonal entry is known; the first pivot from the tip
+    // that fails is the one that makes the rest meaningless.
+    let tolerance = MASS_MATRIX_THRESHOLD * largest_diagonal;
+    if let Some(j) = (0..data.dof)
+        .rev()
+        .find(|&j| !(data.d_values[j] > tolerance && data.d_values[j].is_finite()))
+    {
+        return Err(singular_mass_matrix(
+            model,
+            "forward dynamics (ABA)",
+            j,
+            data.d_values[j],
+            largest_diagonal,
+        ));
     }
     // Pass 3, base to tip: accelerations, gravity as an upward base acceleration.
     let mut acceleration = Motion::new(Vector3::zeros(), -data.gravity).to_vector();
@@ -448,7 +461,7 @@ fn coupled_forward_dynamics(
     let gravity = data.gravity;
     data.chain_newton_euler(Some(v), None, Some(&gravity))?;
     joint_space_inertia(data);
-    cholesky_factor(model, data)?;
+    cholesky_factor(model, data, "forward dynamics")?;
     let n = data.dof;
     let l = &data.mass_matrix_inverse;
     let ddq = &mut data.ddq;

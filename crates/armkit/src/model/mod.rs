@@ -128,7 +128,8 @@ impl JointLimits {
 /// in that frame's axes.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LinkInertia {
-    /// Mass, kg (> 0).
+    /// Mass, kg (>= 0; a body of zero mass may still have rotational
+    /// inertia, as a URDF link with a zero `<mass>` and an `<inertia>` has).
     pub mass: f64,
     /// Centre of mass, m, in the joint frame.
     pub com: Vector3<f64>,
@@ -157,11 +158,14 @@ impl LinkInertia {
         }
     }
 
-    /// Checks mass > 0, finite centre of mass, symmetric positive
+    /// Checks mass >= 0, finite centre of mass, symmetric positive
     /// semi-definite inertia. The error string names the field.
     pub fn validate(&self) -> std::result::Result<(), (&'static str, String)> {
-        if !(self.mass.is_finite() && self.mass > 0.0) {
-            return Err(("mass", format!("must be finite and > 0, got {}", self.mass)));
+        if !(self.mass.is_finite() && self.mass >= 0.0) {
+            return Err((
+                "mass",
+                format!("must be finite and >= 0, got {}", self.mass),
+            ));
         }
         if !self.com.iter().all(|v| v.is_finite()) {
             return Err((

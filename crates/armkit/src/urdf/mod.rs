@@ -26,8 +26,12 @@
 //!   Pinocchio's `buildReducedModel` does) and bodies behind a floating joint
 //!   left out. An inertial origin may be rotated: the tensor is turned into
 //!   the link frame (`I = R I' R'`), then moved to the common centre of mass
-//!   (parallel-axis theorem). Links with zero mass or no `<inertial>`
-//!   contribute nothing; a body with no mass at all has no inertia (`None`).
+//!   (parallel-axis theorem). A link without `<inertial>`, or with zero
+//!   mass and a zero tensor, contributes nothing; a link with zero mass and a
+//!   non-zero tensor contributes its tensor (as in Pinocchio). A body with
+//!   neither mass nor inertia is massless (a zero [`LinkInertia`], as in
+//!   Pinocchio), unless no body of the chain has any: such a chain describes
+//!   kinematics only, and its mass properties are unknown (`None`).
 //!
 //! * `<mimic joint multiplier offset>`: the joint follows its leader,
 //!   `q = multiplier * q_leader + offset` (defaults 1 and 0), and leaves the
@@ -289,6 +293,21 @@ fn chain_builder(
     let mut builder = ModelBuilder::new(name);
     let mut any_moving = false;
     let mut off_chain_leaders = Vec::new();
+    let next_moving = |position: usize| {
+        chain.joints[position + 1..]
+            .iter()
+            .copied()
+            .find(|&n| is_moving(&robot.joints[n].joint_type))
+    };
+    // Whether any body of the chain has mass properties (a bad <inertial> is
+    // reported by the loop below, in chain order).
+    let chain_has_mass = chain.joints.iter().enumerate().any(|(position, &j)| {
+        is_moving(&robot.joints[j].joint_type)
+            && matches!(
+                body_inertia(robot, tree, tree.child_link(j), next_moving(position)),
+                Ok(Some(_))
+            )
+    });
     for (position, &j) in chain.joints.iter().enumerate() {
         let joint = &robot.joints[j];
         let origin = pose_of(&joint.origin)
@@ -332,10 +351,6 @@ fn chain_builder(
                 joint.axis.xyz.0
             ));
         }
-        let next_moving = chain.joints[position + 1..]
-            .iter()
-            .copied()
-            .find(|&n| is_moving(&robot.joints[n].joint_type));
         let mut spec = JointSpec {
             name: joint.name.clone(),
             kind,
@@ -344,7 +359,11 @@ fn chain_builder(
             limits: joint_limits(tree, j, &joint.limit, kind, limited)?,
             inertia: None,
         };
-        if let Some(inertia) = body_inertia(robot, tree, tree.child_link(j), next_moving)? {
+        let inertia = match body_inertia(robot, tree, tree.child_link(j), next_moving(position))? {
+            None if chain_has_mass => Some(LinkInertia::point_mass(0.0, Vector3::zeros())),
+            inertia => inertia,
+        };
+        if let Some(inertia) = inertia {
             spec = spec.with_inertia(inertia);
         }
         builder = builder.joint(spec);
@@ -518,7 +537,8 @@ fn joint_limits(
     })
 }
 
-/// The `<inertial>` of one link in that link's frame, `None` for no mass.
+/// The `<inertial>` of one link in that link's frame, `None` for neither
+/// mass nor inertia.
 fn link_inertia(
     robot: &urdf_rs::Robot,
     tree: &Tree<'_>,
@@ -526,10 +546,10 @@ fn link_inertia(
 ) -> std::result::Result<Option<LinkInertia>, String> {
     let inertial = &robot.links[link].inertial;
     let mass = inertial.mass.value;
-    if mass == 0.0 {
+    let i = &inertial.inertia;
+    if mass == 0.0 && [i.ixx, i.ixy, i.ixz, i.iyy, i.iyz, i.izz] == [0.0; 6] {
         return Ok(None);
     }
-    let i = &inertial.inertia;
     let body = LinkInertia {
         mass,
         com: Vector3::zeros(),
@@ -578,15 +598,22 @@ fn body_inertia(
 /// One body from several: total mass, mass-weighted centre of mass, and the
 /// tensors moved to that centre (parallel-axis theorem,
 /// `I += m (|d|^2 E - d d')` with `d` the part's offset from the centre).
+/// Parts of zero mass add their tensor alone (the same about any point); a
+/// body of zero total mass has its centre of mass at the origin, as in
+/// Pinocchio. `None` for no parts.
 fn combine(parts: &[LinkInertia]) -> Option<LinkInertia> {
-    let mass: f64 = parts.iter().map(|p| p.mass).sum();
-    if parts.is_empty() || mass <= 0.0 {
+    if parts.is_empty() {
         return None;
     }
-    let com = parts
+    let mass: f64 = parts.iter().map(|p| p.mass).sum();
+    let first_moment = parts
         .iter()
-        .fold(Vector3::zeros(), |sum, p| sum + p.com * p.mass)
-        / mass;
+        .fold(Vector3::zeros(), |sum, p| sum + p.com * p.mass);
+    let com = if mass > 0.0 {
+        first_moment / mass
+    } else {
+        Vector3::zeros()
+    };
     let inertia = parts.iter().fold(Matrix3::zeros(), |sum, p| {
         let d = p.com - com;
         sum + p.inertia + (Matrix3::identity() * d.norm_squared() - d * d.transpose()) * p.mass

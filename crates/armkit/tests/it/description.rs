@@ -101,7 +101,7 @@ fn bad_mass_properties_are_named() {
     );
     let message = toml_error(&one_link("mass = -2.0\n"));
     assert!(
-        message.ends_with("field `mass`: must be finite and > 0, got -2"),
+        message.ends_with("field `mass`: must be finite and >= 0, got -2"),
         "{message}"
     );
     let message = toml_error(&one_link(

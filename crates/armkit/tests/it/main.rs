@@ -9,6 +9,7 @@ mod build_features;
 mod description;
 mod dynamics;
 mod dynamics_coupled;
+mod dynamics_published;
 mod ik;
 mod ik_analytic;
 mod ik_closed_form;

@@ -654,7 +654,7 @@ fn bad_inertials_are_named() {
     assert_error(
         &text,
         &ChainSelection::default(),
-        &["link `b` (line 3): <inertial> mass must be finite and > 0, got -1"],
+        &["link `b` (line 3): <inertial> mass must be finite and >= 0, got -1"],
     );
     let text = with_inertial(
         "<mass value=\"1\"/><inertia ixx=\"-1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"1\"/>",
