@@ -58,7 +58,7 @@ pub fn classify<'py>(
 /// The tracking method named in Python; `max_rate` (rad/s) is the clamped
 /// DLS's joint speed limit.
 fn tracking_method(name: &str, k: usize, max_rate: f64) -> armkit::Result<Method> {
-    match name {
+    let method = match name {
         "plain" => Ok(Method::Plain),
         "avoidance" => Ok(Method::Avoidance { k }),
         "dls" => Ok(Method::DampedLeastSquares(NakamuraDamping::default())),
@@ -73,7 +73,10 @@ fn tracking_method(name: &str, k: usize, max_rate: f64) -> armkit::Result<Method
                 "expected \"plain\", \"avoidance\", \"dls\", \"dls_clamped\" or \"sri\", got \"{other}\""
             ),
         )),
-    }
+    }?;
+    // Before any run (the threshold's calibration is one).
+    method.validate()?;
+    Ok(method)
 }
 
 /// The region plan named in Python.
