@@ -142,7 +142,9 @@ pub fn line_through<'py>(
 /// `position_error`, `orientation_error`, `determinant`, `in_region`) and
 /// the summary (`status`, `peak_joint_rate`, `max_position_error`,
 /// `max_orientation_error`, `final_position_error`,
-/// `time_in_singular_region`, `ik_solves`).
+/// `time_in_singular_region`, `ik_solves`). At most
+/// [`armkit::tracking::MAX_PERIODS`] control periods (`duration / dt`) and
+/// `k` in `1..=MAX_PERIODS`: ValueError naming `dt` or `k` before any work.
 #[pyfunction]
 #[pyo3(signature = (robot, q_start, T_goal, method="avoidance", k=5, duration=20.0, acceleration_time=4.0, dt=0.01, determinant_threshold=None, joint_step_threshold=0.005, max_rate=0.5, region_plan="joint"))]
 #[allow(non_snake_case, clippy::too_many_arguments)]
