@@ -251,7 +251,10 @@ fn the_table_csv_svg_and_report_agree() {
         assert!(line.ends_with("completed"), "{line}");
     }
     assert!(!text.contains("[FAIL]"), "{text}");
-    assert!(text.contains("[reproduced] seed 004, Fig 6"), "{text}");
+    assert!(
+        text.contains("[reproduced with deviation] seed 004, Fig 6"),
+        "{text}"
+    );
     assert!(text.contains("report.html"));
     let plain_peak = value("plain", "peak_joint_rate");
     let avoidance_peak = value("avoidance k=1", "peak_joint_rate");

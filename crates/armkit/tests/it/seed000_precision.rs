@@ -368,9 +368,12 @@ fn the_demo_contrast_holds_through_the_library() {
         ),
         FindingStatus::NotReproduced
     );
+    // Examples 1 and 2 without the velocity term drift too (the controls),
+    // so the divergence is the missing term's, not Example 3's: not
+    // reproduced as the paper explains it.
     assert_eq!(
         status_of(Seed000Example::EqualWeightsUndamped, &undamped, "diverge"),
-        FindingStatus::ReproducedWithDeviation
+        FindingStatus::NotReproduced
     );
 }
 

@@ -42,8 +42,9 @@ fn seed004_avoidance_study_passes_and_states_the_held_drift() {
     // to 1 only where the greedy plan is kept (the 10 and 30 mm lines, and
     // the lines with no region to plan).
     assert!(plan.passed() && plan.value <= 1.0, "{plan:?}");
-    // The plain / avoidance peak-rate ratio is the paper's Fig 6 claim: a
-    // finding with its figure, reproduced here.
+    // The plain / avoidance peak-rate ratio is the paper's Fig 6 claim: it
+    // holds on the line through the singular pose, while on the near-miss
+    // lines the avoidance runs at its rate bound: a deviation, said so.
     let fig6 = report
         .findings
         .iter()
@@ -51,15 +52,16 @@ fn seed004_avoidance_study_passes_and_states_the_held_drift() {
         .expect("the Fig 6 finding");
     assert_eq!(
         fig6.status,
-        armkit::study::FindingStatus::Reproduced,
+        armkit::study::FindingStatus::ReproducedWithDeviation,
         "{fig6}"
     );
+    assert!(fig6.measured.contains("near-miss lines"), "{fig6}");
     let ratio: f64 = fig6
         .measured
         .split("(ratio ")
         .nth(1)
+        .and_then(|rest| rest.split(')').next())
         .unwrap()
-        .trim_end_matches(')')
         .parse()
         .unwrap();
     assert!(ratio >= 10.0, "{fig6}");
