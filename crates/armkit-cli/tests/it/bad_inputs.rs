@@ -2133,7 +2133,7 @@ const CASES: &[Case] = &[
     ),
     case(
         "traj",
-        "torque fit that leaves the velocity limits broken (reason on stderr)",
+        "torque fit that falls short of the limits (reason on stderr)",
         &[
             "traj",
             "line",
