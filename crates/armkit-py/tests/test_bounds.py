@@ -54,7 +54,8 @@ def test_a_ten_billion_row_batch_is_refused_quickly():
 def test_study_option_of_the_wrong_type_names_the_keyword():
     with pytest.raises(ValueError, match=re.escape('invalid argument `payload`: study `distribution`: invalid type: string "heavy", expected f64')):
         study.run("distribution", payload="heavy")
-    with pytest.raises(ValueError, match=re.escape("invalid argument `payload`: must be a finite weight in N, got NaN")):
+    # NaN has no JSON form: still refused, naming the keyword.
+    with pytest.raises(ValueError, match=re.escape("invalid argument `payload`: study `distribution`: ")):
         study.run("distribution", payload=float("nan"))
     with pytest.raises(ValueError, match=re.escape('invalid argument `mass`: study `beam-table`: invalid type: sequence, expected f64')):
         study.run("beam-table", gravity=10.0, mass=[1, 2])
