@@ -91,8 +91,8 @@ impl TrackingOptions {
     /// work).
     pub fn periods(&self, duration: f64, dof: usize) -> Result<(usize, f64)> {
         let count = ((duration / self.dt) - 1e-9).ceil().max(1.0);
-        // `!(<=)` also refuses a NaN count (a NaN duration or dt).
-        if !(count <= MAX_PERIODS as f64) {
+        // A NaN count (a NaN duration or dt) is refused too.
+        if count.is_nan() || count > MAX_PERIODS as f64 {
             // A sample: time, q and rates per joint, and about six figures.
             let bytes = count * (2 * dof + 7) as f64 * 8.0;
             return Err(Error::invalid_argument(
