@@ -50,3 +50,147 @@ pub fn cli_numbers(data: &[u8]) {
         );
     }
 }
+
+/// The keys a method table may hold (every method's, and a few it does not
+/// take), for [`scenario_tables`].
+const METHOD_KEYS: &[(&str, &[&str])] = &[
+    ("beam", &["mass", "gravity", "samples", "load"]),
+    (
+        "mpc",
+        &[
+            "target",
+            "start",
+            "horizon",
+            "control_horizon",
+            "dt",
+            "weights",
+            "terminal_factor",
+            "priorities",
+            "velocity_weight",
+            "solver",
+            "reach",
+            "max_steps",
+            "prismatic_resolution",
+            "prismatic_deadband",
+            "example",
+        ],
+    ),
+    (
+        "redundancy",
+        &[
+            "q0",
+            "move",
+            "rotate",
+            "duration",
+            "payload",
+            "no_gravity",
+            "priorities",
+            "lock",
+            "torque_floor",
+            "dt",
+            "gain",
+            "damping",
+            "secondary",
+            "secondary_gain",
+            "formulation",
+        ],
+    ),
+    (
+        "continuous_path",
+        &[
+            "from",
+            "to_pose",
+            "to_q",
+            "duration",
+            "law",
+            "accel_time",
+            "tolerance",
+            "segments",
+            "max_segments",
+            "torques",
+            "fit_torque_limits",
+            "speed_up",
+            "dynamics",
+        ],
+    ),
+    (
+        "singularity",
+        &[
+            "base",
+            "through",
+            "direction",
+            "miss",
+            "miss_sweep",
+            "duration",
+            "accel_time",
+            "k",
+            "determinant_threshold",
+            "joint_step_threshold",
+            "dt",
+        ],
+    ),
+    (
+        "space",
+        &[
+            "base_mass",
+            "base_inertia",
+            "duration",
+            "dt",
+            "seed",
+            "amplitude",
+        ],
+    ),
+];
+
+/// Values that sit on the edges of the checks.
+const EDGE_VALUES: &[&str] = &[
+    "nan",
+    "inf",
+    "-inf",
+    "0",
+    "-1",
+    "1e300",
+    "1e-300",
+    "0.5",
+    "true",
+    "false",
+    "\"\"",
+    "\"0.4,0.2,0.5,0,0,0\"",
+    "\"heavy\"",
+    "[1, 2]",
+    "[]",
+    "{}",
+    "18446744073709551615",
+    "100000000000",
+];
+
+/// A scenario built from the bytes: one method table (first byte), a robot
+/// (second byte: none or a built-in) and keys of that method with values
+/// from the edges of the checks (a byte pair per key), so that the fuzzer
+/// spends its time on the keys and their values rather than on TOML syntax.
+/// Parsed and validated like [`scenario`], never run: an `Err` is fine, a
+/// panic is a crash.
+pub fn scenario_tables(data: &[u8]) {
+    let [method, robot, rest @ ..] = data else {
+        return;
+    };
+    let (name, keys) = METHOD_KEYS[usize::from(*method) % METHOD_KEYS.len()];
+    let mut text = String::from("name = \"fuzz\"\ntitle = \"t\"\n");
+    let robots = ["", "ur5", "panda", "gantry9", "space6r"];
+    match robots[usize::from(*robot) % robots.len()] {
+        "" => {}
+        builtin => text.push_str(&format!("[robot]\nbuiltin = \"{builtin}\"\n")),
+    }
+    text.push_str(&format!("[{name}]\n"));
+    let mut seen = Vec::new();
+    for pair in rest.chunks_exact(2) {
+        let key = keys[usize::from(pair[0]) % keys.len()];
+        if seen.contains(&key) {
+            continue; // TOML refuses a repeated key before armkit sees it.
+        }
+        seen.push(key);
+        let value = EDGE_VALUES[usize::from(pair[1]) % EDGE_VALUES.len()];
+        text.push_str(&format!("{key} = {value}\n"));
+    }
+    let _ = armkit_cli::scenario::parse(&text, "<fuzz>.toml", Path::new("/nonexistent-fuzz-dir"));
+}

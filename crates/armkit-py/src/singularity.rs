@@ -58,7 +58,7 @@ pub fn classify<'py>(
 /// The tracking method named in Python; `max_rate` (rad/s) is the clamped
 /// DLS's joint speed limit.
 fn tracking_method(name: &str, k: usize, max_rate: f64) -> armkit::Result<Method> {
-    match name {
+    let method = match name {
         "plain" => Ok(Method::Plain),
         "avoidance" => Ok(Method::Avoidance { k }),
         "dls" => Ok(Method::DampedLeastSquares(NakamuraDamping::default())),
@@ -74,7 +74,10 @@ fn tracking_method(name: &str, k: usize, max_rate: f64) -> armkit::Result<Method
                 "expected \"plain\", \"avoidance\", \"dls\", \"dls_clamped\", \"sri\" or \"{SEPARATION}\", got \"{other}\""
             ),
         )),
-    }
+    }?;
+    // Before any run (the threshold's calibration is one).
+    method.validate()?;
+    Ok(method)
 }
 
 /// The region plan named in Python.
@@ -141,7 +144,9 @@ pub fn line_through<'py>(
 /// `position_error`, `orientation_error`, `determinant`, `in_region`) and
 /// the summary (`status`, `peak_joint_rate`, `max_position_error`,
 /// `max_orientation_error`, `final_position_error`,
-/// `time_in_singular_region`, `ik_solves`).
+/// `time_in_singular_region`, `ik_solves`). At most
+/// [`armkit::tracking::MAX_PERIODS`] control periods (`duration / dt`) and
+/// `k` in `1..=MAX_PERIODS`: ValueError naming `dt` or `k` before any work.
 #[pyfunction]
 #[pyo3(signature = (robot, q_start, T_goal, method="avoidance", k=5, duration=20.0, acceleration_time=4.0, dt=0.01, determinant_threshold=None, joint_step_threshold=0.005, max_rate=0.5, region_plan="joint"))]
 #[allow(non_snake_case, clippy::too_many_arguments)]

@@ -125,20 +125,39 @@ pub fn names() -> Vec<&'static str> {
 }
 
 /// Options given as keywords, as the study's options type (the library's
-/// field names; unknown names are errors).
+/// field names; unknown names are errors). Every value goes through JSON on
+/// its own, so that a value of the wrong type is an error naming its keyword.
 fn options<T: serde::de::DeserializeOwned>(
     py: Python<'_>,
     study: &str,
     options: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<T> {
-    let text: String = match options {
-        Some(options) => py
-            .import("json")?
-            .call_method1("dumps", (options,))?
-            .extract()?,
-        None => "{}".into(),
-    };
-    serde_json::from_str(&text)
+    let dumps = py.import("json")?.getattr("dumps")?;
+    let mut fields = serde_json::Map::new();
+    for (key, value) in options.into_iter().flat_map(|o| o.iter()) {
+        let key: String = key.extract()?;
+        let invalid = |reason: String| {
+            Error::invalid_argument(key.as_str(), format!("study `{study}`: {reason}"))
+        };
+        let text: String = match dumps.call1((&value,)) {
+            Ok(text) => text.extract()?,
+            Err(e) => return Err(invalid(format!("not a JSON value: {e}"))).or_raise(),
+        };
+        let value: serde_json::Value = serde_json::from_str(&text)
+            .map_err(|e| invalid(e.to_string()))
+            .or_raise()?;
+        // The keyword alone (the other options at their defaults) names a
+        // value of the wrong type before the options meet.
+        let alone = serde_json::Value::Object([(key.clone(), value.clone())].into_iter().collect());
+        if let Err(e) = serde_json::from_value::<T>(alone) {
+            let message = e.to_string();
+            if !(message.starts_with("unknown field") || message.starts_with("missing field")) {
+                return Err(invalid(e.to_string())).or_raise();
+            }
+        }
+        fields.insert(key, value);
+    }
+    serde_json::from_value(serde_json::Value::Object(fields))
         .map_err(|e| Error::invalid_argument("options", format!("study `{study}`: {e}")))
         .or_raise()
 }

@@ -153,10 +153,32 @@ fn parse_table<A: Args + FromArgMatches>(
     let mut keys = KeyMap::new(name, table.span(), &command);
     let mut argv = Vec::new();
     for (key, value) in table.get_ref() {
-        let flag = format!("--{}", key.get_ref().replace('_', "-"));
+        let long = key.get_ref().replace('_', "-");
+        let flag = format!("--{long}");
+        // An on/off switch takes true/false, an option a value: a boolean
+        // for an option would become a bare flag that takes the next key's
+        // words as its value.
+        let switch = command
+            .get_arguments()
+            .find(|a| a.get_long() == Some(long.as_str()))
+            .map(|a| !a.get_action().takes_values());
+        let mismatch = |expected: &str| {
+            locator.error(
+                value.span(),
+                format!("[{name}] `{}`: {expected}", key.get_ref()),
+            )
+        };
         match value.get_ref() {
+            toml::Value::Boolean(_) if switch == Some(false) => {
+                return Err(mismatch(
+                    "expected a value (a number, a string or a list), got a boolean",
+                ));
+            }
             toml::Value::Boolean(true) => argv.push(flag.clone()),
             toml::Value::Boolean(false) => {}
+            _ if switch == Some(true) => {
+                return Err(mismatch("an on/off switch: expected true or false"));
+            }
             other => {
                 argv.push(flag.clone());
                 argv.push(option_value(other).map_err(|why| {
@@ -187,7 +209,8 @@ fn option_value(value: &toml::Value) -> Result<String, String> {
     match value {
         toml::Value::String(s) => Ok(s.clone()),
         toml::Value::Integer(i) => Ok(i.to_string()),
-        toml::Value::Float(f) => Ok(f.to_string()),
+        // Briefly (1e300, not 301 digits): the same value, parsed back.
+        toml::Value::Float(f) => Ok(armkit::error::brief(*f)),
         toml::Value::Array(items) => items
             .iter()
             .map(|item| match item {

@@ -237,6 +237,22 @@ const FILES: &[(&str, &str)] = &[
         "name = \"s\"\ntitle = \"t\"\n[robot]\nbuiltin = \"panda\"\n[mpc]\ntarget = 3\n",
     ),
     (
+        "scenario-redundancy-payload-nan.toml",
+        "name = \"s\"\ntitle = \"t\"\n[robot]\nbuiltin = \"gantry9\"\n[redundancy]\npayload = nan\n",
+    ),
+    (
+        "scenario-mpc-boolean-horizon.toml",
+        "name = \"s\"\ntitle = \"t\"\n[robot]\nbuiltin = \"ur5\"\n[mpc]\nhorizon = true\ntarget = \"0.4,0.2,0.5,0,0,0\"\n",
+    ),
+    (
+        "scenario-switch-number.toml",
+        "name = \"s\"\ntitle = \"t\"\n[robot]\nbuiltin = \"gantry9\"\n[redundancy]\nno_gravity = 3\n",
+    ),
+    (
+        "scenario-singularity-tiny-dt.toml",
+        "name = \"s\"\ntitle = \"t\"\n[robot]\nbuiltin = \"space6r\"\n[singularity]\ndt = 1e-12\n",
+    ),
+    (
         "scenario-mpc-no-robot.toml",
         "name = \"s\"\ntitle = \"t\"\n[mpc]\ntarget = \"0.4,0.2,0.5,3.14,0,0\"\n",
     ),
@@ -2047,6 +2063,139 @@ const CASES: &[Case] = &[
         ],
         1,
     ),
+    case(
+        "singularity",
+        "ten billion control periods",
+        &["singularity", "--duration", "1e8", "--dt", "0.01"],
+        1,
+    ),
+    case(
+        "singularity",
+        "knot stride beyond a run",
+        &["singularity", "--k", "1e300"],
+        1,
+    ),
+    case(
+        "scenario",
+        "[singularity] control period of a picosecond",
+        &[
+            "run",
+            "scenario-singularity-tiny-dt.toml",
+            "--out",
+            "run-out",
+        ],
+        1,
+    ),
+    case(
+        "redundancy",
+        "control period of a picosecond",
+        &["redundancy", "--robot", "gantry9", "--dt", "1e-12"],
+        1,
+    ),
+    case(
+        "traj",
+        "duration too short for the torque fit",
+        &[
+            "traj",
+            "joint",
+            "--robot",
+            "space6r",
+            "--from",
+            "0,0,0,0,0,0",
+            "--to",
+            "1,1,1,1,1,1",
+            "--duration",
+            "1e-300",
+            "--fit-torque-limits",
+        ],
+        1,
+    ),
+    case(
+        "traj",
+        "duration too long for the polynomial",
+        &[
+            "traj",
+            "joint",
+            "--robot",
+            "space6r",
+            "--from",
+            "0,0,0,0,0,0",
+            "--to",
+            "1,1,1,1,1,1",
+            "--duration",
+            "1e300",
+            "--torques",
+        ],
+        1,
+    ),
+    case(
+        "traj",
+        "torque fit below gravity (reason on stderr)",
+        &[
+            "traj",
+            "joint",
+            "--robot",
+            "space6r",
+            "--from",
+            "0,0,0,0,0,0",
+            "--to",
+            "1,1,1,1,1,1",
+            "--duration",
+            "2",
+            "--fit-torque-limits",
+            "--torque-limits",
+            "1e-3,1e-3,1e-3,1e-3,1e-3,1e-3",
+        ],
+        3,
+    ),
+    case(
+        "traj",
+        "torque fit that falls short of the limits (reason on stderr)",
+        &[
+            "traj",
+            "line",
+            "--robot",
+            "panda",
+            "--from",
+            "0,-0.3,0,-2.2,0,2,0.8",
+            "--to-pose",
+            "0.484,0.3,0.413,3.14159,-0.1,0",
+            "--fit-torque-limits",
+            "--dynamics",
+            "panda-urdf",
+            "--speed-up",
+            "20",
+        ],
+        3,
+    ),
+    case(
+        "scenario",
+        "[redundancy] NaN payload",
+        &[
+            "run",
+            "scenario-redundancy-payload-nan.toml",
+            "--out",
+            "run-out",
+        ],
+        1,
+    ),
+    case(
+        "scenario",
+        "[mpc] a boolean for a value before another key",
+        &[
+            "run",
+            "scenario-mpc-boolean-horizon.toml",
+            "--out",
+            "run-out",
+        ],
+        1,
+    ),
+    case(
+        "scenario",
+        "[redundancy] a number for an on/off switch",
+        &["run", "scenario-switch-number.toml", "--out", "run-out"],
+        1,
+    ),
 ];
 
 fn repository_root() -> PathBuf {
@@ -2116,8 +2265,10 @@ fn build_document() -> (String, Vec<String>) {
         }
         let first = stderr.lines().next().unwrap_or("").trim().to_string();
         let message = match c.exit {
+            // Not an error: the best effort is printed on stdout, and the
+            // reason, when there is one, on stderr.
+            3 if !first.is_empty() => format!("(exit 3, stderr) {first}"),
             3 => {
-                // Not an error: the best effort is printed on stdout.
                 let stdout = String::from_utf8_lossy(&output.stdout);
                 let status = stdout
                     .lines()
@@ -2162,9 +2313,13 @@ fn build_document() -> (String, Vec<String>) {
          Every case ends with a clear error: exit code 1 and one line\n\
          `error: ...` on stderr naming the file, line and column, the field or\n\
          the option; or exit code 2 for a command line clap rejects (its message\n\
-         is followed by the usage). None panics. The one exit 3 is not an\n\
-         error: IK of an unreachable target prints its best effort and says it\n\
-         did not converge. The commands run in a folder holding the files listed\n\
+         is followed by the usage). None panics. Exit 3 is not an error: the\n\
+         run ended without meeting its goal (IK of an unreachable target, a\n\
+         torque fit that cannot meet the limits) and printed its best effort;\n\
+         the table shows its reason on stderr, or else its status on stdout.\n\
+         Counts, periods and durations have documented ranges checked before\n\
+         any work, so a request of 10^10 elements is refused at once (a test\n\
+         times it). The commands run in a folder holding the files listed\n\
          under [Files](#files).\n\n\
          The library's own entry points are checked with NaN and infinite values\n\
          by `crates/armkit/tests/it/invariants_nonfinite.rs`, and its input formats\n\
@@ -2223,4 +2378,52 @@ fn every_bad_input_gets_a_clear_error_and_the_table_is_current() {
          (- committed, + now):\n{}",
         line_diff(&committed, &document)
     );
+}
+
+/// A request of 10^10 elements (samples, control periods, sweep values) is
+/// refused before any work: exit 1 in well under the time one element of
+/// real work would take for all of them, and without the memory.
+#[test]
+fn ten_billion_element_requests_are_refused_quickly() {
+    // No fixture is read and nothing is written: any folder does.
+    let dir = std::env::temp_dir();
+    let requests: &[&[&str]] = &[
+        &["singularity", "--duration", "1e8", "--dt", "0.01"],
+        &[
+            "beam",
+            "error-along-beam",
+            "--samples",
+            "10000000000",
+            "--out",
+            "beam-out",
+        ],
+        &[
+            "ik",
+            "--robot",
+            "panda",
+            "--pose",
+            "0.4,0.1,0.5,pi,0,0",
+            "--solver",
+            "analytic",
+            "--sweep",
+            "10000000000",
+        ],
+        &["redundancy", "--robot", "gantry9", "--dt", "4e-10"],
+    ];
+    for args in requests {
+        let start = std::time::Instant::now();
+        let output = Command::new(env!("CARGO_BIN_EXE_armkit"))
+            .args(*args)
+            .current_dir(&dir)
+            .output()
+            .unwrap();
+        let elapsed = start.elapsed();
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(1), "{args:?}: {stderr}");
+        assert!(stderr.starts_with("error: "), "{args:?}: {stderr}");
+        assert!(
+            elapsed < std::time::Duration::from_secs(2),
+            "{args:?} took {elapsed:?}"
+        );
+    }
 }

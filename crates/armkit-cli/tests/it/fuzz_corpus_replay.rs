@@ -59,3 +59,8 @@ fn scenario_corpus() {
 fn cli_numbers_corpus() {
     replay("cli_numbers", cli_checks::cli_numbers);
 }
+
+#[test]
+fn scenario_tables_corpus() {
+    replay("scenario_tables", cli_checks::scenario_tables);
+}

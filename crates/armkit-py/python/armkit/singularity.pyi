@@ -39,4 +39,7 @@ def track_line(
     ``final_position_error``, ``time_in_singular_region`` (s), ``ik_solves``;
     ``determinant_threshold`` (m^3) and ``threshold_rule``: ``"given"``, or
     without one, seed 004's rule (``"calibrated"``: the largest |det J| where
-    this line's plain run jumps; ``"fitted"`` 0.004 when it never jumps)."""
+    this line's plain run jumps; ``"fitted"`` 0.004 when it never jumps).
+    At most 10^6 control periods (``duration / dt``) and ``k`` in
+    1..=10^6: beyond, ValueError naming ``dt`` (with the memory the run
+    would need) or ``k``, before any work."""

@@ -27,4 +27,5 @@ def names() -> List[str]:
 def run(name: str, **options: Any) -> StudyReport:
     """Runs a seed study; ``options`` are the library's option names (e.g.
     ``payload=50.0`` for distribution, ``ks=[1, 5]`` for avoidance,
-    ``solver="clarabel"`` for the MPC examples)."""
+    ``solver="clarabel"`` for the MPC examples). A value of the wrong type
+    is a ValueError naming its keyword."""

@@ -63,6 +63,8 @@ impl<'m> PathTracker<'m> {
         let n = manipulator.dof();
         check_finite_vector("start", &task.start, n)?;
         check_positive("duration", task.duration)?;
+        // Before any work: the run's size.
+        let (steps, h) = options.tracking.periods(task.duration, n)?;
         let timing = TimeLaw::Trapezoidal {
             acceleration_time: task.acceleration_time,
         }
@@ -77,7 +79,6 @@ impl<'m> PathTracker<'m> {
         let line = LinePath::new(*plant.pose(), task.goal)
             .map_err(|e| crate::trajectory::rename_argument(e, "end", "goal"))?;
         let trajectory = CartesianTrajectory::new(line, timing)?;
-        let (steps, h) = options.tracking.periods(task.duration);
         let tracker = PathTracker {
             manipulator,
             task,

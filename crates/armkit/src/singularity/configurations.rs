@@ -282,7 +282,7 @@ pub struct SearchOptions {
     /// Converged when the target measure is below this, and the result is
     /// classified with it (> 0). Default 1e-8.
     pub tolerance: f64,
-    /// Newton iterations (>= 1). Default 100.
+    /// Newton iterations, in `1..=`[`super::MAX_IK_ITERATIONS`]. Default 100.
     pub max_iterations: usize,
     /// Largest joint move per iteration, rad or m (> 0). Default 0.3.
     pub max_step: f64,
@@ -303,8 +303,15 @@ impl SearchOptions {
     pub fn validate(&self) -> Result<()> {
         check_positive("tolerance", self.tolerance)?;
         check_positive("max_step", self.max_step)?;
-        if self.max_iterations == 0 {
-            return Err(Error::invalid_argument("max_iterations", "must be >= 1"));
+        if !(1..=super::MAX_IK_ITERATIONS).contains(&self.max_iterations) {
+            return Err(Error::invalid_argument(
+                "max_iterations",
+                format!(
+                    "must be in 1..={}, got {}",
+                    super::MAX_IK_ITERATIONS,
+                    self.max_iterations
+                ),
+            ));
         }
         Ok(())
     }

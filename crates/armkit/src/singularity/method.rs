@@ -8,7 +8,12 @@ use super::region_plan::RegionPlan;
 use crate::error::{check_positive, Error, Result};
 use crate::ik::{ChiaveriniFilter, DampedReciprocal, NakamuraDamping};
 use crate::math::Pose;
-use crate::tracking::{RateOutcome, Recorder, SampleState, TrackingOptions, TrackingStatus};
+use crate::tracking::{
+    RateOutcome, Recorder, SampleState, TrackingOptions, TrackingStatus, MAX_PERIODS,
+};
+
+/// Most Newton-Raphson iterations per solve [`AvoidanceOptions`] takes.
+pub const MAX_IK_ITERATIONS: usize = 10_000;
 
 /// The label and name of [`Method::SeparatedDampedReciprocal`].
 pub const SEPARATION: &str = "separation";
@@ -24,7 +29,8 @@ pub enum Method {
     /// (warm-started from the previous one) and the C2 cubic fit of the
     /// joint angles (eqs 33-42) through them; tracking resumes after.
     Avoidance {
-        /// `k`: IK every `k`-th control period of the region (>= 1).
+        /// `k`: IK every `k`-th control period of the region, in
+        /// `1..=`[`MAX_PERIODS`] (a run's longest).
         k: usize,
     },
     /// Damped least squares with Nakamura's adaptive damping.
@@ -64,16 +70,19 @@ impl Method {
         }
     }
 
-    /// Checks the parameters: `k >= 1`, a positive finite `max_rate`, and
-    /// the baselines' own checks.
+    /// Checks the parameters: `k` in `1..=`[`MAX_PERIODS`], a positive
+    /// finite `max_rate`, and the baselines' own checks.
     pub fn validate(&self) -> Result<()> {
         match self {
             Method::Plain => Ok(()),
             Method::Avoidance { k } => {
-                if *k == 0 {
+                if !(1..=MAX_PERIODS).contains(k) {
                     Err(Error::invalid_argument(
                         "k",
-                        "the knot stride must be >= 1 (IK every k-th planned pose of the singular region)",
+                        format!(
+                            "the knot stride must be in 1..={MAX_PERIODS} (IK every k-th planned \
+                             pose of the singular region), got {k}"
+                        ),
                     ))
                 } else {
                     Ok(())
@@ -121,7 +130,7 @@ pub struct AvoidanceOptions {
     /// Newton-Raphson solves inside the region (> 0). Seed 004 step 3 uses
     /// 1e-8.
     pub ik_tolerance: f64,
-    /// Newton-Raphson iterations per solve (>= 1).
+    /// Newton-Raphson iterations per solve, in `1..=`[`MAX_IK_ITERATIONS`].
     pub ik_max_iterations: usize,
     /// How a region's knots are chosen when the arm cannot follow its
     /// planned poses exactly (a path missing the singular pose). Default
@@ -147,8 +156,14 @@ impl AvoidanceOptions {
         self.tracking.validate()?;
         self.detection.validate()?;
         check_positive("ik_tolerance", self.ik_tolerance)?;
-        if self.ik_max_iterations == 0 {
-            return Err(Error::invalid_argument("ik_max_iterations", "must be >= 1"));
+        if !(1..=MAX_IK_ITERATIONS).contains(&self.ik_max_iterations) {
+            return Err(Error::invalid_argument(
+                "ik_max_iterations",
+                format!(
+                    "must be in 1..={MAX_IK_ITERATIONS}, got {}",
+                    self.ik_max_iterations
+                ),
+            ));
         }
         Ok(())
     }

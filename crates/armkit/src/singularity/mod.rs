@@ -176,7 +176,7 @@ pub use ellipsoid::{manipulability_ellipsoid, Ellipsoid, JacobianPart};
 pub use gap::SingularGap;
 pub use method::{
     calibrate_determinant_threshold, AvoidanceOptions, LineTask, Method, MethodRun, MethodSummary,
-    SingularRegion, SEPARATION,
+    SingularRegion, MAX_IK_ITERATIONS, SEPARATION,
 };
 pub use region_plan::RegionPlan;
 pub use scenario::{line_through, seed004_path, LineThrough, SEED004_DIRECTION, SEED004_THROUGH};

@@ -3,7 +3,7 @@
 //! attitude held, checked for what momentum conservation implies.
 
 use super::{Check, Finding, FindingStatus, Series, StudyReport};
-use crate::error::{check_finite_vector, check_positive, Error, Result};
+use crate::error::{check_finite_vector, check_positive, Result};
 use crate::ik::pose_error;
 use crate::math::{rotation_log, Pose, Vector6};
 use crate::robots::space6r_free_floating;
@@ -11,6 +11,7 @@ use crate::space::{
     center_of_mass, generalized_jacobian, momentum, step, BaseMode, FreeFloatingModel,
     FreeFloatingState, SinusoidalJointMotion, SpaceData,
 };
+use crate::tracking::TrackingOptions;
 
 /// Seed 004's free-floating space robot (space6r on a 400 kg satellite):
 /// the same seeded smooth joint motion simulated with the base
@@ -96,15 +97,12 @@ impl SpaceRobotStudy {
         check_positive("dt", self.dt)?;
         check_positive("amplitude", self.amplitude)?;
         check_positive("max_frequency", self.max_frequency)?;
-        if self.duration / self.dt > 1e6 {
-            return Err(Error::invalid_argument(
-                "dt",
-                format!(
-                    "duration / dt = {:.0} steps: at most 1e6",
-                    self.duration / self.dt
-                ),
-            ));
+        // The simulation records every step, as a tracking run does.
+        TrackingOptions {
+            dt: self.dt,
+            ..TrackingOptions::default()
         }
+        .periods(self.duration, 6)?;
         Ok(())
     }
 

@@ -53,7 +53,7 @@ pub use plant::{FixedBase, Plant};
 pub use report::{SampleRecorder, TrackingReport, TrackingSample};
 pub use run::{
     track, Feedback, LeastSquares, RateLaw, RateOutcome, Recorder, SampleState, Step,
-    TrackingOptions,
+    TrackingOptions, MAX_PERIODS,
 };
 pub use status::TrackingStatus;
 
@@ -70,8 +70,8 @@ pub fn track_samples<P: Plant + ?Sized, L: RateLaw<P> + ?Sized>(
     options: &TrackingOptions,
 ) -> Result<TrackingReport> {
     options.validate()?;
-    let (periods, _) = options.periods(path.duration().max(0.0));
-    let mut recorder = SampleRecorder::with_capacity(periods.min(1 << 20) + 1);
+    let (periods, _) = options.periods(path.duration().max(0.0), plant.dof())?;
+    let mut recorder = SampleRecorder::with_capacity(periods + 1);
     let mut rates = vec![0.0; plant.dof()];
     let status = track(plant, law, path, options, &mut recorder, &mut rates)?;
     Ok(TrackingReport::new(status, recorder.samples))

@@ -2,7 +2,7 @@
 
 use super::plant::Plant;
 use super::status::TrackingStatus;
-use crate::error::{check_finite, check_positive, Error, Result};
+use crate::error::{brief, check_finite, check_positive, Error, Result};
 use crate::ik::pose_error;
 use crate::linalg::{damped_least_squares_rates, Solve, GRAM_THRESHOLD};
 use crate::math::{Pose, Vector6};
@@ -24,11 +24,18 @@ pub enum Feedback {
     NextPose,
 }
 
+/// Most control periods one tracking run takes (`ceil(duration / dt)`): a
+/// run records the state of every period (joint positions and rates, pose
+/// errors), so the count bounds its memory as well as its time; 10^6
+/// periods are 10^4 s at the default 0.01 s.
+pub const MAX_PERIODS: usize = 1_000_000;
+
 /// Options of a tracking run (every tracker's; the rate law has its own).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TrackingOptions {
     /// Control period, s (> 0). The path's duration is split into
-    /// `ceil(duration / dt)` equal steps. Default 0.01 s.
+    /// `ceil(duration / dt)` equal steps, at most [`MAX_PERIODS`]. Default
+    /// 0.01 s.
     pub dt: f64,
     /// The feedback. Default [`Feedback::NextPose`].
     pub feedback: Feedback,
@@ -58,7 +65,7 @@ impl TrackingOptions {
         if !(self.dt.is_finite() && self.dt > 0.0) {
             return Err(Error::invalid_argument(
                 "dt",
-                format!("must be finite and > 0 s, got {}", self.dt),
+                format!("must be finite and > 0 s, got {}", brief(self.dt)),
             ));
         }
         if let Feedback::Proportional { gain } = self.feedback {
@@ -78,9 +85,30 @@ impl TrackingOptions {
 
     /// Number of control periods for a path of `duration` s and their length
     /// (s): `ceil(duration / dt)` equal periods (at least one).
-    pub fn periods(&self, duration: f64) -> (usize, f64) {
-        let steps = ((duration / self.dt) - 1e-9).ceil().max(1.0) as usize;
-        (steps, duration / steps as f64)
+    ///
+    /// Errors: more than [`MAX_PERIODS`] periods (named `dt`, with the count
+    /// and the memory the record of a `dof`-joint run would need, before any
+    /// work).
+    pub fn periods(&self, duration: f64, dof: usize) -> Result<(usize, f64)> {
+        let count = ((duration / self.dt) - 1e-9).ceil().max(1.0);
+        // A NaN count (a NaN duration or dt) is refused too.
+        if count.is_nan() || count > MAX_PERIODS as f64 {
+            // A sample: time, q and rates per joint, and about six figures.
+            let bytes = count * (2 * dof + 7) as f64 * 8.0;
+            return Err(Error::invalid_argument(
+                "dt",
+                format!(
+                    "duration {} s / dt {} s = {} control periods: at most {MAX_PERIODS} \
+                     (a run records every period: {} bytes)",
+                    brief(duration),
+                    brief(self.dt),
+                    brief(count),
+                    brief(bytes)
+                ),
+            ));
+        }
+        let steps = count as usize;
+        Ok((steps, duration / steps as f64))
     }
 }
 
@@ -237,7 +265,7 @@ pub fn track<P: Plant + ?Sized, L: RateLaw<P> + ?Sized, R: Recorder + ?Sized>(
     options.validate()?;
     let duration = path.duration();
     check_positive("duration", duration)?;
-    let (periods, dt) = options.periods(duration);
+    let (periods, dt) = options.periods(duration, plant.dof())?;
     let desired_at = |time: f64| -> Result<Pose> {
         let pose = path.pose(time);
         pose.check_rigid().map_err(|reason| {

@@ -63,7 +63,10 @@ pub use limits::{
     ScaledTrajectory, TimeScaling, TrajectoryLimits,
 };
 pub use path_ik::{path_ik_for, ClosedFormPathIk, IkTask, NumericPathIk};
-pub use profile::{cubic, minimum_time, quintic, rest_to_rest, trapezoidal, ProfileShape};
+pub use profile::{
+    cubic, minimum_time, quintic, rest_to_rest, trapezoidal, ProfileShape, MAX_DURATION,
+    MIN_DURATION,
+};
 pub use spline::clamped_cubic_spline;
 pub(crate) use timed::rename_argument;
 pub use timed::{TimeFn, TimedPath};

@@ -24,7 +24,16 @@
 use super::limits::{scale_to_limits, TimeScaling, TrajectoryLimits};
 use super::poly;
 use super::{JointState, Trajectory};
-use crate::error::{check_finite_vector, Error, Result};
+use crate::error::{brief, check_finite_vector, Error, Result};
+
+/// Shortest duration [`rest_to_rest`] plans, s: below a millisecond the
+/// accelerations of a move of a few radians leave what any joint (or the
+/// torque fit's slow-down, `1 / k^2`) can take in floating point.
+pub const MIN_DURATION: f64 = 1e-3;
+
+/// Longest duration [`rest_to_rest`] plans, s (about 11.6 days): beyond it
+/// the polynomial coefficients (`1 / T^5`) underflow.
+pub const MAX_DURATION: f64 = 1e6;
 
 /// The shape of a point-to-point profile.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -42,7 +51,7 @@ fn check_duration(duration: f64) -> Result<()> {
     if !(duration.is_finite() && duration > 0.0) {
         return Err(Error::invalid_argument(
             "duration",
-            format!("must be finite and > 0 s, got {duration} s"),
+            format!("must be finite and > 0 s, got {} s", brief(duration)),
         ));
     }
     Ok(())
@@ -253,7 +262,9 @@ pub fn minimum_time(
 /// for the cubic and the quintic.
 ///
 /// Errors as the individual profiles, plus a clear message when
-/// `acceleration_time` is missing for a trapezoid or given for a polynomial.
+/// `acceleration_time` is missing for a trapezoid or given for a polynomial,
+/// and `duration` outside [[`MIN_DURATION`], [`MAX_DURATION`]] s (named
+/// `duration`).
 pub fn rest_to_rest(
     shape: ProfileShape,
     q0: &[f64],
@@ -262,6 +273,17 @@ pub fn rest_to_rest(
     acceleration_time: Option<f64>,
 ) -> Result<Trajectory> {
     check_endpoints(q0, qf)?;
+    check_duration(duration)?;
+    if !(MIN_DURATION..=MAX_DURATION).contains(&duration) {
+        return Err(Error::invalid_argument(
+            "duration",
+            format!(
+                "must be in [{MIN_DURATION}, {}] s, got {} s",
+                brief(MAX_DURATION),
+                brief(duration)
+            ),
+        ));
+    }
     match (shape, acceleration_time) {
         (ProfileShape::Trapezoidal, Some(ta)) => trapezoidal(q0, qf, duration, ta),
         (ProfileShape::Trapezoidal, None) => Err(Error::invalid_argument(

@@ -14,13 +14,14 @@
 
 use std::path::PathBuf;
 
+use armkit::error::brief;
 use armkit::math::Pose;
 use armkit::singularity::{
     AvoidanceOptions, BaseKind, Manipulator, SEED004_DIRECTION, SEED004_THROUGH,
 };
 use armkit::space::FreeFloatingModel;
 use armkit::study::{AvoidanceOutcome, AvoidanceStudy, ThresholdRule};
-use armkit::tracking::TrackingStatus;
+use armkit::tracking::{TrackingStatus, MAX_PERIODS};
 use armkit::Model;
 use clap::{Args, ValueEnum};
 
@@ -135,13 +136,6 @@ impl BaseArg {
     }
 }
 
-/// Largest `k` accepted (a stride longer than any sensible path).
-const MAX_K: f64 = 1e6;
-
-/// Largest number of control periods per run (each run keeps every sample
-/// of every joint, for several runs).
-const MAX_STEPS: f64 = 1e6;
-
 /// The arm, and the free-floating system when the base is held.
 enum Plant {
     Fixed(Box<Model>),
@@ -244,10 +238,11 @@ pub fn study(args: &SingularityArgs) -> CliResult<Study> {
         )));
     }
     let steps = (duration / dt).ceil();
-    if steps > MAX_STEPS {
+    if steps > MAX_PERIODS as f64 {
         return Err(CliError(format!(
-            "--duration / --dt = {steps:.0} control periods: at most {MAX_STEPS:.0} \
-             (every run records every period)"
+            "--duration / --dt = {} control periods: at most {MAX_PERIODS} \
+             (every run records every period)",
+            brief(steps)
         )));
     }
     if !args.miss.is_finite() {
@@ -369,13 +364,14 @@ fn parse_ks(text: &str) -> CliResult<Vec<usize>> {
         .into_iter()
         .enumerate()
         .map(|(i, k)| {
-            if k.fract() == 0.0 && (1.0..=MAX_K).contains(&k) {
+            if k.fract() == 0.0 && (1.0..=MAX_PERIODS as f64).contains(&k) {
                 Ok(k as usize)
             } else {
                 Err(CliError(format!(
-                    "--k: value {}: k must be an integer in 1..={MAX_K} (IK every k-th planned \
-                     pose of the singular region), got {k}",
-                    i + 1
+                    "--k: value {}: k must be an integer in 1..={MAX_PERIODS} (IK every k-th planned \
+                     pose of the singular region), got {}",
+                    i + 1,
+                    brief(k)
                 )))
             }
         })

@@ -5,6 +5,7 @@
 
 use std::path::PathBuf;
 
+use armkit::error::brief;
 use armkit::math::{Pose, Vector3};
 use armkit::robots::space6r_base_body;
 use armkit::space::{generalized_jacobian, BaseBody, BaseMode, FreeFloatingModel, SpaceData};
@@ -292,14 +293,16 @@ fn step_count(duration: f64, dt: f64) -> CliResult<usize> {
     for (name, value) in [("--duration", duration), ("--dt", dt)] {
         if !(value.is_finite() && value > 0.0) {
             return Err(CliError(format!(
-                "{name}: must be finite and > 0 s, got {value}"
+                "{name}: must be finite and > 0 s, got {}",
+                brief(value)
             )));
         }
     }
     let steps = (duration / dt - 1e-9).ceil().max(1.0);
     if steps > 1e7 {
         return Err(CliError(format!(
-            "--duration / --dt = {steps} steps: at most 1e7"
+            "--duration / --dt = {} steps: at most 1e7",
+            brief(steps)
         )));
     }
     Ok(steps as usize)

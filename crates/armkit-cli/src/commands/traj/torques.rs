@@ -3,9 +3,9 @@
 //! the motors' limits, the uniform slow-down that meets them, and
 //! `torques.svg`.
 
-use armkit::trajectory::Trajectory;
 use armkit::trajectory::{
-    scale_to_torque_limits, torque_profile, TorqueCheckOptions, TorqueReport, TorqueStatus,
+    peak_rates, scale_to_torque_limits, torque_profile, TorqueCheckOptions, TorqueReport,
+    TorqueStatus, Trajectory, TrajectoryLimits,
 };
 use armkit::Model;
 use clap::Args;
@@ -102,6 +102,15 @@ pub fn check(
         (traj, None, report)
     };
     let mut summary = describe(&report, factor);
+    if factor.is_some() && summary.unmet.is_none() {
+        // The fit slows the path for the torques; a joint still faster than
+        // its velocity limit makes "within-limits" untrue for the run.
+        if let Some(reason) = velocity_excess(model, &traj) {
+            summary.text.push(format!("warning: {reason}"));
+            summary.json["status"] = serde_json::json!("exceeds-velocity-limits");
+            summary.unmet = Some(reason);
+        }
+    }
     if let Some(dir) = &output.plots {
         std::fs::create_dir_all(dir)?;
         let path = dir.join("torques.svg");
@@ -113,6 +122,37 @@ pub fn check(
         summary.json["plot"] = serde_json::json!(path.display().to_string());
     }
     Ok((traj, summary))
+}
+
+/// Why the fitted `traj` breaks the model's velocity limits (the joint with
+/// the largest peak / limit ratio, and the duration at which every joint
+/// meets its limit), or `None` when it keeps them.
+fn velocity_excess(model: &Model, traj: &Trajectory) -> Option<String> {
+    let limits = TrajectoryLimits::from_model(model).velocity;
+    let peaks = peak_rates(traj).velocity;
+    let (joint, ratio) = peaks
+        .iter()
+        .zip(&limits)
+        .map(|(peak, limit)| peak / limit)
+        .enumerate()
+        .fold(
+            (0, 0.0),
+            |best, (j, r)| if r > best.1 { (j, r) } else { best },
+        );
+    let over = peaks.iter().zip(&limits).filter(|(p, l)| p > l).count();
+    (ratio > 1.0).then(|| {
+        format!(
+            "velocity limits not met: {over} of {} joints exceed their limit, joint {} ({}) by \
+             {ratio:.2}x (peak {:.4}, limit {:.4}); the fit slows the path for the torques only: \
+             a duration of {:.4} s or more keeps every velocity limit",
+            peaks.len(),
+            joint + 1,
+            model.joints()[joint].name,
+            peaks[joint],
+            limits[joint],
+            traj.duration() * ratio
+        )
+    })
 }
 
 fn describe(report: &TorqueReport, factor: Option<f64>) -> TorqueSummary {

@@ -7,7 +7,7 @@
 
 use super::StudyReport;
 use crate::dynamics::check_dynamics_model;
-use crate::error::{check_finite_vector, Error, Result};
+use crate::error::{brief, check_finite_vector, Error, Result};
 use crate::kinematics::{forward_kinematics, Data};
 use crate::math::{Pose, Rotation3, Vector3};
 use crate::model::Model;
@@ -98,7 +98,7 @@ pub struct DistributionStudy {
     /// `duration` times [`DURATION_FACTORS`] (2 to 16 s on gantry9);
     /// `Some(vec![])` for none. Needs mass properties (dynamic torques).
     pub durations: Option<Vec<f64>>,
-    /// Payload weight at the end effector, N. Default 50.
+    /// Payload weight at the end effector, N (finite). Default 50.
     pub payload: f64,
     /// Count the links' own weight when the robot has mass properties. Default true.
     pub link_weights: bool,
@@ -257,6 +257,12 @@ impl DistributionStudy {
             None => Vec::new(),
         };
         let gravity = self.link_weights && model.has_inertias();
+        if !self.payload.is_finite() {
+            return Err(Error::invalid_argument(
+                "payload",
+                format!("must be a finite weight in N, got {}", brief(self.payload)),
+            ));
+        }
         let mut load = Load::payload(self.payload);
         if gravity {
             load = load.with_seed001_gravity();
