@@ -1391,9 +1391,11 @@ fn distribution_study_uses_the_papers_baseline_and_compares_torque_models() {
     assert_eq!(lock.max_extra_rate, 0.0);
     assert!(lock.max_rate_difference < 1e-12 * lock.max_rate.max(1.0));
     // Findings: the static claim and the lock reproduced; the dynamic one
-    // stated either way with its figures.
+    // stated either way with its figures; then the duration sweep's
+    // crossover and moderate speed, F at each instant and unit weights
+    // (tests/it/seed001_claims.rs judges those four).
     let findings = outcome.findings();
-    assert_eq!(findings.len(), 3);
+    assert_eq!(findings.len(), 7);
     assert_eq!(findings[0].status, FindingStatus::Reproduced);
     assert!(findings[0]
         .measured

@@ -259,7 +259,7 @@ fn bad_input_is_an_error_naming_the_argument() {
     // k = 0.
     let message = error_message(tracker.run(&Method::Avoidance { k: 0 }));
     assert!(
-        message.contains("k") && message.contains(">= 1"),
+        message.contains("`k`") && message.contains("1..=1000000"),
         "{message}"
     );
     let message = error_message(tracker.compare(
