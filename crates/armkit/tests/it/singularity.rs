@@ -1077,8 +1077,9 @@ fn the_study_rows_on_joints_eps_dq_runge_and_the_reference_method() {
         unaffected,
         "{joints}"
     );
-    // eps_dq sweep: one row per value; the region never grows (invariant),
-    // and the verdict is whether it shrinks at every step.
+    // eps_dq sweep: one row per value; on space6r the region never grows
+    // (on the PUMA 560 it does: the user scenarios show it), and the verdict
+    // is whether it shrinks at every step.
     assert_eq!(outcome.eps_sweep.len(), study.joint_step_sweep.len());
     let lengths: Vec<f64> = outcome.eps_sweep.iter().map(|r| r.region_length).collect();
     assert!(
@@ -1091,10 +1092,7 @@ fn the_study_rows_on_joints_eps_dq_runge_and_the_reference_method() {
         lengths.windows(2).all(|w| w[1] < w[0]),
         "{shrinking}"
     );
-    assert!(outcome
-        .checks()
-        .iter()
-        .any(|c| c.is_invariant() && c.name.contains("eps_dq")));
+    assert!(!outcome.checks().iter().any(|c| c.name.contains("eps_dq")));
     // The row of the default eps_dq is the study's own run.
     let own = outcome
         .eps_sweep

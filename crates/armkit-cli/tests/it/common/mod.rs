@@ -30,6 +30,16 @@ pub fn json(output: &Output) -> serde_json::Value {
     serde_json::from_slice(&output.stdout).unwrap()
 }
 
+/// Standard output parsed as JSON, after checking the command ended with an
+/// honest "not met" status (exit 3) and said why on standard error, which is
+/// returned beside it.
+pub fn json_unmet(output: &Output) -> (serde_json::Value, String) {
+    assert_eq!(output.status.code(), Some(3), "{}", stderr(output));
+    let reason = stderr(output);
+    assert!(!reason.is_empty(), "exit 3 with nothing on stderr");
+    (serde_json::from_slice(&output.stdout).unwrap(), reason)
+}
+
 /// An empty scratch folder for this test binary and `name`.
 pub fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!(

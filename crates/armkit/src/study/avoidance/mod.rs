@@ -450,7 +450,6 @@ impl AvoidanceOutcome {
             );
         }
         checks.extend(self.sweep.checks(&self.options));
-        checks.extend(self.eps_checks());
         checks
     }
 
