@@ -1092,7 +1092,10 @@ fn the_study_rows_on_joints_eps_dq_runge_and_the_reference_method() {
         lengths.windows(2).all(|w| w[1] < w[0]),
         "{shrinking}"
     );
-    assert!(!outcome.checks().iter().any(|c| c.name.contains("eps_dq")));
+    assert!(!outcome
+        .checks()
+        .iter()
+        .any(|c| c.name.contains("eps_dq sweep")));
     // The row of the default eps_dq is the study's own run.
     let own = outcome
         .eps_sweep
