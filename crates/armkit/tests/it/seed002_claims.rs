@@ -1,5 +1,5 @@
-//! Seed 002's closed-form inverse kinematics as printed (eqs 10-18, theta1
-//! + theta2 as one angle), its forward-kinematics example (sec 2.1) and the
+//! Seed 002's closed-form inverse kinematics as printed (eqs 10-18, with
+//! theta1 plus theta2 as one angle), its forward-kinematics example (sec 2.1) and the
 //! reading of the orientation angles (eqs 20-22), as study findings.
 
 use armkit::ik::closed_form::{Arm4Solver, RangeFilter};

@@ -324,7 +324,8 @@ fn load_robot(robot: &RobotArgs) -> CliResult<Model> {
 /// Parses `--durations`: positive durations, s.
 fn parse_durations(text: &str) -> CliResult<Vec<f64>> {
     let durations = parse_numbers(text, "--durations")?;
-    match durations.iter().find(|&&d| !(d > 0.0)) {
+    // parse_numbers has refused NaN and infinities.
+    match durations.iter().find(|&&d| d <= 0.0) {
         Some(bad) => Err(CliError(format!(
             "--durations: every duration must be > 0 s, got {bad}"
         ))),

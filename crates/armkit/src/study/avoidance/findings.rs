@@ -375,7 +375,7 @@ impl AvoidanceOutcome {
                 let others = comparators
                     .of(l)
                     .iter()
-                    .map(|(name, m)| format!("{name} {}", figures(*m)))
+                    .map(|(name, m)| format!("{name} {}", figures(m)))
                     .collect::<Vec<_>>()
                     .join(", ");
                 format!(

@@ -321,11 +321,11 @@ impl AvoidanceOutcome {
             let (mut polynomial, mut fit): (f64, f64) = (0.0, 0.0);
             for (positions, rates) in run.joint_positions.iter().zip(&run.joint_rates) {
                 let values: Vec<f64> = samples.iter().map(|&i| positions[i]).collect();
-                for i in first..last {
-                    let x = (i - first) as f64 + 0.5;
+                for (offset, fit_rate) in rates[first..last].iter().enumerate() {
+                    let x = offset as f64 + 0.5;
                     let rate = interpolating_polynomial_rate(&nodes, &values, x) / h;
                     polynomial = polynomial.max(rate.abs());
-                    fit = fit.max(rates[i].abs());
+                    fit = fit.max(fit_rate.abs());
                 }
             }
             rows.push(RungeRow {
