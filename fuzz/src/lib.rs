@@ -5,3 +5,4 @@
 
 pub mod armkit_checks;
 pub mod cli_checks;
+pub mod command_checks;

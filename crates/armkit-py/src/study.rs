@@ -139,8 +139,15 @@ fn options<T: serde::de::DeserializeOwned>(
         let invalid = |reason: String| {
             Error::invalid_argument(key.as_str(), format!("study `{study}`: {reason}"))
         };
-        let text: String = match dumps.call1((&value,)) {
+        // allow_nan=False: json.dumps would write NaN and Infinity, which
+        // JSON (and so the option parser) does not have.
+        let strict = [("allow_nan", false)].into_py_dict(py)?;
+        let text: String = match dumps.call((&value,), Some(&strict)) {
             Ok(text) => text.extract()?,
+            Err(e) if e.is_instance_of::<pyo3::exceptions::PyValueError>(py) => {
+                let reason = "must be finite: NaN and infinities are refused";
+                return Err(invalid(reason.to_string())).or_raise();
+            }
             Err(e) => return Err(invalid(format!("not a JSON value: {e}"))).or_raise(),
         };
         let value: serde_json::Value = serde_json::from_str(&text)

@@ -54,9 +54,9 @@ def test_a_ten_billion_row_batch_is_refused_quickly():
 def test_study_option_of_the_wrong_type_names_the_keyword():
     with pytest.raises(ValueError, match=re.escape('invalid argument `payload`: study `distribution`: invalid type: string "heavy", expected f64')):
         study.run("distribution", payload="heavy")
-    # NaN has no JSON form: still refused, naming the keyword.
-    with pytest.raises(ValueError, match=re.escape("invalid argument `payload`: study `distribution`: ")):
-        study.run("distribution", payload=float("nan"))
+    for bad in (float("nan"), float("inf"), [1.0, float("-inf")]):
+        with pytest.raises(ValueError, match=re.escape("invalid argument `payload`: study `distribution`: must be finite: NaN and infinities are refused")):
+            study.run("distribution", payload=bad)
     with pytest.raises(ValueError, match=re.escape('invalid argument `mass`: study `beam-table`: invalid type: sequence, expected f64')):
         study.run("beam-table", gravity=10.0, mass=[1, 2])
 
@@ -64,3 +64,15 @@ def test_study_option_of_the_wrong_type_names_the_keyword():
 def test_space_robot_study_refuses_a_picosecond_step():
     with pytest.raises(ValueError, match=re.escape("invalid argument `dt`: duration 10 s / dt 1e-12 s = 1e13 control periods: at most 1000000")):
         study.run("space-robot", dt=1e-12, duration=10.0)
+
+
+@pytest.mark.parametrize("duration, shown", [(1e-300, "1e-300"), (1e300, "1e300"), (0.0, "0"), (float("nan"), "NaN")])
+def test_profiles_refuse_a_duration_outside_their_range(duration, shown):
+    message = f"invalid argument `duration`: must be in [0.001, 1e6] s, got {shown} s"
+    for make in (
+        lambda: armkit.Trajectory.cubic([0.0], [1.0], duration),
+        lambda: armkit.Trajectory.quintic([0.0], [1.0], duration),
+        lambda: armkit.Trajectory.trapezoidal([0.0], [1.0], duration, 1e-4),
+    ):
+        with pytest.raises(ValueError, match=re.escape(message)):
+            make()

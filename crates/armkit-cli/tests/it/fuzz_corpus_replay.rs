@@ -9,6 +9,9 @@ mod armkit_checks;
 #[allow(dead_code)]
 #[path = "../../../../fuzz/src/cli_checks.rs"]
 mod cli_checks;
+#[allow(dead_code)]
+#[path = "../../../../fuzz/src/command_checks.rs"]
+mod command_checks;
 
 use std::path::PathBuf;
 
@@ -63,4 +66,14 @@ fn cli_numbers_corpus() {
 #[test]
 fn scenario_tables_corpus() {
     replay("scenario_tables", cli_checks::scenario_tables);
+}
+
+#[test]
+fn dynamics_command_corpus() {
+    replay("dynamics_command", command_checks::dynamics_command);
+}
+
+#[test]
+fn ik_command_corpus() {
+    replay("ik_command", command_checks::ik_command);
 }

@@ -124,7 +124,7 @@ fn joint_errors_are_clear() {
     };
     assert_eq!(
         run(&["--duration", "-1"]),
-        "error: invalid argument `duration`: must be finite and > 0 s, got -1 s"
+        "error: invalid argument `duration`: must be in [0.001, 1e6] s, got -1 s"
     );
     assert_eq!(
         run(&["--profile", "trapezoidal", "--duration", "2", "--accel-time", "1.5"]),

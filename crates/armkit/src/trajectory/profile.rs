@@ -26,12 +26,14 @@ use super::poly;
 use super::{JointState, Trajectory};
 use crate::error::{brief, check_finite_vector, Error, Result};
 
-/// Shortest duration [`rest_to_rest`] plans, s: below a millisecond the
-/// accelerations of a move of a few radians leave what any joint (or the
-/// torque fit's slow-down, `1 / k^2`) can take in floating point.
+/// Shortest duration a profile ([`cubic`], [`quintic`], [`trapezoidal`],
+/// [`rest_to_rest`]) plans, s; [`minimum_time`] stretches a shorter move to
+/// it. Below a millisecond the accelerations of a move of a few radians
+/// leave what any joint (or the torque fit's slow-down, `1 / k^2`) can take
+/// in floating point.
 pub const MIN_DURATION: f64 = 1e-3;
 
-/// Longest duration [`rest_to_rest`] plans, s (about 11.6 days): beyond it
+/// Longest duration a profile plans, s (about 11.6 days): beyond it
 /// the polynomial coefficients (`1 / T^5`) underflow.
 pub const MAX_DURATION: f64 = 1e6;
 
@@ -48,10 +50,14 @@ pub enum ProfileShape {
 }
 
 fn check_duration(duration: f64) -> Result<()> {
-    if !(duration.is_finite() && duration > 0.0) {
+    if !(MIN_DURATION..=MAX_DURATION).contains(&duration) {
         return Err(Error::invalid_argument(
             "duration",
-            format!("must be finite and > 0 s, got {} s", brief(duration)),
+            format!(
+                "must be in [{MIN_DURATION}, {}] s, got {} s",
+                brief(MAX_DURATION),
+                brief(duration)
+            ),
         ));
     }
     Ok(())
@@ -97,8 +103,9 @@ fn single_segment(
 /// `q(T) = qf`, `q'(T) = vf`).
 ///
 /// A cubic cannot meet boundary accelerations: both states' accelerations
-/// must be zero (use [`quintic`] otherwise). Errors: `duration <= 0`,
-/// mismatched sizes, non-finite values, non-zero boundary accelerations.
+/// must be zero (use [`quintic`] otherwise). Errors: `duration` outside
+/// [[`MIN_DURATION`], [`MAX_DURATION`]] s, mismatched sizes, non-finite
+/// values, non-zero boundary accelerations.
 pub fn cubic(start: &JointState, end: &JointState, duration: f64) -> Result<Trajectory> {
     for (what, state) in [("start", start), ("end", end)] {
         if state.acceleration.iter().any(|&a| a != 0.0) {
@@ -121,7 +128,8 @@ pub fn cubic(start: &JointState, end: &JointState, duration: f64) -> Result<Traj
 /// Quintic profile from `start` to `end` in `duration` seconds, meeting
 /// position, velocity and acceleration at both ends.
 ///
-/// Errors: `duration <= 0`, mismatched sizes, non-finite values.
+/// Errors: `duration` outside [[`MIN_DURATION`], [`MAX_DURATION`]] s,
+/// mismatched sizes, non-finite values.
 pub fn quintic(start: &JointState, end: &JointState, duration: f64) -> Result<Trajectory> {
     single_segment(start, end, duration, |j, h, h2| {
         poly::quintic_hermite(
@@ -145,8 +153,9 @@ pub fn quintic(start: &JointState, end: &JointState, duration: f64) -> Result<Tr
 /// `q0 == qf` gives a trajectory that stays put. Seed 004's path is
 /// `trapezoidal(.., 20.0, 4.0)`.
 ///
-/// Errors: `duration <= 0`; `acceleration_time <= 0` or `> duration / 2`
-/// (the ramps would overlap); mismatched sizes; non-finite values.
+/// Errors: `duration` outside [[`MIN_DURATION`], [`MAX_DURATION`]] s;
+/// `acceleration_time <= 0` or `> duration / 2` (the ramps would overlap);
+/// mismatched sizes; non-finite values.
 pub fn trapezoidal(
     q0: &[f64],
     qf: &[f64],
@@ -242,7 +251,10 @@ pub fn minimum_time(
             }
             let c = c_velocity.max(p_acceleration.sqrt());
             let ta = p_acceleration / c;
-            trapezoidal(q0, qf, c + ta, ta.min(0.5 * (c + ta)))
+            // A move shorter than MIN_DURATION is stretched to it: slower
+            // keeps every velocity and acceleration within its limit.
+            let stretch = (MIN_DURATION / (c + ta)).max(1.0);
+            trapezoidal(q0, qf, (c + ta) * stretch, ta.min(0.5 * (c + ta)) * stretch)
         }
         ProfileShape::Cubic | ProfileShape::Quintic => {
             let start = JointState::at_rest(q0);
@@ -274,16 +286,6 @@ pub fn rest_to_rest(
 ) -> Result<Trajectory> {
     check_endpoints(q0, qf)?;
     check_duration(duration)?;
-    if !(MIN_DURATION..=MAX_DURATION).contains(&duration) {
-        return Err(Error::invalid_argument(
-            "duration",
-            format!(
-                "must be in [{MIN_DURATION}, {}] s, got {} s",
-                brief(MAX_DURATION),
-                brief(duration)
-            ),
-        ));
-    }
     match (shape, acceleration_time) {
         (ProfileShape::Trapezoidal, Some(ta)) => trapezoidal(q0, qf, duration, ta),
         (ProfileShape::Trapezoidal, None) => Err(Error::invalid_argument(

@@ -220,12 +220,36 @@ fn bad_durations_are_clear_errors() {
     let (q0, qf) = ([0.0, 1.0], [1.0, 0.0]);
     assert_eq!(
         message(trajectory::trapezoidal(&q0, &qf, 0.0, 0.0)),
-        "invalid argument `duration`: must be finite and > 0 s, got 0 s"
+        "invalid argument `duration`: must be in [0.001, 1e6] s, got 0 s"
     );
     assert_eq!(
         message(trajectory::trapezoidal(&q0, &qf, -2.0, 0.5)),
-        "invalid argument `duration`: must be finite and > 0 s, got -2 s"
+        "invalid argument `duration`: must be in [0.001, 1e6] s, got -2 s"
     );
+    // The range holds for every profile, at both ends.
+    let (rest0, rest1) = (JointState::at_rest(&q0), JointState::at_rest(&qf));
+    for duration in [1e-300, 9.99e-4, 1.000001e6, 1e300] {
+        let expected = format!(
+            "invalid argument `duration`: must be in [0.001, 1e6] s, got {} s",
+            armkit::error::brief(duration)
+        );
+        assert_eq!(
+            message(trajectory::cubic(&rest0, &rest1, duration)),
+            expected
+        );
+        assert_eq!(
+            message(trajectory::quintic(&rest0, &rest1, duration)),
+            expected
+        );
+        assert_eq!(
+            message(trajectory::trapezoidal(&q0, &qf, duration, duration / 4.0)),
+            expected
+        );
+    }
+    for duration in [1e-3, 1e6] {
+        assert!(trajectory::cubic(&rest0, &rest1, duration).is_ok());
+        assert!(trajectory::trapezoidal(&q0, &qf, duration, duration / 4.0).is_ok());
+    }
     assert_eq!(
         message(trajectory::trapezoidal(&q0, &qf, 10.0, 6.0)),
         "invalid argument `acceleration_time`: must be at most half the duration (5 s) so that \
@@ -253,6 +277,23 @@ fn bad_durations_are_clear_errors() {
     assert!(message(trajectory::cubic(&accelerating, &rest, 1.0))
         .contains("cannot meet a boundary acceleration"));
     assert!(message(Trajectory::stationary(&q0, 0.0, -1.0)).contains("`duration`"));
+}
+
+#[test]
+fn a_minimum_time_move_shorter_than_the_shortest_profile_is_stretched_within_its_limits() {
+    // 1e-9 rad at 2 rad/s and 10 rad/s^2 takes 2e-5 s: planned in MIN_DURATION.
+    let limits = TrajectoryLimits::new(vec![2.0], vec![10.0]).unwrap();
+    let traj = trajectory::minimum_time(
+        trajectory::ProfileShape::Trapezoidal,
+        &[0.0],
+        &[1e-9],
+        &limits,
+    )
+    .unwrap();
+    assert_eq!(traj.duration(), trajectory::MIN_DURATION);
+    assert!(check_limits(&traj, &limits).unwrap().is_empty());
+    let end = traj.sample(traj.duration()).unwrap();
+    assert!((end.position[0] - 1e-9).abs() < 1e-20);
 }
 
 #[test]
