@@ -9,7 +9,7 @@ cd "$(dirname "$0")"
 seconds=${1:-600}
 shift || true
 targets=("$@")
-[ ${#targets[@]} -eq 0 ] && targets=(urdf description scenario scenario_tables cli_numbers)
+[ ${#targets[@]} -eq 0 ] && targets=(urdf description scenario scenario_tables cli_numbers dynamics_command ik_command)
 export RUSTC_BOOTSTRAP=1
 mkdir -p logs
 for target in "${targets[@]}"; do
