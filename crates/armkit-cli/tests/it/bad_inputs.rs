@@ -942,6 +942,20 @@ const CASES: &[Case] = &[
     ),
     case(
         "mpc",
+        "a convergence tolerance of zero",
+        &[
+            "mpc",
+            "--robot",
+            "ur5",
+            "--target",
+            "0.4,0.1,0.5,3.14,0,0",
+            "--position-tolerance",
+            "0",
+        ],
+        1,
+    ),
+    case(
+        "mpc",
         "zero horizon",
         &[
             "mpc",
@@ -1751,7 +1765,7 @@ const CASES: &[Case] = &[
     case(
         "dynamics",
         "robot without masses",
-        &["dynamics", "--robot", "ur5", "--q", "0,0,0,0,0,0"],
+        &["dynamics", "--robot", "puma560", "--q", "0,0,0,0,0,0"],
         1,
     ),
     case(
@@ -1845,7 +1859,7 @@ const CASES: &[Case] = &[
             "traj",
             "joint",
             "--robot",
-            "ur5",
+            "puma560",
             "--from",
             "0,0,0,0,0,0",
             "--to",
