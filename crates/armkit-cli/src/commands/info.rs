@@ -18,10 +18,11 @@ pub struct InfoArgs {
     pub json: bool,
 }
 
-/// Runs `armkit info`: the chain, or, for a URDF with several leaf links and
-/// no `--tip`, the whole tree (the tips to choose from).
+/// Runs `armkit info`: the chain, or, for a URDF with several leaf links (or
+/// roots) and neither `--base` nor `--tip`, the whole tree (the tips to
+/// choose from).
 pub fn run(args: &InfoArgs) -> CliResult<Outcome> {
-    if let (Some(path), None) = (&args.robot.urdf, &args.robot.tip) {
+    if let (Some(path), None, None) = (&args.robot.urdf, &args.robot.base, &args.robot.tip) {
         let tree = armkit::urdf::outline(path)?;
         if tree.leaves.len() > 1 || tree.roots.len() > 1 {
             if args.json {

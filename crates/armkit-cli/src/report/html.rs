@@ -175,7 +175,13 @@ fn checks_table<'a>(checks: impl Iterator<Item = &'a super::Check>) -> String {
         body += &format!(
             "<tr><td>{}</td><td>{value}</td><td>{threshold}</td><td>{}</td><td>{}</td></tr>\n",
             escape(&check.name),
-            escape(&check.unit),
+            // Dimensionless values and yes/no checks have no unit: a dash,
+            // not an empty cell.
+            if check.unit.is_empty() {
+                "&ndash;".to_string()
+            } else {
+                escape(&check.unit)
+            },
             verdict(check.passed())
         );
     }
