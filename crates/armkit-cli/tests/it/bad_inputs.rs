@@ -278,7 +278,7 @@ const FILES: &[(&str, &str)] = &[
     ),
     (
         "scenario-space-massless-arm.toml",
-        "name = \"s\"\ntitle = \"t\"\n[robot]\nbuiltin = \"ur5\"\n[space]\nduration = 1.0\n",
+        "name = \"s\"\ntitle = \"t\"\n[robot]\nbuiltin = \"puma560\"\n[space]\nduration = 1.0\n",
     ),
     // Dynamics: an inertia that is not positive semi-definite, a link without mass.
     (
@@ -1234,7 +1234,14 @@ const CASES: &[Case] = &[
     case(
         "space",
         "robot without mass properties",
-        &["space", "jacobian", "--robot", "ur5", "--q", "0,0,0,0,0,0"],
+        &[
+            "space",
+            "jacobian",
+            "--robot",
+            "puma560",
+            "--q",
+            "0,0,0,0,0,0",
+        ],
         1,
     ),
     case(

@@ -68,16 +68,27 @@ fn shell_words(line: &str) -> Vec<String> {
     words
 }
 
+/// A README command: its arguments after `armkit`, and the exit code the
+/// README promises (0, or 3 where its comment says `exit 3`: a run that
+/// did not meet its goal, with the reason on stderr).
+pub struct ReadmeCommand {
+    pub args: Vec<String>,
+    pub exit: i32,
+}
+
 /// Every `armkit` command of the README's `sh` blocks (continuation lines
-/// joined), as its arguments after `armkit`.
-pub fn readme_commands() -> Vec<Vec<String>> {
+/// joined).
+pub fn readme_commands() -> Vec<ReadmeCommand> {
     let mut commands = Vec::new();
     for block in fenced_blocks(&readme(), "sh") {
         let joined = block.replace("\\\n", " ");
         for line in joined.lines() {
             let words = shell_words(line);
             if words.first().map(String::as_str) == Some("armkit") {
-                commands.push(words[1..].to_vec());
+                commands.push(ReadmeCommand {
+                    args: words[1..].to_vec(),
+                    exit: if line.contains("# exit 3") { 3 } else { 0 },
+                });
             }
         }
     }
@@ -98,11 +109,11 @@ fn the_readme_has_commands_for_every_section() {
     let commands = readme_commands();
     assert!(commands.len() >= 25, "{} commands", commands.len());
     for command in &commands {
-        for word in command {
+        for word in &command.args {
             assert!(
                 !(word.contains("...") || word.starts_with('[') || word.starts_with('<')),
                 "a placeholder in the README's `armkit {}`: write a value that runs",
-                command.join(" ")
+                command.args.join(" ")
             );
         }
     }
@@ -116,15 +127,17 @@ fn every_readme_command_runs() {
     let mut failures = Vec::new();
     for command in readme_commands() {
         let output = Command::new(env!("CARGO_BIN_EXE_armkit"))
-            .args(&command)
+            .args(&command.args)
             .current_dir(&dir)
             .output()
             .unwrap();
-        if !output.status.success() {
+        let reason_given = command.exit == 0 || !stderr(&output).is_empty();
+        if output.status.code() != Some(command.exit) || !reason_given {
             failures.push(format!(
-                "armkit {}\n  exit {:?}: {}",
-                command.join(" "),
+                "armkit {}\n  exit {:?} (the README says {}): {}",
+                command.args.join(" "),
                 output.status.code(),
+                command.exit,
                 stderr(&output)
             ));
         }

@@ -278,6 +278,7 @@ fn fk_all_frames_of_the_urdfs_equal_pinocchio_joint_placements() {
                 "--q",
                 &q,
                 "--all-frames",
+                "--allow-out-of-limits",
                 "--json",
             ]));
             let frames = value["frames"].as_array().unwrap();
