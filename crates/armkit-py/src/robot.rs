@@ -304,14 +304,15 @@ impl Robot {
     ) -> PyResult<Bound<'py, PyAny>> {
         let py = q.py();
         let n = self.model.chain_joints().len();
-        let all = |model: &Model, data: &mut Data, q: &[f64], out: &mut [f64]| {
-            let mut frames = vec![Pose::identity(); n];
-            link_frames(model, data, q, &mut frames)?;
-            for (frame, out) in frames.iter().zip(out.chunks_exact_mut(16)) {
-                write_pose(frame, out);
-            }
-            Ok(())
-        };
+        let all =
+            |model: &Model, data: &mut Data, q: &[f64], out: &mut [f64]| -> armkit::Result<()> {
+                let mut frames = vec![Pose::identity(); n];
+                link_frames(model, data, q, &mut frames)?;
+                for (frame, out) in frames.iter().zip(out.chunks_exact_mut(16)) {
+                    write_pose(frame, out);
+                }
+                Ok(())
+            };
         let array = float_array(q, "q")?;
         match array.ndim() {
             1 => self.with_scratch(|s| {
