@@ -590,10 +590,10 @@ fn classify_spherical_wrist_singularities_of_puma560_and_space6r() {
     assert_eq!(through.kinds, vec![SingularityKind::Wrist]);
 }
 
-/// The UR family has no spherical wrist, but its `det J = s3 s5 a2 a3 (a2 c2
-/// + a3 c23 + d5 s234)` factors the same way: q5 = 0 is a wrist singularity,
-/// q3 = 0 an elbow one, and the point where axes 5 and 6 meet in the plane
-/// through axis 1 parallel to axis 2 a shoulder one.
+/// The UR family has no spherical wrist, but its determinant,
+/// `s3 s5 a2 a3 (a2 c2 + a3 c23 + d5 s234)`, factors the same way: q5 = 0 is
+/// a wrist singularity, q3 = 0 an elbow one, and the point where axes 5 and 6
+/// meet in the plane through axis 1 parallel to axis 2 a shoulder one.
 #[test]
 fn ur5_singularities_are_classified_wrist_elbow_shoulder() {
     let ur5 = armkit::robots::ur5().unwrap();
