@@ -3,8 +3,8 @@
 //! | name | DOF | model | source |
 //! | --- | --- | --- | --- |
 //! | `puma560` | 6 | standard DH | Corke, Robotics Toolbox `models.DH.Puma560` |
-//! | `ur5` | 6 | standard DH | Universal Robots' published DH, RTB `models.DH.UR5` |
-//! | `panda` | 7 | modified DH + tool | Franka Emika's published DH, RTB `models.DH.Panda` |
+//! | `ur5` | 6 | standard DH | Universal Robots' published DH, RTB `models.DH.UR5`; UR's masses and centres of mass, limits with effort ([`ur5`]) |
+//! | `panda` | 7 | modified DH + tool | Franka Emika's published DH, RTB `models.DH.Panda`; Gaz et al. 2019's inertial parameters with the hand, data-sheet limits ([`panda`]) |
 //! | `stanford` | 6 (RRPRRR) | standard DH | Scheinman's Stanford arm, RTB `models.DH.Stanford` |
 //! | `arm4` | 4 | standard DH | seed 002's 4-DOF arm, our dimensions |
 //! | `space6r` | 6 | standard DH | seed 004's 6R space arm, PUMA-like, paper's lengths |
