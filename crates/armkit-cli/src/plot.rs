@@ -99,10 +99,10 @@ impl Figure {
             root.fill(&WHITE).map_err(|e| e.to_string())?;
             let (x_range, y_range) = self.ranges();
             let mut chart = ChartBuilder::on(&root)
-                .caption(&self.title, ("sans-serif", 18))
+                .caption(&self.title, ("sans-serif", 22))
                 .margin(10)
-                .x_label_area_size(40)
-                .y_label_area_size(60)
+                .x_label_area_size(48)
+                .y_label_area_size(72)
                 .build_cartesian_2d(x_range, y_range)
                 .map_err(|e| e.to_string())?;
             chart
@@ -110,6 +110,8 @@ impl Figure {
                 .x_desc(self.x_label.as_str())
                 .y_desc(self.y_label.as_str())
                 .light_line_style(RGBColor(235, 235, 235))
+                .label_style(("sans-serif", 15))
+                .axis_desc_style(("sans-serif", 17))
                 .draw()
                 .map_err(|e| e.to_string())?;
             for (k, series) in self.series.iter().enumerate() {
@@ -128,9 +130,10 @@ impl Figure {
                         PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2))
                     });
             }
-            if self.series.len() > 1 || self.series.first().is_some_and(|s| !s.name.is_empty()) {
+            if self.has_legend() {
                 chart
                     .configure_series_labels()
+                    .label_font(("sans-serif", 15))
                     .background_style(WHITE.mix(0.85))
                     .border_style(RGBColor(200, 200, 200))
                     .position(SeriesLabelPosition::UpperRight)
@@ -142,6 +145,13 @@ impl Figure {
         Ok(svg)
     }
 
+    fn has_legend(&self) -> bool {
+        self.series.len() > 1 || self.series.first().is_some_and(|s| !s.name.is_empty())
+    }
+
+    /// The axes' ranges. With a legend, the y range has headroom above the
+    /// data for it (a row of about 7 % of the plot's height per series, up
+    /// to half the height), so that it does not cover the curves.
     fn ranges(&self) -> (std::ops::Range<f64>, std::ops::Range<f64>) {
         let finite = |v: &&f64| v.is_finite();
         let (x_min, x_max) = min_max(self.x.iter().filter(finite).copied());
@@ -152,7 +162,14 @@ impl Figure {
                 .filter(finite)
                 .copied(),
         );
-        (padded(x_min, x_max, 0.0), padded(y_min, y_max, 0.05))
+        let y = padded(y_min, y_max, 0.05);
+        let y = if self.has_legend() {
+            let rows = (0.07 * self.series.len() as f64).min(0.5);
+            y.start..y.end + (y.end - y.start) * rows / (1.0 - rows)
+        } else {
+            y
+        };
+        (padded(x_min, x_max, 0.0), y)
     }
 }
 
@@ -199,6 +216,21 @@ mod tests {
             assert!(svg.contains(text), "missing {text}");
         }
         assert!(svg.matches("<polyline").count() >= 2);
+    }
+
+    #[test]
+    fn the_legend_gets_headroom_above_the_curves() {
+        let x = vec![0.0, 1.0];
+        let one = Figure::new("t", "x", "y", x.clone()).with_series("", vec![0.0, 1.0]);
+        let four = (0..4).fold(Figure::new("t", "x", "y", x), |f, k| {
+            f.with_series(format!("q{k}"), vec![0.0, 1.0])
+        });
+        let (_, plain) = one.ranges();
+        let (_, legend) = four.ranges();
+        assert!((plain.end - 1.05).abs() < 1e-12, "{plain:?}");
+        // The top 28 % of the plot (4 rows of 7 %) lies above the data.
+        let band = (legend.end - 1.05) / (legend.end - legend.start);
+        assert!((band - 0.28).abs() < 1e-12, "{legend:?}");
     }
 
     #[test]

@@ -5,8 +5,8 @@ use std::path::PathBuf;
 use std::sync::Mutex;
 
 use armkit::dynamics::DynamicsData;
-use armkit::kinematics::{forward_kinematics, jacobian, Data, JacobianFrame};
-use armkit::math::Vector3;
+use armkit::kinematics::{forward_kinematics, jacobian, link_frames, Data, JacobianFrame};
+use armkit::math::{Pose, Vector3};
 use armkit::Model;
 use numpy::ndarray::Dim;
 use numpy::{PyArray1, PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
@@ -271,6 +271,60 @@ impl Robot {
                 write_pose(forward_kinematics(model, data, q)?, out);
                 Ok(())
             }),
+            _ => Err(shape_error(
+                "q",
+                &format!("({},) or (N, {})", self.model.dof(), self.model.dof()),
+                array.shape(),
+            )),
+        }
+    }
+
+    /// Names of the frames [`fk_all`](Self::fk_all) returns, base to tip: the
+    /// chain's joints (a URDF's joint names, `q1`, `q2`, ... for a DH table).
+    #[getter]
+    fn frame_names(&self) -> Vec<String> {
+        self.model
+            .chain_joints()
+            .iter()
+            .map(|j| j.name.clone())
+            .collect()
+    }
+
+    /// Forward kinematics of every link frame along the chain, world frame,
+    /// as homogeneous (4, 4) arrays (m): (n, 4, 4) for `q` of shape (dof,),
+    /// (N, n, 4, 4) for (N, dof) (batched as `fk`), n = `len(frame_names)`.
+    /// Frame i is the frame of the link joint i moves: a URDF's child link
+    /// frame (Pinocchio's `oMi`), a DH table's frame i (RTB's `fkine_all`
+    /// without the base). The end effector is `fk(q)`.
+    #[pyo3(signature = (q, threads=None))]
+    fn fk_all<'py>(
+        &self,
+        q: &Bound<'py, PyAny>,
+        threads: Option<i64>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let py = q.py();
+        let n = self.model.chain_joints().len();
+        let all =
+            |model: &Model, data: &mut Data, q: &[f64], out: &mut [f64]| -> armkit::Result<()> {
+                let mut frames = vec![Pose::identity(); n];
+                link_frames(model, data, q, &mut frames)?;
+                for (frame, out) in frames.iter().zip(out.chunks_exact_mut(16)) {
+                    write_pose(frame, out);
+                }
+                Ok(())
+            };
+        let array = float_array(q, "q")?;
+        match array.ndim() {
+            1 => self.with_scratch(|s| {
+                copy_values(&array, &mut s.q);
+                let q = std::mem::take(&mut s.q);
+                let result = new_array(py, Dim([n, 4, 4]), |out| {
+                    all(&self.model, &mut s.data, &q, out).or_raise()
+                });
+                s.q = q;
+                Ok(result?.into_any())
+            }),
+            2 => self.batched(&array, &[n, 4, 4], threads, all),
             _ => Err(shape_error(
                 "q",
                 &format!("({},) or (N, {})", self.model.dof(), self.model.dof()),

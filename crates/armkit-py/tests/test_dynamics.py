@@ -81,8 +81,9 @@ def test_dynamics_bad_input():
         dynamics.mass_matrix(robot, [[0.0] * 7, [np.nan] * 7])
     with pytest.raises(ValueError, match=re.escape("gravity: expected 3 values, got 2")):
         dynamics.gravity_torques(robot, q, gravity=[0.0, -9.81])
-    with pytest.raises(ValueError, match=re.escape("invalid model: link 0 (`q1`), field `mass`: model `panda` has no mass properties")):
-        dynamics.rnea(armkit.Robot.builtin("panda"), q, q, q)  # the DH panda has no masses
+    q6 = np.zeros(6)
+    with pytest.raises(ValueError, match=re.escape("invalid model: link 0 (`q1`), field `mass`: model `puma560` has no mass properties")):
+        dynamics.rnea(armkit.Robot.builtin("puma560"), q6, q6, q6)  # the DH PUMA 560 has no masses
     # gantry9-flex (the beam coupling) has dynamics in its 9 independent joints.
     with pytest.raises(ValueError, match=re.escape("expected 9 values, got 8")):
         dynamics.mass_matrix(armkit.Robot.builtin("gantry9-flex"), np.zeros(8))
@@ -143,3 +144,22 @@ def test_forward_dynamics_on_a_singular_mass_matrix_is_a_value_error():
     # Batched: the row is named, and no array comes back.
     with pytest.raises(ValueError, match=r"q\[0\]: .*" + message):
         dynamics.aba(robot, np.array(qs), np.zeros((len(qs), 4)), np.full((len(qs), 4), 0.1))
+
+
+def test_the_stub_names_exactly_the_builtins_with_dynamics():
+    """dynamics.pyi's list of built-ins with mass properties is what the code does."""
+    import armkit.dynamics as dyn_module
+    from conftest import REPO
+
+    stub = (REPO / "crates/armkit-py/python/armkit/dynamics.pyi").read_text()
+    listed = stub[stub.index("the built-ins with them:") :].split(")")[0]
+    named = set(re.findall(r"``([a-z0-9-]+)``", listed))
+    runs = set()
+    for name in armkit.builtin_robots():
+        robot = armkit.Robot.builtin(name)
+        try:
+            dyn_module.rnea(robot, np.zeros(robot.dof), np.zeros(robot.dof), np.zeros(robot.dof))
+            runs.add(name)
+        except ValueError as error:
+            assert "no mass properties" in str(error), (name, error)
+    assert named == runs

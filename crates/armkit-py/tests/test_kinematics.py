@@ -161,3 +161,28 @@ def test_mimic_joints_follow_their_leaders():
     result = robot.ik(goal, time_budget=None)
     assert result.converged
     np.testing.assert_allclose(robot.fk(result.q), goal, atol=1e-6)
+
+
+def test_fk_all_equals_pinocchio_joint_placements():
+    """robot.fk_all(q), one configuration and batched, against Pinocchio's
+    oMi on the UR5 and Panda URDF chains (tests/data/reference_frames.json)."""
+    import json
+
+    with open(data_file("reference_frames.json")) as f:
+        chains = json.load(f)["chains"]
+    for chain in chains:
+        robot = armkit.Robot.from_urdf(DATA / chain["urdf"], base=chain["base"], tip=chain["tip"])
+        assert robot.frame_names == chain["joint_names"]
+        Q = np.array([s["q"] for s in chain["samples"]])
+        expected = np.array([s["placements"] for s in chain["samples"]]).reshape(len(Q), -1, 4, 4)
+        batched = robot.fk_all(Q)
+        assert batched.shape == expected.shape
+        assert np.abs(batched - expected).max() < POSE_TOLERANCE
+        for q, frames in zip(Q, expected):
+            assert np.abs(robot.fk_all(q) - frames).max() < POSE_TOLERANCE
+    # The DH UR5's last frame is its flange, the end effector.
+    ur5 = armkit.Robot.builtin("ur5")
+    q = np.array([0.1, -1.2, 1.0, -0.5, 1.5, 0.3])
+    assert np.abs(ur5.fk_all(q)[-1] - ur5.fk(q)).max() < 1e-15
+    with pytest.raises(ValueError, match="expected 6 values, got 5"):
+        ur5.fk_all(np.zeros(5))

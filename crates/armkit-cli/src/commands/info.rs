@@ -18,8 +18,21 @@ pub struct InfoArgs {
     pub json: bool,
 }
 
-/// Runs `armkit info`.
+/// Runs `armkit info`: the chain, or, for a URDF with several leaf links (or
+/// roots) and neither `--base` nor `--tip`, the whole tree (the tips to
+/// choose from).
 pub fn run(args: &InfoArgs) -> CliResult<Outcome> {
+    if let (Some(path), None, None) = (&args.robot.urdf, &args.robot.base, &args.robot.tip) {
+        let tree = armkit::urdf::outline(path)?;
+        if tree.leaves.len() > 1 || tree.roots.len() > 1 {
+            if args.json {
+                print_json(&tree_json(&tree))?;
+            } else {
+                print!("{}", tree_text(&tree));
+            }
+            return Ok(Outcome::Success);
+        }
+    }
     let model = args.robot.load()?;
     if args.json {
         print_json(&json(&model))?;
@@ -27,6 +40,64 @@ pub fn run(args: &InfoArgs) -> CliResult<Outcome> {
         print!("{}", table(&model));
     }
     Ok(Outcome::Success)
+}
+
+/// The tree of a URDF as text: joints indented by depth, then the leaves.
+pub fn tree_text(tree: &armkit::urdf::Outline) -> String {
+    let mut out = format!(
+        "robot {}: {} links, {} joints, {} leaf links: a tree, not one chain; \
+         choose one with --tip LINK (and --base LINK)\n\n",
+        tree.robot,
+        tree.links,
+        tree.joints.len(),
+        tree.leaves.len()
+    );
+    for root in &tree.roots {
+        out += &format!("{root} (root)\n");
+    }
+    for joint in &tree.joints {
+        out += &format!(
+            "{}{} -> {}  [{} {}]\n",
+            "  ".repeat(joint.depth + 1),
+            joint.parent,
+            joint.child,
+            joint.kind,
+            joint.name
+        );
+    }
+    out += &format!("\nleaf links (tips): {}\n", tree.leaves.join(", "));
+    out
+}
+
+fn tree_json(tree: &armkit::urdf::Outline) -> serde_json::Value {
+    serde_json::json!({
+        "name": tree.robot,
+        "links": tree.links,
+        "roots": tree.roots,
+        "leaves": tree.leaves,
+        "joints": tree.joints.iter().map(|j| serde_json::json!({
+            "name": j.name, "kind": j.kind, "parent": j.parent, "child": j.child, "depth": j.depth,
+        })).collect::<Vec<_>>(),
+    })
+}
+
+/// Which frame poses are given in: a built-in's convention, a DH table's
+/// base frame, or a URDF's base link.
+fn frames_line(model: &Model) -> String {
+    if let Some(builtin) = armkit::robots::BUILTIN
+        .iter()
+        .find(|r| r.name == model.name())
+    {
+        if model.dh_table().is_some() || model.name().starts_with("gantry9") {
+            return builtin.frames.to_string();
+        }
+    }
+    match model.dh_table() {
+        Some((convention, _)) => {
+            format!("{convention:?} DH: the table's base frame (times its base transform)")
+        }
+        None => "the URDF's base link frame; link frames are the URDF's".into(),
+    }
 }
 
 fn kind_name(joint: &Joint) -> &'static str {
@@ -84,10 +155,11 @@ fn driver(model: &Model, j: usize) -> String {
 /// The text listing.
 pub fn table(model: &Model) -> String {
     let mut out = format!(
-        "robot {}: {} chain joints, {} independent (dof)\n\nchain joints, base to tip:\n",
+        "robot {}: {} chain joints, {} independent (dof)\nframes: {}\n\nchain joints, base to tip:\n",
         model.name(),
         model.chain_joints().len(),
-        model.dof()
+        model.dof(),
+        frames_line(model)
     );
     let width = model
         .chain_joints()
@@ -171,6 +243,7 @@ pub fn json(model: &Model) -> serde_json::Value {
     serde_json::json!({
         "name": model.name(),
         "dof": model.dof(),
+        "frames": frames_line(model),
         "chain_joints": model.chain_joints().iter().map(joint_json).collect::<Vec<_>>(),
         "joints": model.joints().iter().map(joint_json).collect::<Vec<_>>(),
         "couplings": couplings,

@@ -18,7 +18,7 @@ pub fn run(args: &RobotsArgs) -> CliResult<Outcome> {
         let list: Vec<_> = armkit::robots::BUILTIN
             .iter()
             .map(
-                |r| serde_json::json!({"name": r.name, "dof": r.dof, "description": r.description}),
+                |r| serde_json::json!({"name": r.name, "dof": r.dof, "description": r.description, "frames": r.frames}),
             )
             .collect();
         print_json(&serde_json::Value::Array(list))?;
@@ -34,6 +34,7 @@ pub fn table() -> String {
     let mut out = format!("{:<width$} {:>3}  {}\n", "robot", "dof", "description");
     for r in armkit::robots::BUILTIN {
         out += &format!("{:<width$} {:>3}  {}\n", r.name, r.dof, r.description);
+        out += &format!("{:<width$}      frames: {}\n", "", r.frames);
     }
     out
 }

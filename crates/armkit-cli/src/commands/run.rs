@@ -85,20 +85,37 @@ pub struct DemoArgs {
     /// Run the scenario files of this folder instead of the shipped ones.
     #[arg(long, value_name = "DIR")]
     pub scenarios: Option<PathBuf>,
+    /// Print every scenario's tables, checks, claims and notes as it runs
+    /// (by default one line per scenario; the reports hold the rest).
+    #[arg(long)]
+    pub verbose: bool,
+}
+
+/// How much of a scenario's report goes to the terminal.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Detail {
+    /// Tables, checks, claims and notes, then the report's path.
+    Full,
+    /// Nothing: the caller prints a summary line.
+    None,
 }
 
 /// Runs `armkit run`.
 pub fn run(args: &RunArgs) -> CliResult<Outcome> {
     let scenario = scenario::load(&args.scenario)?;
-    let summary = run_scenario(&scenario, &args.out)?;
+    let summary = run_scenario(&scenario, &args.out, Detail::Full)?;
     Ok(outcome(&[summary]))
 }
 
-fn run_scenario(scenario: &Scenario, out: &Path) -> CliResult<ReportSummary> {
+fn run_scenario(scenario: &Scenario, out: &Path, detail: Detail) -> CliResult<ReportSummary> {
     let report = scenario.run()?;
-    print!("{}", report.to_text());
+    if detail == Detail::Full {
+        print!("{}", report.to_text());
+    }
     let summary = report.write(out)?;
-    println!("  report: {}", summary.html.display());
+    if detail == Detail::Full {
+        println!("  report: {}", summary.html.display());
+    }
     Ok(summary)
 }
 
@@ -127,17 +144,24 @@ pub fn demo(args: &DemoArgs) -> CliResult<Outcome> {
         ProgressStyle::with_template("{bar:30} {pos}/{len} {msg}")
             .map_err(|e| CliError(format!("progress bar: {e}")))?,
     );
+    let detail = if args.verbose {
+        Detail::Full
+    } else {
+        Detail::None
+    };
     let mut summaries = Vec::new();
     for scenario in &scenarios {
         progress.set_message(scenario.name.clone());
-        let summary = progress.suspend(|| run_scenario(scenario, &args.out))?;
+        let summary = progress.suspend(|| run_scenario(scenario, &args.out, detail))?;
         summaries.push(summary);
         progress.inc(1);
     }
     progress.finish_and_clear();
     let index = write_index(&args.out, &summaries)?;
     println!(
-        "\n{} scenarios in {:.1} s:",
+        "{}{} scenarios in {:.1} s (checks pass / total; the papers' claims: reproduced, with a \
+         deviation, not reproduced, not attempted):",
+        if args.verbose { "\n" } else { "" },
         summaries.len(),
         started.elapsed().as_secs_f64()
     );
@@ -147,31 +171,38 @@ pub fn demo(args: &DemoArgs) -> CliResult<Outcome> {
             String::new()
         } else {
             format!(
-                "; paper's claims: {} reproduced, {} with a deviation, {} not reproduced, {} not \
-                 attempted",
+                "; claims {} / {} / {} / {}",
                 c.reproduced, c.with_deviation, c.not_reproduced, c.not_attempted
             )
         };
         if c.duplicates > 0 {
-            findings += &format!(" ({} more restate counted evidence)", c.duplicates);
+            findings += &format!(" (+{} restating)", c.duplicates);
         }
         let invariants = if s.invariants == 0 {
             String::new()
         } else {
-            format!(
-                "; {} of {} invariants hold",
-                s.invariants_held, s.invariants
-            )
+            format!("; invariants {}/{}", s.invariants_held, s.invariants)
+        };
+        let failed = if s.all_passed() {
+            String::new()
+        } else {
+            format!("; see {}", s.html.display())
         };
         println!(
-            "  [{}] {}: {} of {} checks pass{invariants}{findings}",
+            "  [{}] {:<width$} checks {}/{}{invariants}{findings}{failed}",
             if s.all_passed() { "pass" } else { "FAIL" },
             s.name,
             s.passed,
-            s.total
+            s.total,
+            width = summaries.iter().map(|s| s.name.len()).max().unwrap_or(0)
         );
     }
     println!("open {}", index.display());
+    if !args.verbose {
+        println!(
+            "(each scenario's tables, checks and notes: its report, or armkit demo --verbose)"
+        );
+    }
     Ok(outcome(&summaries))
 }
 

@@ -11,6 +11,7 @@ table{border-collapse:collapse;margin:8px 0}td,th{border:1px solid #ccc;padding:
 th{background:#f3f3f6}.pass{color:#1a7f37;font-weight:bold}.fail{color:#c62828;font-weight:bold}
 .figures{display:flex;flex-wrap:wrap;gap:12px}.figure{border:1px solid #eee;padding:4px}
 .figure svg{max-width:100%;height:auto}.caption{color:#666;font-size:0.9em}.note{background:#fff8e1;padding:6px 10px;border-left:4px solid #f0b400}
+footer{margin-top:2.4em;border-top:1px solid #ddd;color:#555;font-size:0.88em}footer li{margin:2px 0}
 .reproduced{background:#d7f5dd}.reproduced-with-deviation{background:#fff1c2}.not-reproduced{background:#fbd5d5}.not-attempted{background:#e6e6ea}";
 
 /// Escapes text for HTML.
@@ -29,10 +30,75 @@ fn verdict(passed: bool) -> &'static str {
     }
 }
 
+/// The seed papers, one line each: authors, title (the paper's, then its
+/// English sense), and what it claims.
+const SEED_PAPERS: &[(&str, &str)] = &[
+    (
+        "Seed 000",
+        "Wang, Li, Xi, 采用预测控制的龙门架式冗余自由度机械臂轨迹规划算法 (MPC trajectory planning of a redundant gantry manipulator): a horizon MPC with joint priorities moves a 9-DOF gantry arm, whose beam bends under it, to a target within its joint position and velocity limits.",
+    ),
+    (
+        "Seed 001",
+        "Zhao, Huang, 自由度大于六的机器人速度控制的能量优化分配 (energy-optimal distribution of the velocity inputs of robots with more than six DOF): a closed form shares the joint rates of a redundant arm so that the joint power is least, below locking the extra joints.",
+    ),
+    (
+        "Seed 002",
+        "Hao, Chen, Deng, 4-DOF多功能机器人运动控制算法的研究 (motion control of a 4-DOF multi-function robot): closed-form IK and a continuous Cartesian path of polynomial segments, split adaptively until the path error is within a tolerance.",
+    ),
+    (
+        "Seed 004",
+        "Zhao, She, Huang, Huang (singularity avoidance of a space manipulator with a controlled base attitude): inside a detected singular region, IK at every k-th pose and a C2 spline keep the joint rates bounded with a small tracking error.",
+    ),
+];
+
+/// Year, month, day of a count of days since 1970-01-01 (proleptic
+/// Gregorian; H. Hinnant's `civil_from_days`).
+fn civil_from_days(days: i64) -> (i64, u32, u32) {
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z.rem_euclid(146_097);
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let day = (doy - (153 * mp + 2) / 5 + 1) as u32;
+    let month = if mp < 10 { mp + 3 } else { mp - 9 } as u32;
+    (yoe + era * 400 + i64::from(month <= 2), month, day)
+}
+
+/// The time of writing, UTC, to the minute.
+fn now_utc() -> String {
+    let seconds = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_secs() as i64);
+    let (year, month, day) = civil_from_days(seconds.div_euclid(86_400));
+    let minutes = seconds.rem_euclid(86_400) / 60;
+    format!(
+        "{year:04}-{month:02}-{day:02} {:02}:{:02} UTC",
+        minutes / 60,
+        minutes % 60
+    )
+}
+
+/// Every page's footer: the armkit version, the date, and the seed papers.
+fn footer() -> String {
+    let mut out = format!(
+        "<footer><p>armkit {} &middot; written {}</p>\n<p>The papers armkit implements and checks (the seeds):</p>\n<ul>\n",
+        env!("CARGO_PKG_VERSION"),
+        now_utc()
+    );
+    for (seed, line) in SEED_PAPERS {
+        out += &format!("<li><b>{seed}</b>: {}</li>\n", escape(line));
+    }
+    out + "</ul></footer>"
+}
+
 fn page(title: &str, body: &str) -> String {
     format!(
-        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>{}</title><style>{STYLE}</style></head>\n<body>\n{body}\n</body></html>\n",
-        escape(title)
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>{}</title><style>{STYLE}</style></head>\n<body>\n<p class=\"caption\">armkit {} &middot; {}</p>\n{body}\n{}\n</body></html>\n",
+        escape(title),
+        env!("CARGO_PKG_VERSION"),
+        now_utc(),
+        footer()
     )
 }
 
@@ -109,7 +175,13 @@ fn checks_table<'a>(checks: impl Iterator<Item = &'a super::Check>) -> String {
         body += &format!(
             "<tr><td>{}</td><td>{value}</td><td>{threshold}</td><td>{}</td><td>{}</td></tr>\n",
             escape(&check.name),
-            escape(&check.unit),
+            // Dimensionless values and yes/no checks have no unit: a dash,
+            // not an empty cell.
+            if check.unit.is_empty() {
+                "&ndash;".to_string()
+            } else {
+                escape(&check.unit)
+            },
             verdict(check.passed())
         );
     }
@@ -193,4 +265,27 @@ pub fn index_page(summaries: &[ReportSummary], out_dir: &Path) -> String {
     }
     body += "</table>\n";
     page("armkit demo", &body)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn civil_dates_from_day_counts() {
+        assert_eq!(civil_from_days(0), (1970, 1, 1));
+        assert_eq!(civil_from_days(11_016), (2000, 2, 29));
+        assert_eq!(civil_from_days(20_791), (2026, 12, 4));
+        assert_eq!(civil_from_days(-1), (1969, 12, 31));
+    }
+
+    #[test]
+    fn every_page_names_the_version_the_date_and_each_seed() {
+        let html = page("t", "<p>body</p>");
+        assert!(html.contains(&format!("armkit {}", env!("CARGO_PKG_VERSION"))));
+        assert!(html.contains(" UTC</p>"), "{html}");
+        for seed in ["Seed 000", "Seed 001", "Seed 002", "Seed 004"] {
+            assert!(html.contains(&format!("<b>{seed}</b>")), "{seed}");
+        }
+    }
 }

@@ -47,7 +47,8 @@ struct RobotSpec {
 #[serde(deny_unknown_fields)]
 struct ScenarioFile {
     name: Spanned<String>,
-    title: String,
+    /// Optional: a scenario without one is titled by its name.
+    title: Option<String>,
     #[serde(default)]
     description: String,
     robot: Option<Spanned<RobotSpec>>,
@@ -65,7 +66,7 @@ struct ScenarioFile {
 pub struct Scenario {
     /// Output folder name.
     pub name: String,
-    /// Title.
+    /// Title (the file's `title`, else its `name`).
     pub title: String,
     /// Description shown in the report.
     pub description: String,
@@ -137,7 +138,7 @@ pub fn parse(text: &str, source_name: &str, base_dir: &Path) -> CliResult<Scenar
     let (method, keys) = Method::parse(tables, robot, &locator)?;
     Ok(Scenario {
         name: name.clone(),
-        title: file.title,
+        title: file.title.unwrap_or_else(|| name.clone()),
         description: file.description,
         method,
         keys,
@@ -265,6 +266,8 @@ mod tests {
             "s.toml: line 4, column 11: unknown robot `r2d2`; the built-in robots are: puma560, ur5, panda, stanford, arm4, space6r, gantry9, gantry9-flex"
         );
         assert!(error("title = \"t\"\n[beam]\n").contains("missing field `name`"));
+        let untitled = parse("name = \"b\"\n[beam]\n", "s.toml", Path::new(".")).unwrap();
+        assert_eq!(untitled.title, "b");
         assert_eq!(
             error("name = \"b\"\ntitle = \"t\"\n"),
             "s.toml: line 1, column 1: no method table: expected exactly one of [beam], [mpc], [redundancy], [continuous_path], [singularity], [space]"

@@ -278,7 +278,7 @@ const FILES: &[(&str, &str)] = &[
     ),
     (
         "scenario-space-massless-arm.toml",
-        "name = \"s\"\ntitle = \"t\"\n[robot]\nbuiltin = \"ur5\"\n[space]\nduration = 1.0\n",
+        "name = \"s\"\ntitle = \"t\"\n[robot]\nbuiltin = \"puma560\"\n[space]\nduration = 1.0\n",
     ),
     // Dynamics: an inertia that is not positive semi-definite, a link without mass.
     (
@@ -942,6 +942,20 @@ const CASES: &[Case] = &[
     ),
     case(
         "mpc",
+        "a convergence tolerance of zero",
+        &[
+            "mpc",
+            "--robot",
+            "ur5",
+            "--target",
+            "0.4,0.1,0.5,3.14,0,0",
+            "--position-tolerance",
+            "0",
+        ],
+        1,
+    ),
+    case(
+        "mpc",
         "zero horizon",
         &[
             "mpc",
@@ -1220,7 +1234,14 @@ const CASES: &[Case] = &[
     case(
         "space",
         "robot without mass properties",
-        &["space", "jacobian", "--robot", "ur5", "--q", "0,0,0,0,0,0"],
+        &[
+            "space",
+            "jacobian",
+            "--robot",
+            "puma560",
+            "--q",
+            "0,0,0,0,0,0",
+        ],
         1,
     ),
     case(
@@ -1751,7 +1772,7 @@ const CASES: &[Case] = &[
     case(
         "dynamics",
         "robot without masses",
-        &["dynamics", "--robot", "ur5", "--q", "0,0,0,0,0,0"],
+        &["dynamics", "--robot", "puma560", "--q", "0,0,0,0,0,0"],
         1,
     ),
     case(
@@ -1845,7 +1866,7 @@ const CASES: &[Case] = &[
             "traj",
             "joint",
             "--robot",
-            "ur5",
+            "puma560",
             "--from",
             "0,0,0,0,0,0",
             "--to",

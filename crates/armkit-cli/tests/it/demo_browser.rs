@@ -95,11 +95,34 @@ fn demo_reports_open_offline_with_plots_and_animation() {
         "demo failed: {}",
         String::from_utf8_lossy(&run.stderr)
     );
+    // The terminal gets a line per scenario, the index's path and a hint:
+    // the details are in the reports (`--verbose` prints them).
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    let scenarios = stdout
+        .lines()
+        .filter(|l| l.starts_with("  [pass] "))
+        .count();
+    assert_eq!(scenarios, 13, "{stdout}");
+    assert!(
+        stdout.lines().count() <= 20,
+        "{} lines:\n{stdout}",
+        stdout.lines().count()
+    );
+    assert!(
+        stdout.contains(&format!("open {}", out.join("index.html").display())),
+        "{stdout}"
+    );
     let index = out.join("index.html");
     let report = out.join("seed000-mpc-ex1/report.html");
     for path in [&index, &report] {
         assert!(path.exists(), "{} missing", path.display());
     }
+    let page = std::fs::read_to_string(&report).unwrap();
+    assert!(page.contains(&format!("armkit {}", env!("CARGO_PKG_VERSION"))));
+    assert!(
+        page.contains("<b>Seed 004</b>") && page.contains(" UTC"),
+        "no footer"
+    );
     // Every shipped scenario's checks pass (a figure the papers' numbers do
     // not support is a note in its report, not a failing check).
     for entry in std::fs::read_dir(&out).unwrap() {

@@ -12,6 +12,7 @@ mod fuzz_corpus_replay;
 mod ik;
 mod manipulability;
 mod mpc;
+mod readme;
 mod redundancy;
 mod scenario_user;
 mod singularity;

@@ -204,3 +204,114 @@ fn info_lists_mimic_joints_and_the_limits_they_impose() {
     ]));
     assert!(value.is_object(), "{value}");
 }
+
+#[test]
+fn info_on_a_urdf_with_several_leaves_prints_the_tree() {
+    let output = armkit(&["info", "--urdf", "tests/data/urdf/panda.urdf"]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let text = stdout(&output);
+    assert!(
+        text.starts_with("robot panda: 13 links, 12 joints, 3 leaf links: a tree, not one chain;"),
+        "{text}"
+    );
+    // Depth shows as indentation: the hand below link 8, the fingers below the hand.
+    assert!(
+        text.contains("\n  panda_link0 -> panda_link1  [revolute panda_joint1]\n"),
+        "{text}"
+    );
+    assert!(
+        text.contains("    panda_hand -> panda_leftfinger  [prismatic panda_finger_joint1]\n"),
+        "{text}"
+    );
+    assert!(
+        text.ends_with("leaf links (tips): panda_hand_tcp, panda_leftfinger, panda_rightfinger\n"),
+        "{text}"
+    );
+    let tree = json(&armkit(&[
+        "info",
+        "--urdf",
+        "tests/data/urdf/panda.urdf",
+        "--json",
+    ]));
+    assert_eq!(tree["roots"], serde_json::json!(["panda_link0"]));
+    assert_eq!(tree["joints"].as_array().unwrap().len(), 12);
+    // A tip chooses the chain: the chain's table, with its frames named.
+    let output = armkit(&[
+        "info",
+        "--urdf",
+        "tests/data/urdf/panda.urdf",
+        "--tip",
+        "panda_link8",
+    ]);
+    let text = stdout(&output);
+    assert!(
+        text.contains("frames: the URDF's base link frame"),
+        "{text}"
+    );
+}
+
+#[test]
+fn fk_all_frames_of_the_urdfs_equal_pinocchio_joint_placements() {
+    let path = format!(
+        "{}/../../tests/data/reference_frames.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let reference: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    for chain in reference["chains"].as_array().unwrap() {
+        let urdf = format!("tests/data/{}", chain["urdf"].as_str().unwrap());
+        for sample in chain["samples"].as_array().unwrap().iter().take(3) {
+            let q: Vec<f64> = serde_json::from_value(sample["q"].clone()).unwrap();
+            let q = q
+                .iter()
+                .map(|v| format!("{v:.17e}"))
+                .collect::<Vec<_>>()
+                .join(",");
+            let value = json(&armkit(&[
+                "fk",
+                "--urdf",
+                &urdf,
+                "--base",
+                chain["base"].as_str().unwrap(),
+                "--tip",
+                chain["tip"].as_str().unwrap(),
+                "--q",
+                &q,
+                "--all-frames",
+                "--allow-out-of-limits",
+                "--json",
+            ]));
+            let frames = value["frames"].as_array().unwrap();
+            let placements = sample["placements"].as_array().unwrap();
+            assert_eq!(frames.len(), placements.len());
+            for ((frame, placement), name) in frames
+                .iter()
+                .zip(placements)
+                .zip(chain["joint_names"].as_array().unwrap())
+            {
+                assert_eq!(&frame["name"], name);
+                let rows: Vec<Vec<f64>> = serde_json::from_value(frame["pose"].clone()).unwrap();
+                let expected: Vec<f64> = serde_json::from_value(placement.clone()).unwrap();
+                let worst = rows
+                    .concat()
+                    .iter()
+                    .zip(&expected)
+                    .map(|(a, b)| (a - b).abs())
+                    .fold(0.0, f64::max);
+                assert!(worst < 1e-12, "{name}: {worst:e}");
+            }
+        }
+    }
+    // The text form: one line per frame, named.
+    let output = armkit(&["fk", "--robot", "ur5", "--q", "0,0,0,0,0,0", "--all-frames"]);
+    let text = stdout(&output);
+    assert!(
+        text.contains("link frames in the world frame, one per joint"),
+        "{text}"
+    );
+    assert_eq!(
+        text.lines().filter(|l| l.starts_with("  q")).count(),
+        6,
+        "{text}"
+    );
+}

@@ -130,7 +130,19 @@ class Robot:
     def fk(self, q: _ArrayLike, threads: Optional[int] = None) -> _FloatArray:
         """End-effector pose in the world frame: (4, 4) homogeneous (m) for
         ``q`` of shape (dof,); (N, 4, 4) for ``q`` of shape (N, dof), computed
-        with the GIL released on ``threads`` threads (default: every core)."""
+        with the GIL released on ``threads`` threads (default: every core).
+        ``q`` is evaluated even outside the joint limits (``check_limits(q)``
+        raises for it), as ``armkit fk --allow-out-of-limits`` does."""
+    @property
+    def frame_names(self) -> list[str]:
+        """Names of the frames ``fk_all`` returns, base to tip: the chain's
+        joints (a URDF's joint names; ``q1``, ``q2``, ... for a DH table)."""
+    def fk_all(self, q: _ArrayLike, threads: Optional[int] = None) -> _FloatArray:
+        """Every link frame along the chain in the world frame: (n, 4, 4)
+        homogeneous (m) for ``q`` of shape (dof,), (N, n, 4, 4) for (N, dof)
+        (batched as ``fk``), n = ``len(frame_names)``. Frame i is the frame of
+        the link joint i moves: a URDF's child link frame (Pinocchio's
+        ``oMi``), a DH table's frame i."""
     def jacobian(
         self, q: _ArrayLike, frame: _JacobianFrameName = "world", threads: Optional[int] = None
     ) -> _FloatArray:

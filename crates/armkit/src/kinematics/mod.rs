@@ -17,8 +17,10 @@
 //! assert_eq!(j.shape(), (6, 6));
 //! ```
 
+mod frames;
 mod measures;
 
+pub use frames::link_frames;
 pub use measures::{condition_number, manipulability, singular_values, smallest_singular_value};
 
 use crate::error::{Error, Result};

@@ -207,6 +207,7 @@ impl ModelBuilder {
 
         let mut joints = Vec::new();
         let mut placements = Vec::new();
+        let mut link_offsets = Vec::new();
         // Transform accumulated since the last joint's motion frame.
         let mut pending = self.base;
         for element in &self.elements {
@@ -234,6 +235,7 @@ impl ModelBuilder {
                     let align = Pose::from_rotation(rotation_z_to(&spec.axis.normalize()));
                     placements.push(pending * spec.origin * align);
                     let unalign = align.inverse();
+                    link_offsets.push(unalign);
                     pending = unalign;
                     joints.push(Joint {
                         name: spec.name.clone(),
@@ -271,6 +273,7 @@ impl ModelBuilder {
             chain_kinds: joints.iter().map(|j| j.kind).collect(),
             chain_joints: joints,
             placements,
+            link_offsets,
             tail: pending * self.tool,
             base: self.base,
             tool: self.tool,
@@ -372,7 +375,13 @@ impl Model {
             };
             builder = builder.joint(spec).fixed(after);
         }
-        builder.build()
+        let mut model = builder.build()?;
+        // The axis is z already (no turn): DH frame j is the motion frame
+        // followed by `after`.
+        for (offset, link) in model.link_offsets.iter_mut().zip(links) {
+            *offset = link.split(convention).1;
+        }
+        Ok(model)
     }
 }
 

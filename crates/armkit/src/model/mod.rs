@@ -148,6 +148,32 @@ impl LinkInertia {
         }
     }
 
+    /// One body from several: total mass, mass-weighted centre of mass, and the
+    /// tensors moved to that centre (parallel-axis theorem,
+    /// `I += m (|d|^2 E - d d')` with `d` the part's offset from the centre).
+    /// Parts of zero mass add their tensor alone (the same about any point); a
+    /// body of zero total mass has its centre of mass at the origin, as in
+    /// Pinocchio. `None` for no parts.
+    pub fn combine(parts: &[LinkInertia]) -> Option<LinkInertia> {
+        if parts.is_empty() {
+            return None;
+        }
+        let mass: f64 = parts.iter().map(|p| p.mass).sum();
+        let first_moment = parts
+            .iter()
+            .fold(Vector3::zeros(), |sum, p| sum + p.com * p.mass);
+        let com = if mass > 0.0 {
+            first_moment / mass
+        } else {
+            Vector3::zeros()
+        };
+        let inertia = parts.iter().fold(Matrix3::zeros(), |sum, p| {
+            let d = p.com - com;
+            sum + p.inertia + (Matrix3::identity() * d.norm_squared() - d * d.transpose()) * p.mass
+        });
+        Some(LinkInertia { mass, com, inertia })
+    }
+
     /// The same body seen from a frame in which this body's frame sits at
     /// `placement`: `com' = T com`, `I' = R I R'`.
     pub fn transformed(&self, placement: &Pose) -> Self {
@@ -226,6 +252,9 @@ pub struct Model {
     /// Placement of chain joint j's frame (before its motion) in the frame of
     /// chain joint j-1 after its motion; for j = 0, in the world frame (base folded in).
     placements: Vec<Pose>,
+    /// Each chain joint's link frame in its motion frame (see
+    /// [`Model::link_frame_offsets`]).
+    link_offsets: Vec<Pose>,
     /// Placement of the end-effector (tool) frame in the last joint's frame.
     tail: Pose,
     base: Pose,
@@ -274,6 +303,20 @@ impl Model {
     #[inline]
     pub fn joint_placements(&self) -> &[Pose] {
         &self.placements
+    }
+
+    /// The frame of the link each chain joint moves, as the model's source
+    /// defines it, in that joint's motion frame
+    /// ([`crate::kinematics::Data::joint_frames`], z along the axis): for a
+    /// URDF, the child link's frame (the joint frame of the file, axis as
+    /// written; Pinocchio's `oMi`); for a DH table, DH frame j (standard: at
+    /// the link's distal end; modified: on joint j's axis); for joints built
+    /// with [`ModelBuilder`], the joint's frame before its axis was turned
+    /// onto z. One per [`Model::chain_joints`];
+    /// [`crate::kinematics::link_frames`] gives them in the world frame.
+    #[inline]
+    pub fn link_frame_offsets(&self) -> &[Pose] {
+        &self.link_offsets
     }
 
     /// Placement of the end-effector frame in the last joint's frame (tool

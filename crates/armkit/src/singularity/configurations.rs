@@ -19,7 +19,12 @@
 //!   offset along axis 2, as on the PUMA and space6r, in that plane, i.e. on
 //!   the line parallel to axis 1 at the offset).
 //!
-//! Other arms (UR5: its axes 4, 5, 6 do not meet; redundant arms) get the
+//! The UR family (axes 2, 3 and 4 parallel, axes 5 and 6 meeting at a point
+//! `p`: UR3/5/10 and their e-series) has the same three kinds, with `p` in
+//! the place of the wrist centre: `det J = s3 s5 a2 a3 (a2 c2 + a3 c23 +
+//! d5 s234)`, wrist `s5 = 0` (`det[z4 z5 z6]`), elbow `s3 = 0` (the two long
+//! links in line) and shoulder (`p` in the plane through axis 1 parallel to
+//! axis 2). Other arms (redundant ones, 6R arms of other classes) get the
 //! rank of `J` and [`SingularityKind::Unclassified`] when it is deficient.
 
 use crate::error::{check_finite_vector, check_positive, Error, Result};
@@ -87,7 +92,8 @@ impl ClassifyOptions {
 /// `q5`; elbow up or down; which side of axis 1 the wrist centre is on).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct WristFactors {
-    /// Wrist centre, world frame, m.
+    /// Wrist centre, world frame, m (for the UR family, the point where axes
+    /// 5 and 6 meet).
     pub centre: Vector3<f64>,
     /// `det[z4 z5 z6]`: plus or minus the sine of the angle between axes 4
     /// and 6 on an orthogonal wrist.
@@ -133,7 +139,8 @@ const AXIS_MEET_TOLERANCE: f64 = 1e-9;
 const PARALLEL_TOLERANCE: f64 = 1e-9;
 
 /// The wrist factors at the last forward kinematics of `data`, or `None` when
-/// the arm is not a 6R arm with a spherical wrist and parallel axes 2 and 3.
+/// the arm is not a 6R arm with parallel axes 2 and 3 and either a spherical
+/// wrist or the UR family's axes (see the module documentation).
 fn wrist_factors(model: &Model, data: &Data) -> Option<WristFactors> {
     let revolute = model
         .joints()
@@ -162,17 +169,41 @@ fn wrist_factors(model: &Model, data: &Data) -> Option<WristFactors> {
     let w = o5 - o4;
     let s = w.cross(&z5).dot(&n) / n2;
     let centre = o4 + z4 * s;
-    let distance = |i: usize| {
-        let d = centre - origin(i);
+    let distance = |point: Vector3<f64>, i: usize| {
+        let d = point - origin(i);
         (d - axis(i) * d.dot(&axis(i))).norm()
     };
-    if (3..6).any(|i| distance(i) > AXIS_MEET_TOLERANCE) {
-        return None;
-    }
     let wrist = Matrix3::from_columns(&[z4, z5, z6]).determinant();
-    let u2 = z2.cross(&(centre - origin(1)));
-    let u3 = z3.cross(&(centre - origin(2)));
-    let elbow = signed_sine(&u2, &u3, &z2);
+    let (centre, elbow) = if (3..6).all(|i| distance(centre, i) <= AXIS_MEET_TOLERANCE) {
+        let u2 = z2.cross(&(centre - origin(1)));
+        let u3 = z3.cross(&(centre - origin(2)));
+        (centre, signed_sine(&u2, &u3, &z2))
+    } else {
+        // The UR family: axes 2, 3 and 4 parallel, axes 5 and 6 meeting at
+        // `p`. `det J = s3 s5 a2 a3 (a2 c2 + a3 c23 + d5 s234)` (Hawkins,
+        // "Analytic inverse kinematics for the Universal Robots UR-5/UR-10
+        // arms", 2013): wrist `s5` (axes 4 and 6 aligned, `det[z4 z5 z6]`),
+        // elbow `s3` (the links between axes 2, 3 and 4 in line) and
+        // shoulder: `p` in the plane through axis 1 parallel to axis 2.
+        if z3.cross(&z4).norm() > PARALLEL_TOLERANCE {
+            return None;
+        }
+        let n = z5.cross(&z6);
+        let n2 = n.norm_squared();
+        if n2 < PARALLEL_TOLERANCE {
+            return None;
+        }
+        let (o5, o6) = (origin(4), origin(5));
+        let p = o5 + z5 * ((o6 - o5).cross(&z6).dot(&n) / n2);
+        if distance(p, 5) > AXIS_MEET_TOLERANCE {
+            return None;
+        }
+        // In the plane normal to the parallel axes: joint 2 to 3, 3 to 4.
+        let in_plane = |d: Vector3<f64>| d - z2 * d.dot(&z2);
+        let link2 = in_plane(origin(2) - origin(1));
+        let link3 = in_plane(origin(3) - origin(2));
+        (p, signed_sine(&link2, &link3, &z2))
+    };
     let normal = z2.cross(&z1);
     let radial = centre - origin(0);
     let shoulder = if normal.norm() < PARALLEL_TOLERANCE {
@@ -202,9 +233,10 @@ fn signed_sine(a: &Vector3<f64>, b: &Vector3<f64>, n: &Vector3<f64>) -> f64 {
 }
 
 /// Classifies the configuration `q` (rad or m) of `model`: singular values
-/// and rank of the world-frame Jacobian, and, for a 6R arm with a spherical
-/// wrist and parallel axes 2 and 3, the wrist / elbow / shoulder factors and
-/// the kinds they name (see the module documentation). Allocates (SVD).
+/// and rank of the world-frame Jacobian, and, for a 6R arm with parallel
+/// axes 2 and 3 and a spherical wrist or the UR family's axes, the wrist /
+/// elbow / shoulder factors and the kinds they name (see the module
+/// documentation). Allocates (SVD).
 ///
 /// Errors: `q` of the wrong size or not finite, bad options.
 ///
@@ -387,8 +419,9 @@ fn target_measure(model: &Model, data: &mut Data, q: &[f64], target: SearchTarge
                 Error::invalid_argument(
                     "target",
                     format!(
-                        "{} singularities are defined for 6R arms with a spherical wrist and \
-                         parallel axes 2 and 3; {} is not one (search SearchTarget::Any)",
+                        "{} singularities are defined for 6R arms with parallel axes 2 and 3 and \
+                         a spherical wrist or the UR family's axes; {} is not one (search \
+                         SearchTarget::Any)",
                         kind.as_str(),
                         model.name()
                     ),

@@ -120,6 +120,9 @@ use crate::model::{
 
 use tree::{SourceLines, Tree};
 
+mod outline;
+pub use outline::{outline, outline_str, Outline, OutlineJoint};
+
 /// Which serial chain of the URDF tree to load, by link name.
 ///
 /// `base`: the link whose frame becomes the model's world frame; default:
@@ -197,6 +200,26 @@ pub fn parse_str(text: &str, source_name: &str, selection: &ChainSelection) -> R
         source_name: source_name.to_string(),
         reason,
     };
+    let (robot, document) = read_robot(text, source_name)?;
+    let tree = Tree::new(&robot, SourceLines::new(&document, &robot)).map_err(fail)?;
+    let chain = tree.select(selection).map_err(fail)?;
+    let name = if robot.name.trim().is_empty() {
+        source_name
+    } else {
+        robot.name.as_str()
+    };
+    let limited = joints_with_limit(&document);
+    let builder = chain_builder(name, &robot, &tree, &chain, &limited).map_err(fail)?;
+    builder.build().map_err(|e| fail(e.to_string()))
+}
+
+/// The URDF text as urdf-rs reads it, with the scanned document (element
+/// lines, `<limit>`s) beside it. Errors name `source_name` and the line.
+fn read_robot(text: &str, source_name: &str) -> Result<(urdf_rs::Robot, xml::Document)> {
+    let fail = |reason: String| Error::Parse {
+        source_name: source_name.to_string(),
+        reason,
+    };
     // Some CAD exporters write a byte-order mark, which XML allows before the root.
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let document = xml::scan(text).map_err(fail)?;
@@ -208,19 +231,9 @@ pub fn parse_str(text: &str, source_name: &str, selection: &ChainSelection) -> R
     }
     // Only what the model reads goes to urdf-rs (same offsets and lines).
     let text = xml::kinematic_text(text, &document);
-    let text = text.as_str();
-    let robot = urdf_rs::read_from_string(text)
-        .map_err(|e| fail(locate_urdf_rs_error(text, &document, &e)))?;
-    let tree = Tree::new(&robot, SourceLines::new(&document, &robot)).map_err(fail)?;
-    let chain = tree.select(selection).map_err(fail)?;
-    let name = if robot.name.trim().is_empty() {
-        source_name
-    } else {
-        robot.name.as_str()
-    };
-    let limited = joints_with_limit(&document);
-    let builder = chain_builder(name, &robot, &tree, &chain, &limited).map_err(fail)?;
-    builder.build().map_err(|e| fail(e.to_string()))
+    let robot = urdf_rs::read_from_string(&text)
+        .map_err(|e| fail(locate_urdf_rs_error(&text, &document, &e)))?;
+    Ok((robot, document))
 }
 
 /// Names of the joints that have a `<limit>` element (urdf-rs fills a
@@ -592,33 +605,7 @@ fn body_inertia(
             pending.push((tree.child_link(j), placement * origin));
         }
     }
-    Ok(combine(&parts))
-}
-
-/// One body from several: total mass, mass-weighted centre of mass, and the
-/// tensors moved to that centre (parallel-axis theorem,
-/// `I += m (|d|^2 E - d d')` with `d` the part's offset from the centre).
-/// Parts of zero mass add their tensor alone (the same about any point); a
-/// body of zero total mass has its centre of mass at the origin, as in
-/// Pinocchio. `None` for no parts.
-fn combine(parts: &[LinkInertia]) -> Option<LinkInertia> {
-    if parts.is_empty() {
-        return None;
-    }
-    let mass: f64 = parts.iter().map(|p| p.mass).sum();
-    let first_moment = parts
-        .iter()
-        .fold(Vector3::zeros(), |sum, p| sum + p.com * p.mass);
-    let com = if mass > 0.0 {
-        first_moment / mass
-    } else {
-        Vector3::zeros()
-    };
-    let inertia = parts.iter().fold(Matrix3::zeros(), |sum, p| {
-        let d = p.com - com;
-        sum + p.inertia + (Matrix3::identity() * d.norm_squared() - d * d.transpose()) * p.mass
-    });
-    Some(LinkInertia { mass, com, inertia })
+    Ok(LinkInertia::combine(&parts))
 }
 
 #[cfg(test)]
@@ -633,11 +620,11 @@ mod tests {
             LinkInertia::point_mass(1.0, Vector3::new(0.0, 0.0, 0.0)),
             LinkInertia::point_mass(1.0, Vector3::new(1.0, 0.0, 0.0)),
         ];
-        let body = combine(&parts).unwrap();
+        let body = LinkInertia::combine(&parts).unwrap();
         assert_eq!(body.mass, 2.0);
         assert!((body.com - Vector3::new(0.5, 0.0, 0.0)).norm() < 1e-15);
         let expected = Matrix3::from_diagonal(&Vector3::new(0.0, 0.5, 0.5));
         assert!((body.inertia - expected).amax() < 1e-15);
-        assert!(combine(&[]).is_none());
+        assert!(LinkInertia::combine(&[]).is_none());
     }
 }

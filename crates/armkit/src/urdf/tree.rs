@@ -148,7 +148,7 @@ impl<'r> Tree<'r> {
         self.robot.joints[index].name.as_str()
     }
 
-    fn link_name(&self, index: usize) -> &'r str {
+    pub(super) fn link_name(&self, index: usize) -> &'r str {
         self.robot.links[index].name.as_str()
     }
 
@@ -217,7 +217,7 @@ impl<'r> Tree<'r> {
         })
     }
 
-    fn roots(&self) -> Vec<usize> {
+    pub(super) fn roots(&self) -> Vec<usize> {
         (0..self.robot.links.len())
             .filter(|&l| self.parent_joint[l].is_none())
             .collect()
@@ -231,7 +231,7 @@ impl<'r> Tree<'r> {
     }
 
     /// Links without children in the subtree below `link` (itself if it has none).
-    fn leaves_below(&self, link: usize) -> Vec<usize> {
+    pub(super) fn leaves_below(&self, link: usize) -> Vec<usize> {
         let mut leaves = Vec::new();
         let mut pending = vec![link];
         while let Some(l) = pending.pop() {

@@ -213,3 +213,65 @@ fn kinematics_equal_the_plain_product_bit_for_bit() {
         }
     }
 }
+
+/// Every link frame of the UR5 and Panda URDF chains equals Pinocchio's joint
+/// placement `oMi` (tests/data/reference_frames.json) to 1e-12, named by its
+/// joint.
+#[test]
+fn link_frames_equal_pinocchio_joint_placements() {
+    use armkit::kinematics::link_frames;
+    let text = std::fs::read_to_string(crate::common::data_path("reference_frames.json")).unwrap();
+    let reference: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let chains = reference["chains"].as_array().unwrap();
+    assert_eq!(chains.len(), 2);
+    for chain in chains {
+        let model = armkit::urdf::load(
+            crate::common::data_path(chain["urdf"].as_str().unwrap()),
+            &armkit::urdf::ChainSelection::between(
+                chain["base"].as_str().unwrap(),
+                chain["tip"].as_str().unwrap(),
+            ),
+        )
+        .unwrap();
+        let names: Vec<&str> = model
+            .chain_joints()
+            .iter()
+            .map(|j| j.name.as_str())
+            .collect();
+        let expected: Vec<&str> = chain["joint_names"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|n| n.as_str().unwrap())
+            .collect();
+        assert_eq!(names, expected);
+        let mut data = Data::new(&model);
+        let mut frames = vec![armkit::math::Pose::identity(); names.len()];
+        let samples = chain["samples"].as_array().unwrap();
+        assert_eq!(samples.len(), 21);
+        let mut worst = 0.0_f64;
+        for sample in samples {
+            let q: Vec<f64> = serde_json::from_value(sample["q"].clone()).unwrap();
+            link_frames(&model, &mut data, &q, &mut frames).unwrap();
+            for (frame, placement) in frames.iter().zip(sample["placements"].as_array().unwrap()) {
+                let placement: Vec<f64> = serde_json::from_value(placement.clone()).unwrap();
+                let matrix = frame.to_matrix4();
+                for r in 0..4 {
+                    for c in 0..4 {
+                        worst = worst.max((matrix[(r, c)] - placement[4 * r + c]).abs());
+                    }
+                }
+            }
+        }
+        println!(
+            "{}: link frames vs Pinocchio oMi: worst {worst:.2e}",
+            model.name()
+        );
+        assert!(worst < 1e-12, "{}: {worst:e}", model.name());
+    }
+    // A frames buffer of the wrong length is an error naming it.
+    let model = armkit::robots::ur5().unwrap();
+    let mut data = Data::new(&model);
+    let err = link_frames(&model, &mut data, &[0.0; 6], &mut []).unwrap_err();
+    assert!(err.to_string().contains("frames"), "{err}");
+}

@@ -630,13 +630,13 @@ fn gravity_torques_are_the_gradient_of_the_potential_energy() {
         }
     }
     // No masses: a clear error naming the link.
-    let panda = armkit::robots::by_name("panda").unwrap();
-    let mut data = Data::new(&panda);
-    let mut tau = [0.0; 7];
-    let err = gravity_torques(&panda, &mut data, &[0.0; 7], &gravity, &mut tau).unwrap_err();
+    let puma = armkit::robots::by_name("puma560").unwrap();
+    let mut data = Data::new(&puma);
+    let mut tau = [0.0; 6];
+    let err = gravity_torques(&puma, &mut data, &[0.0; 6], &gravity, &mut tau).unwrap_err();
     assert!(err
         .to_string()
-        .contains("model `panda` has no mass properties for link 0 (`q1`)"));
+        .contains("model `puma560` has no mass properties for link 0 (`q1`)"));
 }
 
 #[test]

@@ -590,33 +590,79 @@ fn classify_spherical_wrist_singularities_of_puma560_and_space6r() {
     assert_eq!(through.kinds, vec![SingularityKind::Wrist]);
 }
 
+/// The UR family has no spherical wrist, but its determinant,
+/// `s3 s5 a2 a3 (a2 c2 + a3 c23 + d5 s234)`, factors the same way: q5 = 0 is
+/// a wrist singularity, q3 = 0 an elbow one, and the point where axes 5 and 6
+/// meet in the plane through axis 1 parallel to axis 2 a shoulder one.
 #[test]
-fn ur5_has_no_spherical_wrist_its_singularities_are_unclassified() {
+fn ur5_singularities_are_classified_wrist_elbow_shoulder() {
     let ur5 = armkit::robots::ur5().unwrap();
     let mut data = Data::new(&ur5);
     let options = ClassifyOptions::default();
     let wrist = classify(&ur5, &mut data, &[0.3, -1.0, 1.2, 0.2, 0.0, 0.1], &options).unwrap();
-    assert!(wrist.factors.is_none());
-    assert_eq!(wrist.kinds, vec![SingularityKind::Unclassified]);
+    assert!(wrist.factors.is_some());
+    assert_eq!(wrist.kinds, vec![SingularityKind::Wrist]);
     assert_eq!(wrist.rank, 5);
+    let elbow = classify(&ur5, &mut data, &[0.3, -1.0, 0.0, 0.2, 0.8, 0.1], &options).unwrap();
+    assert_eq!(elbow.kinds, vec![SingularityKind::Elbow]);
+    assert_eq!(elbow.rank, 5);
     let regular = classify(&ur5, &mut data, &[0.3, -1.0, 1.2, 0.2, 0.8, 0.1], &options).unwrap();
     assert!(regular.kinds.is_empty() && regular.rank == 6);
+    let f = regular.factors.unwrap();
+    // The factors are the sines of q5 and q3, up to sign.
+    assert!((f.wrist.abs() - 0.8_f64.sin().abs()).abs() < 1e-12, "{f:?}");
+    assert!((f.elbow.abs() - 1.2_f64.sin().abs()).abs() < 1e-12, "{f:?}");
     let search = SearchOptions::default();
-    let found = find_singularities(&ur5, SearchTarget::Any, 6, 3, &search).unwrap();
-    assert!(found.len() >= 4, "{}", found.len());
-    for f in &found {
-        assert_eq!(f.classification.kinds, vec![SingularityKind::Unclassified]);
-        assert_eq!(f.classification.rank, 5);
-    }
-    let message = error_message(nearest_singularity(
+    // The shoulder: the point where axes 5 and 6 meet ends up on the plane
+    // through axis 1 (z) parallel to axis 2: its in-plane radius from axis 1
+    // vanishes, as a2 c2 + a3 c23 + d5 s234 = 0 says.
+    let shoulder = nearest_singularity(
         &ur5,
         &mut data,
         &[0.3, -1.0, 1.2, 0.2, 0.8, 0.1],
+        SearchTarget::Kind(SingularityKind::Shoulder),
+        &search,
+    )
+    .unwrap();
+    assert!(
+        shoulder
+            .classification
+            .kinds
+            .contains(&SingularityKind::Shoulder),
+        "{:?}",
+        shoulder.classification
+    );
+    assert!(shoulder.classification.rank < 6);
+    let q = &shoulder.q;
+    let (a2, a3, d5) = (-0.425, -0.39225, 0.09465);
+    let radius = a2 * q[1].cos() + a3 * (q[1] + q[2]).cos() + d5 * (q[1] + q[2] + q[3]).sin();
+    assert!(radius.abs() < 1e-6, "{radius} at {q:?}");
+    // Every singularity found from random starts has a name.
+    let found = find_singularities(&ur5, SearchTarget::Any, 6, 3, &search).unwrap();
+    assert!(found.len() >= 4, "{}", found.len());
+    for f in &found {
+        assert!(!f.classification.kinds.is_empty());
+        assert!(
+            !f.classification
+                .kinds
+                .contains(&SingularityKind::Unclassified),
+            "{:?}",
+            f.classification
+        );
+        assert!(f.classification.rank < 6);
+    }
+    // An arm of neither class: a kind search is refused, naming it.
+    let panda = armkit::robots::panda().unwrap();
+    let mut panda_data = Data::new(&panda);
+    let message = error_message(nearest_singularity(
+        &panda,
+        &mut panda_data,
+        &panda.neutral_configuration(),
         SearchTarget::Kind(SingularityKind::Wrist),
         &search,
     ));
     assert!(
-        message.contains("spherical wrist") && message.contains("ur5"),
+        message.contains("spherical wrist") && message.contains("panda"),
         "{message}"
     );
     let message = error_message(classify(&ur5, &mut data, &[0.0; 5], &options));

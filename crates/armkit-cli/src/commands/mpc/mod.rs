@@ -38,7 +38,10 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use crate::common::{print_json, CliError, CliResult, Outcome, RobotArgs};
 pub use report::example_report;
-use report::{files_json, print_files, print_summary, summary_json, write_outputs};
+use report::{
+    files_json, print_files, print_summary, print_tolerances, summary_json, tolerances_json,
+    write_outputs,
+};
 pub(crate) use target::{target_setup, TargetSetup};
 pub use target_report::target_report;
 
@@ -103,6 +106,17 @@ pub struct MpcArgs {
     /// Most planner steps.
     #[arg(long, default_value_t = 2000)]
     pub max_steps: usize,
+    /// Converged when the position error is below this, m (default 1e-4;
+    /// seed 000's examples: their own).
+    #[arg(long, value_name = "M")]
+    pub position_tolerance: Option<f64>,
+    /// ... and the orientation error below this, rad, when orientation is
+    /// tracked (default 1e-3).
+    #[arg(long, value_name = "RAD")]
+    pub orientation_tolerance: Option<f64>,
+    /// ... and every joint speed below this, m/s or rad/s (default 1e-3).
+    #[arg(long, value_name = "RATE")]
+    pub velocity_tolerance: Option<f64>,
     /// Position resolution of the prismatic actuators, m: each rests only on
     /// multiples of it from its start (0 = exact).
     #[arg(long, default_value_t = 0.0, value_name = "M")]
@@ -196,7 +210,7 @@ impl MpcArgs {
 
     /// The example's simulation settings on the flags' plant.
     fn example_simulation(&self, example: Seed000Example) -> CliResult<SimulationOptions> {
-        Ok(SimulationOptions {
+        self.with_tolerances(SimulationOptions {
             plant: self.plant()?,
             ..example.simulation()
         })
@@ -234,6 +248,7 @@ fn run_target(args: &MpcArgs) -> CliResult<Outcome> {
         value["status_detail"] = status.to_string().into();
         value["final_q"] = final_q.into();
         value["files"] = files_json(&files);
+        value["tolerances"] = tolerances_json(&simulation);
         print_json(&value)?;
     } else {
         println!(
@@ -248,6 +263,7 @@ fn run_target(args: &MpcArgs) -> CliResult<Outcome> {
             planner.solver_name()
         );
         print_summary(&run, &planner);
+        print_tolerances(&simulation);
         print_files(&files);
     }
     if !status.is_converged() {
@@ -273,11 +289,12 @@ fn run_examples(args: &MpcArgs, id: &str) -> CliResult<Outcome> {
         let mut options = example.options();
         args.apply(&mut options);
         let mut planner = MpcPlanner::new(&model, options)?;
+        let simulation = args.example_simulation(example)?;
         let run = run_with_progress(
             &mut planner,
             &example.start(),
             &example.target(),
-            &args.example_simulation(example)?,
+            &simulation,
             example.id(),
         )?;
         let checks = example.checks(&run);
@@ -304,6 +321,7 @@ fn run_examples(args: &MpcArgs, id: &str) -> CliResult<Outcome> {
                 .collect::<Vec<_>>()
                 .into();
             value["files"] = files_json(&files);
+            value["tolerances"] = tolerances_json(&simulation);
             reports.push(value);
         } else {
             println!(
@@ -313,6 +331,7 @@ fn run_examples(args: &MpcArgs, id: &str) -> CliResult<Outcome> {
                 planner.solver_name()
             );
             print_summary(&run, &planner);
+            print_tolerances(&simulation);
             for check in &checks {
                 println!(
                     "  [{}] {}: {}",

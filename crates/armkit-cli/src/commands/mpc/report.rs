@@ -3,7 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
-use armkit::mpc::scenario::{simulate_with, MpcRun};
+use armkit::mpc::scenario::{simulate_with, MpcRun, SimulationOptions};
 use armkit::mpc::{MpcPlanner, PlantModel};
 use armkit::study::Seed000Example;
 
@@ -335,4 +335,23 @@ pub(super) fn print_files(files: &[PathBuf]) {
                 .join(", ")
         );
     }
+}
+
+/// What "converged" means in this run, and the flags that set it.
+pub(super) fn print_tolerances(simulation: &SimulationOptions) {
+    println!(
+        "  converged: position error <= {} m, orientation error <= {} rad (when tracked), every \
+         joint speed <= {} (--position-tolerance, --orientation-tolerance, --velocity-tolerance)",
+        simulation.position_tolerance,
+        simulation.orientation_tolerance,
+        simulation.velocity_tolerance
+    );
+}
+
+pub(super) fn tolerances_json(simulation: &SimulationOptions) -> serde_json::Value {
+    serde_json::json!({
+        "position": simulation.position_tolerance,
+        "orientation": simulation.orientation_tolerance,
+        "velocity": simulation.velocity_tolerance,
+    })
 }

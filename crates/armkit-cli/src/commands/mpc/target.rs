@@ -72,11 +72,11 @@ pub(crate) fn target_setup(args: &MpcArgs) -> CliResult<TargetSetup> {
         ..MpcOptions::default()
     };
     args.apply(&mut options);
-    let simulation = SimulationOptions {
+    let simulation = args.with_tolerances(SimulationOptions {
         max_steps: args.max_steps,
         plant: args.plant()?,
         ..SimulationOptions::default()
-    };
+    })?;
     let planner = MpcPlanner::new(&model, options)?;
     Ok(TargetSetup {
         model,
@@ -85,4 +85,41 @@ pub(crate) fn target_setup(args: &MpcArgs) -> CliResult<TargetSetup> {
         planner,
         simulation,
     })
+}
+
+impl MpcArgs {
+    /// `simulation` with the tolerances the flags set (each finite and > 0).
+    pub(crate) fn with_tolerances(
+        &self,
+        mut simulation: SimulationOptions,
+    ) -> CliResult<SimulationOptions> {
+        for (flag, value, field) in [
+            (
+                "--position-tolerance",
+                self.position_tolerance,
+                &mut simulation.position_tolerance,
+            ),
+            (
+                "--orientation-tolerance",
+                self.orientation_tolerance,
+                &mut simulation.orientation_tolerance,
+            ),
+            (
+                "--velocity-tolerance",
+                self.velocity_tolerance,
+                &mut simulation.velocity_tolerance,
+            ),
+        ] {
+            if let Some(value) = value {
+                if !(value.is_finite() && value > 0.0) {
+                    return Err(CliError(format!(
+                        "{flag}: must be finite and > 0, got {}",
+                        armkit::error::brief(value)
+                    )));
+                }
+                *field = value;
+            }
+        }
+        Ok(simulation)
+    }
 }
