@@ -102,7 +102,7 @@
   // Floor grid in the xy plane with a label every metre (every 0.5 m when
   // the robot is small), world axes at the origin.
   function addFloor(scene, reach) {
-    var half = Math.max(1, Math.ceil(reach * 1.5));
+    var half = Math.max(1, Math.ceil(reach * 1.2));
     var grid = new THREE.GridHelper(2 * half, 20 * half, 0x999999, 0xdddddd);
     grid.rotation.x = Math.PI / 2;
     scene.add(grid);
@@ -112,7 +112,23 @@
       var tx = textSprite(v + ' m', label); tx.position.set(v, -0.06 * half, 0); scene.add(tx);
       var ty = textSprite(v + ' m', label); ty.position.set(-0.06 * half, v, 0); scene.add(ty);
     }
-    scene.add(new THREE.AxesHelper(Math.max(0.25, 0.3 * reach)));
+    scene.add(worldAxes(Math.max(0.25, 0.3 * reach)));
+  }
+
+  // The world axes as thick bars (x red, y green, z blue): a line helper's
+  // one-pixel lines vanish against the grid.
+  function worldAxes(length) {
+    var group = new THREE.Group();
+    var radius = length / 40;
+    [[0xd62728, new THREE.Vector3(1, 0, 0)], [0x2ca02c, new THREE.Vector3(0, 1, 0)],
+     [0x1f77b4, new THREE.Vector3(0, 0, 1)]].forEach(function (axis) {
+      var bar = new THREE.Mesh(new THREE.CylinderGeometry(radius, radius, length, 12),
+        new THREE.MeshStandardMaterial({ color: axis[0] }));
+      bar.quaternion.setFromUnitVectors(new THREE.Vector3(0, 1, 0), axis[1]);
+      bar.position.copy(axis[1]).multiplyScalar(length / 2);
+      group.add(bar);
+    });
+    return group;
   }
 
   function pathLine(data) {
@@ -163,7 +179,7 @@
 
     var camera = new THREE.PerspectiveCamera(40, width / height, 0.01, 100);
     camera.up.set(0, 0, 1);
-    camera.position.set(2.2 * reach, -2.6 * reach, 1.6 * reach);
+    camera.position.set(1.5 * reach, -1.9 * reach, 1.15 * reach);
     var controls = new THREE.OrbitControls(camera, renderer.domElement);
     controls.target.set(0, 0, 0.35 * reach);
     controls.update();
