@@ -90,9 +90,11 @@ fn chain_links(model: &Model, reach: f64) -> Vec<Link> {
         let Some(joint) = joints.get(l) else { continue };
         let visual = match joint.kind {
             JointKind::Prismatic => {
+                // The rail runs from the joint's origin over the whole travel,
+                // so that it meets the link it hangs from.
                 let (lower, upper) = (
-                    joint.limits.lower.max(-reach),
-                    joint.limits.upper.min(reach),
+                    joint.limits.lower.max(-reach).min(0.0),
+                    joint.limits.upper.min(reach).max(0.0),
                 );
                 let (lower, upper) = if upper > lower {
                     (lower, upper)
