@@ -10,14 +10,14 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-fn temp_dir(name: &str) -> PathBuf {
+pub fn temp_dir(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("armkit-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir
 }
 
-fn chromium() -> Option<PathBuf> {
+pub fn chromium() -> Option<PathBuf> {
     [
         "/usr/bin/chromium",
         "/usr/bin/chromium-browser",
@@ -30,39 +30,46 @@ fn chromium() -> Option<PathBuf> {
 
 /// What Chromium saw on one page: the DOM after scripts ran, and the URLs the
 /// page itself requested (Chromium's own background requests excluded).
-struct PageVisit {
-    dom: String,
-    page_requests: Vec<String>,
+pub struct PageVisit {
+    pub dom: String,
+    pub page_requests: Vec<String>,
 }
 
 fn visit(browser: &Path, page: &Path, scratch: &Path) -> PageVisit {
+    visit_url(browser, &format!("file://{}", page.display()), scratch)
+}
+
+/// The browser's flags: headless, offline (no background networking), and
+/// WebGL through SwiftShader (software; the machine has no GPU).
+pub const CHROMIUM_FLAGS: [&str; 9] = [
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--enable-unsafe-swiftshader",
+    "--disable-quic",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+];
+
+/// Opens `url` (a `file://` URL, with a fragment if any), lets its scripts
+/// run for 2 s of virtual time, and returns the DOM and the page's requests.
+pub fn visit_url(browser: &Path, url: &str, scratch: &Path) -> PageVisit {
     let net_log = scratch.join("netlog.json");
     let output = Command::new(browser)
-        .args([
-            "--headless",
-            "--no-sandbox",
-            "--disable-gpu",
-            "--disable-quic",
-            "--no-first-run",
-            "--disable-background-networking",
-            "--disable-component-update",
-            "--disable-sync",
-            "--virtual-time-budget=2000",
-        ])
+        .args(CHROMIUM_FLAGS)
+        .arg("--virtual-time-budget=2000")
         .arg(format!(
             "--user-data-dir={}",
             scratch.join("profile").display()
         ))
         .arg(format!("--log-net-log={}", net_log.display()))
         .arg("--dump-dom")
-        .arg(format!("file://{}", page.display()))
+        .arg(url)
         .output()
         .unwrap();
-    assert!(
-        output.status.success(),
-        "chromium failed on {}",
-        page.display()
-    );
+    assert!(output.status.success(), "chromium failed on {url}");
     let log: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&net_log).unwrap()).unwrap();
     let start_job = log["constants"]["logEventTypes"]["URL_REQUEST_START_JOB"].clone();

@@ -18,3 +18,4 @@ mod singularity;
 mod space;
 mod traj;
 mod urdf;
+mod view_browser;
