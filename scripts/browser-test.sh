@@ -24,4 +24,5 @@ fi
 # The same selection as the README's test command (--workspace --release), so
 # that cargo reuses its build instead of building the dependencies again with
 # another feature set; the filter runs only the browser tests.
-ARMKIT_REQUIRE_BROWSER=1 cargo test --workspace --release --test it -- demo_browser
+# Both modules (demo_browser, view_browser) end in `browser`.
+ARMKIT_REQUIRE_BROWSER=1 cargo test --workspace --release --test it -- browser
