@@ -361,6 +361,13 @@
       var view = mount(roots[i], JSON.parse(source.textContent));
       if (view) views.push(view);
     }
+    // #armkit-view-only: the first view alone on the page (for screenshots).
+    if (roots.length && location.hash === '#armkit-view-only') {
+      var children = document.body.children;
+      for (var c = 0; c < children.length; c++) {
+        if (!children[c].contains(roots[0]) && children[c].tagName !== 'SCRIPT') children[c].style.display = 'none';
+      }
+    }
     window.armkitView = views[0] || null;
     window.armkitViews = views;
     if (views.length && location.hash.indexOf('#armkit-test') === 0) selfTest(views[0]);

@@ -162,6 +162,22 @@ fn num(v: f64) -> serde_json::Value {
     serde_json::json!(rounded)
 }
 
+/// A length for drawing only (paths, beams): rounded to a micrometre.
+fn micrometres(values: &[f64; 3]) -> serde_json::Value {
+    serde_json::Value::Array(
+        values
+            .iter()
+            .map(|&v| {
+                if v.is_finite() {
+                    serde_json::json!((v * 1e6).round() / 1e6)
+                } else {
+                    serde_json::Value::Null
+                }
+            })
+            .collect(),
+    )
+}
+
 fn nums(values: &[f64]) -> serde_json::Value {
     serde_json::Value::Array(values.iter().map(|&v| num(v)).collect())
 }
@@ -262,7 +278,7 @@ impl Scene {
             let lines = |frames: &Vec<Vec<[f64; 3]>>| -> Vec<serde_json::Value> {
                 frames
                     .iter()
-                    .map(|f| serde_json::Value::Array(f.iter().map(|p| nums(p)).collect()))
+                    .map(|f| serde_json::Value::Array(f.iter().map(micrometres).collect()))
                     .collect()
             };
             serde_json::json!({"magnification": num(b.magnification), "samples": lines(&b.samples), "straight": lines(&b.straight)})
@@ -275,7 +291,7 @@ impl Scene {
             "links": links,
             "poses": self.poses.iter().map(|f| f.iter().map(pose_json).collect::<Vec<_>>()).collect::<Vec<_>>(),
             "meshes": self.meshes.iter().map(mesh_json).collect::<Vec<_>>(),
-            "path": self.path.iter().map(|p| nums(p)).collect::<Vec<_>>(),
+            "path": self.path.iter().map(micrometres).collect::<Vec<_>>(),
             "path_flags": self.path_flags.iter().map(|&f| u8::from(f)).collect::<Vec<_>>(),
             "markers": self.markers.iter().map(|m| serde_json::json!({"at": nums(&m.at), "color": nums(&m.color), "label": m.label})).collect::<Vec<_>>(),
             "beam": beam,
