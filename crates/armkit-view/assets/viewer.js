@@ -101,18 +101,22 @@
 
   // Floor grid in the xy plane with a label every metre (every 0.5 m when
   // the robot is small), world axes at the origin.
-  function addFloor(scene, reach) {
+  function addFloor(scene, reach, root) {
     var half = Math.max(1, Math.ceil(reach * 1.2));
-    var grid = new THREE.GridHelper(2 * half, 20 * half, 0x999999, 0xdddddd);
+    // Squares of 0.1 m on a robot's scale, 0.5 m on a gantry's.
+    var cell = half <= 2 ? 0.1 : 0.5;
+    var grid = new THREE.GridHelper(2 * half, Math.round(2 * half / cell), 0x999999, 0xdddddd);
     grid.rotation.x = Math.PI / 2;
     scene.add(grid);
-    var step = half <= 1 ? 0.5 : 1;
+    var step = half <= 1 ? 0.5 : half <= 5 ? 1 : 2;
     var label = Math.max(0.12, 0.15 * half);
     for (var v = step; v <= half + 1e-9; v += step) {
       var tx = textSprite(v + ' m', label); tx.position.set(v, -0.06 * half, 0); scene.add(tx);
       var ty = textSprite(v + ' m', label); ty.position.set(-0.06 * half, v, 0); scene.add(ty);
     }
     scene.add(worldAxes(Math.max(0.25, 0.3 * reach)));
+    var legend = root.querySelector('.armkit-cell');
+    if (legend) legend.textContent = cell + ' m';
   }
 
   // The world axes as thick bars (x red, y green, z blue): a line helper's
@@ -175,7 +179,7 @@
     sun.position.set(2, -3, 5);
     scene.add(sun);
     var reach = data.reach || 1;
-    addFloor(scene, reach);
+    addFloor(scene, reach, root);
 
     var camera = new THREE.PerspectiveCamera(40, width / height, 0.01, 100);
     camera.up.set(0, 0, 1);
@@ -343,6 +347,7 @@
     var n = view.times.length;
     var picks = [0, Math.floor(n / 3), Math.floor((2 * n) / 3), n - 1];
     var result = {
+      title: view.title,
       firstRenderMs: view.firstRenderMs,
       robotPixels: view.robotPixels(),
       samples: picks.map(function (k) { return view.at(view.times[k]); }),

@@ -81,7 +81,7 @@ pub fn viewer_block(scene: &Scene, id: &str, fallback: Option<&str>) -> String {
 <label>speed <select class="armkit-speed"><option value="0.25">0.25x</option><option value="0.5">0.5x</option><option value="1" selected>1x</option><option value="2">2x</option><option value="4">4x</option></select></label>
 <label><input type="checkbox" class="armkit-frames"> joint frames</label>{beam}</div>
 <div class="armkit-joints"></div>
-<div class="armkit-legend">Drag to orbit, right-drag to pan, wheel to zoom. Floor grid: 0.1 m squares; axes x red, y green, z blue. {legend}</div>
+<div class="armkit-legend">Drag to orbit, right-drag to pan, wheel to zoom. Floor grid: <span class="armkit-cell">0.1 m</span> squares; axes x red, y green, z blue. {legend}</div>
 <div class="armkit-status"></div>
 <div class="armkit-fallback">{fallback}</div>
 <script type="application/json" id="{id}-scene">{json}</script>
