@@ -27,6 +27,9 @@ pub struct Animation {
     pub markers: Vec<armkit_view::Marker>,
     /// A beam drawn bent in the 3-D view.
     pub beam: Option<armkit_view::BeamLine>,
+    /// Shapes added to the arm's base link (a satellite's body), in the
+    /// arm's world frame.
+    pub base_shapes: Vec<armkit_view::Visual>,
 }
 
 /// Camera azimuth and elevation of the oblique view, rad.
@@ -44,6 +47,30 @@ impl Animation {
             frames,
             ..Animation::default()
         }
+    }
+
+    /// A free-floating base body drawn as a cube of its mass and mean
+    /// principal inertia (`I = m s^2 / 6`) about its centre of mass, on the
+    /// arm's base link (the base moves with it: see [`Self::place_frames`]).
+    pub fn draw_base_body(&mut self, body: &armkit::space::BaseBody) {
+        let inertia = body.inertia.trace() / 3.0;
+        let side = if body.mass > 0.0 {
+            (6.0 * inertia / body.mass).sqrt()
+        } else {
+            0.0
+        };
+        if !(side.is_finite() && side > 0.0) {
+            return;
+        }
+        // The body's centre in the arm's world frame (the mount frame).
+        let centre = body.mount.inverse().transform_point(&body.com);
+        self.base_shapes.push(armkit_view::Visual {
+            shape: armkit_view::Shape::Box {
+                size: [side; 3],
+                origin: Pose::from_translation(centre),
+            },
+            color: Some([0.75, 0.68, 0.3, 1.0]),
+        });
     }
 
     /// Moves the arm's world frame to `worlds[k]` at frame `k` (a moving
@@ -85,6 +112,20 @@ impl Animation {
             scene.path_flags = self.path_flags.clone();
         }
         scene.markers = self.markers.clone();
+        if let Some(base) = scene.links.first_mut() {
+            let to_link = model.base().inverse();
+            base.visuals
+                .extend(self.base_shapes.iter().map(|v| match &v.shape {
+                    armkit_view::Shape::Box { size, origin } => armkit_view::Visual {
+                        shape: armkit_view::Shape::Box {
+                            size: *size,
+                            origin: to_link * *origin,
+                        },
+                        color: v.color,
+                    },
+                    _ => v.clone(),
+                }));
+        }
         // The beam's lines per frame, kept for the scene's frames.
         scene.beam = self.beam.as_ref().map(|beam| {
             let picks = armkit_view::decimate(beam.samples.len());

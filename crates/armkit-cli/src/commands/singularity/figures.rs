@@ -131,6 +131,7 @@ pub(super) fn animation(study: &Study) -> CliResult<Animation> {
             .map(|base| Pose::new(study.outcome.line.base.rotation, Vector3::from(*base)) * mount)
             .collect();
         animation.place_frames(&worlds);
+        animation.draw_base_body(system.base());
     }
     // The singular region coloured on the 3-D path (seed 004's detection).
     animation.path_flags = run.in_region.clone();

@@ -167,6 +167,7 @@ fn animation(system: &FreeFloatingModel, result: &StudyReport) -> CliResult<Anim
     // The arm's world frame is the base's mount frame, moving with the base.
     let worlds: Vec<Pose> = bases.iter().map(|base| *base * body.mount).collect();
     animation.place_frames(&worlds);
+    animation.draw_base_body(body);
     for (frame, base) in animation.frames.iter_mut().zip(&bases) {
         let centre = base.rotation * body.com + base.translation;
         frame.insert(0, [centre.x, centre.y, centre.z]);
