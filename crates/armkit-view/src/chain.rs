@@ -155,8 +155,8 @@ pub fn chain_scene(
     let n = times.len().min(configurations.len());
     let mut poses = Vec::new();
     let mut path = Vec::new();
-    for k in 0..n {
-        let frame = chain_link_poses(model, &mut data, &configurations[k])?;
+    for q in &configurations[..n] {
+        let frame = chain_link_poses(model, &mut data, q)?;
         path.push(point(&frame[frame.len() - 1].translation));
         poses.push(frame);
     }
