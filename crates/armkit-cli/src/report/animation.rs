@@ -49,6 +49,16 @@ impl Animation {
         }
     }
 
+    /// The target position marked (green) in the 3-D view, world frame, m.
+    pub fn with_target(mut self, target: &armkit::math::Vector3<f64>) -> Self {
+        self.markers.push(armkit_view::Marker {
+            at: [target.x, target.y, target.z],
+            color: [0.1, 0.65, 0.2],
+            label: "target".into(),
+        });
+        self
+    }
+
     /// A free-floating base body drawn as a cube of its mass and mean
     /// principal inertia (`I = m s^2 / 6`) about its centre of mass, on the
     /// arm's base link (the base moves with it: see [`Self::place_frames`]).
