@@ -24,5 +24,12 @@ fi
 # The same selection as the README's test command (--workspace --release), so
 # that cargo reuses its build instead of building the dependencies again with
 # another feature set; the filter runs only the browser tests.
+# example-robot-data's UR5 and Panda with their meshes, where the peers'
+# environment (../shared/peers/setup.sh) is installed; skipped otherwise.
+if [ -z "${ARMKIT_EXAMPLE_ROBOT_DATA:-}" ]; then
+  for share in ../shared/peers/.venv/lib/python3*/site-packages/cmeel.prefix/share; do
+    if [ -d "$share/example-robot-data" ]; then export ARMKIT_EXAMPLE_ROBOT_DATA="$PWD/$share"; fi
+  done
+fi
 # Both modules (demo_browser, view_browser) end in `browser`.
 ARMKIT_REQUIRE_BROWSER=1 cargo test --workspace --release --test it -- browser

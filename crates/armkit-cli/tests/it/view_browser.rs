@@ -161,72 +161,10 @@ fn view_of_a_urdf_with_meshes_matches_armkit_fk_in_chromium() {
     let pixels = result["robotPixels"].as_u64().unwrap();
     assert!(pixels > 2_000, "the robot covers {pixels} pixels");
 
-    // armkit's FK of each link: the chain from the base link to it, with
-    // the configuration's value of each joint it shares with the arm, the
-    // finger's joint (off the arm's chain) at zero.
-    let urdf_text = std::fs::read_to_string(&urdf).unwrap();
+    let rows: Vec<Vec<f64>> = ROWS.iter().map(|r| r[1..].to_vec()).collect();
     let arm = ["pan", "lift", "elbow", "roll"];
-    let samples = result["samples"].as_array().unwrap();
-    assert_eq!(samples.len(), 4);
-    let mut checked_frames = Vec::new();
-    for sample in samples {
-        let frame = sample["frame"].as_u64().unwrap() as usize;
-        checked_frames.push(frame);
-        let q: Vec<f64> = ROWS[frame][1..].to_vec();
-        let page_q: Vec<f64> = sample["q"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|v| v.as_f64().unwrap())
-            .collect();
-        assert_eq!(
-            page_q, q,
-            "frame {frame}: the page's configuration is the CSV's row"
-        );
-        let links = sample["links"].as_array().unwrap();
-        assert_eq!(links.len(), 8);
-        for link in links {
-            let name = link["name"].as_str().unwrap();
-            let pose = if name == "base_link" {
-                Pose::identity()
-            } else {
-                match armkit::urdf::parse_str(
-                    &urdf_text,
-                    "meshbot",
-                    &ChainSelection::between("base_link", name),
-                ) {
-                    Ok(model) => {
-                        let sub_q: Vec<f64> = model
-                            .joints()
-                            .iter()
-                            .map(|j| arm.iter().position(|a| *a == j.name).map_or(0.0, |i| q[i]))
-                            .collect();
-                        let mut data = armkit::Data::new(&model);
-                        *armkit::forward_kinematics(&model, &mut data, &sub_q).unwrap()
-                    }
-                    // `camera` hangs from `upper_arm` by a fixed joint.
-                    Err(_) => {
-                        assert_eq!(name, "camera");
-                        let model = armkit::urdf::parse_str(
-                            &urdf_text,
-                            "meshbot",
-                            &ChainSelection::between("base_link", "upper_arm"),
-                        )
-                        .unwrap();
-                        let mut data = armkit::Data::new(&model);
-                        let upper =
-                            *armkit::forward_kinematics(&model, &mut data, &q[..2]).unwrap();
-                        upper * Pose::from_xyz_rpy([0.05, 0.0, 0.2], [0.0, 0.0, 1.57])
-                    }
-                }
-            };
-            assert_matches(
-                &link["matrix"],
-                &pose,
-                &format!("frame {frame}, link `{name}`"),
-            );
-        }
-    }
+    let checked_frames = check_urdf_page(&result, &urdf, "base_link", &arm, &rows);
+    assert_eq!(result["samples"][0]["links"].as_array().unwrap().len(), 8);
     assert_eq!(
         checked_frames,
         vec![0, 2, 4, 5],
@@ -265,4 +203,198 @@ fn view_errors_name_the_option() {
     let err = run(&["view", "--robot", "puma560", "--q", "0,0"]);
     assert!(err.contains("6"), "{err}");
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// armkit's FK of each URDF link drawn on the page: the chain from `base` to
+/// that link (`ChainSelection::between`), with each of its joints at the
+/// configuration's value of the same-named joint of `arm` (zero for joints
+/// off the arm's chain); a link joined to its parent by a fixed joint with
+/// no moving joint above is the parent's pose times the joint's origin. Each
+/// sampled frame's configuration must be `rows[frame]`. Returns the frames
+/// checked.
+fn check_urdf_page(
+    result: &serde_json::Value,
+    urdf: &Path,
+    base: &str,
+    arm: &[&str],
+    rows: &[Vec<f64>],
+) -> Vec<usize> {
+    let text = std::fs::read_to_string(urdf).unwrap();
+    let mut checked = Vec::new();
+    for sample in result["samples"].as_array().unwrap() {
+        let frame = sample["frame"].as_u64().unwrap() as usize;
+        checked.push(frame);
+        let q = &rows[frame];
+        let page_q: Vec<f64> = sample["q"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect();
+        assert_eq!(
+            &page_q, q,
+            "frame {frame}: the page's configuration is the motion's"
+        );
+        for link in sample["links"].as_array().unwrap() {
+            let name = link["name"].as_str().unwrap();
+            let pose = link_pose(&text, base, name, arm, q);
+            let what = format!("{}: frame {frame}, link `{name}`", urdf.display());
+            assert_matches(&link["matrix"], &pose, &what);
+        }
+    }
+    checked
+}
+
+/// A link's world pose by armkit's FK (see [`check_urdf_page`]).
+fn link_pose(text: &str, base: &str, link: &str, arm: &[&str], q: &[f64]) -> Pose {
+    if link == base {
+        return Pose::identity();
+    }
+    match armkit::urdf::parse_str(text, "urdf", &ChainSelection::between(base, link)) {
+        Ok(model) => {
+            let sub_q: Vec<f64> = model
+                .joints()
+                .iter()
+                .map(|j| arm.iter().position(|a| *a == j.name).map_or(0.0, |i| q[i]))
+                .collect();
+            let mut data = armkit::Data::new(&model);
+            *armkit::forward_kinematics(&model, &mut data, &sub_q).unwrap()
+        }
+        // No moving joint above: the parent's pose times the fixed joint's
+        // origin (read here with its own small parse of the joint element).
+        Err(_) => {
+            let (parent, origin) = fixed_parent(text, link);
+            link_pose(text, base, &parent, arm, q) * origin
+        }
+    }
+}
+
+/// The parent link and origin of the fixed joint whose child is `link`.
+fn fixed_parent(text: &str, link: &str) -> (String, Pose) {
+    let child = format!("<child link=\"{link}\"");
+    let at = text
+        .find(&child)
+        .unwrap_or_else(|| panic!("no joint has child `{link}`"));
+    let start = text[..at].rfind("<joint").unwrap();
+    let end = at + text[at..].find("</joint>").unwrap();
+    let joint = &text[start..end];
+    assert!(joint.contains("type=\"fixed\""), "{joint}");
+    let attribute = |element: &str, name: &str| -> Option<String> {
+        let e = &joint[joint.find(&format!("<{element} "))?..];
+        let e = &e[..e.find('>')?];
+        let v = &e[e.find(&format!("{name}=\""))? + name.len() + 2..];
+        Some(v[..v.find('"')?].to_string())
+    };
+    let numbers = |s: Option<String>| -> [f64; 3] {
+        let v: Vec<f64> = s
+            .map(|s| s.split_whitespace().map(|x| x.parse().unwrap()).collect())
+            .unwrap_or_else(|| vec![0.0; 3]);
+        [v[0], v[1], v[2]]
+    };
+    let parent = attribute("parent", "link").unwrap();
+    let origin = Pose::from_xyz_rpy(
+        numbers(attribute("origin", "xyz")),
+        numbers(attribute("origin", "rpy")),
+    );
+    (parent, origin)
+}
+
+/// example-robot-data's UR5 and Panda with their Collada meshes, where
+/// `ARMKIT_EXAMPLE_ROBOT_DATA` names the `share` folder holding
+/// `example-robot-data` (the peers' environment, `../shared/peers/setup.sh`);
+/// skipped with a message otherwise.
+#[test]
+fn view_of_example_robot_data_ur5_and_panda_matches_armkit_fk_in_chromium() {
+    let Ok(share) = std::env::var("ARMKIT_EXAMPLE_ROBOT_DATA") else {
+        eprintln!("ARMKIT_EXAMPLE_ROBOT_DATA not set: the UR5 and Panda views are not checked");
+        return;
+    };
+    let Some(browser) = browser_or_skip("the UR5 and Panda views") else {
+        return;
+    };
+    let share = PathBuf::from(share);
+    let robots = share.join("example-robot-data/robots");
+    let ur5 = [
+        "shoulder_pan_joint",
+        "shoulder_lift_joint",
+        "elbow_joint",
+        "wrist_1_joint",
+        "wrist_2_joint",
+        "wrist_3_joint",
+    ];
+    let panda = [
+        "panda_joint1",
+        "panda_joint2",
+        "panda_joint3",
+        "panda_joint4",
+        "panda_joint5",
+        "panda_joint6",
+        "panda_joint7",
+    ];
+    let cases: [(&str, &str, &str, &[&str]); 2] = [
+        (
+            "ur_description/urdf/ur5_robot.urdf",
+            "base_link",
+            "tool0",
+            &ur5,
+        ),
+        (
+            "panda_description/urdf/panda.urdf",
+            "panda_link0",
+            "panda_link8",
+            &panda,
+        ),
+    ];
+    let dir = temp_dir("view-erd");
+    let scratch = temp_dir("view-erd-chromium");
+    for (file, base, tip, arm) in cases {
+        let urdf = robots.join(file);
+        // Within both robots' limits: small alternating angles.
+        let rows: Vec<Vec<f64>> = (0..5)
+            .map(|k| {
+                (0..arm.len())
+                    .map(|j| 0.25 * k as f64 * if j % 2 == 0 { 1.0 } else { -0.5 })
+                    .collect()
+            })
+            .collect();
+        let header: Vec<String> = (1..=arm.len()).map(|j| format!("q{j}")).collect();
+        let mut csv = format!("t,{}\n", header.join(","));
+        for (k, row) in rows.iter().enumerate() {
+            let cells: Vec<String> = row.iter().map(f64::to_string).collect();
+            csv += &format!("{},{}\n", 0.5 * k as f64, cells.join(","));
+        }
+        let csv_path = dir.join("motion.csv");
+        std::fs::write(&csv_path, csv).unwrap();
+        let html = dir.join(format!("{tip}.html"));
+        let output = Command::new(env!("CARGO_BIN_EXE_armkit"))
+            .args(["view", "--base", base, "--tip", tip, "--urdf"])
+            .arg(&urdf)
+            .arg("--package-path")
+            .arg(&share)
+            .arg("--trajectory")
+            .arg(&csv_path)
+            .arg("--out")
+            .arg(&html)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(output.status.success(), "{}: {stderr}", urdf.display());
+        assert!(
+            !stderr.contains("bounding primitive"),
+            "{}: {stderr}",
+            urdf.display()
+        );
+        let url = format!("file://{}#armkit-test", html.display());
+        let visit = visit_url(&browser, &url, &scratch);
+        assert!(visit.page_requests.is_empty(), "{:?}", visit.page_requests);
+        let result = test_result(&visit.dom);
+        let pixels = result["robotPixels"].as_u64().unwrap();
+        assert!(pixels > 2_000, "{}: {pixels} pixels", urdf.display());
+        assert_eq!(check_urdf_page(&result, &urdf, base, arm, &rows).len(), 4);
+        let png = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("view-{tip}.png"));
+        let url = format!("file://{}#armkit-view-only", html.display());
+        screenshot(&browser, &url, &png, &scratch);
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+    std::fs::remove_dir_all(&scratch).unwrap();
 }
