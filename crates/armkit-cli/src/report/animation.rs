@@ -118,10 +118,28 @@ impl Animation {
                 *p = [q.x, q.y, q.z];
             }
         }
+        scene.markers = self.markers.clone();
         if self.path_flags.len() == scene.path.len() {
             scene.path_flags = self.path_flags.clone();
+            // The middle of each flagged stretch marked red: a short region
+            // (seed 004's is a tenth of a second) stays visible as a point.
+            let mut k = 0;
+            while k < scene.path_flags.len() {
+                if !scene.path_flags[k] {
+                    k += 1;
+                    continue;
+                }
+                let start = k;
+                while k < scene.path_flags.len() && scene.path_flags[k] {
+                    k += 1;
+                }
+                scene.markers.push(armkit_view::Marker {
+                    at: scene.path[(start + k - 1) / 2],
+                    color: [0.85, 0.1, 0.1],
+                    label: "inside the marked region".into(),
+                });
+            }
         }
-        scene.markers = self.markers.clone();
         if let Some(base) = scene.links.first_mut() {
             let to_link = model.base().inverse();
             base.visuals
