@@ -48,6 +48,8 @@ enum Command {
     Manipulability(commands::manipulability::ManipulabilityArgs),
     /// Singularity avoidance along a straight line (seed 004): plain, avoidance, DLS, SRI; tables, CSV and SVG.
     Singularity(commands::singularity::SingularityArgs),
+    /// The robot in 3-D (at one configuration or along a trajectory CSV), one offline HTML file.
+    View(commands::view::ViewArgs),
 }
 
 fn run(command: &Command) -> CliResult<Outcome> {
@@ -68,6 +70,7 @@ fn run(command: &Command) -> CliResult<Outcome> {
         Command::Mpc(args) => commands::mpc::run(args),
         Command::Manipulability(args) => commands::manipulability::run(args),
         Command::Singularity(args) => commands::singularity::run(args),
+        Command::View(args) => commands::view::run(args),
     }
 }
 

@@ -23,6 +23,7 @@ mod singularity;
 mod space;
 mod study;
 mod trajectory;
+mod view;
 
 use pyo3::prelude::*;
 
@@ -37,6 +38,7 @@ fn builtin_robots() -> Vec<&'static str> {
 fn _armkit(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add_function(wrap_pyfunction!(builtin_robots, m)?)?;
+    m.add_function(wrap_pyfunction!(view::view_page, m)?)?;
     m.add_class::<robot::Robot>()?;
     m.add_class::<ik::IkResult>()?;
     m.add_class::<analytic::IkSolutions>()?;

@@ -44,6 +44,8 @@ pub struct Robot {
     ik_engine: Mutex<Option<(IkArguments, IkEngine)>>,
     /// The dynamics workspace of one-state calls, made on first use.
     dynamics: Mutex<Option<DynamicsData>>,
+    /// The URDF the model came from, for the 3-D view's meshes.
+    pub(crate) urdf: Option<armkit_view::UrdfSource>,
 }
 
 /// Workspace of the one-at-a-time calls: the kinematics data and the joint
@@ -82,6 +84,7 @@ impl Robot {
             scratch,
             ik_engine: Mutex::new(None),
             dynamics: Mutex::new(None),
+            urdf: None,
         }
     }
 
@@ -181,9 +184,27 @@ impl Robot {
     #[pyo3(signature = (path, base=None, tip=None))]
     fn from_urdf(path: PathBuf, base: Option<String>, tip: Option<String>) -> PyResult<Self> {
         let selection = armkit::urdf::ChainSelection { base, tip };
-        armkit::urdf::load(&path, &selection)
-            .map(Robot::new)
-            .map_err(|e| load_error(&path, e))
+        let model = armkit::urdf::load(&path, &selection).map_err(|e| load_error(&path, e))?;
+        Ok(Robot {
+            urdf: Some(armkit_view::UrdfSource {
+                path,
+                selection,
+                package_paths: Vec::new(),
+            }),
+            ..Robot::new(model)
+        })
+    }
+
+    /// The robot in 3-D at configuration `q` (default: the middle of each
+    /// joint's range): an `armkit.view.View`, shown inline by Jupyter, with
+    /// `save(path)` to write the HTML page (offline, three.js inlined).
+    #[pyo3(signature = (q=None))]
+    fn show<'py>(
+        slf: &Bound<'py, Self>,
+        q: Option<&Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let view = slf.py().import("armkit.view")?;
+        view.getattr("show")?.call1((slf, q))
     }
 
     /// A DH description file (TOML or JSON, as the CLI's `--robot-file`).

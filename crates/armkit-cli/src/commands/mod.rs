@@ -13,3 +13,4 @@ pub mod run;
 pub mod singularity;
 pub mod space;
 pub mod traj;
+pub mod view;

@@ -1,15 +1,35 @@
-//! The robot as a stick figure moving along the planned motion, rendered as
-//! inline SVG animated by a few lines of plain JavaScript (no library, no
-//! network).
+//! The robot moving along the planned motion: the 3-D view
+//! (`armkit_view`, links placed by armkit's FK) and, as its fallback where
+//! the browser has no WebGL, a stick figure in an oblique view rendered as
+//! inline SVG animated by a few lines of plain JavaScript.
 
-/// Frames of a stick figure: at each time, the chain's points in the world
-/// frame (base, joint origins, end effector), metres.
+use armkit::math::Pose;
+
+/// The motion of a robot: for the 3-D view, the model and its
+/// configurations (with the arm's base pose per frame when the base moves);
+/// for the fallback, the stick figure's points per frame.
 #[derive(Clone, Debug, Default)]
 pub struct Animation {
     /// Time of each frame, s.
     pub times: Vec<f64>,
-    /// Points of each frame: base first, end effector last.
+    /// Points of each frame: base first, end effector last (world frame, m).
     pub frames: Vec<Vec<[f64; 3]>>,
+    /// The robot, when the animation was made from configurations.
+    pub model: Option<armkit::Model>,
+    /// Configuration of each frame (rad or m).
+    pub configurations: Vec<Vec<f64>>,
+    /// World pose of the arm's world frame at each frame (a moving base);
+    /// empty: fixed.
+    pub base_poses: Vec<Pose>,
+    /// Per frame: inside a marked region (drawn red on the 3-D path).
+    pub path_flags: Vec<bool>,
+    /// Points marked in the 3-D view.
+    pub markers: Vec<armkit_view::Marker>,
+    /// A beam drawn bent in the 3-D view.
+    pub beam: Option<armkit_view::BeamLine>,
+    /// Shapes added to the arm's base link (a satellite's body), in the
+    /// arm's world frame.
+    pub base_shapes: Vec<armkit_view::Visual>,
 }
 
 /// Camera azimuth and elevation of the oblique view, rad.
@@ -22,7 +42,128 @@ const MAX_FRAMES: usize = 400;
 impl Animation {
     /// An animation from frame times and points.
     pub fn new(times: Vec<f64>, frames: Vec<Vec<[f64; 3]>>) -> Self {
-        Animation { times, frames }
+        Animation {
+            times,
+            frames,
+            ..Animation::default()
+        }
+    }
+
+    /// The target position marked (green) in the 3-D view, world frame, m.
+    pub fn with_target(mut self, target: &armkit::math::Vector3<f64>) -> Self {
+        self.markers.push(armkit_view::Marker {
+            at: [target.x, target.y, target.z],
+            color: [0.1, 0.65, 0.2],
+            label: "target".into(),
+        });
+        self
+    }
+
+    /// A free-floating base body drawn as a cube of its mass and mean
+    /// principal inertia (`I = m s^2 / 6`) about its centre of mass, on the
+    /// arm's base link (the base moves with it: see [`Self::place_frames`]).
+    pub fn draw_base_body(&mut self, body: &armkit::space::BaseBody) {
+        let inertia = body.inertia.trace() / 3.0;
+        let side = if body.mass > 0.0 {
+            (6.0 * inertia / body.mass).sqrt()
+        } else {
+            0.0
+        };
+        if !(side.is_finite() && side > 0.0) {
+            return;
+        }
+        // The body's centre in the arm's world frame (the mount frame).
+        let centre = body.mount.inverse().transform_point(&body.com);
+        self.base_shapes.push(armkit_view::Visual {
+            shape: armkit_view::Shape::Box {
+                size: [side; 3],
+                origin: Pose::from_translation(centre),
+            },
+            color: Some([0.75, 0.68, 0.3, 1.0]),
+        });
+    }
+
+    /// Moves the arm's world frame to `worlds[k]` at frame `k` (a moving
+    /// base): the stick figure's points and the 3-D view's links and path.
+    pub fn place_frames(&mut self, worlds: &[Pose]) {
+        for (frame, world) in self.frames.iter_mut().zip(worlds) {
+            for p in frame.iter_mut() {
+                let q = world.transform_point(&armkit::math::Vector3::from(*p));
+                *p = [q.x, q.y, q.z];
+            }
+        }
+        self.base_poses = worlds.to_vec();
+    }
+
+    /// The 3-D scene, links placed by armkit's FK (times the base pose of
+    /// each frame when the base moves); `None` without a model.
+    pub fn scene(&self) -> Option<Result<armkit_view::Scene, armkit::Error>> {
+        let model = self.model.as_ref()?;
+        Some(self.scene_of(model))
+    }
+
+    fn scene_of(&self, model: &armkit::Model) -> Result<armkit_view::Scene, armkit::Error> {
+        let mut scene = armkit_view::chain_scene(model, &self.times, &self.configurations)?;
+        if !self.base_poses.is_empty() {
+            let picks = armkit_view::decimate(self.times.len().min(self.configurations.len()));
+            for (frame, &k) in scene.poses.iter_mut().zip(&picks) {
+                if let Some(world) = self.base_poses.get(k) {
+                    for pose in frame.iter_mut() {
+                        *pose = world * &*pose;
+                    }
+                }
+            }
+            for (p, world) in scene.path.iter_mut().zip(&self.base_poses) {
+                let q = world.transform_point(&armkit::math::Vector3::from(*p));
+                *p = [q.x, q.y, q.z];
+            }
+        }
+        scene.markers = self.markers.clone();
+        if self.path_flags.len() == scene.path.len() {
+            scene.path_flags = self.path_flags.clone();
+            // The middle of each flagged stretch marked red: a short region
+            // (seed 004's is a tenth of a second) stays visible as a point.
+            let mut k = 0;
+            while k < scene.path_flags.len() {
+                if !scene.path_flags[k] {
+                    k += 1;
+                    continue;
+                }
+                let start = k;
+                while k < scene.path_flags.len() && scene.path_flags[k] {
+                    k += 1;
+                }
+                scene.markers.push(armkit_view::Marker {
+                    at: scene.path[(start + k - 1) / 2],
+                    color: [0.85, 0.1, 0.1],
+                    label: "inside the marked region".into(),
+                });
+            }
+        }
+        if let Some(base) = scene.links.first_mut() {
+            let to_link = model.base().inverse();
+            base.visuals
+                .extend(self.base_shapes.iter().map(|v| match &v.shape {
+                    armkit_view::Shape::Box { size, origin } => armkit_view::Visual {
+                        shape: armkit_view::Shape::Box {
+                            size: *size,
+                            origin: to_link * *origin,
+                        },
+                        color: v.color,
+                    },
+                    _ => v.clone(),
+                }));
+        }
+        // The beam's lines per frame, kept for the scene's frames.
+        scene.beam = self.beam.as_ref().map(|beam| {
+            let picks = armkit_view::decimate(beam.samples.len());
+            armkit_view::BeamLine {
+                magnification: beam.magnification,
+                samples: picks.iter().map(|&k| beam.samples[k].clone()).collect(),
+                straight: picks.iter().map(|&k| beam.straight[k].clone()).collect(),
+            }
+        });
+        Ok(scene)
     }
 
     /// The robot `model` at each configuration: base origin, every joint
@@ -47,7 +188,11 @@ impl Animation {
                 Ok(points)
             })
             .collect::<Result<Vec<_>, armkit::Error>>()?;
-        Ok(Animation::new(times.to_vec(), frames))
+        Ok(Animation {
+            model: Some(model.clone()),
+            configurations: configurations.to_vec(),
+            ..Animation::new(times.to_vec(), frames)
+        })
     }
 
     /// Keeps at most `MAX_FRAMES` evenly spaced frames (the last one always).
@@ -73,7 +218,7 @@ impl Animation {
     }
 
     /// The HTML block: an SVG canvas, play/pause, a time slider and the script.
-    pub fn to_html(&self) -> String {
+    pub fn to_svg_html(&self) -> String {
         let picks = self.decimated();
         if picks.is_empty() {
             return String::new();

@@ -94,8 +94,9 @@ fn footer() -> String {
 
 fn page(title: &str, body: &str) -> String {
     format!(
-        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>{}</title><style>{STYLE}</style></head>\n<body>\n<p class=\"caption\">armkit {} &middot; {}</p>\n{body}\n{}\n</body></html>\n",
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>{}</title><style>{STYLE}\n{}</style></head>\n<body>\n<p class=\"caption\">armkit {} &middot; {}</p>\n{body}\n{}\n</body></html>\n",
         escape(title),
+        armkit_view::STYLE,
         env!("CARGO_PKG_VERSION"),
         now_utc(),
         footer()
@@ -124,7 +125,18 @@ pub fn report_page(report: &Report, svgs: &[(String, String)]) -> String {
     }
     if let Some(animation) = &report.animation {
         body += "<h2>Motion</h2>\n";
-        body += &animation.to_html();
+        // The 3-D view, with the stick figure as its fallback where the
+        // browser has no WebGL; the scripts are the one shared file that
+        // `Report::write` puts beside the report folders.
+        match animation.scene() {
+            Some(Ok(scene)) => {
+                body +=
+                    &armkit_view::viewer_block(&scene, "motion", Some(&animation.to_svg_html()));
+                body += &armkit_view::Scripts::Shared(format!("../{}", armkit_view::ASSET_FILE))
+                    .to_html();
+            }
+            _ => body += &animation.to_svg_html(),
+        }
     }
     for table in &report.tables {
         body += &format!("<h2>{}</h2>\n<table><tr>", escape(&table.title));

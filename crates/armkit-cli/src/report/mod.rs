@@ -246,6 +246,9 @@ impl Report {
             &dir.join("summary.json"),
             serde_json::to_string_pretty(&self.summary_json())?.as_bytes(),
         )?;
+        if self.animation.is_some() {
+            write_viewer_asset(out_dir)?;
+        }
         let html_path = dir.join("report.html");
         write_atomic(&html_path, html::report_page(self, &svgs).as_bytes())?;
         Ok(ReportSummary {
@@ -321,6 +324,23 @@ pub fn write_index(out_dir: &Path, summaries: &[ReportSummary]) -> CliResult<Pat
     let path = out_dir.join("index.html");
     write_atomic(&path, html::index_page(summaries, out_dir).as_bytes())?;
     Ok(path)
+}
+
+/// Writes the 3-D view's shared script (three.js and armkit's viewer) and
+/// three.js's licence into `out_dir`, beside the report folders, unless
+/// they are there already with the same content.
+fn write_viewer_asset(out_dir: &Path) -> CliResult {
+    let files = [
+        (armkit_view::ASSET_FILE, armkit_view::asset_script()),
+        ("three.LICENSE", armkit_view::THREE_LICENSE.to_string()),
+    ];
+    for (name, content) in files {
+        let path = out_dir.join(name);
+        if std::fs::read_to_string(&path).ok().as_deref() != Some(content.as_str()) {
+            write_atomic(&path, content.as_bytes())?;
+        }
+    }
+    Ok(())
 }
 
 /// Writes `text` to `path` (a command's output file); the error names the file.

@@ -10,14 +10,14 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-fn temp_dir(name: &str) -> PathBuf {
+pub fn temp_dir(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("armkit-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir
 }
 
-fn chromium() -> Option<PathBuf> {
+pub fn chromium() -> Option<PathBuf> {
     [
         "/usr/bin/chromium",
         "/usr/bin/chromium-browser",
@@ -30,39 +30,46 @@ fn chromium() -> Option<PathBuf> {
 
 /// What Chromium saw on one page: the DOM after scripts ran, and the URLs the
 /// page itself requested (Chromium's own background requests excluded).
-struct PageVisit {
-    dom: String,
-    page_requests: Vec<String>,
+pub struct PageVisit {
+    pub dom: String,
+    pub page_requests: Vec<String>,
 }
 
 fn visit(browser: &Path, page: &Path, scratch: &Path) -> PageVisit {
+    visit_url(browser, &format!("file://{}", page.display()), scratch)
+}
+
+/// The browser's flags: headless, offline (no background networking), and
+/// WebGL through SwiftShader (software; the machine has no GPU).
+pub const CHROMIUM_FLAGS: [&str; 9] = [
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--enable-unsafe-swiftshader",
+    "--disable-quic",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+];
+
+/// Opens `url` (a `file://` URL, with a fragment if any), lets its scripts
+/// run for 2 s of virtual time, and returns the DOM and the page's requests.
+pub fn visit_url(browser: &Path, url: &str, scratch: &Path) -> PageVisit {
     let net_log = scratch.join("netlog.json");
     let output = Command::new(browser)
-        .args([
-            "--headless",
-            "--no-sandbox",
-            "--disable-gpu",
-            "--disable-quic",
-            "--no-first-run",
-            "--disable-background-networking",
-            "--disable-component-update",
-            "--disable-sync",
-            "--virtual-time-budget=2000",
-        ])
+        .args(CHROMIUM_FLAGS)
+        .arg("--virtual-time-budget=2000")
         .arg(format!(
             "--user-data-dir={}",
             scratch.join("profile").display()
         ))
         .arg(format!("--log-net-log={}", net_log.display()))
         .arg("--dump-dom")
-        .arg(format!("file://{}", page.display()))
+        .arg(url)
         .output()
         .unwrap();
-    assert!(
-        output.status.success(),
-        "chromium failed on {}",
-        page.display()
-    );
+    assert!(output.status.success(), "chromium failed on {url}");
     let log: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&net_log).unwrap()).unwrap();
     let start_job = log["constants"]["logEventTypes"]["URL_REQUEST_START_JOB"].clone();
@@ -218,6 +225,122 @@ fn demo_reports_open_offline_with_plots_and_animation() {
         "animation did not draw: {points:?}"
     );
     assert!(dom.contains("<circle"), "joint markers missing");
+    check_3d_views(&browser, &out, &scratch);
     std::fs::remove_dir_all(&out).unwrap();
     std::fs::remove_dir_all(&scratch).unwrap();
+}
+
+/// Every report's 3-D view, in its test mode: offline, the robot drawn, and
+/// each link's world transform at four times equal to armkit's FK of the
+/// page's configuration (relative to the arm's base link, which moves on the
+/// space robot's reports and sits at the model's base pose on the others),
+/// to 1e-9; the demo's folder stays under 20 MB; two screenshots.
+fn check_3d_views(browser: &Path, out: &Path, scratch: &Path) {
+    use crate::view_browser::{assert_matches, screenshot, test_result};
+    let size: u64 = walk(out).iter().map(|p| p.metadata().unwrap().len()).sum();
+    assert!(size < 20_000_000, "the demo's out/ is {size} bytes");
+    let mut views = 0;
+    let mut slowest: f64 = 0.0;
+    for entry in std::fs::read_dir(out).unwrap() {
+        let report = entry.unwrap().path().join("report.html");
+        if !report.exists()
+            || !std::fs::read_to_string(&report)
+                .unwrap()
+                .contains("class=\"armkit-view\"")
+        {
+            continue;
+        }
+        views += 1;
+        let visit = visit_url(
+            browser,
+            &format!("file://{}#armkit-test", report.display()),
+            scratch,
+        );
+        assert!(
+            visit.page_requests.is_empty(),
+            "{}: {:?}",
+            report.display(),
+            visit.page_requests
+        );
+        let result = test_result(&visit.dom);
+        let pixels = result["robotPixels"].as_u64().unwrap();
+        assert!(
+            pixels > 300,
+            "{}: the robot covers {pixels} pixels",
+            report.display()
+        );
+        slowest = slowest.max(result["firstRenderMs"].as_f64().unwrap());
+        let scene_title = result["title"].as_str().unwrap().to_string();
+        let model = armkit::robots::by_name(&scene_title).unwrap();
+        let mut data = armkit::Data::new(&model);
+        for sample in result["samples"].as_array().unwrap() {
+            let q: Vec<f64> = sample["q"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|v| v.as_f64().unwrap())
+                .collect();
+            let end = *armkit::forward_kinematics(&model, &mut data, &q).unwrap();
+            let mut expected = vec![*model.base()];
+            expected.extend_from_slice(data.joint_frames());
+            expected.push(end);
+            let links = sample["links"].as_array().unwrap();
+            assert_eq!(links.len(), expected.len(), "{}", report.display());
+            // The page's base link: the arm's world frame in the scene.
+            let page_base = matrix_pose(&links[0]["matrix"]);
+            let world = page_base * model.base().inverse();
+            if !scene_title.starts_with("space6r") {
+                assert_matches(
+                    &links[0]["matrix"],
+                    model.base(),
+                    &format!("{}: base", report.display()),
+                );
+            }
+            for (link, pose) in links.iter().zip(&expected) {
+                let what = format!(
+                    "{}, t = {}, link `{}`",
+                    report.display(),
+                    sample["t"],
+                    link["name"]
+                );
+                assert_matches(&link["matrix"], &(world * *pose), &what);
+            }
+        }
+    }
+    assert!(views >= 10, "only {views} reports have a 3-D view");
+    eprintln!("3-D views: {views} reports checked; slowest first render {slowest:.0} ms; out/ {size} bytes");
+    let shots = Path::new(env!("CARGO_TARGET_TMPDIR"));
+    for name in ["seed000-beam", "seed004-singularity"] {
+        let url = format!(
+            "file://{}#armkit-view-only",
+            out.join(name).join("report.html").display()
+        );
+        screenshot(browser, &url, &shots.join(format!("{name}.png")), scratch);
+    }
+}
+
+/// A column-major 4x4 matrix from the page as a pose.
+fn matrix_pose(matrix: &serde_json::Value) -> armkit::math::Pose {
+    let m: Vec<f64> = matrix
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    let m4 = nalgebra::Matrix4::from_column_slice(&m);
+    armkit::math::Pose::from_matrix4(&m4).unwrap()
+}
+
+/// Every file below `dir`.
+fn walk(dir: &Path) -> Vec<PathBuf> {
+    let mut files = Vec::new();
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            files.extend(walk(&path));
+        } else {
+            files.push(path);
+        }
+    }
+    files
 }

@@ -19,3 +19,4 @@ mod singularity;
 mod space;
 mod traj;
 mod urdf;
+mod view_browser;

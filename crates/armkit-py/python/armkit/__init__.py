@@ -40,6 +40,8 @@ from ._armkit import (
     study,
 )
 
+from . import view
+
 # The extension's submodules, importable as `import armkit.redundancy`.
 for _module in (dynamics, redundancy, singularity, study):
     _sys.modules[f"{__name__}.{_module.__name__}"] = _module
@@ -58,6 +60,7 @@ __all__ = [
     "builtin_robots",
     "continuous_path",
     "dynamics",
+    "view",
     "redundancy",
     "singularity",
     "study",

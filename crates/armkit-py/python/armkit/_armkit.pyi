@@ -10,6 +10,7 @@ results are new C-ordered float64 arrays. Bad input raises ``ValueError``
 
 from os import PathLike
 from types import ModuleType
+import armkit.view
 from typing import Any, Dict, Literal, Optional, Sequence, Tuple, Union, final
 
 import numpy as np
@@ -18,7 +19,7 @@ import numpy.typing as npt
 __version__: str
 __all__ = [
     "__version__", "Beam", "ContinuousPath", "IkResult", "IkSolutions", "MpcPlanner", "Robot", "SpaceRobot", "Trajectory",
-    "builtin_robots", "continuous_path", "dynamics", "redundancy", "singularity", "study",
+    "_view_page", "builtin_robots", "continuous_path", "dynamics", "redundancy", "singularity", "study",
 ]
 
 _ArrayLike = npt.ArrayLike
@@ -28,6 +29,11 @@ _StrPath = Union[str, "PathLike[str]"]
 _AnalyticSearch = Literal["elimination", "1d", "2d"]
 _IkSolverName = Literal["auto", "closed-form", "lm", "nr", "dls", "sri"]
 _JacobianFrameName = Literal["world", "end-effector"]
+
+def _view_page(
+    robot: Robot, t: _ArrayLike, q: _ArrayLike, path: Optional[_ArrayLike] = None
+) -> str:
+    """The 3-D view's HTML page (``armkit.view.animate``)."""
 
 def builtin_robots() -> list[str]:
     """Names of the built-in robots (``Robot.builtin(name)``)."""
@@ -127,6 +133,9 @@ class Robot:
         """The mid-range configuration (0 for joints without finite limits), shape (dof,)."""
     def check_limits(self, q: _ArrayLike) -> None:
         """Raises ValueError naming the first joint of ``q`` (dof,) outside its limits."""
+    def show(self, q: Optional[_ArrayLike] = None) -> "armkit.view.View":
+        """The robot in 3-D at ``q`` (default: mid-range): shown inline by
+        Jupyter, ``save(path)`` writes the offline HTML page."""
     def fk(self, q: _ArrayLike, threads: Optional[int] = None) -> _FloatArray:
         """End-effector pose in the world frame: (4, 4) homogeneous (m) for
         ``q`` of shape (dof,); (N, 4, 4) for ``q`` of shape (N, dof), computed

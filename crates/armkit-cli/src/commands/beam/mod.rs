@@ -261,11 +261,9 @@ pub fn report(load: LoadArgs, samples: usize) -> CliResult<Report> {
     }
     let along = error_along_beam(load, samples, None)?;
     let worst = worst_sample(&along)?;
-    let flex = robots::gantry9_with_beam(&GantryBeam::Flexible(CarriageDeflection::from_mass(
-        SimplySupportedBeam::seed000(),
-        load.mass,
-        load.gravity,
-    )?))?;
+    let carriage =
+        CarriageDeflection::from_mass(SimplySupportedBeam::seed000(), load.mass, load.gravity)?;
+    let flex = robots::gantry9_with_beam(&GantryBeam::Flexible(carriage))?;
     let coupled_jacobian_error = coupled_jacobian_error(&flex)?;
     checks.push(Check::at_least(
         "largest end-effector error of a rigid model along the beam",
@@ -292,13 +290,17 @@ pub fn report(load: LoadArgs, samples: usize) -> CliResult<Report> {
             "Errata: eq 3 swaps P1 and P2; eq 4 prints d2 - for d3 +; the printed eq 8 misses 2 P d2^3 / (3 E I L).".into(),
             format!("Largest error of a rigid model: {:.3} mm at d2 = {} m, straight down.", 1e3 * worst.error.norm(), worst.d2),
         ],
-        animation: Some(carriage_sweep_animation(&flex, &along)?),
+        animation: Some(carriage_sweep_animation(&flex, carriage, &along)?),
     })
 }
 
 /// The flexible gantry at its mid-range configuration while the carriage
 /// travels the sweep's positions (one frame per position, 0.1 s apart).
-fn carriage_sweep_animation(flex: &armkit::Model, samples: &[ErrorSample]) -> CliResult<Animation> {
+fn carriage_sweep_animation(
+    flex: &armkit::Model,
+    carriage: CarriageDeflection,
+    samples: &[ErrorSample],
+) -> CliResult<Animation> {
     let mut q = flex.neutral_configuration();
     let configurations: Vec<Vec<f64>> = samples
         .iter()
@@ -308,11 +310,52 @@ fn carriage_sweep_animation(flex: &armkit::Model, samples: &[ErrorSample]) -> Cl
         })
         .collect();
     let times: Vec<f64> = (0..samples.len()).map(|k| 0.1 * k as f64).collect();
-    Ok(Animation::from_configurations(
-        flex,
-        &times,
-        &configurations,
-    )?)
+    let mut animation = Animation::from_configurations(flex, &times, &configurations)?;
+    animation.beam = Some(bent_beam(carriage, &configurations)?);
+    Ok(animation)
+}
+
+/// The beam's deflection is millimetres on a 10 m span: drawn this many
+/// times larger (stated on the page, on a toggle).
+const BEAM_MAGNIFICATION: f64 = 200.0;
+
+/// The beam's centre line at each configuration: the carriage joint's
+/// origin of the rigid gantry at 41 positions along the span (the straight
+/// beam), lowered along the vertical joint's axis by the deflection there
+/// under the carriage's load at its position (seed 000 eq 1; the arm hangs
+/// at the deflection under the load, `d3' = d3 + w(d2)`).
+fn bent_beam(
+    carriage: CarriageDeflection,
+    configurations: &[Vec<f64>],
+) -> CliResult<armkit_view::BeamLine> {
+    let rigid = robots::gantry9()?;
+    let mut data = Data::new(&rigid);
+    let length = carriage.beam.length();
+    let mut samples = Vec::new();
+    let mut straight = Vec::new();
+    for q in configurations {
+        let load = armkit::beam::PointLoad::new(q[1], carriage.force);
+        let (mut bent, mut line) = (Vec::new(), Vec::new());
+        for i in 0..=40 {
+            let x = length * i as f64 / 40.0;
+            let mut at = q.clone();
+            at[1] = x;
+            forward_kinematics(&rigid, &mut data, &at)?;
+            let frames = data.joint_frames();
+            let origin = frames[1].translation;
+            let down = frames[2].rotation.column(2).into_owned();
+            let p = origin + down * carriage.beam.deflection_due_to(x, load)?;
+            line.push([origin.x, origin.y, origin.z]);
+            bent.push([p.x, p.y, p.z]);
+        }
+        samples.push(bent);
+        straight.push(line);
+    }
+    Ok(armkit_view::BeamLine {
+        magnification: BEAM_MAGNIFICATION,
+        samples,
+        straight,
+    })
 }
 
 /// Largest entry of |J0 M - J_fd| over a few configurations of the flexible gantry.

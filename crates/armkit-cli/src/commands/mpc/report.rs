@@ -194,7 +194,10 @@ pub fn example_report(args: &MpcArgs) -> CliResult<Report> {
             .map(|(stem, figure)| (stem.to_string(), figure))
             .collect(),
         notes: mpc_notes(example, run.plant),
-        animation: Some(Animation::from_configurations(&model, &times, &configurations)?),
+        animation: Some(
+            Animation::from_configurations(&model, &times, &configurations)?
+                .with_target(&example.target().translation),
+        ),
     })
 }
 

@@ -111,11 +111,10 @@ pub fn target_report(args: &MpcArgs) -> CliResult<Report> {
             .map(|(stem, figure)| (stem.to_string(), figure))
             .collect(),
         notes: Vec::new(),
-        animation: Some(Animation::from_configurations(
-            &model,
-            &times,
-            &configurations,
-        )?),
+        animation: Some(
+            Animation::from_configurations(&model, &times, &configurations)?
+                .with_target(&target.translation),
+        ),
     })
 }
 

@@ -125,14 +125,15 @@ pub(super) fn animation(study: &Study) -> CliResult<Animation> {
         // The arm's frame is the base's mount frame; the base keeps its
         // attitude and moves with the arm (zero linear momentum).
         let mount = system.base().mount;
-        for (frame, base) in animation.frames.iter_mut().zip(&run.base_position) {
-            let base = Pose::new(study.outcome.line.base.rotation, Vector3::from(*base));
-            let world = base * mount;
-            for p in frame.iter_mut() {
-                let q = world.rotation * Vector3::from(*p) + world.translation;
-                *p = [q.x, q.y, q.z];
-            }
-        }
+        let worlds: Vec<Pose> = run
+            .base_position
+            .iter()
+            .map(|base| Pose::new(study.outcome.line.base.rotation, Vector3::from(*base)) * mount)
+            .collect();
+        animation.place_frames(&worlds);
+        animation.draw_base_body(system.base());
     }
+    // The singular region coloured on the 3-D path (seed 004's detection).
+    animation.path_flags = run.in_region.clone();
     Ok(animation)
 }

@@ -3,7 +3,7 @@
 
 use std::path::PathBuf;
 
-use armkit::math::{Pose, Vector3};
+use armkit::math::Pose;
 use armkit::space::FreeFloatingModel;
 use armkit::study::{SpaceRobotStudy, StudyReport};
 use clap::Args;
@@ -152,23 +152,35 @@ fn animation(system: &FreeFloatingModel, result: &StudyReport) -> CliResult<Anim
         .collect();
     let mut animation = Animation::from_configurations(system.arm(), &joints.x, &configurations)?;
     let body = system.base();
-    for (k, frame) in animation.frames.iter_mut().enumerate() {
-        let value = |s: &armkit::study::Series, i: usize| s.columns[i].1[k];
-        let base = Pose::from_xyz_rpy(
-            [
-                value(translation, 0),
-                value(translation, 1),
-                value(translation, 2),
-            ],
-            [value(rotation, 0), value(rotation, 1), value(rotation, 2)],
-        );
-        let world = base * body.mount;
-        for p in frame.iter_mut() {
-            let q = world.rotation * Vector3::from(*p) + world.translation;
-            *p = [q.x, q.y, q.z];
-        }
+    let bases: Vec<Pose> = (0..animation.frames.len())
+        .map(|k| {
+            let value = |s: &armkit::study::Series, i: usize| s.columns[i].1[k];
+            Pose::from_xyz_rpy(
+                [
+                    value(translation, 0),
+                    value(translation, 1),
+                    value(translation, 2),
+                ],
+                [value(rotation, 0), value(rotation, 1), value(rotation, 2)],
+            )
+        })
+        .collect();
+    // The arm's world frame is the base's mount frame, moving with the base.
+    let worlds: Vec<Pose> = bases.iter().map(|base| *base * body.mount).collect();
+    animation.place_frames(&worlds);
+    animation.draw_base_body(body);
+    for (frame, base) in animation.frames.iter_mut().zip(&bases) {
         let centre = base.rotation * body.com + base.translation;
         frame.insert(0, [centre.x, centre.y, centre.z]);
+    }
+    // The satellite's centre of mass, marked in the 3-D view at the start.
+    if let Some(base) = bases.first() {
+        let centre = base.rotation * body.com + base.translation;
+        animation.markers.push(armkit_view::Marker {
+            at: [centre.x, centre.y, centre.z],
+            color: [0.2, 0.4, 0.8],
+            label: "base centre of mass at t = 0".into(),
+        });
     }
     Ok(animation)
 }
