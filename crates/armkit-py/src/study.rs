@@ -20,6 +20,7 @@ const STUDIES: &[&str] = &[
     "mpc-ex1",
     "mpc-ex2",
     "mpc-ex2-paper-weights",
+    "mpc-ex2-strict",
     "mpc-ex3",
     "mpc-ex3-undamped",
     "distribution",

@@ -29,6 +29,10 @@ const SHIPPED: &[(&str, &str)] = &[
         include_str!("../../../../scenarios/seed000-mpc-ex2.toml"),
     ),
     (
+        "seed000-mpc-ex2-strict.toml",
+        include_str!("../../../../scenarios/seed000-mpc-ex2-strict.toml"),
+    ),
+    (
         "seed000-mpc-ex2-precision.toml",
         include_str!("../../../../scenarios/seed000-mpc-ex2-precision.toml"),
     ),

@@ -3,8 +3,8 @@
 //!
 //! * `armkit mpc --robot gantry9 --target "x,y,z,roll,pitch,yaw" [--start Q]
 //!   [--horizon N] [--control-horizon M] [--dt T] [--weights position|pose|w1,..,w6]
-//!   [--priorities R1,..,Rn] [--out DIR] [--json]`
-//! * `armkit mpc --example 1|2|3|ex2-paper-weights|ex3-undamped|all [--out DIR] [--json]`:
+//!   [--priorities R1,..,Rn] [--priority-mode weighted|strict] [--out DIR] [--json]`
+//! * `armkit mpc --example 1|2|3|ex2-paper-weights|ex2-strict|ex3-undamped|all [--out DIR] [--json]`:
 //!   seed 000's examples on the flexible gantry, with their checks and the
 //!   paper's claims as findings.
 //!
@@ -31,7 +31,9 @@ use std::path::PathBuf;
 
 use armkit::mpc::qp::QpSolverKind;
 use armkit::mpc::scenario::{simulate_with, MpcRun, SimulationOptions};
-use armkit::mpc::{diagnose_run, ActuatorPrecision, MpcOptions, MpcPlanner, PlantModel, ReachAid};
+use armkit::mpc::{
+    diagnose_run, ActuatorPrecision, MpcOptions, MpcPlanner, PlantModel, PriorityMode, ReachAid,
+};
 use armkit::study::Seed000Example;
 use clap::{Args, ValueEnum};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -84,6 +86,11 @@ pub struct MpcArgs {
     /// Increment weights R, one per joint (the joint priorities; default 1).
     #[arg(long, value_name = "R1,R2,...", conflicts_with = "example")]
     pub priorities: Option<String>,
+    /// How the priorities act: `weighted` (one cost, eq 20) or `strict`
+    /// (joints with equal R form a level, smallest R first; each level's QP
+    /// holds the levels above at their optimum).
+    #[arg(long, value_enum, default_value_t = PriorityArg::Weighted, conflicts_with = "example")]
+    pub priority_mode: PriorityArg,
     /// Velocity term W = FACTOR x R (damps self-motion; 0 = seed 000's eq 20 as printed).
     #[arg(
         long,
@@ -111,7 +118,7 @@ pub struct MpcArgs {
     /// not move them (0 = none).
     #[arg(long, default_value_t = 0.0, value_name = "M/S")]
     pub prismatic_deadband: f64,
-    /// Run seed 000's example(s) instead: 1, 2, 3, ex2-paper-weights, ex3-undamped or all.
+    /// Run seed 000's example(s) instead: 1, 2, 3, ex2-paper-weights, ex2-strict, ex3-undamped or all.
     /// Each runs its own start, horizon, T, weights and priorities: the
     /// flags that would change them are refused with it.
     #[arg(long, value_name = "ID", conflicts_with_all = ["robot", "robot_file", "urdf", "target", "start"])]
@@ -131,6 +138,24 @@ pub enum ReachArg {
     GoalPosture,
     /// Seed 000's plain planner.
     Off,
+}
+
+/// `--priority-mode` values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum PriorityArg {
+    /// The increment weights R in one cost (seed 000's eq 20).
+    Weighted,
+    /// Strict (lexicographic) priority by R, one QP per level.
+    Strict,
+}
+
+impl From<PriorityArg> for PriorityMode {
+    fn from(p: PriorityArg) -> Self {
+        match p {
+            PriorityArg::Weighted => PriorityMode::Weighted,
+            PriorityArg::Strict => PriorityMode::Strict,
+        }
+    }
 }
 
 /// `--solver` values.

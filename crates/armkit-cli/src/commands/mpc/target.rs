@@ -68,6 +68,7 @@ pub(crate) fn target_setup(args: &MpcArgs) -> CliResult<TargetSetup> {
         sample_time: args.dt,
         task_weights: task_weights(&args.weights, args.terminal_factor)?,
         increment_weights: priorities,
+        priority: args.priority_mode.into(),
         velocity_weights: VelocityWeights::Proportional(args.velocity_weight),
         ..MpcOptions::default()
     };

@@ -209,6 +209,7 @@ impl Seed000Example {
                     settling_detail,
                 ));
             }
+            Seed000Example::SmallMoveStrict => checks.push(converged),
             Seed000Example::SmallMovePaperWeights => {
                 checks.push(converged);
                 checks.push(ExampleCheck::new(

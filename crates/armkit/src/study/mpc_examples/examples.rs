@@ -6,7 +6,7 @@ use crate::math::{Matrix3, Pose, Vector3};
 use crate::model::Model;
 use crate::mpc::qp::QpSolverKind;
 use crate::mpc::scenario::{simulate, MpcRun, SimulationOptions};
-use crate::mpc::{MpcOptions, PlantModel, ReachAid, TaskWeights, VelocityWeights};
+use crate::mpc::{MpcOptions, PlantModel, PriorityMode, ReachAid, TaskWeights, VelocityWeights};
 use crate::robots::gantry9_flex;
 
 /// Our start for seed 000's examples: `[d1, d2, d3, q4..q9]` =
@@ -52,6 +52,12 @@ pub enum Seed000Example {
     /// Example 2 with the paper's priorities [`SEED000_PRIORITIES`], for
     /// comparison: the beam joints share the motion.
     SmallMovePaperWeights,
+    /// Example 2 with the paper's priorities read as a strict priority
+    /// ([`PriorityMode::Strict`]): the rotary joints first, then the beam
+    /// joints, then the rail, each only for what the levels above leave;
+    /// the paper's `R = 100/10/1` give the order (and weigh each level's
+    /// own increments), no weight is fitted.
+    SmallMoveStrict,
     /// Example 3 (Fig 9): the small move with every `R = 10`.
     EqualWeights,
     /// Example 3 with eq 20 as printed ([`VelocityWeights::Zero`]):
@@ -61,20 +67,23 @@ pub enum Seed000Example {
 
 impl Seed000Example {
     /// All of them, in the paper's order.
-    pub const ALL: [Seed000Example; 5] = [
+    pub const ALL: [Seed000Example; 6] = [
         Seed000Example::LargeMove,
         Seed000Example::SmallMove,
         Seed000Example::SmallMovePaperWeights,
+        Seed000Example::SmallMoveStrict,
         Seed000Example::EqualWeights,
         Seed000Example::EqualWeightsUndamped,
     ];
 
-    /// Short identifier: `ex1`, `ex2`, `ex2-paper-weights`, `ex3`, `ex3-undamped`.
+    /// Short identifier: `ex1`, `ex2`, `ex2-paper-weights`, `ex2-strict`,
+    /// `ex3`, `ex3-undamped`.
     pub fn id(self) -> &'static str {
         match self {
             Seed000Example::LargeMove => "ex1",
             Seed000Example::SmallMove => "ex2",
             Seed000Example::SmallMovePaperWeights => "ex2-paper-weights",
+            Seed000Example::SmallMoveStrict => "ex2-strict",
             Seed000Example::EqualWeights => "ex3",
             Seed000Example::EqualWeightsUndamped => "ex3-undamped",
         }
@@ -84,7 +93,9 @@ impl Seed000Example {
     pub fn number(self) -> usize {
         match self {
             Seed000Example::LargeMove => 1,
-            Seed000Example::SmallMove | Seed000Example::SmallMovePaperWeights => 2,
+            Seed000Example::SmallMove
+            | Seed000Example::SmallMovePaperWeights
+            | Seed000Example::SmallMoveStrict => 2,
             Seed000Example::EqualWeights | Seed000Example::EqualWeightsUndamped => 3,
         }
     }
@@ -107,7 +118,7 @@ impl Seed000Example {
                 Error::invalid_argument(
                     "example",
                     format!(
-                        "unknown example `{id}`; expected one of 1, 2, 3, ex1, ex2, ex2-paper-weights, ex3, ex3-undamped"
+                        "unknown example `{id}`; expected one of 1, 2, 3, ex1, ex2, ex2-paper-weights, ex2-strict, ex3, ex3-undamped"
                     ),
                 )
             })
@@ -120,6 +131,9 @@ impl Seed000Example {
             Seed000Example::SmallMove => "Example 2 (Fig 8): small move with joint priorities",
             Seed000Example::SmallMovePaperWeights => {
                 "Example 2 with the paper's R = 100/10/1 (comparison)"
+            }
+            Seed000Example::SmallMoveStrict => {
+                "Example 2 with the paper's priority order as a strict priority (rotary, beam, rail)"
             }
             Seed000Example::EqualWeights => "Example 3 (Fig 9): small move, every R = 10",
             Seed000Example::EqualWeightsUndamped => {
@@ -151,16 +165,17 @@ impl Seed000Example {
     /// The joint priorities `R` (eq 20).
     pub fn increment_weights(self) -> Vec<f64> {
         match self {
-            Seed000Example::LargeMove | Seed000Example::SmallMovePaperWeights => {
-                SEED000_PRIORITIES.to_vec()
-            }
+            Seed000Example::LargeMove
+            | Seed000Example::SmallMovePaperWeights
+            | Seed000Example::SmallMoveStrict => SEED000_PRIORITIES.to_vec(),
             Seed000Example::SmallMove => SEED000_SPREAD_PRIORITIES.to_vec(),
             Seed000Example::EqualWeights | Seed000Example::EqualWeightsUndamped => vec![10.0; 9],
         }
     }
 
     /// The parameters: `N = 10`, `M = 1`, `Q = 10` with terminal weight 200
-    /// on position (sec 5), [`Seed000Example::increment_weights`], the
+    /// on position (sec 5), [`Seed000Example::increment_weights`] (strict
+    /// for [`Seed000Example::SmallMoveStrict`], else weighted), the
     /// model's limits (eqs 23-24), `T` = [`crate::mpc::DEFAULT_SAMPLE_TIME`], and
     /// the default velocity term (none for the undamped comparison).
     pub fn options(self) -> MpcOptions {
@@ -169,6 +184,10 @@ impl Seed000Example {
             control_horizon: 1,
             task_weights: TaskWeights::position_only(10.0, 200.0),
             increment_weights: Some(self.increment_weights()),
+            priority: match self {
+                Seed000Example::SmallMoveStrict => PriorityMode::Strict,
+                _ => PriorityMode::Weighted,
+            },
             velocity_weights: match self {
                 Seed000Example::EqualWeightsUndamped => VelocityWeights::Zero,
                 _ => VelocityWeights::default(),
