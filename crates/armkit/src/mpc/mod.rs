@@ -80,6 +80,7 @@ pub mod active_set;
 mod clarabel_qp;
 mod constraints;
 pub mod lexicographic;
+mod mismatch;
 mod options;
 #[cfg(feature = "osqp")]
 mod osqp_qp;
@@ -94,6 +95,7 @@ mod solver;
 mod timing;
 
 pub use clarabel_qp::{ClarabelAccuracy, ClarabelQp};
+pub use mismatch::with_link_length_error;
 pub use options::{
     GoalPostureOptions, MpcOptions, PriorityMode, ReachAid, TaskWeights, VelocityWeights,
     MAX_SAMPLE_TIME,

@@ -73,3 +73,49 @@ fn strict_example_2_is_the_same_on_clarabel() {
     let weighted = Seed000Example::SmallMovePaperWeights.run().unwrap();
     assert!((active.travel(1) - weighted.travel(1)).abs() > 1e-2);
 }
+
+/// Seed 000 eq 14 and sec 4.5 under a model error: the rigid-beam planner
+/// on the bending plant and the planner with links 5 % too long both end
+/// within the tolerance of the target on the plant, though their own
+/// models put the hand millimetres to centimetres away.
+#[test]
+fn model_mismatch_leaves_no_static_error() {
+    use armkit::kinematics::{forward_kinematics, Data};
+    for (example, least_offset) in [
+        (Seed000Example::LargeMoveRigidModel, 1e-3),
+        (Seed000Example::LargeMoveLinkError, 1e-2),
+    ] {
+        let run = example.run().unwrap();
+        assert!(run.summary.converged, "{}", example.id());
+        assert!(run.summary.final_position_error <= 1e-4, "{}", example.id());
+        let q = &run.samples.last().unwrap().q;
+        let planner = example.planner_model().unwrap().unwrap();
+        let plant = Seed000Example::model().unwrap();
+        let hand = |m: &armkit::Model| {
+            forward_kinematics(m, &mut Data::new(m), q)
+                .unwrap()
+                .translation
+        };
+        let offset = (hand(&planner) - hand(&plant)).norm();
+        assert!(offset > least_offset, "{}: offset {offset}", example.id());
+    }
+    let error = armkit::mpc::scenario::simulate_on_plant(
+        armkit::mpc::MpcPlanner::new(&Seed000Example::model().unwrap(), Default::default())
+            .unwrap(),
+        Some(&armkit::robots::by_name("panda").unwrap()),
+        &Seed000Example::LargeMove.start(),
+        &Seed000Example::LargeMove.target(),
+        &SimulationOptions::default(),
+        |_| {},
+    )
+    .err()
+    .unwrap()
+    .to_string();
+    assert!(error.contains("plant model"), "{error}");
+    let urdf_like =
+        armkit::mpc::with_link_length_error(&Seed000Example::model().unwrap(), f64::NAN)
+            .err()
+            .unwrap()
+            .to_string();
+    assert!(urdf_like.contains("link_length_error"), "{urdf_like}");
+}
