@@ -3,7 +3,8 @@
 use armkit::mpc::qp::QpSolverKind;
 use armkit::mpc::scenario::{simulate, SimulationOptions};
 use armkit::mpc::{
-    ActuatorPrecision, MpcOptions, MpcPlanner as LibraryPlanner, PlantModel, ReachAid, TaskWeights,
+    ActuatorPrecision, MpcOptions, MpcPlanner as LibraryPlanner, PlantModel, PriorityMode,
+    ReachAid, TaskWeights,
 };
 use armkit::Error;
 use numpy::ndarray::Dim;
@@ -45,9 +46,12 @@ impl MpcPlanner {
     /// `"active-set"` (default, Clarabel as its fallback), `"clarabel"` or
     /// `"osqp"` (when built in); `reach`: the goal-posture aid (IK of the
     /// target pulls the predicted joints when progress stalls), on by
-    /// default, off for seed 000's planner as printed.
+    /// default, off for seed 000's planner as printed. `priority`:
+    /// `"weighted"` (the increment weights in one cost, eq 20) or
+    /// `"strict"` (joints of equal weight form a level, the smallest weight
+    /// first; one QP per level with the levels above held at their optimum).
     #[new]
-    #[pyo3(signature = (robot, horizon=10, control_horizon=1, sample_time=0.05, tracking=10.0, terminal=200.0, orientation=true, increment_weights=None, solver="active-set", reach=true))]
+    #[pyo3(signature = (robot, horizon=10, control_horizon=1, sample_time=0.05, tracking=10.0, terminal=200.0, orientation=true, increment_weights=None, solver="active-set", reach=true, priority="weighted"))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         robot: &Robot,
@@ -60,7 +64,19 @@ impl MpcPlanner {
         increment_weights: Option<Vec<f64>>,
         solver: &str,
         reach: bool,
+        priority: &str,
     ) -> PyResult<Self> {
+        let priority = match priority {
+            "weighted" => PriorityMode::Weighted,
+            "strict" => PriorityMode::Strict,
+            other => {
+                return Err(Error::invalid_argument(
+                    "priority",
+                    format!("unknown priority mode `{other}`; expected weighted or strict"),
+                ))
+                .or_raise()
+            }
+        };
         let solver = QpSolverKind::available()
             .iter()
             .copied()
@@ -86,6 +102,7 @@ impl MpcPlanner {
                 TaskWeights::position_only(tracking, terminal)
             },
             increment_weights,
+            priority,
             solver,
             reach: if reach {
                 ReachAid::default()

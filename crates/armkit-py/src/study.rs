@@ -18,8 +18,11 @@ use crate::errors::OrRaise;
 const STUDIES: &[&str] = &[
     "beam-table",
     "mpc-ex1",
+    "mpc-ex1-rigid-model",
+    "mpc-ex1-link-error",
     "mpc-ex2",
     "mpc-ex2-paper-weights",
+    "mpc-ex2-strict",
     "mpc-ex3",
     "mpc-ex3-undamped",
     "distribution",

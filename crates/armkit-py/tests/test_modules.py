@@ -163,6 +163,29 @@ def test_mpc_reaches_the_target_within_the_limits():
         planner.run(target, q0, rotary_deadband=-1.0)
 
 
+
+def test_mpc_strict_priority_moves_a_lower_level_only_for_what_remains():
+    # Seed 000 sec 4.4 read as a strict priority on the Panda: joints 1-4
+    # (weight 1) first, joints 5-7 (weight 10) only for what remains.
+    panda = armkit.Robot.builtin("panda")
+    q0 = np.array([0.0, -0.3, 0.0, -2.2, 0.0, 2.0, 0.8])
+    target = panda.fk(q0)
+    target[:3, 3] += [0.05, -0.05, 0.05]
+    weights = [1.0] * 4 + [10.0] * 3
+    strict = armkit.MpcPlanner(panda, orientation=False, increment_weights=weights, reach=False, priority="strict")
+    weighted = armkit.MpcPlanner(panda, orientation=False, increment_weights=weights, reach=False)
+    assert "strict priority" in strict.solver
+    strict_run = strict.run(target, q0)
+    weighted_run = weighted.run(target, q0)
+    assert strict_run["converged"] and strict_run["max_velocity_violation"] == 0.0
+    # The first step: the strict answer differs from the weighted one.
+    strict.set_target(target)
+    weighted.set_target(target)
+    assert np.abs(strict.step(q0)["velocity"] - weighted.step(q0)["velocity"]).max() > 1e-6
+    with pytest.raises(ValueError, match=re.escape("invalid argument `priority`: unknown priority mode `lexical`")):
+        armkit.MpcPlanner(panda, priority="lexical")
+    assert weighted_run["converged"]
+
 def test_beam_deflection_is_the_textbook_one():
     E, I, L, P = 200e9, 0.2**4 / 12, 10.0, 4000.0
     beam = armkit.Beam(L, E, I)

@@ -21,12 +21,24 @@ const SHIPPED: &[(&str, &str)] = &[
         include_str!("../../../../scenarios/seed000-mpc-ex1.toml"),
     ),
     (
+        "seed000-mpc-ex1-rigid-model.toml",
+        include_str!("../../../../scenarios/seed000-mpc-ex1-rigid-model.toml"),
+    ),
+    (
+        "seed000-mpc-ex1-link-error.toml",
+        include_str!("../../../../scenarios/seed000-mpc-ex1-link-error.toml"),
+    ),
+    (
         "seed000-mpc-ex2-paper-weights.toml",
         include_str!("../../../../scenarios/seed000-mpc-ex2-paper-weights.toml"),
     ),
     (
         "seed000-mpc-ex2.toml",
         include_str!("../../../../scenarios/seed000-mpc-ex2.toml"),
+    ),
+    (
+        "seed000-mpc-ex2-strict.toml",
+        include_str!("../../../../scenarios/seed000-mpc-ex2-strict.toml"),
     ),
     (
         "seed000-mpc-ex2-precision.toml",

@@ -128,7 +128,7 @@ fn needs_robot(
         "mpc" if !has_key("example") => {
             "[mpc] runs the MPC on your robot to `target`: add a [robot] table (`builtin`, \
              `file` or `urdf`), or give `example` to run one of seed 000's examples (ex1, ex2, \
-             ex3, ex2-paper-weights, ex3-undamped)"
+             ex3, ex1-rigid-model, ex1-link-error, ex2-paper-weights, ex2-strict, ex3-undamped)"
         }
         "continuous_path" => {
             "[continuous_path] plans a line for your robot: add a [robot] table (`builtin`, \

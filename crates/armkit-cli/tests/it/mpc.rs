@@ -102,7 +102,16 @@ fn seed000_examples_print_their_checks() {
     let ids: Vec<&str> = examples.iter().map(|e| e["id"].as_str().unwrap()).collect();
     assert_eq!(
         ids,
-        ["ex1", "ex2", "ex2-paper-weights", "ex3", "ex3-undamped"]
+        [
+            "ex1",
+            "ex1-rigid-model",
+            "ex1-link-error",
+            "ex2",
+            "ex2-paper-weights",
+            "ex2-strict",
+            "ex3",
+            "ex3-undamped"
+        ]
     );
     for e in examples {
         for check in e["checks"].as_array().unwrap() {
@@ -299,6 +308,7 @@ fn example_refuses_the_flags_it_would_ignore() {
         ("--weights", "pose"),
         ("--terminal-factor", "5"),
         ("--start", "2,0.89,0.76,1.57,0.5,0.5,0,0.5,0"),
+        ("--priority-mode", "strict"),
     ] {
         let output = armkit(&["mpc", "--example", "2", flag, value]);
         assert!(!output.status.success(), "{flag} accepted");
@@ -308,4 +318,120 @@ fn example_refuses_the_flags_it_would_ignore() {
             "{flag}: {err}"
         );
     }
+}
+
+/// `--priority-mode strict` on the user's robot: the rotary joints (R = 1)
+/// first, the prismatic ones (R = 10, 100) for what remains; the run
+/// reaches the target within the limits, and the solver says it is strict.
+#[test]
+fn strict_priority_runs_on_a_target() {
+    let run = |mode: &str| {
+        let output = armkit(&[
+            "mpc",
+            "--robot",
+            "gantry9",
+            "--target",
+            "2,1.8,4.5,0,0,0",
+            "--start",
+            "2,0.89,0.76,1.5708,0.5,0.5,0,0.5,0",
+            "--weights",
+            "position",
+            "--priorities",
+            "100,10,10,1,1,1,1,1,1",
+            "--reach",
+            "off",
+            "--priority-mode",
+            mode,
+            "--json",
+        ]);
+        assert!(output.status.success(), "{}", stderr(&output));
+        json(&output)
+    };
+    let strict = run("strict");
+    assert_eq!(strict["converged"], true);
+    assert_eq!(strict["solver"], "active-set (strict priority)");
+    assert_eq!(strict["max_velocity_violation"].as_f64().unwrap(), 0.0);
+    assert_eq!(run("weighted")["solver"], "active-set");
+    let bad = armkit(&[
+        "mpc",
+        "--robot",
+        "gantry9",
+        "--target",
+        "2,1.8,4.5,0,0,0",
+        "--priority-mode",
+        "lexical",
+    ]);
+    assert!(!bad.status.success());
+    assert!(stderr(&bad).contains("--priority-mode"), "{}", stderr(&bad));
+}
+
+/// Model mismatch on the user's robot: planned on gantry9 (rigid beam)
+/// while gantry9-flex moves, and planned with links 5 % too long; both
+/// reach the target on the plant within the tolerance. Bad values name
+/// the flag.
+#[test]
+fn a_planner_model_that_is_not_the_plant_still_reaches_the_target() {
+    let run = |extra: &[&str]| {
+        let mut args = vec![
+            "mpc",
+            "--robot",
+            "gantry9",
+            "--target",
+            "4,5.5,4.5,0,0,0",
+            "--start",
+            "2,0.89,0.76,1.5708,0.5,0.5,0,0.5,0",
+            "--weights",
+            "position",
+            "--reach",
+            "off",
+            "--json",
+        ];
+        args.extend_from_slice(extra);
+        armkit(&args)
+    };
+    for extra in [
+        &["--plant-robot", "gantry9-flex"][..],
+        &["--link-length-error", "0.05"][..],
+        &[
+            "--link-length-error",
+            "-0.05",
+            "--plant-robot",
+            "gantry9-flex",
+        ][..],
+    ] {
+        let output = run(extra);
+        assert!(output.status.success(), "{extra:?}: {}", stderr(&output));
+        let v = json(&output);
+        assert_eq!(v["converged"], true, "{extra:?}");
+        assert!(
+            v["final_position_error"].as_f64().unwrap() <= 1e-4,
+            "{extra:?}"
+        );
+    }
+    for (extra, message) in [
+        (
+            &["--plant-robot", "panda"][..],
+            "--plant-robot: panda has 7 joints",
+        ),
+        (
+            &["--link-length-error", "-1"][..],
+            "--link-length-error: must be finite and > -1",
+        ),
+        (&["--plant-robot", "nosuchbot"][..], "nosuchbot"),
+    ] {
+        let output = run(extra);
+        assert!(!output.status.success(), "{extra:?} accepted");
+        assert!(
+            stderr(&output).contains(message),
+            "{extra:?}: {}",
+            stderr(&output)
+        );
+    }
+    let output = armkit(&["mpc", "--example", "1", "--plant-robot", "gantry9"]);
+    assert!(!output.status.success());
+    assert!(
+        stderr(&output).contains("--plant-robot"),
+        "{}",
+        stderr(&output)
+    );
 }

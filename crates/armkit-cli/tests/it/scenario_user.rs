@@ -321,7 +321,7 @@ fn bad_scenario_input_names_the_key_at_its_line() {
         error("name = \"u\"\ntitle = \"t\"\n[mpc]\ntarget = \"0.4,0.2,0.5,3.14,0,0\"\n"),
         "user.toml: line 3, column 1: [mpc] runs the MPC on your robot to `target`: add a [robot] \
          table (`builtin`, `file` or `urdf`), or give `example` to run one of seed 000's examples \
-         (ex1, ex2, ex3, ex2-paper-weights, ex3-undamped)"
+         (ex1, ex2, ex3, ex1-rigid-model, ex1-link-error, ex2-paper-weights, ex2-strict, ex3-undamped)"
     );
     // `example` with the user's robot.
     assert_eq!(

@@ -331,6 +331,7 @@ class MpcPlanner:
         tracking: float = 10.0, terminal: float = 200.0, orientation: bool = True,
         increment_weights: Optional[Sequence[float]] = None,
         solver: Literal["active-set", "clarabel", "osqp"] = "active-set", reach: bool = True,
+        priority: Literal["weighted", "strict"] = "weighted",
     ) -> MpcPlanner:
         """A planner for ``robot``: horizon N, control horizon M, sample time
         (s), task weights ``tracking`` (samples 1..N-1) and ``terminal`` (N)
@@ -338,7 +339,10 @@ class MpcPlanner:
         weight per joint (seed 000's priorities: larger moves less). The
         robot's velocity and position limits are the constraints. ``solver``:
         the QP backend ("osqp" only when built in); ``reach``: the
-        goal-posture aid (off: seed 000's planner as printed)."""
+        goal-posture aid (off: seed 000's planner as printed); ``priority``:
+        "weighted" (the increment weights in one cost) or "strict" (joints
+        of equal weight form a level, smallest weight first, one QP per
+        level with the levels above held at their optimum)."""
     @property
     def solver(self) -> str:
         """The QP backend's name."""

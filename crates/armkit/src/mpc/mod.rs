@@ -28,7 +28,9 @@
 //! own ([`TaskWeights`]): position only, full pose, or any subset.
 //!
 //! The QP is solved by the dense active-set solver of [`active_set`]
-//! (Clarabel as its fallback and reference, OSQP optional; [`qp`]). The
+//! (Clarabel as its fallback and reference, OSQP optional; [`qp`]); with
+//! [`PriorityMode::Strict`] the joint priorities are strict, one QP per
+//! level ([`lexicographic`]). The
 //! linearised task cost can hold the arm in a local minimum (a joint limit
 //! or a singularity in the way): [`ReachAid::GoalPosture`] (the default)
 //! adds a pull toward an IK goal posture ([`GoalPostureOptions`]);
@@ -77,6 +79,8 @@
 pub mod active_set;
 mod clarabel_qp;
 mod constraints;
+pub mod lexicographic;
+mod mismatch;
 mod options;
 #[cfg(feature = "osqp")]
 mod osqp_qp;
@@ -91,8 +95,10 @@ mod solver;
 mod timing;
 
 pub use clarabel_qp::{ClarabelAccuracy, ClarabelQp};
+pub use mismatch::with_link_length_error;
 pub use options::{
-    GoalPostureOptions, MpcOptions, ReachAid, TaskWeights, VelocityWeights, MAX_SAMPLE_TIME,
+    GoalPostureOptions, MpcOptions, PriorityMode, ReachAid, TaskWeights, VelocityWeights,
+    MAX_SAMPLE_TIME,
 };
 #[cfg(feature = "osqp")]
 pub use osqp_qp::OsqpQp;

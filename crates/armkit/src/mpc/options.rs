@@ -104,6 +104,10 @@ pub struct MpcOptions {
     /// Increment weights `R`, one per joint (> 0): the joint priorities of
     /// sec 4.4 (a larger weight, a lower priority). `None`: 1 for every joint.
     pub increment_weights: Option<Vec<f64>>,
+    /// How the increment weights set the joints' priorities: weighted in
+    /// one cost (eq 20, the default) or strict, level by level
+    /// ([`PriorityMode`]).
+    pub priority: PriorityMode,
     /// Velocity weights `W`: an extra cost `sum_{j<N} u(k+j)' W u(k+j)` on
     /// the joint velocities over the horizon (not in seed 000's eq 20).
     /// Default [`VelocityWeights::Proportional`]`(0.01)`; see
@@ -135,6 +139,7 @@ impl Default for MpcOptions {
             sample_time: DEFAULT_SAMPLE_TIME,
             task_weights: TaskWeights::default(),
             increment_weights: None,
+            priority: PriorityMode::default(),
             velocity_weights: VelocityWeights::default(),
             joint_limits: None,
             recovery_speed: 0.5,
@@ -216,6 +221,57 @@ fn check_positive(name: &str, values: &[f64]) -> Result<()> {
             format!("joint {j}: must be finite and > 0, got {v}"),
         )),
         None => Ok(()),
+    }
+}
+
+/// How the joint priorities of sec 4.4 act.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum PriorityMode {
+    /// One QP: the increment weights `R` weigh every joint's increments in
+    /// eq 20's cost, so a low-priority joint still takes a share of a motion
+    /// the others could make alone (a share scaled by the weights' ratio).
+    #[default]
+    Weighted,
+    /// Strict (lexicographic) priority: the joints with equal `R` form a
+    /// level, the smallest `R` the highest; the levels are solved one after
+    /// another, each over its own joints' increments with the higher levels'
+    /// optimum held fixed (equality constraints) and the lower levels' at
+    /// zero, each minimising the whole cost of eq 20 (the
+    /// [`super::lexicographic`] QPs). A lower level moves only for what the
+    /// higher ones leave of the cost.
+    Strict,
+}
+
+impl PriorityMode {
+    /// `weighted` or `strict`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            PriorityMode::Weighted => "weighted",
+            PriorityMode::Strict => "strict",
+        }
+    }
+
+    /// The priority level of each joint for increment weights `r`: 0 for
+    /// the smallest weight, one level per distinct value (all 0 when
+    /// [`PriorityMode::Weighted`]).
+    pub fn joint_levels(self, r: &[f64]) -> Vec<usize> {
+        match self {
+            PriorityMode::Weighted => vec![0; r.len()],
+            PriorityMode::Strict => {
+                let mut distinct: Vec<f64> = r.to_vec();
+                distinct.sort_by(f64::total_cmp);
+                distinct.dedup();
+                r.iter()
+                    .map(|w| distinct.partition_point(|d| d < w))
+                    .collect()
+            }
+        }
+    }
+}
+
+impl std::fmt::Display for PriorityMode {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
     }
 }
 

@@ -6,7 +6,8 @@ use crate::math::{Pose, Rotation3, Vector3};
 use crate::model::Model;
 
 use super::constraints::JointBounds;
-use super::options::{sized_option, MpcOptions, ReachAid};
+use super::lexicographic::LexicographicQp;
+use super::options::{sized_option, MpcOptions, PriorityMode, ReachAid};
 use super::prediction::{weighted_gram, Condensation};
 use super::qp::{upper_triangle_len, QpOutcome, QpProblem, QpSolver, QpStatus};
 use super::reach::{GoalPosture, GoalSearch};
@@ -126,7 +127,8 @@ pub struct MpcPlanner {
 }
 
 impl MpcPlanner {
-    /// Builds the planner and its QP (with [`MpcOptions::solver`]) for `model`.
+    /// Builds the planner and its QP (with [`MpcOptions::solver`]; one QP
+    /// per priority level with [`PriorityMode::Strict`]) for `model`.
     /// The target starts at the neutral configuration's pose; set it with
     /// [`MpcPlanner::set_target`].
     ///
@@ -134,12 +136,44 @@ impl MpcPlanner {
     /// contradictory limits, or the QP backend failing to set up.
     pub fn new(model: &Model, options: MpcOptions) -> Result<Self> {
         let kind = options.solver;
-        Self::with_solver(model, options, |problem| kind.build(problem))
+        let dof = model.dof();
+        let control_horizon = options.control_horizon;
+        let strict_levels = match options.priority {
+            PriorityMode::Weighted => None,
+            PriorityMode::Strict => {
+                let r = options
+                    .increment_weights
+                    .clone()
+                    .unwrap_or_else(|| vec![1.0; dof]);
+                Some(PriorityMode::Strict.joint_levels(&r))
+            }
+        };
+        Self::with_solver(model, options, |problem| match &strict_levels {
+            None => kind.build(problem),
+            Some(joint_levels) => {
+                // Variable `l dof + j` is joint j's increment at control step l.
+                let count = joint_levels.iter().max().map_or(0, |m| m + 1);
+                let levels: Vec<Vec<usize>> = (0..count)
+                    .map(|level| {
+                        (0..control_horizon)
+                            .flat_map(|l| {
+                                joint_levels
+                                    .iter()
+                                    .enumerate()
+                                    .filter(move |&(_, &jl)| jl == level)
+                                    .map(move |(j, _)| l * dof + j)
+                            })
+                            .collect()
+                    })
+                    .collect();
+                Ok(Box::new(LexicographicQp::new(problem, &levels, kind)?) as Box<dyn QpSolver>)
+            }
+        })
     }
 
     /// As [`MpcPlanner::new`], with a QP backend made by `build` from the
-    /// problem's structure (to plug in another solver). `options.solver` is
-    /// ignored.
+    /// problem's structure (to plug in another solver). `options.solver` and
+    /// `options.priority` are ignored (the backend is `build`'s).
     pub fn with_solver(
         model: &Model,
         options: MpcOptions,

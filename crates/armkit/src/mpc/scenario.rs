@@ -304,7 +304,29 @@ pub fn simulate(
 /// statistics afterwards), calling `progress(step)` after each step (for
 /// progress bars).
 pub fn simulate_with(
+    planner: impl std::borrow::BorrowMut<MpcPlanner>,
+    start: &[f64],
+    target: &Pose,
+    simulation: &SimulationOptions,
+    progress: impl FnMut(usize),
+) -> Result<MpcRun> {
+    simulate_on_plant(planner, None, start, target, simulation, progress)
+}
+
+/// As [`simulate_with`], the hand measured on `plant_model` when given: the
+/// planner predicts with its own model while the hand really is where
+/// `plant_model`'s forward kinematics puts it at the joints' positions
+/// (model mismatch: a rigid-beam planner on a bending gantry, a link-length
+/// error, [`super::with_link_length_error`]). Every step starts its
+/// prediction from that measured pose ([`MpcPlanner::step_with_measured_pose`],
+/// the feedback correction of seed 000 sec 4.5); the errors recorded are
+/// the plant's. `None`: the planner's model is the plant's ([`simulate_with`]).
+///
+/// Errors: those of [`simulate_with`], and a plant model with another
+/// number of joints.
+pub fn simulate_on_plant(
     mut planner: impl std::borrow::BorrowMut<MpcPlanner>,
+    plant_model: Option<&Model>,
     start: &[f64],
     target: &Pose,
     simulation: &SimulationOptions,
@@ -314,6 +336,17 @@ pub fn simulate_with(
     let planner = planner.borrow_mut();
     let model = planner.model().clone();
     model.check_joint_positions(start)?;
+    if let Some(plant) = plant_model {
+        if plant.dof() != model.dof() {
+            return Err(Error::DimensionMismatch {
+                what: "plant model (joints)",
+                expected: model.dof(),
+                got: plant.dof(),
+            });
+        }
+    }
+    // The hand's true kinematics.
+    let kinematics: &Model = plant_model.unwrap_or(&model);
     planner.set_target(target)?;
     let t = planner.options().sample_time;
     let tracks_orientation = planner.options().task_weights.tracks_orientation();
@@ -322,7 +355,7 @@ pub fn simulate_with(
         let (l, u) = planner.position_limits();
         (l.to_vec(), u.to_vec())
     };
-    let mut data = crate::kinematics::Data::new(&model);
+    let mut data = crate::kinematics::Data::new(kinematics);
     let kinds: Vec<JointKind> = model.joints().iter().map(|j| j.kind).collect();
     let mut plant = Plant::new(simulation.plant, &kinds, start)?;
     let mut q = start.to_vec();
@@ -340,8 +373,11 @@ pub fn simulate_with(
     };
     let mut hold_left: Option<usize> = None;
     for step in 0..simulation.max_steps + simulation.hold_steps {
-        let pose = *crate::kinematics::forward_kinematics(&model, &mut data, &q)?;
-        let report = planner.step(&q)?;
+        let pose = *crate::kinematics::forward_kinematics(kinematics, &mut data, &q)?;
+        let report = match plant_model {
+            None => planner.step(&q)?,
+            Some(_) => planner.step_with_measured_pose(&q, &pose)?,
+        };
         let (roll, pitch, yaw) = pose.rpy();
         samples.push(Sample {
             time: step as f64 * t,
@@ -395,7 +431,7 @@ pub fn simulate_with(
         }
     }
     // The final state, at rest.
-    let pose = *crate::kinematics::forward_kinematics(&model, &mut data, &q)?;
+    let pose = *crate::kinematics::forward_kinematics(kinematics, &mut data, &q)?;
     let (roll, pitch, yaw) = pose.rpy();
     let position_error = (pose.translation - target.translation).norm();
     let orientation_error =

@@ -19,6 +19,7 @@ mod kinematics;
 mod layers;
 mod mimic;
 mod mpc;
+mod mpc_priority;
 mod mpc_qp;
 mod mpc_random;
 mod no_allocation;

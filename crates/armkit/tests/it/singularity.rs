@@ -844,7 +844,9 @@ fn the_study_calibrates_sweeps_the_miss_and_states_the_paper_claims() {
             .unwrap_or_else(|| panic!("no finding on {claim}: {findings:#?}"))
     };
     let fig5 = verdict("Fig 5");
-    let first = outcome.plain_doubles_avoidance_at().unwrap();
+    let (baseline, first) = outcome.plain_jumps_at();
+    let first = first.unwrap();
+    assert!(baseline > 0.0);
     assert!(
         fig5.measured.contains(&format!("{first:.2} s")),
         "{}",

@@ -3,8 +3,8 @@
 //!
 //! * `armkit mpc --robot gantry9 --target "x,y,z,roll,pitch,yaw" [--start Q]
 //!   [--horizon N] [--control-horizon M] [--dt T] [--weights position|pose|w1,..,w6]
-//!   [--priorities R1,..,Rn] [--out DIR] [--json]`
-//! * `armkit mpc --example 1|2|3|ex2-paper-weights|ex3-undamped|all [--out DIR] [--json]`:
+//!   [--priorities R1,..,Rn] [--priority-mode weighted|strict] [--out DIR] [--json]`
+//! * `armkit mpc --example 1|2|3|ex1-rigid-model|ex1-link-error|ex2-paper-weights|ex2-strict|ex3-undamped|all [--out DIR] [--json]`:
 //!   seed 000's examples on the flexible gantry, with their checks and the
 //!   paper's claims as findings.
 //!
@@ -23,20 +23,22 @@
 //! limit) is printed on stderr. `--json` adds the per-step QP solve times
 //! (median, p99, max, us) and the solver used.
 
+mod args;
 mod report;
 mod target;
 mod target_report;
 
 use std::path::PathBuf;
 
-use armkit::mpc::qp::QpSolverKind;
-use armkit::mpc::scenario::{simulate_with, MpcRun, SimulationOptions};
+use armkit::mpc::scenario::{simulate_on_plant, MpcRun, SimulationOptions};
 use armkit::mpc::{diagnose_run, ActuatorPrecision, MpcOptions, MpcPlanner, PlantModel, ReachAid};
 use armkit::study::Seed000Example;
-use clap::{Args, ValueEnum};
+use armkit::Model;
+use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use crate::common::{print_json, CliError, CliResult, Outcome, RobotArgs};
+pub use args::{PriorityArg, ReachArg, SolverArg};
 pub use report::example_report;
 use report::{
     files_json, print_files, print_summary, print_tolerances, summary_json, tolerances_json,
@@ -87,6 +89,11 @@ pub struct MpcArgs {
     /// Increment weights R, one per joint (the joint priorities; default 1).
     #[arg(long, value_name = "R1,R2,...", conflicts_with = "example")]
     pub priorities: Option<String>,
+    /// How the priorities act: `weighted` (one cost, eq 20) or `strict`
+    /// (joints with equal R form a level, smallest R first; each level's QP
+    /// holds the levels above at their optimum).
+    #[arg(long, value_enum, default_value_t = PriorityArg::Weighted, conflicts_with = "example")]
+    pub priority_mode: PriorityArg,
     /// Velocity term W = FACTOR x R (damps self-motion; 0 = seed 000's eq 20 as printed).
     #[arg(
         long,
@@ -103,6 +110,21 @@ pub struct MpcArgs {
     /// Default: goal-posture for --target runs; seed 000's examples run off.
     #[arg(long, value_enum)]
     pub reach: Option<ReachArg>,
+    /// Plan with the robot's model but move a built-in robot of the same
+    /// joints (model mismatch, e.g. `--robot gantry9 --plant-robot
+    /// gantry9-flex`: the planner ignores the beam's deflection).
+    #[arg(long, value_name = "NAME", conflicts_with = "example")]
+    pub plant_robot: Option<String>,
+    /// Plan with every DH length of the robot (and its tool offset) scaled
+    /// by 1 + FRACTION while the plant keeps the true lengths (model
+    /// mismatch; 0.05 = 5 % too long).
+    #[arg(
+        long,
+        value_name = "FRACTION",
+        allow_hyphen_values = true,
+        conflicts_with = "example"
+    )]
+    pub link_length_error: Option<f64>,
     /// Most planner steps.
     #[arg(long, default_value_t = 2000)]
     pub max_steps: usize,
@@ -125,7 +147,8 @@ pub struct MpcArgs {
     /// not move them (0 = none).
     #[arg(long, default_value_t = 0.0, value_name = "M/S")]
     pub prismatic_deadband: f64,
-    /// Run seed 000's example(s) instead: 1, 2, 3, ex2-paper-weights, ex3-undamped or all.
+    /// Run seed 000's example(s) instead: 1, 2, 3, ex1-rigid-model, ex1-link-error, ex2-paper-weights, ex2-strict,
+    /// ex3-undamped or all.
     /// Each runs its own start, horizon, T, weights and priorities: the
     /// flags that would change them are refused with it.
     #[arg(long, value_name = "ID", conflicts_with_all = ["robot", "robot_file", "urdf", "target", "start"])]
@@ -136,36 +159,6 @@ pub struct MpcArgs {
     /// Print a JSON summary.
     #[arg(long)]
     pub json: bool,
-}
-
-/// `--reach` values.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum ReachArg {
-    /// The goal posture (IK with restarts), pulled toward in the cost.
-    GoalPosture,
-    /// Seed 000's plain planner.
-    Off,
-}
-
-/// `--solver` values.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum SolverArg {
-    /// The dense active-set solver (Goldfarb-Idnani), Clarabel as fallback.
-    ActiveSet,
-    /// Clarabel (interior point, pure Rust).
-    Clarabel,
-    /// OSQP (ADMM; needs armkit's `osqp` feature).
-    Osqp,
-}
-
-impl From<SolverArg> for QpSolverKind {
-    fn from(s: SolverArg) -> Self {
-        match s {
-            SolverArg::ActiveSet => QpSolverKind::ActiveSet,
-            SolverArg::Clarabel => QpSolverKind::Clarabel,
-            SolverArg::Osqp => QpSolverKind::Osqp,
-        }
-    }
 }
 
 impl MpcArgs {
@@ -231,9 +224,17 @@ fn run_target(args: &MpcArgs) -> CliResult<Outcome> {
         target,
         start,
         mut planner,
+        plant_model,
         simulation,
     } = target_setup(args)?;
-    let run = run_with_progress(&mut planner, &start, &target, &simulation, model.name())?;
+    let run = run_with_progress(
+        &mut planner,
+        plant_model.as_ref(),
+        &start,
+        &target,
+        &simulation,
+        model.name(),
+    )?;
     let final_q = run.samples.last().map(|s| s.q.clone()).unwrap_or_default();
     let status = diagnose_run(&planner, &final_q, run.summary.converged)?;
     let files = match &args.out {
@@ -288,10 +289,12 @@ fn run_examples(args: &MpcArgs, id: &str) -> CliResult<Outcome> {
     for example in examples {
         let mut options = example.options();
         args.apply(&mut options);
-        let mut planner = MpcPlanner::new(&model, options)?;
+        let planner_model = example.planner_model()?;
+        let mut planner = MpcPlanner::new(planner_model.as_ref().unwrap_or(&model), options)?;
         let simulation = args.example_simulation(example)?;
         let run = run_with_progress(
             &mut planner,
+            planner_model.as_ref().map(|_| &model),
             &example.start(),
             &example.target(),
             &simulation,
@@ -359,6 +362,7 @@ fn run_examples(args: &MpcArgs, id: &str) -> CliResult<Outcome> {
 
 fn run_with_progress(
     planner: &mut MpcPlanner,
+    plant_model: Option<&Model>,
     start: &[f64],
     target: &armkit::math::Pose,
     simulation: &SimulationOptions,
@@ -374,7 +378,7 @@ fn run_with_progress(
             .progress_chars("=> "),
     );
     progress.set_prefix(label.to_string());
-    let run = simulate_with(planner, start, target, simulation, |step| {
+    let run = simulate_on_plant(planner, plant_model, start, target, simulation, |step| {
         if step % 50 == 0 {
             progress.set_position(step as u64);
         }

@@ -3,7 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
-use armkit::mpc::scenario::{simulate_with, MpcRun, SimulationOptions};
+use armkit::mpc::scenario::{simulate_on_plant, MpcRun, SimulationOptions};
 use armkit::mpc::{MpcPlanner, PlantModel};
 use armkit::study::Seed000Example;
 
@@ -114,7 +114,7 @@ pub(super) fn figures(run: &MpcRun, title: &str) -> Vec<(&'static str, Figure)> 
 }
 
 /// One of seed 000's examples as a report (a scenario's `[mpc]` table with
-/// `example = "ex1"`, `"ex2"`, `"ex3"`, `"ex2-paper-weights"` or
+/// `example = "ex1"`, `"ex2"`, `"ex3"`, `"ex2-paper-weights"`, `"ex2-strict"` or
 /// `"ex3-undamped"`, and optionally `prismatic_resolution = 0.001`): what
 /// armkit promises as checks, the paper's claims as findings, Figs 7-9 as
 /// figures, the gantry moving.
@@ -122,7 +122,7 @@ pub fn example_report(args: &MpcArgs) -> CliResult<Report> {
     let id = args.example.as_deref().ok_or_else(|| {
         CliError(
             "[mpc] in a scenario runs one of seed 000's examples: give example = \"ex1\" \
-             (or ex2, ex3, ex2-paper-weights, ex3-undamped)"
+             (or ex2, ex3, ex1-rigid-model, ex1-link-error, ex2-paper-weights, ex2-strict, ex3-undamped)"
                 .into(),
         )
     })?;
@@ -130,10 +130,12 @@ pub fn example_report(args: &MpcArgs) -> CliResult<Report> {
     let model = Seed000Example::model()?;
     let mut options = example.options();
     args.apply(&mut options);
-    let planner = MpcPlanner::new(&model, options)?;
+    let planner_model = example.planner_model()?;
+    let planner = MpcPlanner::new(planner_model.as_ref().unwrap_or(&model), options)?;
     let solver = planner.solver_name();
-    let run = simulate_with(
+    let run = simulate_on_plant(
         planner,
+        planner_model.as_ref().map(|_| &model),
         &example.start(),
         &example.target(),
         &args.example_simulation(example)?,

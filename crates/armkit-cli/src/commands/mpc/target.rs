@@ -38,6 +38,9 @@ pub(crate) struct TargetSetup {
     pub target: armkit::math::Pose,
     pub start: Vec<f64>,
     pub planner: MpcPlanner,
+    /// The robot the run moves when it is not the planner's model
+    /// (`--plant-robot`, or the true robot under `--link-length-error`).
+    pub plant_model: Option<armkit::Model>,
     pub simulation: SimulationOptions,
 }
 
@@ -68,6 +71,7 @@ pub(crate) fn target_setup(args: &MpcArgs) -> CliResult<TargetSetup> {
         sample_time: args.dt,
         task_weights: task_weights(&args.weights, args.terminal_factor)?,
         increment_weights: priorities,
+        priority: args.priority_mode.into(),
         velocity_weights: VelocityWeights::Proportional(args.velocity_weight),
         ..MpcOptions::default()
     };
@@ -77,12 +81,14 @@ pub(crate) fn target_setup(args: &MpcArgs) -> CliResult<TargetSetup> {
         plant: args.plant()?,
         ..SimulationOptions::default()
     })?;
-    let planner = MpcPlanner::new(&model, options)?;
+    let (planner_model, plant_model) = mismatch(args, &model)?;
+    let planner = MpcPlanner::new(planner_model.as_ref().unwrap_or(&model), options)?;
     Ok(TargetSetup {
         model,
         target,
         start,
         planner,
+        plant_model,
         simulation,
     })
 }
@@ -122,4 +128,37 @@ impl MpcArgs {
         }
         Ok(simulation)
     }
+}
+
+/// The planner's model when it is not the robot's (`--link-length-error`)
+/// and the plant's when it is not the planner's (`--plant-robot`, or the
+/// true robot under a link-length error).
+fn mismatch(
+    args: &MpcArgs,
+    model: &armkit::Model,
+) -> CliResult<(Option<armkit::Model>, Option<armkit::Model>)> {
+    let planner_model = match args.link_length_error {
+        Some(e) if !(e.is_finite() && e > -1.0) => {
+            return Err(CliError(format!(
+                "--link-length-error: must be finite and > -1, got {e}"
+            )))
+        }
+        Some(e) => Some(armkit::mpc::with_link_length_error(model, e)?),
+        None => None,
+    };
+    let plant_model = match &args.plant_robot {
+        Some(name) => {
+            let plant = armkit::robots::by_name(name)?;
+            if plant.dof() != model.dof() {
+                return Err(CliError(format!(
+                    "--plant-robot: {name} has {} joints, the planner's robot {}",
+                    plant.dof(),
+                    model.dof()
+                )));
+            }
+            Some(plant)
+        }
+        None => planner_model.as_ref().map(|_| model.clone()),
+    };
+    Ok((planner_model, plant_model))
 }

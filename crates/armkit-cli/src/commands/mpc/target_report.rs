@@ -3,7 +3,7 @@
 
 use armkit::kinematics::{forward_kinematics, Data};
 use armkit::mpc::diagnose_run;
-use armkit::mpc::scenario::{simulate_with, MpcRun};
+use armkit::mpc::scenario::{simulate_on_plant, MpcRun};
 use armkit::Model;
 
 use super::report::figures;
@@ -23,10 +23,18 @@ pub fn target_report(args: &MpcArgs) -> CliResult<Report> {
         target,
         start,
         mut planner,
+        plant_model,
         simulation,
     } = target_setup(args)?;
     let solver = planner.solver_name();
-    let run = simulate_with(&mut planner, &start, &target, &simulation, |_| {})?;
+    let run = simulate_on_plant(
+        &mut planner,
+        plant_model.as_ref(),
+        &start,
+        &target,
+        &simulation,
+        |_| {},
+    )?;
     let final_q = run.samples.last().map(|s| s.q.clone()).unwrap_or_default();
     let status = diagnose_run(&planner, &final_q, run.summary.converged)?;
     let summary = &run.summary;

@@ -209,6 +209,9 @@ impl Seed000Example {
                     settling_detail,
                 ));
             }
+            Seed000Example::SmallMoveStrict
+            | Seed000Example::LargeMoveRigidModel
+            | Seed000Example::LargeMoveLinkError => checks.push(converged),
             Seed000Example::SmallMovePaperWeights => {
                 checks.push(converged);
                 checks.push(ExampleCheck::new(

@@ -43,7 +43,7 @@
 use super::{Check, Series, StudyReport};
 use crate::error::Result;
 use crate::mpc::qp::QpSolverKind;
-use crate::mpc::scenario::{simulate, SimulationOptions};
+use crate::mpc::scenario::SimulationOptions;
 use crate::mpc::PlantModel;
 
 mod checks;
@@ -91,16 +91,12 @@ impl MpcExampleStudy {
 
     /// Runs the example.
     pub fn run(&self) -> Result<StudyReport> {
-        let model = Seed000Example::model()?;
         let mut options = self.example.options();
         if let Some(solver) = self.solver {
             options.solver = solver;
         }
-        let run = simulate(
-            &model,
+        let run = self.example.simulate(
             options,
-            &self.example.start(),
-            &self.example.target(),
             &SimulationOptions {
                 plant: self.plant,
                 ..self.example.simulation()
