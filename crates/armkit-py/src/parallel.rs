@@ -38,11 +38,6 @@ impl<'a, T> RowsMut<'a, T> {
         RowsMut { data, width }
     }
 
-    /// The whole block, row after row.
-    pub fn into_slice(self) -> &'a mut [T] {
-        self.data
-    }
-
     /// Row `i` of this block (0-based within the block).
     pub fn row(&mut self, i: usize) -> &mut [T] {
         &mut self.data[i * self.width..(i + 1) * self.width]
@@ -95,47 +90,26 @@ where
     W: Fn() -> S + Sync,
     F: Fn(&mut S, usize, usize, &mut O) -> armkit::Result<()> + Sync,
 {
-    for_each_chunk(
-        rows,
-        threads,
-        min_rows_per_thread,
-        output,
-        |start, len, output| run_chunk(start, len, output, &workspace, &body),
-    )
-}
-
-/// Runs `chunk(start, len, output_chunk)` once per thread, over contiguous
-/// chunks of `0..rows` (as [`for_each_row`] splits them), for a kernel that
-/// takes a whole chunk at once (the batched kinematics). Returns the error
-/// of the first failing chunk, in row order.
-pub fn for_each_chunk<O, F>(
-    rows: usize,
-    threads: usize,
-    min_rows_per_thread: usize,
-    output: O,
-    chunk: F,
-) -> Result<(), RowError>
-where
-    O: Output,
-    F: Fn(usize, usize, O) -> Result<(), RowError> + Sync,
-{
     let threads = threads
         .min(rows.div_ceil(min_rows_per_thread.max(1)))
         .max(1);
     if threads == 1 {
-        return chunk(0, rows, output);
+        return run_chunk(0, rows, output, &workspace, &body);
     }
-    let size = rows.div_ceil(threads);
+    let chunk = rows.div_ceil(threads);
     std::thread::scope(|scope| {
         let mut handles = Vec::with_capacity(threads);
         let mut rest = output;
         let mut start = 0;
         while start < rows {
-            let len = size.min(rows - start);
+            let len = chunk.min(rows - start);
             let (head, tail) = rest.split_at(len);
             rest = tail;
-            let chunk = &chunk;
-            handles.push((start, scope.spawn(move || chunk(start, len, head))));
+            let (workspace, body) = (&workspace, &body);
+            handles.push((
+                start,
+                scope.spawn(move || run_chunk(start, len, head, workspace, body)),
+            ));
             start += len;
         }
         // Chunks are in row order: the first chunk with an error has the

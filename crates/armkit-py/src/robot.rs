@@ -5,10 +5,7 @@ use std::path::PathBuf;
 use std::sync::Mutex;
 
 use armkit::dynamics::DynamicsData;
-use armkit::kinematics::{
-    forward_kinematics, forward_kinematics_batch, jacobian, jacobian_batch, BatchData, Data,
-    JacobianFrame,
-};
+use armkit::kinematics::{forward_kinematics, jacobian, Data, JacobianFrame};
 use armkit::math::Vector3;
 use armkit::Model;
 use numpy::ndarray::Dim;
@@ -22,7 +19,7 @@ use crate::arrays::{
 };
 use crate::errors::{load_error, row_error, OrRaise};
 use crate::ik::{IkArguments, IkEngine, IkResult};
-use crate::parallel::{for_each_chunk, for_each_row, thread_count, RowError, RowsMut};
+use crate::parallel::{for_each_row, thread_count, RowsMut};
 use armkit::ik::IkStatus;
 use numpy::{PyArray2, PyArray3};
 use pyo3::exceptions::PyValueError;
@@ -129,54 +126,6 @@ impl Robot {
             return Err(shape_error(what, &format!("(N, {dof})"), shape));
         }
         Ok(shape[0])
-    }
-
-    /// Evaluates a batched kernel (`kinematics::forward_kinematics_batch`,
-    /// `jacobian_batch`: `kernel(model, workspace, q_rows, out_rows)`) over
-    /// the rows of a (N, dof) array, one contiguous chunk of rows per
-    /// thread, into a new array of shape `(N, *item_shape)`, with the GIL
-    /// released. Where the kernel refuses a chunk (a non-finite value, an
-    /// overflow), the batch is evaluated again row by row with `per_row`, so
-    /// that the error names the row as the single calls do.
-    fn batched_kernel<'py>(
-        &self,
-        array: &Bound<'py, PyArrayDyn<f64>>,
-        item_shape: &[usize],
-        threads: Option<i64>,
-        kernel: impl Fn(&Model, &mut BatchData, &[f64], &mut [f64]) -> armkit::Result<()> + Sync,
-        per_row: impl Fn(&Model, &mut Data, &[f64], &mut [f64]) -> armkit::Result<()> + Sync,
-    ) -> PyResult<Bound<'py, PyAny>> {
-        let py = array.py();
-        let rows = self.check_batch_width(array, "q")?;
-        let thread_limit = thread_count(threads)?;
-        let input = RowMajor::new(array)?;
-        let q = input.as_slice();
-        let dof = self.model.dof();
-        let width: usize = item_shape.iter().product();
-        let mut dims = vec![rows];
-        dims.extend_from_slice(item_shape);
-        let model = &self.model;
-        let result = new_array(py, numpy::ndarray::IxDyn(&dims), |out| {
-            py.detach(|| {
-                for_each_chunk(
-                    rows,
-                    thread_limit,
-                    KINEMATICS_ROWS_PER_THREAD,
-                    RowsMut::new(out, width),
-                    |start, len, out: RowsMut<f64>| {
-                        let mut workspace = BatchData::new(model);
-                        let q = &q[start * dof..(start + len) * dof];
-                        kernel(model, &mut workspace, q, out.into_slice())
-                            .map_err(|error| RowError { row: start, error })
-                    },
-                )
-            })
-            .map_err(|e| row_error("q", e.row, &e.error))
-        });
-        match result {
-            Ok(out) => Ok(out.into_any()),
-            Err(_) => self.batched(array, item_shape, threads, per_row),
-        }
     }
 
     /// Evaluates `per_row(data, q_row, out_row)` over the rows of a (N, dof)
@@ -318,16 +267,10 @@ impl Robot {
                 copy_values(&array, &mut s.q);
                 single(s)
             }),
-            2 => self.batched_kernel(
-                &array,
-                &[4, 4],
-                threads,
-                forward_kinematics_batch,
-                |model, data, q, out| {
-                    write_pose(forward_kinematics(model, data, q)?, out);
-                    Ok(())
-                },
-            ),
+            2 => self.batched(&array, &[4, 4], threads, |model, data, q, out| {
+                write_pose(forward_kinematics(model, data, q)?, out);
+                Ok(())
+            }),
             _ => Err(shape_error(
                 "q",
                 &format!("({},) or (N, {})", self.model.dof(), self.model.dof()),
@@ -367,16 +310,10 @@ impl Robot {
                 copy_values(&array, &mut s.q);
                 single(s)
             }),
-            2 => self.batched_kernel(
-                &array,
-                &[6, dof],
-                threads,
-                |model, workspace, q, out| jacobian_batch(model, workspace, q, frame, out),
-                |model, data, q, out| {
-                    write_jacobian(jacobian(model, data, q, frame)?, out);
-                    Ok(())
-                },
-            ),
+            2 => self.batched(&array, &[6, dof], threads, |model, data, q, out| {
+                write_jacobian(jacobian(model, data, q, frame)?, out);
+                Ok(())
+            }),
             _ => Err(shape_error(
                 "q",
                 &format!("({dof},) or (N, {dof})"),
