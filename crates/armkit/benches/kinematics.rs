@@ -2,13 +2,21 @@
 //! coupling: the coupling map's identity shape) and gantry9-flex (the beam's
 //! additive coupling). The mimic shape is timed in `benches/urdf.rs`.
 //!
+//! `fk/<robot>` and `fk+jacobian/<robot>` time one call;
+//! `fk-batch/<robot>/<batch>` and `jacobian-batch/<robot>/<batch>` one
+//! batched call of `<batch>` configurations on one thread (time per batch:
+//! divide by the batch size for the time per configuration).
+//!
 //! Run: `cargo bench -p armkit --bench kinematics`.
 //!
 //! Each call takes the next of 1024 random configurations within the limits
 //! (seeded), as Pinocchio's benchmark in `../shared/peers` does, so that the
 //! timing does not profit from one branch pattern in the trigonometry.
 
-use armkit::kinematics::{forward_kinematics, jacobian, Data, JacobianFrame};
+use armkit::kinematics::{
+    forward_kinematics, forward_kinematics_batch, jacobian, jacobian_batch, BatchData, Data,
+    JacobianFrame, POSE_VALUES,
+};
 use criterion::{criterion_group, criterion_main, Criterion};
 use rand::{Rng, SeedableRng};
 use std::hint::black_box;
@@ -52,9 +60,39 @@ fn bench_robot(c: &mut Criterion, name: &str) {
     });
 }
 
+/// Batched FK and Jacobians of `batch` configurations (the first `batch`
+/// of the 1024) into preallocated buffers.
+fn bench_batch(c: &mut Criterion, name: &str, batch: usize) {
+    let model = armkit::robots::by_name(name).unwrap();
+    let mut data = BatchData::new(&model);
+    let q: Vec<f64> = random_configurations(&model, batch).concat();
+    let mut poses = vec![0.0; batch * POSE_VALUES];
+    let mut jacobians = vec![0.0; batch * 6 * model.dof()];
+    c.bench_function(&format!("fk-batch/{name}/{batch}"), |b| {
+        b.iter(|| forward_kinematics_batch(&model, &mut data, black_box(&q), &mut poses).unwrap())
+    });
+    c.bench_function(&format!("jacobian-batch/{name}/{batch}"), |b| {
+        b.iter(|| {
+            jacobian_batch(
+                &model,
+                &mut data,
+                black_box(&q),
+                JacobianFrame::World,
+                &mut jacobians,
+            )
+            .unwrap()
+        })
+    });
+}
+
 fn kinematics(c: &mut Criterion) {
     for name in ["ur5", "panda", "gantry9", "gantry9-flex"] {
         bench_robot(c, name);
+    }
+    for name in ["ur5", "panda"] {
+        for batch in [64, 1024] {
+            bench_batch(c, name, batch);
+        }
     }
 }
 

@@ -17,15 +17,19 @@
 //! assert_eq!(j.shape(), (6, 6));
 //! ```
 
+mod batch;
+mod frame;
 mod frames;
 mod measures;
 
+pub use batch::{forward_kinematics_batch, jacobian_batch, BatchData, InstructionSet, POSE_VALUES};
 pub use frames::link_frames;
 pub use measures::{condition_number, manipulability, singular_values, smallest_singular_value};
 
 use crate::error::{Error, Result};
 use crate::math::{sin_cos_slice, Matrix6xX, Pose, Vector3};
-use crate::model::{JointKind, Model};
+use crate::model::{JointKind, Model, PlacementForm};
+use frame::Frame;
 
 /// The frame in whose axes a Jacobian is expressed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -130,55 +134,90 @@ pub fn forward_kinematics<'d>(model: &Model, data: &'d mut Data, q: &[f64]) -> R
     data.check_model(model)?;
     model.check_joint_positions(q)?;
     model.joint_map().expand(q, &mut data.effective_positions);
-    // All the trigonometry first, in a loop of its own: the calls are
-    // independent, so the processor overlaps them, where inside the chain
-    // below each would wait for the previous frame product.
-    sin_cos_slice(&data.effective_positions, &mut data.joint_sin_cos);
-    let frame = chain_frames(
-        model.joint_placements(),
-        model.chain_kinds(),
-        &data.joint_sin_cos,
-        &data.effective_positions,
-        &mut data.joint_frames,
-    );
-    data.end_effector = &frame * model.end_effector_placement();
+    let mut frame = evaluate_chain(model, data);
+    frame.place(model.end_effector_form());
+    data.end_effector = frame.to_pose();
     check_pose_is_finite(&data.end_effector)?;
     Ok(&data.end_effector)
 }
 
+/// The chain's trigonometry and product ([`chain_kernel`]) in the build the
+/// processor allows: with AVX2 and FMA (detected at run time, as the
+/// batched kernels and the mass matrix do) the six to nine sine-cosine
+/// pairs of a chain go four to a 256-bit instruction and every product is
+/// a three-operand instruction; the results are the baseline build's, bit
+/// for bit (no operation is fused: Rust never contracts `a * b + c`).
+fn evaluate_chain(model: &Model, data: &mut Data) -> Frame<f64> {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma") {
+        // SAFETY: the function needs only the two features detected above.
+        return unsafe { chain_avx2_fma(model, data) };
+    }
+    chain_baseline(model, data)
+}
+
+/// [`chain_kernel`] in the target's baseline instructions. Kept out of
+/// line on purpose: compiled on its own, the loop keeps the frame in
+/// registers whatever the caller inlines around it.
+#[inline(never)]
+fn chain_baseline(model: &Model, data: &mut Data) -> Frame<f64> {
+    chain_kernel(model, data)
+}
+
+/// [`chain_kernel`] compiled for AVX2 and FMA.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+fn chain_avx2_fma(model: &Model, data: &mut Data) -> Frame<f64> {
+    chain_kernel(model, data)
+}
+
+/// Sine and cosine of every chain joint, then the chain's product; returns
+/// the last joint's frame.
+#[inline(always)]
+fn chain_kernel(model: &Model, data: &mut Data) -> Frame<f64> {
+    // All the trigonometry first, in a loop of its own: the calls are
+    // independent, so the processor overlaps them (and the vector build
+    // computes four at once), where inside the chain below each would wait
+    // for the previous frame product.
+    sin_cos_slice(&data.effective_positions, &mut data.joint_sin_cos);
+    chain_frames(
+        model.placement_forms(),
+        model.chain_kinds(),
+        &data.joint_sin_cos,
+        &data.effective_positions,
+        &mut data.joint_frames,
+    )
+}
+
 /// The chain's product, base to tip: joint j's frame is the previous one
-/// times its placement, turned by its angle (rotational) or moved along its
+/// times its placement (multiplied in its form, `model::PlacementForm`),
+/// turned by its angle (rotational: two columns mixed) or moved along its
 /// z axis (prismatic); written into `frames`, the last one returned. One
 /// pass over slices of equal length (the caller's `check_model`), without
-/// indices or bounds checks.
-///
-/// Kept out of line on purpose: compiled on its own, the loop keeps the
-/// frame in registers whatever the caller inlines around it (inlined into
-/// `forward_kinematics` together with the trigonometry, it spilled to the
-/// stack and cost about 40 instructions more per joint).
-#[inline(never)]
+/// indices or bounds checks; the steps are the batched kernels' (`frame.rs`).
+#[inline(always)]
 fn chain_frames(
-    placements: &[Pose],
+    forms: &[PlacementForm],
     kinds: &[JointKind],
     sin_cos: &[(f64, f64)],
     positions: &[f64],
     frames: &mut [Pose],
-) -> Pose {
-    let joints = placements
+) -> Frame<f64> {
+    let joints = forms
         .iter()
         .zip(kinds)
         .zip(sin_cos)
         .zip(positions)
         .zip(frames.iter_mut());
-    let mut frame = Pose::identity();
-    for ((((placement, kind), &sin_cos), &position), joint_frame) in joints {
-        frame = &frame * placement;
+    let mut frame = Frame::<f64>::identity();
+    for ((((form, kind), &(s, c)), &position), joint_frame) in joints {
+        frame.place(form);
         if kind.is_rotational() {
-            rotate_about_local_z(&mut frame, sin_cos);
+            frame.rotate_about_z(s, c);
         } else {
-            frame.translation += frame.rotation.column(2) * position;
+            frame.translate_along_z(position);
         }
-        *joint_frame = frame;
+        *joint_frame = frame.to_pose();
     }
     frame
 }
@@ -197,16 +236,6 @@ fn check_pose_is_finite(pose: &Pose) -> Result<()> {
         context: "forward kinematics".into(),
         reason: "the end-effector pose overflowed to a non-finite value (link lengths or joint positions too large)".into(),
     })
-}
-
-/// `frame = frame * Rz(angle)`, given `(sin angle, cos angle)`: mixes the
-/// first two rotation columns.
-#[inline(always)]
-fn rotate_about_local_z(frame: &mut Pose, (s, c): (f64, f64)) {
-    let x = frame.rotation.column(0).into_owned();
-    let y = frame.rotation.column(1).into_owned();
-    frame.rotation.set_column(0, &(x * c + y * s));
-    frame.rotation.set_column(1, &(y * c - x * s));
 }
 
 /// Forward kinematics, then the geometric Jacobian (6 x dof) of the

@@ -20,8 +20,10 @@ pub use nalgebra::{
     Vector6,
 };
 
+mod lanes;
 mod trig;
-pub use trig::{sin_cos, sin_cos_slice};
+pub use lanes::{F64x4, Lane, LANES};
+pub use trig::{sin_cos, sin_cos_slice, sin_cos_x4};
 
 /// A rigid transform `T = [R p; 0 1]`: rotation `R` (orthonormal 3 x 3) and
 /// translation `p` (metres).

@@ -1,7 +1,9 @@
 //! Building a [`Model`] from joints with any axis, checked.
 
 use super::coupling::{JointMap, MimicJoint};
-use super::{DhConvention, DhLink, Joint, JointKind, JointLimits, LinkInertia, Model};
+use super::{
+    DhConvention, DhLink, Joint, JointKind, JointLimits, LinkInertia, Model, PlacementForm,
+};
 use crate::error::{Error, Result};
 use crate::math::{rotation_z_to, Pose, Vector3};
 
@@ -272,8 +274,10 @@ impl ModelBuilder {
             joints: resolved.joints,
             chain_kinds: joints.iter().map(|j| j.kind).collect(),
             chain_joints: joints,
+            placement_forms: placements.iter().map(PlacementForm::of).collect(),
             placements,
             link_offsets,
+            tail_form: PlacementForm::of(&(pending * self.tool)),
             tail: pending * self.tool,
             base: self.base,
             tool: self.tool,

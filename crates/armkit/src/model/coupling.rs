@@ -40,7 +40,7 @@ use std::fmt::Debug;
 use std::sync::Arc;
 
 use crate::error::{Error, Result};
-use crate::math::Matrix6xX;
+use crate::math::{F64x4, Lane, Matrix6xX, LANES};
 
 /// A scalar curve `f(x)` with its slope, the law of an additive coupling
 /// (e.g. a beam's deflection under a carriage, [`crate::beam`]).
@@ -342,6 +342,45 @@ impl JointMap {
                         .axpy(slope, &chain.column(*target), 1.0);
                 }
             }
+        }
+    }
+
+    /// [`JointMap::fold_jacobian`] on four configurations side by side:
+    /// `chain` holds the chain's columns `[v; w]` (one per chain joint, lane
+    /// l of configuration `rows[l]`), `out` receives one per independent
+    /// joint, with the same sums in the same order. Allocates nothing.
+    #[inline(always)]
+    pub(crate) fn fold_lane_columns(
+        &self,
+        rows: &[&[f64]; LANES],
+        chain: &[[F64x4; 6]],
+        out: &mut [[F64x4; 6]],
+    ) {
+        let add_scaled = |out: &mut [F64x4; 6], column: &[F64x4; 6], factor: F64x4| {
+            for (o, &c) in out.iter_mut().zip(column) {
+                *o = *o + c * factor;
+            }
+        };
+        match self {
+            JointMap::Identity { .. } | JointMap::Additive { .. } => out.copy_from_slice(chain),
+            JointMap::Mimic { drives, .. } => {
+                out.fill([F64x4::default(); 6]);
+                for (column, drive) in chain.iter().zip(drives) {
+                    let (index, factor) = match *drive {
+                        Drive::Independent(i) => (i, 1.0),
+                        Drive::Mimic {
+                            leader, multiplier, ..
+                        } => (leader, multiplier),
+                    };
+                    add_scaled(&mut out[index], column, F64x4::splat(factor));
+                }
+            }
+        }
+        for (source, target, curve) in self.additive() {
+            let slope = F64x4(std::array::from_fn(|l| {
+                curve.value_and_slope(rows[l][*source]).1
+            }));
+            add_scaled(&mut out[*source], &chain[*target], slope);
         }
     }
 

@@ -31,11 +31,13 @@ mod builder;
 mod coupling;
 mod dh;
 mod mimic;
+mod placement;
 
 pub use builder::{JointSpec, ModelBuilder};
 pub(crate) use coupling::JointMap;
 pub use coupling::{CouplingCurve, CouplingLaw, JointCoupling, MimicJoint};
 pub use dh::{DhConvention, DhLink};
+pub(crate) use placement::PlacementForm;
 
 use crate::error::{check_finite_vector, Error, Result};
 use crate::math::{Matrix3, Pose, Vector3};
@@ -255,6 +257,10 @@ pub struct Model {
     /// Each chain joint's link frame in its motion frame (see
     /// [`Model::link_frame_offsets`]).
     link_offsets: Vec<Pose>,
+    /// The form of each placement (`placement` module), for the kinematics' loops.
+    placement_forms: Vec<PlacementForm>,
+    /// The form of `tail`.
+    tail_form: PlacementForm,
     /// Placement of the end-effector (tool) frame in the last joint's frame.
     tail: Pose,
     base: Pose,
@@ -359,6 +365,18 @@ impl Model {
     #[inline]
     pub(crate) fn joint_map(&self) -> &JointMap {
         &self.map
+    }
+
+    /// The form of each [`Model::joint_placements`] entry (decided at build).
+    #[inline]
+    pub(crate) fn placement_forms(&self) -> &[PlacementForm] {
+        &self.placement_forms
+    }
+
+    /// The form of [`Model::end_effector_placement`].
+    #[inline]
+    pub(crate) fn end_effector_form(&self) -> &PlacementForm {
+        &self.tail_form
     }
 
     /// The kind of each chain joint ([`Model::chain_joints`]), packed.

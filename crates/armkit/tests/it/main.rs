@@ -16,6 +16,7 @@ mod ik_closed_form;
 mod invariants;
 mod invariants_nonfinite;
 mod kinematics;
+mod kinematics_batch;
 mod layers;
 mod mimic;
 mod mpc;

@@ -2,7 +2,7 @@
 //! that counts the allocations of the calling thread (the test harness's
 //! own threads allocate at times too):
 //!
-//! * Forward kinematics and the Jacobian allocate nothing once `Data` exists: zero allocations across many calls.
+//! * Forward kinematics and the Jacobian allocate nothing once `Data` exists: zero allocations across many calls; nor do the batched kernels once `BatchData` exists.
 //! * One IK solve allocates exactly once (the report's joint vector) after `IkSolver::new`, whatever the number of iterations and restarts: the iterations themselves allocate nothing.
 //! * One MPC step (re-linearise, update the QP in place, solve) allocates nothing once the planner is built: a counting global allocator sees zero allocations over many steps of the planner, of the active-set solver, of OSQP, and of the goal posture between its IK searches; Clarabel makes one small allocation per solve inside its timers (measured and pinned).
 //! * A redundancy solve allocates nothing once its workspace exists: a counting global allocator sees zero allocations across many solves (weighted least norm, damped, toward a preferred velocity, projector, seed 001's partitioned form and eq 17, torques, energy weights, null-space directions).
@@ -16,7 +16,10 @@ use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 
 use armkit::ik::{benchmark_targets, IkMethod, IkOptions, IkSolver, Redundancy};
-use armkit::kinematics::{forward_kinematics, jacobian, Data, JacobianFrame};
+use armkit::kinematics::{
+    forward_kinematics, forward_kinematics_batch, jacobian, jacobian_batch, BatchData, Data,
+    JacobianFrame,
+};
 use armkit::math::{Pose, Vector3, Vector6};
 use armkit::mpc::qp::{QpOutcome, QpProblem, QpSolver, QpSolverKind, QpStatus};
 use armkit::mpc::{MpcOptions, MpcPlanner};
@@ -74,6 +77,45 @@ fn fk_and_jacobian_do_not_allocate() {
         }
         let after = allocations();
         assert_eq!(after - before, 0, "{name}: {} allocations", after - before);
+    }
+}
+
+#[test]
+fn batched_fk_and_jacobians_do_not_allocate() {
+    let mimicbot = armkit::urdf::load(
+        concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../tests/data/urdf/mimicbot.urdf"
+        ),
+        &armkit::urdf::ChainSelection::between("base", "fingertip"),
+    )
+    .unwrap();
+    let mut models: Vec<_> = ["ur5", "panda", "gantry9-flex"]
+        .iter()
+        .map(|name| armkit::robots::by_name(name).unwrap())
+        .collect();
+    models.push(mimicbot);
+    for model in models {
+        let n = 10;
+        let q: Vec<f64> = (0..n).flat_map(|_| model.neutral_configuration()).collect();
+        let mut batch = BatchData::new(&model);
+        let mut poses = vec![0.0; n * 16];
+        let mut jacobians = vec![0.0; n * 6 * model.dof()];
+        let before = allocations();
+        for _ in 0..20 {
+            forward_kinematics_batch(&model, &mut batch, &q, &mut poses).unwrap();
+            for frame in [JacobianFrame::World, JacobianFrame::EndEffector] {
+                jacobian_batch(&model, &mut batch, &q, frame, &mut jacobians).unwrap();
+            }
+        }
+        let after = allocations();
+        assert_eq!(
+            after - before,
+            0,
+            "{}: {} allocations",
+            model.name(),
+            after - before
+        );
     }
 }
 

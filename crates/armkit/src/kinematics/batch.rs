@@ -1,0 +1,380 @@
+//! Forward kinematics and Jacobians of many configurations in one call,
+//! four at a time.
+//!
+//! A 6R chain's forward kinematics is a dependent chain of frame products:
+//! on one configuration each step waits for the previous one. Across
+//! configurations the steps are independent, so the kernels here take the
+//! configurations four at a time, one per lane of an [`F64x4`] (structure
+//! of arrays: every quantity of the chain is four values side by side, one
+//! per configuration), and run the single call's steps (`frame.rs`, the
+//! same source) on the four lanes at once. Where the processor has AVX2 and
+//! FMA (detected at run time, as [`crate::dynamics::mass_matrix`] does) one
+//! 256-bit instruction advances the four lanes; elsewhere the same code runs
+//! in 128-bit halves. The lanes never mix, so each configuration's result
+//! is the single call's, rounding for rounding.
+//!
+//! The caller owns every buffer: configurations in, poses or Jacobians out,
+//! row-major (the layout of NumPy's `(N, dof)`, `(N, 4, 4)` and
+//! `(N, 6, dof)` arrays), and a [`BatchData`] workspace made once. A call
+//! allocates nothing.
+
+use super::frame::Frame;
+use super::JacobianFrame;
+use crate::error::{Error, Result};
+use crate::math::{sin_cos_x4, F64x4, Lane, LANES};
+use crate::model::Model;
+
+/// Which instructions the batched kernels use.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum InstructionSet {
+    /// AVX2 and FMA where the processor has them (detected at run time),
+    /// the baseline otherwise.
+    #[default]
+    Detected,
+    /// The target's baseline instructions (SSE2 on x86-64) everywhere: the
+    /// reference the vector build is tested against.
+    Baseline,
+}
+
+/// Workspace of the batched kernels, sized for one model: the lanes of one
+/// block of four configurations. Create it once per model and thread.
+#[derive(Clone, Debug)]
+pub struct BatchData {
+    dof: usize,
+    instruction_set: InstructionSet,
+    /// Chain joint positions, one per chain joint.
+    positions: Vec<F64x4>,
+    sin_cos: Vec<(F64x4, F64x4)>,
+    /// Each chain joint's axis (z column) and origin, for the Jacobian.
+    axes: Vec<[F64x4; 3]>,
+    origins: Vec<[F64x4; 3]>,
+    /// Jacobian columns `[v; w]`, one per chain joint, then one per
+    /// independent joint after the couplings.
+    chain_columns: Vec<[F64x4; 6]>,
+    columns: Vec<[F64x4; 6]>,
+    /// One configuration's chain positions (coupled models).
+    expanded: Vec<f64>,
+}
+
+impl BatchData {
+    /// A workspace for `model`, with the instructions detected at run time.
+    pub fn new(model: &Model) -> Self {
+        Self::with_instruction_set(model, InstructionSet::Detected)
+    }
+
+    /// A workspace for `model` that runs the kernels with `instruction_set`.
+    pub fn with_instruction_set(model: &Model, instruction_set: InstructionSet) -> Self {
+        let chain = model.chain_joints().len();
+        let dof = model.dof();
+        BatchData {
+            dof,
+            instruction_set,
+            positions: vec![F64x4::default(); chain],
+            sin_cos: vec![(F64x4::default(), F64x4::default()); chain],
+            axes: vec![[F64x4::default(); 3]; chain],
+            origins: vec![[F64x4::default(); 3]; chain],
+            chain_columns: vec![[F64x4::default(); 6]; chain],
+            columns: vec![[F64x4::default(); 6]; dof],
+            expanded: vec![0.0; chain],
+        }
+    }
+
+    /// The instructions this workspace's calls use.
+    pub fn instruction_set(&self) -> InstructionSet {
+        self.instruction_set
+    }
+}
+
+/// Values per configuration of [`forward_kinematics_batch`]'s output: a
+/// row-major 4 x 4 homogeneous transform.
+pub const POSE_VALUES: usize = 16;
+
+/// Forward kinematics of `q.len() / dof` configurations: `q` row-major,
+/// configuration `k`'s joint `j` (rad or m, one per independent joint) at
+/// `q[k * dof + j]`; writes configuration `k`'s end-effector pose in the
+/// world frame as a row-major homogeneous 4 x 4 transform (m) at
+/// `poses[16 k..16 k + 16]`. Each pose is [`super::forward_kinematics`]'s.
+///
+/// Errors (nothing is written then): `q`'s length not a multiple of dof,
+/// `poses` not 16 values per configuration, a value of `q` not finite (the
+/// message names its configuration and joint), `data` made for another
+/// model, a pose that overflows to a non-finite value. Allocates nothing.
+pub fn forward_kinematics_batch(
+    model: &Model,
+    data: &mut BatchData,
+    q: &[f64],
+    poses: &mut [f64],
+) -> Result<()> {
+    let count = check_batch(model, data, q, poses.len(), POSE_VALUES, "poses")?;
+    run(model, data, q, count, Output::Poses(poses))
+}
+
+/// Geometric Jacobians (6 x dof, rows `[vx, vy, vz, wx, wy, wz]`, axes of
+/// `frame`) of `q.len() / dof` configurations (`q` as in
+/// [`forward_kinematics_batch`]): configuration `k`'s Jacobian row-major at
+/// `jacobians[6 dof k..6 dof (k + 1)]`, each [`super::jacobian`]'s, the
+/// couplings folded in. Errors as [`forward_kinematics_batch`] (`jacobians`
+/// must hold 6 dof values per configuration). Allocates nothing.
+pub fn jacobian_batch(
+    model: &Model,
+    data: &mut BatchData,
+    q: &[f64],
+    frame: JacobianFrame,
+    jacobians: &mut [f64],
+) -> Result<()> {
+    let width = 6 * model.dof();
+    let count = check_batch(model, data, q, jacobians.len(), width, "jacobians")?;
+    run(model, data, q, count, Output::Jacobians(jacobians, frame))
+}
+
+/// What a batched call writes.
+enum Output<'a> {
+    Poses(&'a mut [f64]),
+    Jacobians(&'a mut [f64], JacobianFrame),
+}
+
+/// Sizes and finiteness; returns the number of configurations.
+fn check_batch(
+    model: &Model,
+    data: &BatchData,
+    q: &[f64],
+    output: usize,
+    width: usize,
+    output_name: &'static str,
+) -> Result<usize> {
+    let dof = model.dof();
+    if data.dof != dof || data.positions.len() != model.chain_joints().len() {
+        return Err(Error::DimensionMismatch {
+            what: "data (workspace made for another model)",
+            expected: dof,
+            got: data.dof,
+        });
+    }
+    if q.len() % dof != 0 {
+        return Err(Error::invalid_argument(
+            "q",
+            format!(
+                "must hold {dof} values per configuration (row-major), got {} values",
+                q.len()
+            ),
+        ));
+    }
+    let count = q.len() / dof;
+    if output != count * width {
+        return Err(Error::DimensionMismatch {
+            what: output_name,
+            expected: count * width,
+            got: output,
+        });
+    }
+    if let Some(at) = q.iter().position(|v| !v.is_finite()) {
+        return Err(Error::invalid_argument(
+            "q",
+            format!(
+                "configuration {} (0-based), joint {}: must be finite, got {}",
+                at / dof,
+                at % dof,
+                q[at]
+            ),
+        ));
+    }
+    Ok(count)
+}
+
+/// Runs the kernel with the workspace's instructions.
+fn run(model: &Model, data: &mut BatchData, q: &[f64], count: usize, output: Output) -> Result<()> {
+    #[cfg(target_arch = "x86_64")]
+    if data.instruction_set == InstructionSet::Detected
+        && std::arch::is_x86_feature_detected!("avx2")
+        && std::arch::is_x86_feature_detected!("fma")
+    {
+        // SAFETY: the function needs only the two features detected above.
+        return unsafe { kernel_avx2_fma(model, data, q, count, output) };
+    }
+    kernel(model, data, q, count, output)
+}
+
+/// [`kernel`] compiled for AVX2 and FMA: every `F64x4` operation one
+/// 256-bit instruction.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+fn kernel_avx2_fma(
+    model: &Model,
+    data: &mut BatchData,
+    q: &[f64],
+    count: usize,
+    output: Output,
+) -> Result<()> {
+    kernel(model, data, q, count, output)
+}
+
+/// The blocks of four configurations, base to tip on each; the last block
+/// repeats its last configuration in the lanes beyond `count` (computed,
+/// not written).
+#[inline(always)]
+fn kernel(
+    model: &Model,
+    data: &mut BatchData,
+    q: &[f64],
+    count: usize,
+    mut output: Output,
+) -> Result<()> {
+    let dof = data.dof;
+    let map = model.joint_map();
+    let identity = map.is_identity() && map.additive().is_empty();
+    let forms = model.placement_forms();
+    let kinds = model.chain_kinds();
+    let mut start = 0;
+    while start < count {
+        let lanes = LANES.min(count - start);
+        let row = |l: usize| start + l.min(lanes - 1);
+        // Gather: lane l of chain joint j is configuration row(l)'s position.
+        for l in 0..LANES {
+            let q_row = &q[row(l) * dof..(row(l) + 1) * dof];
+            if identity {
+                for (position, &value) in data.positions.iter_mut().zip(q_row) {
+                    position.0[l] = value;
+                }
+            } else {
+                map.expand(q_row, &mut data.expanded);
+                for (position, &value) in data.positions.iter_mut().zip(&data.expanded) {
+                    position.0[l] = value;
+                }
+            }
+        }
+        for (sc, &angle) in data.sin_cos.iter_mut().zip(&data.positions) {
+            *sc = sin_cos_x4(angle);
+        }
+        let store = matches!(output, Output::Jacobians(..));
+        let mut frame = Frame::<F64x4>::identity();
+        let joints = forms
+            .iter()
+            .zip(kinds)
+            .zip(data.sin_cos.iter().zip(&data.positions))
+            .zip(data.axes.iter_mut().zip(data.origins.iter_mut()));
+        for (((form, kind), (&(s, c), &position)), (axis, origin)) in joints {
+            frame.place(form);
+            if kind.is_rotational() {
+                frame.rotate_about_z(s, c);
+            } else {
+                frame.translate_along_z(position);
+            }
+            if store {
+                *axis = frame.z;
+                *origin = frame.t;
+            }
+        }
+        frame.place(model.end_effector_form());
+        check_finite_lanes(&frame, start, lanes)?;
+        match &mut output {
+            Output::Poses(poses) => write_poses(&frame, &mut poses[start * POSE_VALUES..], lanes),
+            Output::Jacobians(jacobians, jacobian_frame) => {
+                chain_columns(data, kinds, &frame.t);
+                // Uncoupled: the chain's columns are the result.
+                let columns = if identity {
+                    &mut data.chain_columns
+                } else {
+                    let rows: [&[f64]; LANES] =
+                        std::array::from_fn(|l| &q[row(l) * dof..(row(l) + 1) * dof]);
+                    map.fold_lane_columns(&rows, &data.chain_columns, &mut data.columns);
+                    &mut data.columns
+                };
+                if *jacobian_frame == JacobianFrame::EndEffector {
+                    for column in columns.iter_mut() {
+                        *column = to_end_effector_axes(&frame, column);
+                    }
+                }
+                write_jacobians(columns, &mut jacobians[start * 6 * dof..], lanes);
+            }
+        }
+        start += lanes;
+    }
+    Ok(())
+}
+
+/// The chain's Jacobian columns from the stored axes and origins:
+/// `[z_j x (p_e - p_j); z_j]` (rotational) or `[z_j; 0]` (prismatic), as
+/// [`super::jacobian`].
+#[inline(always)]
+fn chain_columns(data: &mut BatchData, kinds: &[crate::model::JointKind], end: &[F64x4; 3]) {
+    let zero = F64x4::splat(0.0);
+    let joints = data
+        .chain_columns
+        .iter_mut()
+        .zip(kinds)
+        .zip(data.axes.iter().zip(&data.origins));
+    for ((column, kind), (z, p)) in joints {
+        *column = if kind.is_rotational() {
+            let d = [end[0] - p[0], end[1] - p[1], end[2] - p[2]];
+            let v = cross(z, &d);
+            [v[0], v[1], v[2], z[0], z[1], z[2]]
+        } else {
+            [z[0], z[1], z[2], zero, zero, zero]
+        };
+    }
+}
+
+#[inline(always)]
+fn cross<L: Lane>(a: &[L; 3], b: &[L; 3]) -> [L; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// A column `[v; w]` in the end-effector's axes: `[R' v; R' w]`.
+#[inline(always)]
+fn to_end_effector_axes(frame: &Frame<F64x4>, column: &[F64x4; 6]) -> [F64x4; 6] {
+    let dot = |axis: &[F64x4; 3], v: &[F64x4]| axis[0] * v[0] + axis[1] * v[1] + axis[2] * v[2];
+    let (v, w) = column.split_at(3);
+    [
+        dot(&frame.x, v),
+        dot(&frame.y, v),
+        dot(&frame.z, v),
+        dot(&frame.x, w),
+        dot(&frame.y, w),
+        dot(&frame.z, w),
+    ]
+}
+
+/// As the single call's check: only the translation can overflow.
+#[inline(always)]
+fn check_finite_lanes(frame: &Frame<F64x4>, start: usize, lanes: usize) -> Result<()> {
+    for l in 0..lanes {
+        if !frame.t.iter().all(|v| v.0[l].is_finite()) {
+            return Err(Error::Numerical {
+                context: format!("forward kinematics of configuration {}", start + l),
+                reason: "the end-effector pose overflowed to a non-finite value (link lengths or joint positions too large)".into(),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Scatter: lane l's pose into `out[16 l..16 l + 16]`, row-major 4 x 4.
+#[inline(always)]
+fn write_poses(frame: &Frame<F64x4>, out: &mut [f64], lanes: usize) {
+    for (l, pose) in out.chunks_exact_mut(POSE_VALUES).take(lanes).enumerate() {
+        for i in 0..3 {
+            pose[4 * i] = frame.x[i].0[l];
+            pose[4 * i + 1] = frame.y[i].0[l];
+            pose[4 * i + 2] = frame.z[i].0[l];
+            pose[4 * i + 3] = frame.t[i].0[l];
+        }
+        pose[12..].copy_from_slice(&[0.0, 0.0, 0.0, 1.0]);
+    }
+}
+
+/// Scatter: lane l's 6 x dof Jacobian, row-major, into `out`.
+#[inline(always)]
+fn write_jacobians(columns: &[[F64x4; 6]], out: &mut [f64], lanes: usize) {
+    let dof = columns.len();
+    for (l, jacobian) in out.chunks_exact_mut(6 * dof).take(lanes).enumerate() {
+        for (c, column) in columns.iter().enumerate() {
+            for (r, value) in column.iter().enumerate() {
+                jacobian[r * dof + c] = value.0[l];
+            }
+        }
+    }
+}

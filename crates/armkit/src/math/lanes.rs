@@ -1,0 +1,116 @@
+//! Arithmetic written once for one value (`f64`) and for four values side
+//! by side ([`F64x4`]), so that a kinematic kernel runs on one configuration
+//! or on four at a time from the same source.
+//!
+//! [`F64x4`] is four independent lanes (structure of arrays: lane `l` is
+//! configuration `l` of a block). Its operations are lane-wise loops over
+//! `[f64; 4]` that the compiler turns into one vector instruction each where
+//! the processor has 256-bit registers (AVX2), two 128-bit ones otherwise.
+//! No operation mixes lanes, so every lane rounds exactly as the `f64` code
+//! does on the same value.
+
+use std::ops::{Add, Mul, Neg, Sub};
+
+/// A number type the kinematic kernels compute with: `f64`, or four `f64`
+/// lanes ([`F64x4`]).
+pub trait Lane:
+    Copy
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Mul<f64, Output = Self>
+    + Neg<Output = Self>
+{
+    /// Every lane `value`.
+    fn splat(value: f64) -> Self;
+    /// `(sin, cos)` of `r + n pi/2` from `(sin r, cos r)`, `n` the integer in
+    /// the low bits of `shifted`'s representation (`trig`'s quadrant), lane-wise.
+    fn by_quadrant(s: Self, c: Self, shifted: Self) -> (Self, Self);
+}
+
+impl Lane for f64 {
+    #[inline(always)]
+    fn splat(value: f64) -> Self {
+        value
+    }
+
+    #[inline(always)]
+    fn by_quadrant(s: f64, c: f64, shifted: f64) -> (f64, f64) {
+        super::trig::by_quadrant(s, c, shifted.to_bits())
+    }
+}
+
+/// Four `f64` lanes: one value of four configurations.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[repr(align(32))]
+pub struct F64x4(pub [f64; 4]);
+
+/// The number of lanes of [`F64x4`].
+pub const LANES: usize = 4;
+
+impl F64x4 {
+    #[inline(always)]
+    fn zip(self, other: F64x4, f: impl Fn(f64, f64) -> f64) -> F64x4 {
+        let (a, b) = (self.0, other.0);
+        F64x4([f(a[0], b[0]), f(a[1], b[1]), f(a[2], b[2]), f(a[3], b[3])])
+    }
+}
+
+impl Add for F64x4 {
+    type Output = F64x4;
+    #[inline(always)]
+    fn add(self, other: F64x4) -> F64x4 {
+        self.zip(other, |a, b| a + b)
+    }
+}
+
+impl Sub for F64x4 {
+    type Output = F64x4;
+    #[inline(always)]
+    fn sub(self, other: F64x4) -> F64x4 {
+        self.zip(other, |a, b| a - b)
+    }
+}
+
+impl Mul for F64x4 {
+    type Output = F64x4;
+    #[inline(always)]
+    fn mul(self, other: F64x4) -> F64x4 {
+        self.zip(other, |a, b| a * b)
+    }
+}
+
+impl Mul<f64> for F64x4 {
+    type Output = F64x4;
+    #[inline(always)]
+    fn mul(self, k: f64) -> F64x4 {
+        self * F64x4::splat(k)
+    }
+}
+
+impl Neg for F64x4 {
+    type Output = F64x4;
+    #[inline(always)]
+    fn neg(self) -> F64x4 {
+        let a = self.0;
+        F64x4([-a[0], -a[1], -a[2], -a[3]])
+    }
+}
+
+impl Lane for F64x4 {
+    #[inline(always)]
+    fn splat(value: f64) -> Self {
+        F64x4([value; 4])
+    }
+
+    #[inline(always)]
+    fn by_quadrant(s: F64x4, c: F64x4, shifted: F64x4) -> (F64x4, F64x4) {
+        let mut out = (F64x4::default(), F64x4::default());
+        for l in 0..LANES {
+            let (sl, cl) = super::trig::by_quadrant(s.0[l], c.0[l], shifted.0[l].to_bits());
+            out.0 .0[l] = sl;
+            out.1 .0[l] = cl;
+        }
+        out
+    }
+}

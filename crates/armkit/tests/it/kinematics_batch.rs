@@ -1,0 +1,184 @@
+//! The batched kernels (`kinematics::forward_kinematics_batch`,
+//! `jacobian_batch`) against the single calls, configuration by
+//! configuration, on every built-in robot, the URDF chains and a mimic-joint
+//! chain, with the detected instructions (AVX2 + FMA where present) and the
+//! baseline ones; and their errors.
+
+use armkit::kinematics::{
+    forward_kinematics, forward_kinematics_batch, jacobian, jacobian_batch, BatchData, Data,
+    InstructionSet, JacobianFrame, POSE_VALUES,
+};
+use armkit::urdf::{load, ChainSelection};
+use armkit::Model;
+
+use crate::common::{data_path, random_configuration, rng};
+
+/// Tolerance of the comparisons (the 1e-14; the lanes round as the
+/// single call does, so the differences are exact zeros in practice).
+const TOLERANCE: f64 = 1e-14;
+
+fn models() -> Vec<Model> {
+    let mut models: Vec<Model> = armkit::robots::names()
+        .map(|name| armkit::robots::by_name(name).unwrap())
+        .collect();
+    for (file, base, tip) in [
+        ("urdf/ur5.urdf", "base_link", "tool0"),
+        ("urdf/panda.urdf", "panda_link0", "panda_link8"),
+        ("urdf/mimicbot.urdf", "base", "fingertip"),
+    ] {
+        models.push(load(data_path(file), &ChainSelection::between(base, tip)).unwrap());
+    }
+    assert!(models.iter().any(|m| m.has_mimic_joints()));
+    assert!(models
+        .iter()
+        .any(|m| m.coupling().is_some() && !m.has_mimic_joints()));
+    models
+}
+
+/// `count` random configurations (within limits; +-pi where unlimited), row-major.
+fn configurations(model: &Model, count: usize, seed: u64) -> Vec<f64> {
+    let mut rng = rng(seed);
+    (0..count)
+        .flat_map(|_| random_configuration(model, &mut rng))
+        .collect()
+}
+
+fn max_difference(a: &[f64], b: &[f64]) -> f64 {
+    assert_eq!(a.len(), b.len());
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn batched_fk_equals_the_single_call_on_every_model_and_both_instruction_sets() {
+    // 13 configurations: three full blocks of four and a partial one.
+    for model in models() {
+        let dof = model.dof();
+        let q = configurations(&model, 13, 7);
+        let mut data = Data::new(&model);
+        let mut expected = Vec::new();
+        for row in q.chunks(dof) {
+            let pose = forward_kinematics(&model, &mut data, row).unwrap();
+            let m = pose.to_matrix4();
+            for i in 0..4 {
+                for j in 0..4 {
+                    expected.push(m[(i, j)]);
+                }
+            }
+        }
+        for set in [InstructionSet::Detected, InstructionSet::Baseline] {
+            let mut batch = BatchData::with_instruction_set(&model, set);
+            let mut poses = vec![f64::NAN; 13 * POSE_VALUES];
+            forward_kinematics_batch(&model, &mut batch, &q, &mut poses).unwrap();
+            let d = max_difference(&poses, &expected);
+            assert!(d <= TOLERANCE, "{} {set:?}: {d:e}", model.name());
+        }
+    }
+}
+
+#[test]
+fn batched_jacobians_equal_the_single_call_in_both_frames() {
+    for model in models() {
+        let dof = model.dof();
+        let q = configurations(&model, 9, 11);
+        let mut data = Data::new(&model);
+        for frame in [JacobianFrame::World, JacobianFrame::EndEffector] {
+            let mut expected = Vec::new();
+            for row in q.chunks(dof) {
+                let j = jacobian(&model, &mut data, row, frame).unwrap();
+                for r in 0..6 {
+                    for c in 0..dof {
+                        expected.push(j[(r, c)]);
+                    }
+                }
+            }
+            for set in [InstructionSet::Detected, InstructionSet::Baseline] {
+                let mut batch = BatchData::with_instruction_set(&model, set);
+                let mut out = vec![f64::NAN; 9 * 6 * dof];
+                jacobian_batch(&model, &mut batch, &q, frame, &mut out).unwrap();
+                let d = max_difference(&out, &expected);
+                assert!(d <= TOLERANCE, "{} {frame:?} {set:?}: {d:e}", model.name());
+            }
+        }
+    }
+}
+
+#[test]
+fn the_two_instruction_sets_agree_on_large_batches_over_wide_angles() {
+    // Angles over +-40 rad (several turns, every quadrant of the
+    // reduction), 1001 configurations of the UR5.
+    let model = armkit::robots::by_name("ur5").unwrap();
+    let mut rng = rng(3);
+    let q: Vec<f64> = (0..1001 * 6)
+        .map(|_| rand::Rng::gen_range(&mut rng, -40.0..40.0))
+        .collect();
+    let mut outs = Vec::new();
+    for set in [InstructionSet::Detected, InstructionSet::Baseline] {
+        let mut batch = BatchData::with_instruction_set(&model, set);
+        let mut poses = vec![0.0; 1001 * POSE_VALUES];
+        forward_kinematics_batch(&model, &mut batch, &q, &mut poses).unwrap();
+        let mut jacobians = vec![0.0; 1001 * 36];
+        jacobian_batch(&model, &mut batch, &q, JacobianFrame::World, &mut jacobians).unwrap();
+        outs.push((poses, jacobians));
+    }
+    assert!(max_difference(&outs[0].0, &outs[1].0) <= TOLERANCE);
+    assert!(max_difference(&outs[0].1, &outs[1].1) <= TOLERANCE);
+}
+
+#[test]
+fn an_empty_batch_is_fine_and_bad_sizes_and_values_are_named() {
+    let model = armkit::robots::by_name("ur5").unwrap();
+    let mut batch = BatchData::new(&model);
+    forward_kinematics_batch(&model, &mut batch, &[], &mut []).unwrap();
+    let mut poses = vec![0.0; 2 * POSE_VALUES];
+    let err = forward_kinematics_batch(&model, &mut batch, &[0.0; 7], &mut poses).unwrap_err();
+    assert!(err.to_string().contains("q"), "{err}");
+    assert!(
+        err.to_string().contains("6 values per configuration"),
+        "{err}"
+    );
+    let err = forward_kinematics_batch(&model, &mut batch, &[0.0; 6], &mut poses).unwrap_err();
+    assert!(err.to_string().contains("poses"), "{err}");
+    let mut q = [0.0; 12];
+    q[9] = f64::NAN;
+    let err = forward_kinematics_batch(&model, &mut batch, &q, &mut poses).unwrap_err();
+    assert!(
+        err.to_string()
+            .contains("configuration 1 (0-based), joint 3"),
+        "{err}"
+    );
+    let mut jacobians = vec![0.0; 36];
+    let err =
+        jacobian_batch(&model, &mut batch, &q, JacobianFrame::World, &mut jacobians).unwrap_err();
+    assert!(err.to_string().contains("jacobians"), "{err}");
+    let panda = armkit::robots::by_name("panda").unwrap();
+    let err =
+        forward_kinematics_batch(&panda, &mut batch, &[0.0; 7], &mut poses[..16]).unwrap_err();
+    assert!(err.to_string().contains("workspace"), "{err}");
+}
+
+#[test]
+fn an_overflowing_configuration_is_an_error_naming_it() {
+    // Finite inputs whose product overflows (as the single call's test):
+    // lengths near f64::MAX, and a prismatic position of 1e308 in
+    // configuration 5 only.
+    let text = "convention = \"standard\"\n[[links]]\ntype = \"P\"\nd = 1e307\na = 1e307\nalpha = 0\nqlim = [0, 1e308]\n[[links]]\ntype = \"R\"\nd = 1e307\na = 1e307\nalpha = 0\n";
+    let model =
+        armkit::description::parse_str(text, armkit::description::Format::Toml, "<huge>").unwrap();
+    let mut q = vec![0.0; 2 * 7];
+    q[2 * 5] = f64::MAX;
+    let mut batch = BatchData::new(&model);
+    let mut poses = vec![0.0; 7 * POSE_VALUES];
+    let err = forward_kinematics_batch(&model, &mut batch, &q, &mut poses).unwrap_err();
+    assert!(err.to_string().contains("configuration 5"), "{err}");
+    assert!(err.to_string().contains("overflowed"), "{err}");
+    let mut jacobians = vec![0.0; 7 * 12];
+    let err =
+        jacobian_batch(&model, &mut batch, &q, JacobianFrame::World, &mut jacobians).unwrap_err();
+    assert!(err.to_string().contains("configuration 5"), "{err}");
+    // Without the huge position every pose is finite.
+    q[2 * 5] = 0.0;
+    forward_kinematics_batch(&model, &mut batch, &q, &mut poses).unwrap();
+}
