@@ -10,7 +10,7 @@ use armkit::study::{
 use armkit::Error;
 use numpy::PyArray1;
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList};
+use pyo3::types::{IntoPyDict, PyDict, PyList};
 
 use crate::errors::OrRaise;
 
