@@ -925,3 +925,27 @@ fn explain_json_is_solvable_where_elimination_solves() {
     let json: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
     assert_eq!(json["status"], "converged");
 }
+
+/// A held joint's value outside its limits is an error naming the flag.
+#[test]
+fn held_joint_outside_its_limits_is_an_error() {
+    let output = armkit(&[
+        "ik",
+        "--robot",
+        "panda",
+        "--pose",
+        "0.4,0.1,0.5,3.14,0,0",
+        "--solver",
+        "analytic",
+        "--fixed-joint",
+        "7",
+        "--parameter",
+        "10",
+    ]);
+    assert_eq!(output.status.code(), Some(1));
+    assert!(
+        stderr(&output).contains("--parameter: the held joint 7's value 10 is outside its limits"),
+        "{}",
+        stderr(&output)
+    );
+}

@@ -53,7 +53,27 @@ pub(super) fn route(
         fixed_joint: redundancy.fixed_joint.map(|joint| joint - 1),
         value: redundancy.parameter,
     };
-    Ok(AnalyticRoute::new(model, options, choice, start)?)
+    let route = AnalyticRoute::new(model, options, choice, start)?;
+    // A held joint outside its limits has no solution within them: said
+    // here rather than listed as none.
+    if let AnalyticRoute::Subproblems(solver) = &route {
+        if let Some(Parameter::FixedJoint { joint, value }) = solver.parameter() {
+            let limits = model.joints()[joint].limits;
+            if value < limits.lower || value > limits.upper {
+                let flag = match redundancy.parameter {
+                    Some(_) => "--parameter",
+                    None => "--start",
+                };
+                return Err(CliError(format!(
+                    "{flag}: the held joint {}'s value {value} is outside its limits [{}, {}]",
+                    joint + 1,
+                    limits.lower,
+                    limits.upper
+                )));
+            }
+        }
+    }
+    Ok(route)
 }
 
 /// Runs `armkit ik --solver analytic`.
