@@ -14,8 +14,9 @@
 //!   refinement around its best point), so a start near a solution lands on
 //!   it, whichever parameter value that solution has; when the answer is
 //!   still farther than [`NEAREST_WINDOW`] from the start (a start near a
-//!   fold of the self-motion, where the parameter turns back), the numeric
-//!   solver from the start answers if it converges nearer. If none of those
+//!   fold of the self-motion, where the parameter turns back), one numeric
+//!   descent from the start (no random restarts) answers if it converges
+//!   nearer. If none of those
 //!   values gives a solution, a held joint is tried at every value of a
 //!   [`SWEEP_VALUES`]-point grid over its range, nearest the start's value
 //!   first, before the numeric solver (on the Panda a try costs about a
@@ -144,6 +145,9 @@ enum Spare {
 #[derive(Clone, Debug)]
 pub struct AutoSolver {
     numeric: IkSolver,
+    /// The numeric solver without random restarts: one descent from the
+    /// start, for a 7-joint start the parameter window did not reach.
+    local: IkSolver,
     analytic: Option<AnalyticSolver>,
     spare: Spare,
     /// Forward kinematics workspace for checking analytic answers.
@@ -155,9 +159,17 @@ impl AutoSolver {
     /// tolerances an analytic answer must meet).
     pub fn new(model: &Model, options: IkOptions) -> Result<AutoSolver> {
         let numeric = IkSolver::new(model, options)?;
+        let local = IkSolver::new(
+            model,
+            IkOptions {
+                max_restarts: 0,
+                ..options
+            },
+        )?;
         let (analytic, spare) = analytic_for(model);
         Ok(AutoSolver {
             numeric,
+            local,
             analytic,
             spare,
             data: Data::new(model),
@@ -201,9 +213,10 @@ impl AutoSolver {
             }
             // A 7-joint arm's start on a branch the parameter window did not
             // reach (near a fold of the self-motion, where the held
-            // parameter turns back): the numeric solver from the start,
-            // when it converges nearer.
-            let mut report = self.numeric.solve(target, start)?;
+            // parameter turns back): one numeric descent from the start (no
+            // random restarts: a restart lands anywhere), when it converges
+            // nearer.
+            let mut report = self.local.solve(target, start)?;
             if report.converged()
                 && distance2(&report.q, start) < distance2(&answer.report.q, start)
             {
