@@ -4,7 +4,8 @@
 //! chooses it ([`AnalyticRoute`]: seed 002's 4-DOF arm by its closed form).
 
 use armkit::ik::analytic::{
-    self, AnalyticOptions, AnalyticRoute, Fit, JointNumbering, Redundancy, SearchPolicy,
+    self, AnalyticOptions, AnalyticRoute, Fit, JointNumbering, Redundancy, Representatives,
+    SearchPolicy,
 };
 use armkit::ik::closed_form::ClosedFormSolution;
 use armkit::math::Pose;
@@ -25,16 +26,32 @@ pub struct SolutionsArguments {
     pub redundancy: Redundancy,
     /// `sweep=`: how many parameter values (None: one).
     pub sweep: Option<usize>,
+    /// `representatives=`: `"nearest"` (each distinct solution once) or
+    /// `"every"` (every 2 pi multiple within the limits), as the CLI's
+    /// `--representatives`.
+    pub representatives: Representatives,
 }
 
 impl SolutionsArguments {
-    /// Errors: an unknown `search`, a negative `fixed_joint`, `sweep` < 1.
+    /// Errors: an unknown `search` or `representatives`, a negative
+    /// `fixed_joint`, `sweep` < 1.
     pub fn new(
         search: &str,
         fixed_joint: Option<i64>,
         parameter: Option<f64>,
         sweep: Option<i64>,
+        representatives: &str,
     ) -> armkit::Result<Self> {
+        let representatives = match representatives {
+            "nearest" => Representatives::Nearest,
+            "every" => Representatives::Every,
+            other => {
+                return Err(Error::invalid_argument(
+                    "representatives",
+                    format!("unknown value `{other}`; expected \"nearest\" or \"every\""),
+                ))
+            }
+        };
         let search = match search {
             "elimination" => SearchPolicy::Elimination,
             "1d" => SearchPolicy::UpToOneDimension,
@@ -72,6 +89,7 @@ impl SolutionsArguments {
                 value: parameter,
             },
             sweep,
+            representatives,
         })
     }
 }
@@ -90,7 +108,7 @@ pub fn arm_class(model: &Model) -> armkit::Result<(&'static str, String)> {
 }
 
 /// The result of `Robot.ik_solutions`: every analytic solution within the
-/// joint limits, nearest the start first.
+/// joint limits, exact ones first, each group nearest the start first.
 #[pyclass(frozen, module = "armkit", name = "IkSolutions")]
 pub struct IkSolutions {
     /// Joint positions (rad or m), shape (k, dof), nearest `q0` first.
@@ -170,6 +188,7 @@ pub fn ik_solutions(
         .detach(|| {
             let options = AnalyticOptions {
                 search: arguments.search,
+                representatives: arguments.representatives,
                 ..AnalyticOptions::default()
             };
             let mut route = AnalyticRoute::new(model, options, arguments.redundancy, start)?;

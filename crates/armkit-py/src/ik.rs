@@ -3,8 +3,8 @@
 
 use std::time::Duration;
 
-use armkit::ik::closed_form::{ClosedFormSolver, Fit};
-use armkit::ik::{AutoSolver, IkMethod, IkOptions, IkRoute, IkSolver, IkStatus};
+use armkit::ik::analytic::{AnalyticOptions, AnalyticRoute, Fit, Redundancy, Representatives};
+use armkit::ik::{AutoSolver, IkMethod, IkOptions, IkRoute, IkSolver, IkStatus, SolverName};
 use armkit::math::Pose;
 use armkit::{Error, Model};
 use numpy::{PyArray1, PyArray2};
@@ -12,7 +12,8 @@ use pyo3::prelude::*;
 
 use crate::arrays::{matrix_from_rows, vector};
 
-/// The solver named by `solver=`.
+/// The solver named by `solver=`: the library's [`SolverName`]
+/// vocabulary, the names of `armkit ik --solver`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum SolverChoice {
     /// The library's automatic solver: analytic where the arm's class
@@ -20,25 +21,22 @@ pub enum SolverChoice {
     /// redundancy parameter), Levenberg-Marquardt otherwise; targets beyond
     /// the reach bound are not attempted.
     Auto,
-    /// The closed form only (an error for robots without one).
-    ClosedForm,
+    /// Every analytic solution ([`AnalyticRoute`], as `armkit ik --solver
+    /// analytic`; alias `closed-form`), the nearest exact one returned.
+    Analytic,
     /// A numeric method.
     Numeric(IkMethod),
 }
 
 impl SolverChoice {
-    /// `"auto"`, `"closed-form"`, or a numeric method `"lm"`, `"nr"`, `"dls"`, `"sri"`.
+    /// A name of [`SolverName`] (or an alias): `"auto"`, `"analytic"`,
+    /// `"lm"`, `"nr"`, `"dls"`, `"sri"`.
     pub fn parse(name: &str) -> armkit::Result<SolverChoice> {
-        match name {
-            "auto" => Ok(SolverChoice::Auto),
-            "closed-form" | "closed_form" => Ok(SolverChoice::ClosedForm),
-            other => IkMethod::from_short_name(other).map(SolverChoice::Numeric).map_err(|_| {
-                Error::invalid_argument(
-                    "solver",
-                    format!("unknown IK solver `{other}`; expected auto, closed-form, lm, nr, dls or sri"),
-                )
-            }),
-        }
+        Ok(match SolverName::parse(name)? {
+            SolverName::Auto => SolverChoice::Auto,
+            SolverName::Analytic => SolverChoice::Analytic,
+            numeric => SolverChoice::Numeric(numeric.method()),
+        })
     }
 }
 
@@ -115,22 +113,43 @@ pub struct Outcome {
     pub solutions: Vec<Vec<f64>>,
 }
 
-/// A solver for one thread: the numeric solver and, where chosen and
-/// available, the closed form.
+/// A solver for one thread: the numeric solver and, where chosen, the
+/// automatic one; the analytic route of the arm, if it has one, lists every
+/// solution.
 #[derive(Clone)]
 pub struct IkEngine {
     numeric: IkSolver,
-    closed: Option<ClosedFormSolver>,
     auto: Option<AutoSolver>,
+    /// The analytic route (a 6-joint arm's, built once; a 7-joint arm's is
+    /// built per solve, at the answer's redundancy parameter).
+    analytic: Option<AnalyticRoute>,
     choice: SolverChoice,
 }
 
+/// The analytic route's options in `Robot.ik`: each distinct solution once.
+fn analytic_options() -> AnalyticOptions {
+    AnalyticOptions {
+        representatives: Representatives::Nearest,
+        ..AnalyticOptions::default()
+    }
+}
+
 impl IkEngine {
-    /// Errors: invalid options, or `closed-form` for a robot without one.
+    /// Errors: invalid options, or `analytic` for a robot without analytic
+    /// solver (the message names its class).
     pub fn new(model: &Model, arguments: &IkArguments) -> armkit::Result<Self> {
-        let closed = match arguments.solver {
-            SolverChoice::ClosedForm => Some(ClosedFormSolver::new(model)?),
-            _ => None,
+        let start = model.neutral_configuration();
+        let analytic = match arguments.solver {
+            SolverChoice::Analytic => Some(AnalyticRoute::new(
+                model,
+                analytic_options(),
+                Redundancy::default(),
+                &start,
+            )?),
+            SolverChoice::Auto => {
+                AnalyticRoute::new(model, analytic_options(), Redundancy::default(), &start).ok()
+            }
+            SolverChoice::Numeric(_) => None,
         };
         let auto = match arguments.solver {
             SolverChoice::Auto => Some(AutoSolver::new(model, arguments.options)?),
@@ -138,24 +157,55 @@ impl IkEngine {
         };
         Ok(IkEngine {
             numeric: IkSolver::new(model, arguments.options)?,
-            closed,
             auto,
+            analytic,
             choice: arguments.solver,
         })
     }
 
+    /// The exact analytic solutions for `target`, nearest `start` first,
+    /// with a 7-joint arm's redundancy parameter read from `at` (empty
+    /// when the arm has no analytic route).
+    fn exact_solutions(
+        &mut self,
+        target: &Pose,
+        start: &[f64],
+        at: &[f64],
+    ) -> armkit::Result<Vec<Vec<f64>>> {
+        let model = self.numeric.model();
+        if model.dof() == 7 && self.analytic.is_some() {
+            self.analytic = Some(AnalyticRoute::new(
+                model,
+                analytic_options(),
+                Redundancy::default(),
+                at,
+            )?);
+        }
+        let Some(route) = self.analytic.as_mut() else {
+            return Ok(Vec::new());
+        };
+        Ok(route
+            .solve(target, start, None)?
+            .into_iter()
+            .filter(|s| s.fit == Fit::Exact)
+            .map(|s| s.q)
+            .collect())
+    }
+
     /// Solves for `target` (world frame) from `start`.
     pub fn solve(&mut self, target: &Pose, start: &[f64]) -> armkit::Result<Outcome> {
+        // The start is checked as every other solver checks it (the same
+        // message, `joint_positions: ...`).
+        self.numeric.model().check_joint_positions(start)?;
         if let Some(auto) = &mut self.auto {
-            // The start is checked as every other solver checks it (the
-            // same message, `joint_positions: ...`).
-            self.numeric.model().check_joint_positions(start)?;
             let found = auto.solve(target, start)?;
             let report = found.report;
-            let solutions = if report.converged() {
-                vec![report.q.clone()]
-            } else {
-                Vec::new()
+            let solutions = match (report.converged(), found.route) {
+                (true, IkRoute::Analytic | IkRoute::AnalyticSweep) => {
+                    self.exact_solutions(target, start, &report.q)?
+                }
+                (true, _) => vec![report.q.clone()],
+                (false, _) => Vec::new(),
             };
             return Ok(Outcome {
                 status: report.status,
@@ -172,41 +222,32 @@ impl IkEngine {
                 solutions,
             });
         }
-        if let Some(closed) = &self.closed {
+        if self.choice == SolverChoice::Analytic {
             let began = std::time::Instant::now();
-            self.numeric.model().check_joint_positions(start)?;
-            let solutions = closed.solve(target, start)?;
-            let exact = solutions.iter().find(|s| s.fit == Fit::Exact);
-            let best = exact.or(solutions.first());
-            match (best, self.choice) {
-                (Some(best), _)
-                    if best.fit == Fit::Exact || self.choice == SolverChoice::ClosedForm =>
-                {
-                    return Ok(Outcome {
-                        status: if best.fit == Fit::Exact {
-                            IkStatus::Converged
-                        } else {
-                            IkStatus::NotConverged
-                        },
-                        solver: "closed-form",
-                        q: best.q.clone(),
-                        position_error: best.position_error,
-                        orientation_error: best.orientation_error,
-                        iterations: 0,
-                        restarts: 0,
-                        elapsed: began.elapsed(),
-                        solutions: solutions.into_iter().map(|s| s.q).collect(),
-                    });
-                }
-                // No solution within the limits: the numeric best effort,
-                // never reported as converged.
-                _ => {
-                    let mut outcome = self.numeric_solve(target, start)?;
-                    outcome.status = IkStatus::NotConverged;
-                    outcome.solutions.clear();
-                    return Ok(outcome);
-                }
-            }
+            let solutions = self.exact_solutions(target, start, start)?;
+            let Some(best) = solutions.first().cloned() else {
+                // No exact solution within the limits: the numeric best
+                // effort, never reported as converged.
+                let mut outcome = self.numeric_solve(target, start)?;
+                outcome.status = IkStatus::NotConverged;
+                outcome.solutions.clear();
+                return Ok(outcome);
+            };
+            let mut data = armkit::kinematics::Data::new(self.numeric.model());
+            let pose =
+                armkit::kinematics::forward_kinematics(self.numeric.model(), &mut data, &best)?;
+            let e = armkit::ik::pose_error(target, pose);
+            return Ok(Outcome {
+                status: IkStatus::Converged,
+                solver: "analytic",
+                q: best,
+                position_error: e.fixed_rows::<3>(0).norm(),
+                orientation_error: e.fixed_rows::<3>(3).norm(),
+                iterations: 0,
+                restarts: 0,
+                elapsed: began.elapsed(),
+                solutions,
+            });
         }
         self.numeric_solve(target, start)
     }
@@ -246,7 +287,7 @@ pub struct IkResult {
     converged: bool,
     /// The solver that produced `q`: `"analytic"`, `"analytic_sweep"`,
     /// `"unreachable"` (auto: beyond the reach bound, not attempted),
-    /// `"closed-form"`, `"lm"`, `"nr"`, `"dls"` or `"sri"`.
+    /// `"lm"`, `"nr"`, `"dls"` or `"sri"`.
     #[pyo3(get)]
     solver: &'static str,
     /// Joint positions (rad or m), shape (dof,), within the joint limits.
@@ -258,7 +299,7 @@ pub struct IkResult {
     /// Orientation error at `q`, rad.
     #[pyo3(get)]
     orientation_error: f64,
-    /// Iterations over all attempts (0 for the closed form).
+    /// Iterations over all attempts (0 for the analytic solver).
     #[pyo3(get)]
     iterations: usize,
     /// Random restarts used.
@@ -267,9 +308,12 @@ pub struct IkResult {
     /// Wall-clock time of the solve, s.
     #[pyo3(get)]
     elapsed: f64,
-    /// Every solution found, shape (k, dof): all closed-form solutions
-    /// within the limits, nearest the start first; for a numeric solver the
-    /// converged `q` (k = 1) or none (k = 0).
+    /// Every solution found, shape (k, dof): where the analytic solver
+    /// answered (`analytic`, or `auto` on its analytic route), every exact
+    /// analytic solution within the limits, each distinct one once, nearest
+    /// the start first (a 7-joint arm's at the answer's redundancy
+    /// parameter); for a numeric solver the converged `q` (k = 1) or none
+    /// (k = 0).
     #[pyo3(get)]
     solutions: Py<PyArray2<f64>>,
 }

@@ -400,8 +400,9 @@ impl Robot {
     /// Inverse kinematics of one end-effector pose `T` ((4, 4) homogeneous,
     /// world frame, m) from `q0` (default: mid-range). `solver`: `"auto"`
     /// (the library's: analytic where the arm's class allows, else
-    /// Levenberg-Marquardt),
-    /// `"closed-form"`, `"lm"`, `"nr"`, `"dls"` or `"sri"`. Tolerances in m
+    /// Levenberg-Marquardt), `"analytic"` (every analytic solution, the
+    /// nearest exact one returned; alias `"closed-form"`), `"lm"`, `"nr"`,
+    /// `"dls"` or `"sri"`: the names of `armkit ik --solver`. Tolerances in m
     /// and rad; `time_budget` in s (None: no budget); `task_weights` of
     /// `[x, y, z, rx, ry, rz]` (a zero masks the component). Not converging
     /// is `result.status == "not_converged"`, never an exception.
@@ -570,8 +571,11 @@ impl Robot {
     }
 
     /// Every analytic IK solution of `T` (4 x 4, world frame, m) within the
-    /// joint limits, nearest `q0` first (default: mid-range): the route of
-    /// `armkit ik --solver analytic`. `search`: `"elimination"` (the default:
+    /// joint limits, exact ones first, each group nearest `q0` first
+    /// (default: mid-range): the route of `armkit ik --solver analytic`.
+    /// `representatives`: `"nearest"` (the default: each distinct solution
+    /// once, its 2 pi multiple nearest `q0`) or `"every"` (every 2 pi
+    /// multiple within the joint limits), as `--representatives`. `search`: `"elimination"` (the default:
     /// closed forms, every other 6R arm by algebraic elimination), `"1d"`
     /// (closed forms and 1-D searches) or `"2d"` (the 1-D searches and a
     /// general 6R arm's 2-D search). 7-joint
@@ -583,7 +587,7 @@ impl Robot {
     /// `IkSolutions` (`q` (k, dof), `exact` (k,), `fits`, `position_error`,
     /// `orientation_error`, `arm_class`, `method`). An arm without analytic
     /// solver raises `ValueError` naming its class.
-    #[pyo3(signature = (T, q0=None, search="elimination", fixed_joint=None, parameter=None, sweep=None))]
+    #[pyo3(signature = (T, q0=None, search="elimination", fixed_joint=None, parameter=None, sweep=None, representatives="nearest"))]
     #[allow(non_snake_case, clippy::too_many_arguments)]
     fn ik_solutions(
         &self,
@@ -594,9 +598,11 @@ impl Robot {
         fixed_joint: Option<i64>,
         parameter: Option<f64>,
         sweep: Option<i64>,
+        representatives: &str,
     ) -> PyResult<IkSolutions> {
         let arguments =
-            SolutionsArguments::new(search, fixed_joint, parameter, sweep).or_raise()?;
+            SolutionsArguments::new(search, fixed_joint, parameter, sweep, representatives)
+                .or_raise()?;
         let target = pose_argument(T, "T")?;
         let start = match q0 {
             None => self.model.neutral_configuration(),

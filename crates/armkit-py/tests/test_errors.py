@@ -36,8 +36,9 @@ CASES = [
     ("unknown tip link", lambda: armkit.Robot.from_urdf(DATA / "urdf" / "ur5.urdf", tip="nolink"), "the tip link `nolink` does not exist; the links are: base_link"),
     ("empty base link", lambda: armkit.Robot.from_urdf(DATA / "urdf" / "ur5.urdf", base=" "), "invalid argument `base`: the link name is empty"),
     # IK options and targets
-    ("unknown solver", lambda: ROBOT.ik(T, solver="magic"), "invalid argument `solver`: unknown IK solver `magic`; expected auto, closed-form, lm, nr, dls or sri"),
-    ("no closed form", lambda: ROBOT.ik(T, solver="closed-form"), "invalid argument `model`: `ur5` has no closed-form solver"),
+    ("unknown solver", lambda: ROBOT.ik(T, solver="magic"), "invalid argument `solver`: unknown IK solver `magic`; expected auto, analytic, lm, nr, dls or sri"),
+    ("no analytic solver", lambda: armkit.Robot.builtin("gantry9").ik(T, solver="analytic"), "`gantry9` has no analytic solver: class other"),
+    ("unknown representatives", lambda: ROBOT.ik_solutions(T, representatives="all"), 'invalid argument `representatives`: unknown value `all`; expected "nearest" or "every"'),
     ("negative tolerance", lambda: ROBOT.ik(T, position_tolerance=-1), "invalid argument `position_tolerance`: must be finite and > 0, got -1"),
     ("NaN tolerance", lambda: ROBOT.ik(T, orientation_tolerance=float("nan")), "invalid argument `orientation_tolerance`: must be finite and > 0, got NaN"),
     ("zero budget", lambda: ROBOT.ik(T, time_budget=0), "invalid argument `time_budget`: must be finite and > 0, got 0"),

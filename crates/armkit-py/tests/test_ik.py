@@ -40,8 +40,8 @@ def test_closed_form_gives_every_solution_each_checked_by_fk():
     robot = armkit.Robot.builtin("puma560")
     q = np.array([0.3, 0.6, -1.9, 0.4, 0.8, -0.5])
     T = robot.fk(q)
-    result = robot.ik(T, q0=q, solver="closed-form")
-    assert result.solver == "closed-form" and result.converged
+    result = robot.ik(T, q0=q, solver="closed-form")  # an alias of "analytic"
+    assert result.solver == "analytic" and result.converged
     np.testing.assert_allclose(result.q, q, atol=1e-9)  # nearest the start first
     assert result.solutions.shape[0] >= 2
     for solution in result.solutions:
@@ -128,3 +128,38 @@ def test_auto_solver_reaches_targets_checked_by_fk(name):
     assert converged.all()
     assert np.abs(robot.fk(Q) - Ts).max() <= 2e-6
     assert np.all(Q >= robot.lower) and np.all(Q <= robot.upper)
+
+
+# The names of ``armkit ik --solver`` (the CLI's test checks its list against
+# the library's ``SolverName::ALL``, which this message is built from).
+SOLVER_NAMES = ["auto", "analytic", "lm", "nr", "dls", "sri"]
+
+
+def test_solver_names_are_the_cli_vocabulary():
+    robot = armkit.Robot.builtin("ur5")
+    q = np.array([0.4, -1.1, 1.3, -0.6, 1.4, 0.2])
+    T = robot.fk(q)
+    for name in SOLVER_NAMES + ["closed-form"]:
+        result = robot.ik(T, q0=q, solver=name, time_budget=None)
+        assert result.converged, name
+    with pytest.raises(ValueError, match="expected " + ", ".join(SOLVER_NAMES[:-1]) + " or " + SOLVER_NAMES[-1]):
+        robot.ik(T, solver="magic")
+
+
+def test_solutions_hold_every_distinct_analytic_solution():
+    robot = armkit.Robot.builtin("ur5")
+    q = np.array([0.4, -1.1, 1.3, -0.6, 1.4, 0.2])
+    T = robot.fk(q)
+    for solver in ["auto", "analytic"]:
+        result = robot.ik(T, q0=q, solver=solver)
+        assert result.converged and result.solutions.shape == (8, 6), solver
+        np.testing.assert_allclose(result.q, q, atol=1e-9)
+        wrapped = np.angle(np.exp(1j * result.solutions))
+        for i in range(8):
+            for j in range(i):
+                assert np.abs(np.angle(np.exp(1j * (wrapped[i] - wrapped[j])))).max() > 1e-6
+        for solution in result.solutions:
+            np.testing.assert_allclose(robot.fk(solution), T, atol=1e-9)
+    distinct = robot.ik_solutions(T, q0=q)
+    every = robot.ik_solutions(T, q0=q, representatives="every")
+    assert len(distinct) == 8 and len(every) >= 8 * 16

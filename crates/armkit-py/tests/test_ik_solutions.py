@@ -77,7 +77,8 @@ def contains(solutions, q, tolerance=1e-6):
 
 def check_solutions(robot, result, T, q0):
     """Every exact solution reproduces T to 1e-10, all within the limits,
-    sorted by Euclidean distance to q0, fields consistent."""
+    exact ones first, each group sorted by Euclidean distance to q0, fields
+    consistent."""
     k = len(result)
     assert result.q.shape == (k, robot.dof)
     assert result.exact.shape == (k,) and result.exact.dtype == np.bool_
@@ -90,8 +91,12 @@ def check_solutions(robot, result, T, q0):
         if exact:
             assert pose_gap(robot, q, T) <= 1e-10
             assert position <= 1e-10 and orientation <= 1e-10
+    # Exact ones first, each group sorted by distance.
+    k_exact = int(result.exact.sum())
+    assert result.exact[:k_exact].all() and not result.exact[k_exact:].any()
     distances = np.linalg.norm(result.q - q0, axis=1)
-    assert np.all(np.diff(distances) >= -1e-12)
+    for group in (distances[:k_exact], distances[k_exact:]):
+        assert np.all(np.diff(group) >= -1e-12)
 
 
 @pytest.mark.parametrize("name", ["ur5", "puma560"])
@@ -115,10 +120,14 @@ def test_ur5_has_eight_solutions_at_a_generic_pose():
     result = robot.ik_solutions(T, q0=q)
     assert result.arm_class == "three_parallel_2_3_4_intersecting_5_6"
     assert result.exact.all()
-    # Joint ranges of +-2 pi: each branch appears with its 2 pi multiples.
+    # Each distinct solution once by default.
     branches = np.unique(np.round(wrapped(result.q), 6), axis=0)
-    assert len(branches) == 8
-    assert len(result) > 8
+    assert len(branches) == 8 and len(result) == 8
+    # Joint ranges of +-2 pi: with every representative, each branch
+    # appears with its 2 pi multiples.
+    every = robot.ik_solutions(T, q0=q, representatives="every")
+    assert len(np.unique(np.round(wrapped(every.q), 6), axis=0)) == 8
+    assert len(every) > 8
     # Nearest first: the generating configuration itself.
     assert np.max(np.abs(result.q[0] - q)) < 1e-9
 

@@ -269,19 +269,22 @@ fn bench_analytic(c: &mut Criterion) {
     };
     let solver = AnalyticSolver::with_parameter(&panda, nearest, held).unwrap();
     bench_analytic_solver(c, "panda_q7_held/distinct", &panda, solver);
-    // The 1-D search class: the iiwa14 URDF (0.436 mm offsets) with joint 3 held.
+    // A spherical wrist behind three general axes (subproblem 5 in closed
+    // form): the iiwa14 URDF (0.436 mm offsets) with joint 3 held.
     let iiwa_urdf = urdf("iiwa14.urdf", &|t| t);
     let held = Parameter::FixedJoint {
         joint: 2,
         value: 0.4,
     };
-    let solver = AnalyticSolver::with_parameter(&iiwa_urdf, nearest, held).unwrap();
-    bench_analytic_solver(
-        c,
-        "iiwa14_urdf_q3_held_1d_search/distinct",
-        &iiwa_urdf,
-        solver,
-    );
+    for (label, options) in [("distinct", nearest), ("distinct_unchecked", unchecked)] {
+        let solver = AnalyticSolver::with_parameter(&iiwa_urdf, options, held).unwrap();
+        bench_analytic_solver(
+            c,
+            &format!("iiwa14_urdf_q3_held_general_axes/{label}"),
+            &iiwa_urdf,
+            solver,
+        );
+    }
     // The arms without a closed form, each by elimination (the default)
     // and by its 1-D search (`SearchPolicy::UpToOneDimension`): one pair
     // (axes 5-6 or 3-4 meet), parallel axes 2-3 or 1-2, the rest general;

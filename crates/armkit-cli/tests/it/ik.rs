@@ -539,15 +539,93 @@ fn analytic_json_lists_every_solution_with_the_class() {
     assert_eq!(json["status"], "converged");
     let solutions = json["solutions"].as_array().unwrap();
     let fits = json["solution_fits"].as_array().unwrap();
-    // 8 branches, each with every 2 pi multiple within the +-2 pi limits.
-    assert!(solutions.len() >= 8 * 16, "{}", solutions.len());
+    // By default each distinct solution once: the 8 branches, no two the
+    // same modulo 2 pi.
+    assert_eq!(solutions.len(), 8, "{json}");
     assert_eq!(solutions.len(), fits.len());
     for (s, f) in solutions.iter().zip(fits) {
         assert!(fk_error("ur5", &q_of(s), &target) <= 1e-9);
         assert_eq!(f["fit"], "exact");
     }
+    for (i, a) in solutions.iter().enumerate() {
+        for b in &solutions[..i] {
+            let same = q_of(a).iter().zip(q_of(b)).all(|(x, y)| {
+                let d = x - y;
+                (d - std::f64::consts::TAU * (d / std::f64::consts::TAU).round()).abs() < 1e-6
+            });
+            assert!(!same, "{a} and {b} are one solution");
+        }
+    }
     let q = q_of(&json["q"]);
     assert!(q.iter().zip(q0).all(|(a, b)| (a - b).abs() < 1e-9), "{q:?}");
+    // Every 2 pi multiple within the +-2 pi limits on request.
+    let output = armkit(&[
+        "ik",
+        "--robot",
+        "ur5",
+        "--pose",
+        &pose,
+        "--solver",
+        "analytic",
+        "--start",
+        "0.4,-1.1,1.3,-0.6,1.4,0.2",
+        "--representatives",
+        "every",
+        "--json",
+    ]);
+    let json: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    let every = json["solutions"].as_array().unwrap();
+    assert!(every.len() >= 8 * 16, "{}", every.len());
+    for s in every {
+        assert!(fk_error("ur5", &q_of(s), &target) <= 1e-9);
+    }
+}
+
+/// `--solver` takes the library's vocabulary (`armkit::ik::SolverName`),
+/// the names Python's `solver=` takes (its test checks the same list).
+#[test]
+fn solver_names_are_the_library_vocabulary() {
+    use armkit::ik::{SolverName, SOLVER_ALIASES};
+    use armkit_cli::commands::ik::SolverArg;
+    use clap::ValueEnum;
+    let cli: Vec<String> = SolverArg::value_variants()
+        .iter()
+        .map(|v| v.to_possible_value().unwrap().get_name().to_string())
+        .collect();
+    let library: Vec<String> = SolverName::ALL.iter().map(|s| s.to_string()).collect();
+    assert_eq!(cli, library);
+    for v in SolverArg::value_variants() {
+        assert_eq!(
+            v.solver().as_str(),
+            v.to_possible_value().unwrap().get_name()
+        );
+    }
+    for (alias, solver) in SOLVER_ALIASES {
+        let arg = SolverArg::from_str(alias, false).unwrap();
+        assert_eq!(arg.solver(), solver, "{alias}");
+    }
+}
+
+/// The analytic solver's flags with another solver are refused, naming the
+/// flag and the solver.
+#[test]
+fn analytic_flags_with_another_solver_are_errors() {
+    let (pose, _) = pose_argument("ur5", &[0.4, -1.1, 1.3, -0.6, 1.4, 0.2]);
+    for (flag, value) in [("--representatives", "every"), ("--search", "1d")] {
+        for solver in ["lm", "auto"] {
+            let output = armkit(&[
+                "ik", "--robot", "ur5", "--pose", &pose, "--solver", solver, flag, value,
+            ]);
+            assert_eq!(output.status.code(), Some(1));
+            assert!(
+                stderr(&output).contains(&format!(
+                    "{flag}: only with --solver analytic (the {solver} solver does not take it)"
+                )),
+                "{}",
+                stderr(&output)
+            );
+        }
+    }
 }
 
 #[test]
@@ -775,4 +853,99 @@ fn bench_ik_prints_the_table() {
     assert_eq!(row["solver"], "lm");
     assert_eq!(row["success_rate"].as_f64().unwrap(), 1.0);
     assert!(row["p99_us"].as_f64().unwrap() >= row["median_us"].as_f64().unwrap());
+}
+
+/// A general 6R arm (no two consecutive axes meet or are parallel).
+const GENERAL_6R_DH: &str = r#"
+name = "general-6r"
+convention = "standard"
+[[links]]
+type = "R"
+d = 0.3
+a = 0.1
+alpha = 1.2
+[[links]]
+type = "R"
+d = 0.05
+a = 0.4
+alpha = 0.3
+[[links]]
+type = "R"
+d = -0.04
+a = 0.35
+alpha = -0.9
+[[links]]
+type = "R"
+d = 0.2
+a = 0.03
+alpha = 1.4
+[[links]]
+type = "R"
+d = 0.02
+a = 0.04
+alpha = 1.1
+[[links]]
+type = "R"
+d = 0.1
+a = 0.02
+alpha = 0.7
+"#;
+
+/// `--explain --json` says solvable for an arm only elimination (the
+/// default method) solves, and `--solver analytic` solves it.
+#[test]
+fn explain_json_is_solvable_where_elimination_solves() {
+    let dir = std::env::temp_dir().join(format!("armkit-ik-general-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("general-6r.toml");
+    std::fs::write(&file, GENERAL_6R_DH).unwrap();
+    let path = file.to_str().unwrap();
+    let output = armkit(&["ik", "--robot-file", path, "--explain", "--json"]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let json: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    assert!(
+        json["class"].as_str().unwrap().starts_with("general_6r"),
+        "{json}"
+    );
+    assert_eq!(json["solvable"], true, "{json}");
+    let model = armkit::description::load(&file).unwrap();
+    let q = [0.4, -1.1, 1.3, -0.6, 1.4, 0.2];
+    let pose = fk_text(&model, &q);
+    let output = armkit(&[
+        "ik",
+        "--robot-file",
+        path,
+        "--pose",
+        &pose,
+        "--solver",
+        "analytic",
+        "--json",
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let json: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    assert_eq!(json["status"], "converged");
+}
+
+/// A held joint's value outside its limits is an error naming the flag.
+#[test]
+fn held_joint_outside_its_limits_is_an_error() {
+    let output = armkit(&[
+        "ik",
+        "--robot",
+        "panda",
+        "--pose",
+        "0.4,0.1,0.5,3.14,0,0",
+        "--solver",
+        "analytic",
+        "--fixed-joint",
+        "7",
+        "--parameter",
+        "10",
+    ]);
+    assert_eq!(output.status.code(), Some(1));
+    assert!(
+        stderr(&output).contains("--parameter: the held joint 7's value 10 is outside its limits"),
+        "{}",
+        stderr(&output)
+    );
 }

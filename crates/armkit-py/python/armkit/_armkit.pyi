@@ -27,7 +27,8 @@ _FloatArray = npt.NDArray[np.float64]
 _BoolArray = npt.NDArray[np.bool_]
 _StrPath = Union[str, "PathLike[str]"]
 _AnalyticSearch = Literal["elimination", "1d", "2d"]
-_IkSolverName = Literal["auto", "closed-form", "lm", "nr", "dls", "sri"]
+_IkSolverName = Literal["auto", "analytic", "closed-form", "lm", "nr", "dls", "sri"]
+_Representatives = Literal["nearest", "every"]
 _JacobianFrameName = Literal["world", "end-effector"]
 
 def _view_page(
@@ -46,7 +47,7 @@ class IkResult:
     """``"converged"`` when both errors are within tolerance at ``q``."""
     converged: bool
     """``status == "converged"``."""
-    solver: Literal["analytic", "analytic_sweep", "unreachable", "closed-form", "lm", "nr", "dls", "sri"]
+    solver: Literal["analytic", "analytic_sweep", "unreachable", "lm", "nr", "dls", "sri"]
     """The solver that produced ``q`` (``"unreachable"``: auto found the
     target beyond the reach bound and did not attempt it)."""
     q: _FloatArray
@@ -57,20 +58,23 @@ class IkResult:
     orientation_error: float
     """Orientation error of FK(q) from the target, rad."""
     iterations: int
-    """Iterations over all attempts (0 for the closed form)."""
+    """Iterations over all attempts (0 for the analytic solver)."""
     restarts: int
     """Random restarts used."""
     elapsed: float
     """Wall-clock time of the solve, s."""
     solutions: _FloatArray
-    """Every solution found, shape (k, dof): all closed-form solutions within
-    the limits, nearest the start first; for a numeric solver the converged
-    ``q`` (k = 1) or none (k = 0)."""
+    """Every solution found, shape (k, dof): where the analytic solver
+    answered (``"analytic"``, or ``"auto"`` on its analytic route) every exact
+    analytic solution within the limits, each distinct one once, nearest the
+    start first (a 7-joint arm's at the answer's redundancy parameter); for a
+    numeric solver the converged ``q`` (k = 1) or none (k = 0)."""
 
 @final
 class IkSolutions:
     """Result of ``Robot.ik_solutions``: every analytic solution within the
-    joint limits, nearest ``q0`` first (k of them, possibly 0)."""
+    joint limits, exact ones first, each group nearest ``q0`` first (k of
+    them, possibly 0)."""
 
     q: _FloatArray
     """Joint positions (rad or m), shape (k, dof), nearest ``q0`` first."""
@@ -176,8 +180,10 @@ class Robot:
         """Inverse kinematics of the end-effector pose ``T`` ((4, 4), world
         frame, m) from ``q0`` (dof,) (default: mid-range). ``solver``:
         ``"auto"`` (analytic where the arm's class allows: spherical wrist,
-        the UR family, 7-DOF arms; else Levenberg-Marquardt), ``"closed-form"``, ``"lm"``, ``"nr"``,
-        ``"dls"``, ``"sri"``. Tolerances in m and rad; ``time_budget`` in s
+        the UR family, 7-DOF arms; else Levenberg-Marquardt), ``"analytic"``
+        (every analytic solution, the nearest exact one returned; alias
+        ``"closed-form"``), ``"lm"``, ``"nr"``, ``"dls"``, ``"sri"``: the names
+        of ``armkit ik --solver``. Tolerances in m and rad; ``time_budget`` in s
         per solve (None: none); ``task_weights`` on ``[x, y, z, rx, ry, rz]``
         (a zero masks that component). Deterministic for a given ``seed``
         unless the time budget cuts the search short."""
@@ -189,10 +195,14 @@ class Robot:
         fixed_joint: Optional[int] = None,
         parameter: Optional[float] = None,
         sweep: Optional[int] = None,
+        representatives: _Representatives = "nearest",
     ) -> IkSolutions:
         """Every analytic IK solution of ``T`` ((4, 4), world frame, m) within
-        the joint limits, nearest ``q0`` (dof,) first (default: mid-range),
-        as ``armkit ik --solver analytic``. ``search``: ``"elimination"`` (the
+        the joint limits, exact ones first, each group nearest ``q0`` (dof,)
+        first (default: mid-range), as ``armkit ik --solver analytic``.
+        ``representatives``: ``"nearest"`` (default: each distinct solution
+        once) or ``"every"`` (every 2 pi multiple within the joint limits), as
+        ``--representatives``. ``search``: ``"elimination"`` (the
         default: closed forms, every other 6R arm by algebraic elimination,
         tens of microseconds), ``"1d"`` (closed forms and the 1-D searches;
         a general 6R arm refused) or ``"2d"`` (the 1-D searches and a general

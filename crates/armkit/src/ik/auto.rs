@@ -8,13 +8,20 @@
 //!   numeric solver.
 //! * 7-joint arms: a spherical-shoulder-elbow-wrist arm by its elbow angle,
 //!   any other by holding the joint [`super::analytic::joint_to_hold`]
-//!   picks, at the start's own parameter (the start's elbow angle or joint
-//!   value); a held joint is then tried at every value of a
+//!   picks. The answer is the solution nearest the start over the
+//!   parameter values within [`NEAREST_WINDOW`] of the start's own (the
+//!   start's elbow angle or joint value: a grid, then golden-section
+//!   refinement around its best point), so a start near a solution lands on
+//!   it, whichever parameter value that solution has; when the answer is
+//!   still farther than [`NEAREST_WINDOW`] from the start (a start near a
+//!   fold of the self-motion, where the parameter turns back), one numeric
+//!   descent from the start (no random restarts) answers if it converges
+//!   nearer. If none of those
+//!   values gives a solution, a held joint is tried at every value of a
 //!   [`SWEEP_VALUES`]-point grid over its range, nearest the start's value
-//!   first, until one gives a solution within the limits, before the
-//!   numeric solver (on the Panda a try costs about a ninth of a numeric
-//!   solve, and the numeric solver is slowest on the poses the held values
-//!   near the start miss).
+//!   first, before the numeric solver (on the Panda a try costs about a
+//!   ninth of a numeric solve, and the numeric solver is slowest on the
+//!   poses the held values near the start miss).
 //! * The analytic solutions' fit comes from the subproblems; the one
 //!   returned is checked by forward kinematics against the tolerances
 //!   (nearest first, until one passes).
@@ -41,6 +48,7 @@ use std::time::Instant;
 use super::analytic::{
     AnalyticOptions, AnalyticSolution, AnalyticSolver, ArmClass, Fit, Parameter,
 };
+use super::closed_form::golden_section;
 use super::pose_error::pose_error;
 use super::{IkOptions, IkReport, IkSolver, IkStatus};
 use crate::error::Result;
@@ -51,6 +59,24 @@ use crate::model::{JointLimits, Model};
 /// Values of the redundancy parameter tried by a 7-DOF sweep (evenly over
 /// the elbow angle's circle or the held joint's range).
 pub const SWEEP_VALUES: usize = 16;
+
+/// Half-width of the window of redundancy-parameter values (a held joint's
+/// value, rad or m, or the elbow angle, rad) searched around the start's own
+/// for the solution nearest the start: twice the 0.2 rad within which a
+/// start counts as near a solution.
+pub const NEAREST_WINDOW: f64 = 0.4;
+
+/// Grid points on each side of the start's value within [`NEAREST_WINDOW`]
+/// (then golden-section refinement around the best of them).
+const NEAREST_GRID: usize = 4;
+
+/// Golden-section shrinks of the refinement bracket (two grid steps wide:
+/// 0.2 rad to about 1.6e-3 rad).
+const NEAREST_REFINE: usize = 10;
+
+/// Distance (rad or m, joint space) below which the start itself counts as
+/// a solution and no nearer one is searched for.
+const START_REACHED: f64 = 1e-9;
 
 /// Values of a held joint tried before the numeric solver: the start's own
 /// value, then every value of a [`SWEEP_VALUES`]-point grid over the joint's
@@ -119,6 +145,9 @@ enum Spare {
 #[derive(Clone, Debug)]
 pub struct AutoSolver {
     numeric: IkSolver,
+    /// The numeric solver without random restarts: one descent from the
+    /// start, for a 7-joint start the parameter window did not reach.
+    local: IkSolver,
     analytic: Option<AnalyticSolver>,
     spare: Spare,
     /// Forward kinematics workspace for checking analytic answers.
@@ -130,9 +159,17 @@ impl AutoSolver {
     /// tolerances an analytic answer must meet).
     pub fn new(model: &Model, options: IkOptions) -> Result<AutoSolver> {
         let numeric = IkSolver::new(model, options)?;
+        let local = IkSolver::new(
+            model,
+            IkOptions {
+                max_restarts: 0,
+                ..options
+            },
+        )?;
         let (analytic, spare) = analytic_for(model);
         Ok(AutoSolver {
             numeric,
+            local,
             analytic,
             spare,
             data: Data::new(model),
@@ -170,6 +207,25 @@ impl AutoSolver {
             })
         };
         if let Some(answer) = analytic(self.analytic_answer(target, start, Stage::OwnParameter)?) {
+            let far = distance2(&answer.report.q, start) > NEAREST_WINDOW * NEAREST_WINDOW;
+            if self.spare == Spare::None || !far {
+                return Ok(answer);
+            }
+            // A 7-joint arm's start on a branch the parameter window did not
+            // reach (near a fold of the self-motion, where the held
+            // parameter turns back): one numeric descent from the start (no
+            // random restarts: a restart lands anywhere), when it converges
+            // nearer.
+            let mut report = self.local.solve(target, start)?;
+            if report.converged()
+                && distance2(&report.q, start) < distance2(&answer.report.q, start)
+            {
+                report.elapsed = began.elapsed();
+                return Ok(AutoReport {
+                    report,
+                    route: IkRoute::Numeric,
+                });
+            }
             return Ok(answer);
         }
         let mut report = self.numeric.solve(target, start)?;
@@ -221,26 +277,56 @@ impl AutoSolver {
                 let found = accepted(analytic.solve(target, start)?)?;
                 return Ok(found.map(|s| (s, IkRoute::Analytic)));
             };
-            let mut values = [own; HELD_TRIES];
-            // A held joint: more values; the elbow angle: the start's own only.
-            let tries = match self.spare {
-                Spare::Joint(j) => {
-                    held_values(&model.joints()[j].limits, own, &mut values);
-                    HELD_TRIES
+            // The solution nearest the start over the parameter values near
+            // the start's own: the start's branch, followed as the parameter
+            // moves (a start within NEAREST_WINDOW of a solution's
+            // parameter finds that solution's branch).
+            let mut best: Option<(AnalyticSolution, f64)> = None;
+            let mut distance = |value: f64| -> Result<f64> {
+                if analytic.set_parameter_value(value).is_err() {
+                    return Ok(f64::INFINITY);
                 }
-                _ => 1,
+                let Some(s) = accepted(analytic.solve(target, start)?)? else {
+                    return Ok(f64::INFINITY);
+                };
+                let d = distance2(s.q(), start);
+                if best.as_ref().is_none_or(|(_, b)| d < *b) {
+                    best = Some((s, d));
+                }
+                Ok(d)
             };
-            for (k, &value) in values[..tries].iter().enumerate() {
+            let at_own = distance(own)?;
+            if at_own > START_REACHED * START_REACHED {
+                let step = NEAREST_WINDOW / NEAREST_GRID as f64;
+                let mut nearest = (own, at_own);
+                for k in 1..=NEAREST_GRID {
+                    for value in [own - step * k as f64, own + step * k as f64] {
+                        let d = distance(value)?;
+                        if d < nearest.1 {
+                            nearest = (value, d);
+                        }
+                    }
+                }
+                if nearest.1.is_finite() {
+                    let center = nearest.0;
+                    golden_section(&mut distance, center - step, center + step, NEAREST_REFINE)?;
+                }
+            }
+            if let Some((found, _)) = best {
+                return Ok(Some((found, IkRoute::Analytic)));
+            }
+            // A held joint: the far values of its range, nearest first.
+            let Spare::Joint(j) = self.spare else {
+                return Ok(None);
+            };
+            let mut values = [own; HELD_TRIES];
+            held_values(&model.joints()[j].limits, own, &mut values);
+            for &value in &values[1..] {
                 if analytic.set_parameter_value(value).is_err() {
                     continue;
                 }
                 if let Some(found) = accepted(analytic.solve(target, start)?)? {
-                    let route = if k == 0 {
-                        IkRoute::Analytic
-                    } else {
-                        IkRoute::AnalyticSweep
-                    };
-                    return Ok(Some((found, route)));
+                    return Ok(Some((found, IkRoute::AnalyticSweep)));
                 }
             }
             return Ok(None);
@@ -258,12 +344,7 @@ impl AutoSolver {
                 continue;
             }
             if let Some(s) = accepted(analytic.solve(target, start)?)? {
-                let distance: f64 = s
-                    .q()
-                    .iter()
-                    .zip(start)
-                    .map(|(a, b)| (a - b) * (a - b))
-                    .sum();
+                let distance = distance2(s.q(), start);
                 if best.as_ref().is_none_or(|(_, d)| distance < *d) {
                     best = Some((s, distance));
                 }
@@ -271,6 +352,11 @@ impl AutoSolver {
         }
         Ok(best.map(|(s, _)| (s, IkRoute::AnalyticSweep)))
     }
+}
+
+/// Squared joint-space distance between `a` and `b` (rad^2 or m^2).
+fn distance2(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum()
 }
 
 /// `values[1..]`: the points of a [`SWEEP_VALUES`]-point grid over

@@ -52,17 +52,19 @@ mod numeric;
 mod pose_error;
 mod protocol;
 mod reach;
+mod solver_name;
 mod steps;
 
 use std::time::Duration;
 
 pub use crate::math::rotation_log;
-pub use auto::{AutoReport, AutoSolver, IkRoute, SWEEP_VALUES};
+pub use auto::{AutoReport, AutoSolver, IkRoute, NEAREST_WINDOW, SWEEP_VALUES};
 pub use damping::{ChiaveriniFilter, DampedReciprocal, LmDamping, NakamuraDamping};
 pub use numeric::IkSolver;
 pub use pose_error::{masked_error_norms, orientation_error, pose_error};
 pub use protocol::{benchmark_targets, random_configuration};
 pub use reach::{ReachBound, REACH_MARGIN};
+pub use solver_name::{SolverName, SOLVER_ALIASES};
 pub use steps::{
     damped_least_squares_step, damped_pseudo_inverse, separated_damped_reciprocal_step,
     singularity_robust_inverse, singularity_robust_step,

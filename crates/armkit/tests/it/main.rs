@@ -12,6 +12,7 @@ mod dynamics_coupled;
 mod dynamics_published;
 mod ik;
 mod ik_analytic;
+mod ik_answers;
 mod ik_closed_form;
 mod invariants;
 mod invariants_nonfinite;

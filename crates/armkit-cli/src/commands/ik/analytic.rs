@@ -1,24 +1,29 @@
 //! `armkit ik --solver analytic` (alias `closed-form`) and `--explain`.
 
-use armkit::ik::analytic::{self, AnalyticOptions, AnalyticRoute, Fit, JointNumbering, Parameter};
+use armkit::ik::analytic::{
+    self, AnalyticOptions, AnalyticRoute, Fit, JointNumbering, Parameter, Representatives,
+};
 use armkit::ik::{IkOptions, IkSolver, IkStatus};
 use armkit::kinematics::Data;
 use armkit::math::Pose;
 use armkit::Model;
 
 use super::report::{errors, fit_json, format_q, outcome};
-use super::{failure_reason, IkArgs, RedundancyArgs, MAX_SWEEP};
+use super::{failure_reason, IkArgs, RedundancyArgs, RepresentativesArg, MAX_SWEEP};
 use crate::common::{print_json, CliError, CliResult, Outcome};
 
 /// The analytic route of `model` (the library's [`AnalyticRoute`]) after
-/// the CLI's own checks of its redundancy flags (1-based `--fixed-joint`).
+/// the CLI's own checks of its redundancy flags (1-based `--fixed-joint`),
+/// listing `representatives` of each solution.
 pub(super) fn route(
     model: &Model,
     redundancy: &RedundancyArgs,
+    representatives: Representatives,
     start: &[f64],
 ) -> CliResult<AnalyticRoute> {
     let options = AnalyticOptions {
         search: redundancy.search.policy(),
+        representatives,
         ..AnalyticOptions::default()
     };
     if model.dof() != 7
@@ -48,7 +53,27 @@ pub(super) fn route(
         fixed_joint: redundancy.fixed_joint.map(|joint| joint - 1),
         value: redundancy.parameter,
     };
-    Ok(AnalyticRoute::new(model, options, choice, start)?)
+    let route = AnalyticRoute::new(model, options, choice, start)?;
+    // A held joint outside its limits has no solution within them: said
+    // here rather than listed as none.
+    if let AnalyticRoute::Subproblems(solver) = &route {
+        if let Some(Parameter::FixedJoint { joint, value }) = solver.parameter() {
+            let limits = model.joints()[joint].limits;
+            if value < limits.lower || value > limits.upper {
+                let flag = match redundancy.parameter {
+                    Some(_) => "--parameter",
+                    None => "--start",
+                };
+                return Err(CliError(format!(
+                    "{flag}: the held joint {}'s value {value} is outside its limits [{}, {}]",
+                    joint + 1,
+                    limits.lower,
+                    limits.upper
+                )));
+            }
+        }
+    }
+    Ok(route)
 }
 
 /// Runs `armkit ik --solver analytic`.
@@ -59,12 +84,24 @@ pub(super) fn run(
     start: &[f64],
     options: IkOptions,
 ) -> CliResult<Outcome> {
-    let mut route = route(model, &args.redundancy, start)?;
+    let representatives = args.representatives.unwrap_or_default();
+    let mut route = route(
+        model,
+        &args.redundancy,
+        representatives.representatives(),
+        start,
+    )?;
     let solutions = route.solve(target, start, args.redundancy.sweep)?;
     let method = route.method(JointNumbering::OneBased);
+    // The route lists exact solutions first: converged when any is exact,
+    // and then the first is the nearest exact one.
     let status = match solutions.first() {
         Some(s) if s.fit == Fit::Exact => IkStatus::Converged,
         _ => IkStatus::NotConverged,
+    };
+    let listed = match representatives {
+        RepresentativesArg::Nearest => "distinct solution(s)",
+        RepresentativesArg::Every => "solution(s) (every 2 pi multiple)",
     };
     // The nearest solution; with none, the numeric best effort.
     let (best_effort, numeric) = match solutions.first() {
@@ -90,7 +127,7 @@ pub(super) fn run(
             "solution_fits": solutions.iter().map(|s| fit_json(s.fit, s.position_error, s.orientation_error)).collect::<Vec<_>>(),
         }))?;
     } else {
-        print!("{}: analytic inverse kinematics ({})\nclass: {}\nstatus: {status}\n{} solution(s) within the joint limits, nearest the start first:\n",
+        print!("{}: analytic inverse kinematics ({})\nclass: {}\nstatus: {status}\n{} {listed} within the joint limits, exact first, nearest the start first:\n",
             model.name(), method, route.class_name(), solutions.len());
         for (i, s) in solutions.iter().enumerate() {
             println!(
@@ -133,14 +170,21 @@ pub(super) fn explain(model: &Model, redundancy: &RedundancyArgs, json: bool) ->
         .unwrap_or_default();
     // How `--solver analytic` would solve it with these flags (None when it
     // refuses the arm; the class line then says why).
-    let method = route(model, redundancy, &model.neutral_configuration())
-        .ok()
-        .map(|route| route.method(JointNumbering::OneBased));
+    let method = route(
+        model,
+        redundancy,
+        Representatives::Nearest,
+        &model.neutral_configuration(),
+    )
+    .ok()
+    .map(|route| route.method(JointNumbering::OneBased));
     if json {
+        // Solvable: `--solver analytic` takes the arm with these flags (by
+        // a closed form, elimination or a search), whatever the class.
         return print_json(&serde_json::json!({
             "robot": model.name(),
             "class": class.as_str(),
-            "solvable": class.is_solvable(),
+            "solvable": method.is_some(),
             "description": class.description(),
             "method": method,
             "held_joint": held,

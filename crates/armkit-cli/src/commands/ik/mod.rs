@@ -9,7 +9,8 @@ pub use bench::{run_bench, BenchIkArgs};
 
 use std::time::Duration;
 
-use armkit::ik::{AutoSolver, IkMethod, IkOptions, IkReport, IkSolver, ReachBound};
+use armkit::ik::analytic::Representatives;
+use armkit::ik::{AutoSolver, IkMethod, IkOptions, IkReport, IkSolver, ReachBound, SolverName};
 use armkit::math::Pose;
 use armkit::Model;
 use clap::{Args, ValueEnum};
@@ -19,43 +20,70 @@ use crate::common::{
 };
 use report::{describe_report, outcome, report_json};
 
-/// `--solver` values.
+/// `--solver` values: the library's [`SolverName`] vocabulary, the same
+/// names as Python's `solver=` (a test checks the two lists agree).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum SolverArg {
     /// The analytic solver where the arm's class allows (all solutions, the
     /// nearest returned), otherwise Levenberg-Marquardt (default).
     Auto,
+    /// Every solution by subproblem decomposition or elimination (spherical
+    /// wrist, UR family, general 6R arms, 7-DOF by a redundancy parameter;
+    /// seed 002's arm4).
+    #[value(alias = "closed-form", alias = "closed_form")]
+    Analytic,
+    /// Levenberg-Marquardt, Sugihara's damping.
+    Lm,
     /// Newton-Raphson with the pseudo-inverse (seed 004, Fig 2).
     Nr,
     /// Damped least squares, Nakamura's adaptive damping.
     Dls,
-    /// Levenberg-Marquardt, Sugihara's damping.
-    Lm,
     /// Chiaverini's singularity-robust inverse with numerical filtering.
     Sri,
-    /// Every solution by subproblem decomposition (spherical wrist, UR
-    /// family, 7-DOF by a redundancy parameter; seed 002's arm4).
-    #[value(alias = "closed-form")]
-    Analytic,
 }
 
 impl SolverArg {
-    fn name(self) -> &'static str {
+    /// The library's name of the solver.
+    pub fn solver(self) -> SolverName {
         match self {
-            SolverArg::Auto => "auto",
-            SolverArg::Nr => "nr",
-            SolverArg::Dls => "dls",
-            SolverArg::Lm => "lm",
-            SolverArg::Sri => "sri",
-            SolverArg::Analytic => "analytic",
+            SolverArg::Auto => SolverName::Auto,
+            SolverArg::Analytic => SolverName::Analytic,
+            SolverArg::Lm => SolverName::Lm,
+            SolverArg::Nr => SolverName::Nr,
+            SolverArg::Dls => SolverName::Dls,
+            SolverArg::Sri => SolverName::Sri,
         }
+    }
+
+    fn name(self) -> &'static str {
+        self.solver().as_str()
     }
 
     /// The numeric method (Levenberg-Marquardt for auto and the analytic
     /// solver's best effort).
     fn method(self) -> IkMethod {
-        IkMethod::from_short_name(self.name())
-            .unwrap_or(IkMethod::LevenbergMarquardt(Default::default()))
+        self.solver().method()
+    }
+}
+
+/// `--representatives` values (the library's [`Representatives`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
+pub enum RepresentativesArg {
+    /// Each distinct solution once, its 2 pi multiple nearest the start
+    /// (default).
+    #[default]
+    Nearest,
+    /// Every 2 pi multiple of each joint angle within the joint limits.
+    Every,
+}
+
+impl RepresentativesArg {
+    /// The library's choice.
+    pub fn representatives(self) -> Representatives {
+        match self {
+            RepresentativesArg::Nearest => Representatives::Nearest,
+            RepresentativesArg::Every => Representatives::Every,
+        }
     }
 }
 
@@ -189,6 +217,11 @@ pub struct IkArgs {
     /// Solver.
     #[arg(long, value_enum, default_value_t = SolverArg::Auto)]
     pub solver: SolverArg,
+    /// Which 2 pi multiples of the analytic solutions' joint angles are
+    /// listed (--solver analytic): `nearest` (default: each distinct
+    /// solution once) or `every` (each multiple within the joint limits).
+    #[arg(long, value_enum)]
+    pub representatives: Option<RepresentativesArg>,
     /// Print the arm's joint axes (lines at zero configuration), which
     /// consecutive axes intersect or are parallel, and its analytic class.
     #[arg(long)]
@@ -220,17 +253,7 @@ pub fn run(args: &IkArgs) -> CliResult<Outcome> {
         None => model.neutral_configuration(),
     };
     let options = args.tolerances.options(args.solver.method())?;
-    let redundancy = &args.redundancy;
-    if args.solver != SolverArg::Analytic
-        && (redundancy.fixed_joint.is_some()
-            || redundancy.parameter.is_some()
-            || redundancy.sweep.is_some())
-    {
-        return Err(CliError(format!(
-            "--fixed-joint / --parameter / --sweep: only with --solver analytic (the {} solver does not take them)",
-            args.solver.name()
-        )));
-    }
+    check_analytic_flags(args)?;
     match args.solver {
         SolverArg::Analytic => analytic::run(args, &model, &target, &start, options),
         SolverArg::Auto => {
@@ -263,6 +286,29 @@ pub fn run(args: &IkArgs) -> CliResult<Outcome> {
             explain_failure(&model, &target, &report, &options);
             Ok(outcome(report.status))
         }
+    }
+}
+
+/// The analytic solver's flags are refused with another solver, which
+/// would ignore them (the message names the flag given and the solver).
+fn check_analytic_flags(args: &IkArgs) -> CliResult<()> {
+    if args.solver == SolverArg::Analytic {
+        return Ok(());
+    }
+    let r = &args.redundancy;
+    let given = [
+        ("--fixed-joint", r.fixed_joint.is_some()),
+        ("--parameter", r.parameter.is_some()),
+        ("--sweep", r.sweep.is_some()),
+        ("--search", r.search != SearchArg::default()),
+        ("--representatives", args.representatives.is_some()),
+    ];
+    match given.iter().find(|(_, given)| *given) {
+        Some((flag, _)) => Err(CliError(format!(
+            "{flag}: only with --solver analytic (the {} solver does not take it)",
+            args.solver.name()
+        ))),
+        None => Ok(()),
     }
 }
 

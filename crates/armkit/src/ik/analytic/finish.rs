@@ -1,8 +1,8 @@
 //! From candidates to solutions: joint order restored, angles wrapped into
 //! the limits (every representative, or the nearest; a candidate with none
 //! inside is dropped first), duplicates merged, each remaining candidate
-//! checked by forward kinematics, sorted by distance to the caller's
-//! configuration.
+//! checked by forward kinematics, sorted exact first, each group by
+//! distance to the caller's configuration.
 
 use super::chain::{Candidate, LineForwardKinematics, LineKinematics, MAX_CANDIDATES, MAX_JOINTS};
 use super::ranges::{representatives, representatives_bound, Range};
@@ -366,7 +366,7 @@ impl Finisher {
         }
     }
 
-    /// Sorts the solutions by their distances: the keys are sorted
+    /// Sorts the solutions, exact ones first, each group by distance: the keys are sorted
     /// (unstable: allocates nothing, the key buffer is sized at set-up),
     /// then the solutions are moved once along the permutation's cycles.
     fn sort(&mut self) {
@@ -379,7 +379,7 @@ impl Finisher {
             self.solutions
                 .iter()
                 .enumerate()
-                .map(|(i, s)| (s.distance2.to_bits(), i)),
+                .map(|(i, s)| (sort_key(s), i)),
         );
         // Ties broken by the order found: deterministic (the keys are
         // distinct, so any sort gives this one order).
@@ -408,8 +408,16 @@ impl Finisher {
     }
 }
 
-/// A joint value's representatives within its range (see
-/// [`representatives`]).
+/// The sort key of `s`: its distance's bits (a sum of squares, `+0` or
+/// more, or NaN: the sign bit clear, so the bits order as the values), with
+/// the sign bit set for a least-squares solution, so that every exact
+/// solution comes before every approximate one (an engineer asks for the
+/// nearest answer that reaches the pose, not the nearest miss).
+fn sort_key(s: &AnalyticSolution) -> u64 {
+    let approximate = u64::from(s.fit != Fit::Exact) << 63;
+    s.distance2.to_bits() | approximate
+}
+
 /// Sorts distinct keys ascending: by insertion (keys packed into one
 /// `u128`, compared branch-free) for the few of one pose's solutions, by
 /// the library's unstable sort for many (every representative).
@@ -487,8 +495,8 @@ fn same_configuration(ranges: &[Range], a: &[f64], b: &[f64]) -> bool {
     true
 }
 
-/// Sorts solutions by joint-space (Euclidean) distance to `current`
-/// (unstable sort: allocates nothing).
+/// Sorts solutions exact first, each group by joint-space (Euclidean)
+/// distance to `current` (unstable sort: allocates nothing).
 pub(crate) fn sort_nearest(solutions: &mut [AnalyticSolution], current: &[f64]) {
     for s in solutions.iter_mut() {
         s.distance2 = s
@@ -501,9 +509,9 @@ pub(crate) fn sort_nearest(solutions: &mut [AnalyticSolution], current: &[f64]) 
     sort_by_distance(solutions);
 }
 
-/// Sorts by the stored distances.
+/// Sorts exact first, each group by the stored distances (see [`sort_key`]).
 fn sort_by_distance(solutions: &mut [AnalyticSolution]) {
-    solutions.sort_unstable_by(|a, b| a.distance2.total_cmp(&b.distance2));
+    solutions.sort_unstable_by_key(sort_key);
 }
 
 #[cfg(test)]

@@ -238,7 +238,7 @@ impl AnalyticRoute {
     }
 
     /// Every solution within the limits for `target` (end-effector pose,
-    /// base frame), nearest `start` first (rad or m, one per joint); with
+    /// base frame), exact ones first, each group nearest `start` first (rad or m, one per joint); with
     /// `sweep` = Some(n), over n values of a 7-joint arm's redundancy
     /// parameter ([`sweep_values`]). Errors: those of the solvers, and a
     /// sweep asked of an arm without parameter (named `sweep`).
@@ -249,7 +249,13 @@ impl AnalyticRoute {
         sweep: Option<usize>,
     ) -> Result<Vec<ClosedFormSolution>> {
         let solver = match (self, sweep) {
-            (AnalyticRoute::Arm4(c), None) => return c.solve(target, start),
+            (AnalyticRoute::Arm4(c), None) => {
+                // Exact first, each group nearest first (a stable sort of
+                // the closed form's nearest-first list), as the subproblems'.
+                let mut found = c.solve(target, start)?;
+                found.sort_by_key(|s| s.fit != Fit::Exact);
+                return Ok(found);
+            }
             (AnalyticRoute::Arm4(_), Some(_)) => return Err(nothing_to_sweep()),
             (AnalyticRoute::Subproblems(s), _) => s,
         };

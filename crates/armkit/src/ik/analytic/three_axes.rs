@@ -125,7 +125,6 @@ impl ThreeAxes {
 
     /// Every `[t_a, t_b, t_c]` carrying `w` onto `goal` exactly (none when
     /// out of reach, or for a degenerate pair of circles).
-    #[cfg(test)]
     pub(crate) fn solve(&self, goal: &Vector3<f64>) -> Placements {
         self.solve_about(&self.c[0], &self.h[0], goal, None, Precision::Full)
     }

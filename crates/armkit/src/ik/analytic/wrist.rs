@@ -10,6 +10,7 @@ use super::subproblems::{
     atan2, subproblem1_turn, subproblem2_turns, Distance, Sinusoid, SinusoidFamily, Spoke, Turn,
     RELATIVE_TOLERANCE,
 };
+use super::three_axes::ThreeAxes;
 use crate::math::{Pose, Vector3};
 
 /// The arm-fixed quantities of a spherical-wrist chain, read once.
@@ -36,6 +37,10 @@ pub(crate) struct SphericalWrist {
     s3: f64,
     /// Joints 4-6.
     orientation: WristOrientation,
+    /// Three general rotation axes in front of the wrist: joints 1-3
+    /// carrying the wrist point in closed form (None for other positionings,
+    /// and for a general positioning with a prismatic joint, searched).
+    three_axes: Option<ThreeAxes>,
 }
 
 impl SphericalWrist {
@@ -62,6 +67,9 @@ impl SphericalWrist {
             arm3: Spoke::new(&h[2], &(wrist - c[2])),
             s3: h[1].dot(&h[2]).signum(),
             orientation: WristOrientation::new(&h[3], &h[4], &h[5]),
+            three_axes: (positioning == Positioning::General
+                && !chain.translation[..3].iter().any(|t| *t))
+            .then(|| ThreeAxes::new([c[0], c[1], c[2]], [h[0], h[1], h[2]], wrist)),
         }
     }
 
@@ -78,6 +86,21 @@ impl SphericalWrist {
             return;
         }
         let (h, translation) = (&self.chain.h, &self.chain.translation);
+        if let Some(three) = &self.three_axes {
+            // Three general rotation axes: subproblem 5 in closed form
+            // (`three_axes`: a quartic, up to 4 placements).
+            let placed = three.solve(&goal);
+            for t in &placed.turns[..placed.count] {
+                let (mut v6, mut v5) = (g6, g5);
+                for i in 0..3 {
+                    v6 = t[i].rotate_back(&h[i], &v6);
+                    v5 = t[i].rotate_back(&h[i], &v5);
+                }
+                let q = [t[0].angle, t[1].angle, t[2].angle];
+                self.orientation.solve_directions(&v6, &v5, &q, true, out);
+            }
+            return;
+        }
         if self.positioning == Positioning::General {
             let mut angles = [([0.0; 3], false); 16];
             let count = super::search::position(&self.chain, &self.wrist, &goal, &mut angles);

@@ -226,7 +226,7 @@ impl Arm4Solver {
                     let a = (low + step * (i as f64 - 1.0)).max(low);
                     let b = (low + step * (i as f64 + 1.0)).min(high);
                     let mut best = (low + step * i as f64, here);
-                    let refined = golden_section(&mut cost, a, b)?;
+                    let refined = golden_section(&mut cost, a, b, GOLDEN_ITERATIONS)?;
                     let refined_cost = cost(refined)?;
                     if refined_cost < best.1 {
                         best = (refined, refined_cost);
@@ -321,14 +321,20 @@ impl Arm4Solver {
     }
 }
 
-/// Golden-section search for a minimum of `f` on `[a, b]`.
-fn golden_section(f: &mut impl FnMut(f64) -> Result<f64>, mut a: f64, mut b: f64) -> Result<f64> {
+/// Golden-section search for a minimum of `f` on `[a, b]` (`iterations`
+/// shrinks of the bracket by 0.618 each; the bracket's midpoint returned).
+pub(crate) fn golden_section(
+    f: &mut impl FnMut(f64) -> Result<f64>,
+    mut a: f64,
+    mut b: f64,
+    iterations: usize,
+) -> Result<f64> {
     let ratio = 0.5 * (5f64.sqrt() - 1.0);
     let mut c = b - ratio * (b - a);
     let mut d = a + ratio * (b - a);
     let mut fc = f(c)?;
     let mut fd = f(d)?;
-    for _ in 0..GOLDEN_ITERATIONS {
+    for _ in 0..iterations {
         if fc < fd {
             b = d;
             d = c;
