@@ -1185,7 +1185,10 @@ fn regula_falsi(f: &dyn Fn(f64) -> f64, (a, fa): (f64, f64), (b, fb): (f64, f64)
 /// (`k = 1..8`, `a = cosines`, `b = sines`; `sines[0]` unused) by the
 /// certified isolation of the module docs (**Roots**), with `function` (the
 /// same polynomial, evaluated directly) scanned where the samples are
-/// quiet; written into `roots` (at most its length), how many.
+/// quiet; written into `roots` (at most its length), how many. (The
+/// isolation's entry point for its tests; `Elimination::solve` keeps its
+/// table.)
+#[cfg(test)]
 pub(crate) fn trigonometric_roots(
     cosines: [f64; HARMONICS + 1],
     sines: [f64; HARMONICS + 1],
