@@ -317,9 +317,9 @@ mod tests {
         let mut upper = vec![0.0; a.rows];
         bounds.fill(q, v_old, opts, &mut lower, &mut upper);
         let mut value = vec![0.0; a.rows];
-        for c in 0..a.cols {
+        for (c, &x) in du.iter().enumerate().take(a.cols) {
             for k in a.col_ptr[c]..a.col_ptr[c + 1] {
-                value[a.row_indices[k]] += a.values[k] * du[c];
+                value[a.row_indices[k]] += a.values[k] * x;
             }
         }
         (0..a.rows).all(|r| value[r] >= lower[r] - 1e-12 && value[r] <= upper[r] + 1e-12)

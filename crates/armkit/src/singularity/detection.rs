@@ -287,7 +287,7 @@ mod tests {
             ((r * 7 + c * 3) % 11) as f64 / 5.0 - 1.0 + 0.3 * (r == c) as u8 as f64
         };
         for n in [3, 5, 6, 7, 9] {
-            let j = Matrix6xX::from_fn(n, |r, c| entry(r, c));
+            let j = Matrix6xX::from_fn(n, entry);
             let product: f64 = j.clone().svd(false, false).singular_values.iter().product();
             let measure = jacobian_determinant(&j);
             assert!(product > 1e-3, "n = {n}: a rank-deficient test matrix");
