@@ -249,3 +249,214 @@ fn guard_position(q: f64, mut u: f64, t: f64, lower: f64, upper: f64) -> f64 {
     }
     u
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::{DhConvention, DhLink};
+
+    const T: f64 = 0.05;
+
+    /// A planar 2R arm: joint 0 within `[-1, 0.5]` rad at 2 rad/s, joint 1
+    /// within `[-2, 2]` rad without a speed limit.
+    fn arm() -> Model {
+        let links = [
+            DhLink::revolute(0.0, 0.4, 0.0)
+                .with_limits(-1.0, 0.5)
+                .with_velocity_limit(2.0),
+            DhLink::revolute(0.0, 0.3, 0.0).with_limits(-2.0, 2.0),
+        ];
+        Model::from_dh("planar2", DhConvention::Standard, &links).unwrap()
+    }
+
+    fn options(horizon: usize, control_horizon: usize) -> MpcOptions {
+        MpcOptions {
+            horizon,
+            control_horizon,
+            sample_time: T,
+            ..MpcOptions::default()
+        }
+    }
+
+    /// The joint positions at samples `1..=N` of the plan `du` (eq 14
+    /// simulated directly: `u(k) = u(k-1) + du(k)` for `k < M`, then held;
+    /// `q(k+1) = q(k) + T u(k)`), one vector per sample.
+    fn predicted_positions(
+        q: &[f64],
+        v_old: &[f64],
+        du: &[f64],
+        horizon: usize,
+        control_horizon: usize,
+    ) -> Vec<Vec<f64>> {
+        let dof = q.len();
+        let (mut position, mut u) = (q.to_vec(), v_old.to_vec());
+        let mut out = Vec::new();
+        for k in 0..horizon {
+            for j in 0..dof {
+                if k < control_horizon {
+                    u[j] += du[k * dof + j];
+                }
+                position[j] += T * u[j];
+            }
+            out.push(position.clone());
+        }
+        out
+    }
+
+    /// Whether `du` meets every row of the QP's constraints at `q`, `v_old`.
+    fn rows_hold(
+        bounds: &JointBounds,
+        opts: &MpcOptions,
+        q: &[f64],
+        v_old: &[f64],
+        du: &[f64],
+    ) -> bool {
+        let dof = q.len();
+        let a = bounds.matrix(dof, opts.control_horizon, opts.sample_time);
+        let mut lower = vec![0.0; a.rows];
+        let mut upper = vec![0.0; a.rows];
+        bounds.fill(q, v_old, opts, &mut lower, &mut upper);
+        let mut value = vec![0.0; a.rows];
+        for (c, &x) in du.iter().enumerate().take(a.cols) {
+            for k in a.col_ptr[c]..a.col_ptr[c + 1] {
+                value[a.row_indices[k]] += a.values[k] * x;
+            }
+        }
+        (0..a.rows).all(|r| value[r] >= lower[r] - 1e-12 && value[r] <= upper[r] + 1e-12)
+    }
+
+    /// The increments that give the joint velocities `u(0..N)` of joint
+    /// `joint` (the others keep `v_old`), or `None` where the sequence is
+    /// not held constant from `M - 1` on.
+    fn increments_for(
+        velocities: &[f64],
+        joint: usize,
+        v_old: &[f64],
+        control_horizon: usize,
+    ) -> Option<Vec<f64>> {
+        let dof = v_old.len();
+        let held = velocities[control_horizon - 1];
+        if velocities[control_horizon..].iter().any(|&u| u != held) {
+            return None;
+        }
+        let mut du = vec![0.0; dof * control_horizon];
+        let mut previous = v_old[joint];
+        for (l, &u) in velocities[..control_horizon].iter().enumerate() {
+            du[l * dof + joint] = u - previous;
+            previous = u;
+        }
+        Some(du)
+    }
+
+    /// A plan whose joint 0 crosses its upper limit at one predicted sample
+    /// only, anywhere in the horizon (the limit binding mid-horizon), breaks
+    /// a constraint row; the same plan scaled to stay within the limit
+    /// meets them all. Every sample whose crossing a plan can isolate is
+    /// tried: `1..M-1` (a bump up and back), `M` when `M = N` (the last
+    /// input, held), and `N` when `N > M` (a slow drift from `M - 1` on).
+    #[test]
+    fn a_limit_crossed_at_any_single_sample_breaks_a_row() {
+        let model = arm();
+        let (upper, gap) = (0.5, 0.02);
+        let v_old = [0.0, 0.1];
+        let q = [upper - gap, 0.3];
+        let mut tried = 0;
+        for (n, m) in [(10, 10), (10, 5), (6, 1), (5, 4), (4, 4), (8, 2)] {
+            let opts = options(n, m);
+            let bounds = JointBounds::new(&model, None, n, m).unwrap();
+            for s in 1..=n {
+                for (scale, crosses) in [(1.01, true), (0.99, false)] {
+                    let h = scale * gap;
+                    let mut velocities = vec![0.0; n];
+                    if s < m {
+                        // Up to the limit over sample s, back over s + 1
+                        // (and on down, held, when s + 1 is the last input).
+                        velocities[s - 1] = h / T;
+                        let back = if s + 1 < m { s + 1..s + 1 } else { s..n };
+                        velocities[s] = -h / T;
+                        velocities[back].iter_mut().for_each(|u| *u = -h / T);
+                    } else if s == m && m == n {
+                        velocities[s - 1] = h / T;
+                    } else if s == n {
+                        let rate = h / ((n - m + 1) as f64 * T);
+                        velocities[m - 1..].iter_mut().for_each(|u| *u = rate);
+                    } else {
+                        continue;
+                    }
+                    let Some(du) = increments_for(&velocities, 0, &v_old, m) else {
+                        continue;
+                    };
+                    let positions = predicted_positions(&q, &v_old, &du, n, m);
+                    let over: Vec<usize> =
+                        (1..=n).filter(|&i| positions[i - 1][0] > upper).collect();
+                    if crosses {
+                        assert_eq!(over, vec![s], "N = {n}, M = {m}: {positions:?}");
+                    } else {
+                        assert!(over.is_empty());
+                    }
+                    assert_eq!(
+                        rows_hold(&bounds, &opts, &q, &v_old, &du),
+                        !crosses,
+                        "N = {n}, M = {m}: a plan reaching {:.4} rad at sample {s} only (limit {upper})",
+                        positions[s - 1][0]
+                    );
+                    tried += 1;
+                }
+            }
+        }
+        // Each horizon pair's isolable samples, twice (crossing and not).
+        assert_eq!(tried, 2 * (10 + 5 + 1 + 4 + 4 + 2));
+    }
+
+    /// The rows hold exactly when every predicted sample is within the
+    /// limits and every input within its speed limit: random plans near
+    /// the upper limit of joint 0, both horizons equal and not.
+    #[test]
+    fn the_rows_hold_exactly_when_every_sample_is_within_the_limits() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(37);
+        let model = arm();
+        let (mut feasible, mut infeasible, mut last_only) = (0, 0, 0);
+        for (n, m) in [(10, 10), (10, 5), (6, 1), (5, 4), (4, 4)] {
+            let opts = options(n, m);
+            let bounds = JointBounds::new(&model, None, n, m).unwrap();
+            for _ in 0..4000 {
+                let q = [0.5 - rng.gen_range(0.0..0.05), rng.gen_range(-1.9..1.9)];
+                let v_old = [rng.gen_range(-0.5..0.5), rng.gen_range(-0.5..0.5)];
+                let du: Vec<f64> = (0..2 * m).map(|_| rng.gen_range(-0.3..0.3)).collect();
+                let positions = predicted_positions(&q, &v_old, &du, n, m);
+                let within_positions = positions
+                    .iter()
+                    .all(|p| p[0] >= -1.0 && p[0] <= 0.5 && p[1] >= -2.0 && p[1] <= 2.0);
+                let mut u = v_old[0];
+                let within_speed = (0..m).all(|l| {
+                    u += du[2 * l];
+                    u.abs() <= 2.0
+                });
+                let expected = within_positions && within_speed;
+                if expected {
+                    feasible += 1;
+                } else {
+                    infeasible += 1;
+                }
+                if within_speed
+                    && positions[..n - 1].iter().all(|p| p[0] <= 0.5)
+                    && positions[n - 1][0] > 0.5
+                {
+                    last_only += 1;
+                }
+                assert_eq!(
+                    rows_hold(&bounds, &opts, &q, &v_old, &du),
+                    expected,
+                    "N = {n}, M = {m}, q {q:?}, v_old {v_old:?}, du {du:?}: {positions:?}"
+                );
+            }
+        }
+        // Both outcomes, and plans crossing at the last sample only, occur.
+        assert!(
+            feasible > 1000 && infeasible > 1000,
+            "{feasible} {infeasible}"
+        );
+        assert!(last_only > 20, "{last_only}");
+    }
+}

@@ -178,3 +178,123 @@ pub fn detect(
         trigger,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A 6 x 6 Jacobian whose determinant is `det` (diagonal `[det, 1, ...]`
+    /// turned by a fixed rotation of the rows, so no entry is special).
+    fn jacobian_with_determinant(det: f64) -> Matrix6xX<f64> {
+        let mut d = Matrix6::identity();
+        d[(0, 0)] = det;
+        let (c, s) = (0.6, 0.8);
+        let mut turn = Matrix6::identity();
+        turn[(0, 0)] = c;
+        turn[(0, 3)] = -s;
+        turn[(3, 0)] = s;
+        turn[(3, 3)] = c;
+        Matrix6xX::from_column_slice((turn * d).as_slice())
+    }
+
+    const OPTIONS: DetectionOptions = DetectionOptions {
+        determinant_threshold: 0.004,
+        joint_step_threshold: 0.005,
+    };
+
+    /// A step of one joint by `step` (rad), the others still.
+    fn step(joint: usize, step: f64) -> [f64; 6] {
+        let mut out = [0.0; 6];
+        out[joint] = step;
+        out
+    }
+
+    /// A jump of either sign triggers the joint-step test, and the step
+    /// reported is its magnitude; a step within the threshold of either
+    /// sign does not.
+    #[test]
+    fn jumps_of_either_sign_trigger_the_joint_step_test() {
+        let regular = jacobian_with_determinant(1.0);
+        for joint in 0..6 {
+            for sign in [1.0, -1.0] {
+                let jump = detect(&regular, &step(joint, sign * 0.0051), &OPTIONS).unwrap();
+                assert_eq!(
+                    jump.trigger,
+                    Some(Trigger::JointStep),
+                    "joint {joint}, sign {sign}"
+                );
+                assert!((jump.joint_step - 0.0051).abs() < 1e-15, "{jump:?}");
+                assert!(jump.is_singular());
+                let small = detect(&regular, &step(joint, sign * 0.0049), &OPTIONS).unwrap();
+                assert_eq!(small.trigger, None, "joint {joint}, sign {sign}");
+                assert!((small.joint_step - 0.0049).abs() < 1e-15, "{small:?}");
+                assert!(!small.is_singular());
+            }
+        }
+        // The largest magnitude counts, whatever the signs of the others.
+        let mixed = detect(
+            &regular,
+            &[0.004, -0.009, 0.001, -0.002, 0.0, 0.003],
+            &OPTIONS,
+        )
+        .unwrap();
+        assert_eq!(mixed.trigger, Some(Trigger::JointStep));
+        assert!((mixed.joint_step - 0.009).abs() < 1e-15);
+    }
+
+    /// Each trigger on its own and both together; a non-finite step is a
+    /// jump; a NaN Jacobian is singular.
+    #[test]
+    fn each_trigger_and_both() {
+        let regular = jacobian_with_determinant(0.5);
+        let low = jacobian_with_determinant(-0.003);
+        let still = [0.0; 6];
+        let cases = [
+            (&regular, step(2, 0.001), None),
+            (&regular, step(2, -0.01), Some(Trigger::JointStep)),
+            (&low, step(2, 0.001), Some(Trigger::Determinant)),
+            (&low, still, Some(Trigger::Determinant)),
+            (&low, step(4, -0.01), Some(Trigger::Both)),
+            (&low, step(4, 0.01), Some(Trigger::Both)),
+        ];
+        for (jacobian, candidate, expected) in cases {
+            let detection = detect(jacobian, &candidate, &OPTIONS).unwrap();
+            assert_eq!(detection.trigger, expected, "{candidate:?}: {detection:?}");
+        }
+        // |det J| is reported, whatever its sign.
+        let d = detect(&low, &still, &OPTIONS).unwrap().determinant;
+        assert!((d - 0.003).abs() < 1e-15, "{d}");
+        let d = detect(&regular, &still, &OPTIONS).unwrap().determinant;
+        assert!((d - 0.5).abs() < 1e-15, "{d}");
+        for value in [f64::INFINITY, f64::NEG_INFINITY, f64::NAN] {
+            let detection = detect(&regular, &step(1, value), &OPTIONS).unwrap();
+            assert_eq!(detection.trigger, Some(Trigger::JointStep), "{value}");
+            assert_eq!(detection.joint_step, f64::INFINITY);
+        }
+        let broken = Matrix6xX::from_element(6, f64::NAN);
+        let detection = detect(&broken, &still, &OPTIONS).unwrap();
+        assert_eq!(detection.trigger, Some(Trigger::Determinant));
+        // A step of the wrong size is an error naming it.
+        let error = detect(&regular, &[0.0; 5], &OPTIONS).unwrap_err();
+        assert!(error.to_string().contains("candidate_step"), "{error}");
+    }
+
+    /// The determinant measure is the product of the singular values for
+    /// fewer, six and more than six columns.
+    #[test]
+    fn the_determinant_is_the_product_of_the_singular_values() {
+        let entry = |r: usize, c: usize| {
+            ((r * 7 + c * 3) % 11) as f64 / 5.0 - 1.0 + 0.3 * (r == c) as u8 as f64
+        };
+        for n in [3, 5, 6, 7, 9] {
+            let j = Matrix6xX::from_fn(n, entry);
+            let product: f64 = j.clone().svd(false, false).singular_values.iter().product();
+            let measure = jacobian_determinant(&j);
+            assert!(product > 1e-3, "n = {n}: a rank-deficient test matrix");
+            assert!(
+                (measure - product).abs() <= 1e-12 * product.max(1.0),
+                "n = {n}: {measure} vs {product}"
+            );
+        }
+    }
+}

@@ -31,6 +31,7 @@ mod seed000_claims;
 mod seed000_precision;
 mod seed001_claims;
 mod seed002_claims;
+mod seed002_path_error;
 mod singularity;
 mod space;
 mod studies;

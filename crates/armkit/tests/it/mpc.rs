@@ -349,6 +349,106 @@ fn planned_joint_positions_respect_the_limits_at_every_predicted_sample() {
     }
 }
 
+/// A planar 2R arm whose first joint is stopped by its upper limit on the
+/// way to the target: every plan the QP makes, at every step, keeps that
+/// joint within the limit at every one of the `N` predicted samples, with
+/// the control horizon shorter than the horizon and equal to it, while the
+/// limit binds in the middle of the horizon (reached at a later sample
+/// than the first).
+#[test]
+fn plans_stay_within_a_limit_that_binds_mid_horizon_at_every_sample() {
+    use armkit::model::{DhConvention, DhLink};
+    let upper = 0.5;
+    let links = [
+        DhLink::revolute(0.0, 0.4, 0.0)
+            .with_limits(-1.0, upper)
+            .with_velocity_limit(1.0),
+        DhLink::revolute(0.0, 0.3, 0.0)
+            .with_limits(-2.5, 2.5)
+            .with_velocity_limit(1.0),
+    ];
+    let model = armkit::Model::from_dh("planar2", DhConvention::Standard, &links).unwrap();
+    let mut data = Data::new(&model);
+    let target = *forward_kinematics(&model, &mut data, &[1.1, 0.6]).unwrap();
+    for &solver in QpSolverKind::available() {
+        for control_horizon in [4, 10] {
+            let options = MpcOptions {
+                horizon: 10,
+                control_horizon,
+                task_weights: TaskWeights::position_only(10.0, 200.0),
+                reach: ReachAid::Off,
+                solver,
+                ..MpcOptions::default()
+            };
+            let (n, m, t) = (
+                options.horizon,
+                options.control_horizon,
+                options.sample_time,
+            );
+            let mut planner = MpcPlanner::new(&model, options).unwrap();
+            planner.set_target(&target).unwrap();
+            let mut q = vec![-0.2, 0.3];
+            let (mut worst, mut mid_horizon): (f64, usize) = (f64::NEG_INFINITY, 0);
+            let mut stops = 0;
+            for step in 0..80 {
+                let v_old = planner.previous_velocity().to_vec();
+                let report = planner.step(&q).unwrap().clone();
+                if !report.status.is_ok() {
+                    // Clarabel can stop on a numerical failure with the joint
+                    // at its limit (a controlled stop, reported); the
+                    // planner's own active-set solver must not.
+                    assert_ne!(
+                        solver,
+                        QpSolverKind::ActiveSet,
+                        "M = {m}, step {step}: {:?}, q {q:?}",
+                        report.status
+                    );
+                    stops += 1;
+                }
+                let du = planner.increments().to_vec();
+                let (mut u, mut position) = (v_old.clone(), q.clone());
+                let mut predicted = Vec::with_capacity(n);
+                for i in 0..n {
+                    for j in 0..2 {
+                        if i < m {
+                            u[j] += du[i * 2 + j];
+                        }
+                        position[j] += t * u[j];
+                    }
+                    predicted.push(position[0]);
+                }
+                let highest = predicted.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+                worst = worst.max(highest - upper);
+                if predicted[0] < upper - 1e-3 && highest > upper - 1e-6 {
+                    mid_horizon += 1;
+                }
+                for j in 0..2 {
+                    q[j] += t * report.velocity[j];
+                }
+            }
+            assert!(
+                worst <= 1e-6,
+                "{} M = {m}: a plan crosses the limit by {worst:e} rad",
+                solver.name()
+            );
+            assert!(
+                mid_horizon >= 2,
+                "{} M = {m}: the limit never binds mid-horizon",
+                solver.name()
+            );
+            assert!(
+                (q[0] - upper).abs() < 1e-3,
+                "{} M = {m}: {q:?}",
+                solver.name()
+            );
+            println!(
+                "{} M = {m}: {mid_horizon} plans reach the limit mid-horizon, {stops} stopped step(s)",
+                solver.name()
+            );
+        }
+    }
+}
+
 #[test]
 fn seed000_examples_meet_their_checks() {
     for example in Seed000Example::ALL {

@@ -559,3 +559,242 @@ fn wrong_sizes_are_a_failure_not_a_panic() {
     let outcome = solver.solve(&[1.0, 0.0, 1.0], &[0.0, 0.0], &[-1.0], &[1.0], &mut x);
     assert_eq!(outcome.status, QpStatus::NumericalFailure);
 }
+
+/// How far `x` with the working set `working` and its `multipliers` is
+/// from meeting the KKT conditions of `min 1/2 x'Px + q'x` subject to
+/// `lower <= A x <= upper` (`A` dense, row-major), each judged on its own:
+/// stationarity `P x + q = sum u s a` (`s = +1` on a lower side, `-1` on
+/// an upper side), primal feasibility, every working-set row at its bound
+/// (complementarity: rows outside it have a zero multiplier), `u >= 0`.
+#[allow(clippy::too_many_arguments)]
+fn kkt_violation(
+    hessian: &[f64],
+    gradient: &[f64],
+    a: &[f64],
+    lower: &[f64],
+    upper: &[f64],
+    x: &[f64],
+    working: &[(usize, BoundSide)],
+    multipliers: &[f64],
+) -> [f64; 4] {
+    let n = x.len();
+    let row = |i: usize| dot(&a[i * n..(i + 1) * n], x);
+    let mut residual: Vec<f64> = (0..n)
+        .map(|r| {
+            gradient[r]
+                + (0..n)
+                    .map(|c| hessian[upper_index(r.min(c), r.max(c))] * x[c])
+                    .sum::<f64>()
+        })
+        .collect();
+    let mut at_bound: f64 = 0.0;
+    assert_eq!(working.len(), multipliers.len());
+    for (&(i, side), &u) in working.iter().zip(multipliers) {
+        let (sign, bound) = match side {
+            BoundSide::Lower => (1.0, lower[i]),
+            BoundSide::Upper => (-1.0, upper[i]),
+        };
+        for (r, ai) in residual.iter_mut().zip(&a[i * n..(i + 1) * n]) {
+            *r -= u * sign * ai;
+        }
+        at_bound = at_bound.max((row(i) - bound).abs());
+    }
+    let stationarity = residual.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let infeasibility = (0..lower.len()).fold(0.0f64, |m, i| {
+        m.max(lower[i] - row(i)).max(row(i) - upper[i])
+    });
+    let negative = multipliers.iter().fold(0.0f64, |m, &u| m.max(-u));
+    [stationarity, infeasibility, at_bound, negative]
+}
+
+/// The active-set solver's own answer checked by the KKT conditions alone
+/// (no reference solver): random dense QPs of 2 to 12 variables with up to
+/// three times as many random rows, bounds around a random feasible point,
+/// many of them active. The conditions are sufficient for the convex QP's
+/// minimiser, so a wrong multiplier or a wrong working set fails here.
+#[test]
+fn active_set_multipliers_and_working_set_meet_the_kkt_conditions() {
+    let mut rng = common::rng(37);
+    let count = if cfg!(debug_assertions) { 300 } else { 3000 };
+    let (mut active_total, mut dropped_possible) = (0usize, 0usize);
+    for k in 0..count {
+        let n = rng.gen_range(2..=12);
+        let rows = rng.gen_range(1..=3 * n);
+        let m: Vec<f64> = (0..n * n).map(|_| rng.gen_range(-1.0..1.0)).collect();
+        let mut hessian = vec![0.0; upper_triangle_len(n)];
+        for r in 0..n {
+            for c in r..n {
+                let v: f64 = (0..n).map(|k| m[r * n + k] * m[c * n + k]).sum();
+                hessian[upper_index(r, c)] = v + if r == c { 0.1 } else { 0.0 };
+            }
+        }
+        let gradient: Vec<f64> = (0..n).map(|_| rng.gen_range(-5.0..5.0)).collect();
+        let a: Vec<f64> = (0..rows * n)
+            .map(|_| {
+                if rng.gen_bool(0.3) {
+                    0.0
+                } else {
+                    rng.gen_range(-1.0..1.0)
+                }
+            })
+            .collect();
+        let x0: Vec<f64> = (0..n).map(|_| rng.gen_range(-0.5..0.5)).collect();
+        let (mut lower, mut upper) = (vec![0.0; rows], vec![0.0; rows]);
+        for i in 0..rows {
+            let v = dot(&a[i * n..(i + 1) * n], &x0);
+            lower[i] = v - rng.gen_range(0.0..0.5);
+            upper[i] = v + rng.gen_range(0.0..0.5);
+        }
+        let problem = QpProblem::new(
+            n,
+            hessian.clone(),
+            gradient.clone(),
+            CscMatrix::from_dense(rows, n, &a),
+            lower.clone(),
+            upper.clone(),
+        )
+        .unwrap();
+        let mut solver = ActiveSetQp::new(&problem).unwrap();
+        let mut x = vec![0.0; n];
+        let outcome = solver.solve(&hessian, &gradient, &lower, &upper, &mut x);
+        assert_eq!(outcome.status, QpStatus::Solved, "QP {k}");
+        let working: Vec<(usize, BoundSide)> = solver.active_set().collect();
+        let multipliers = solver.active_multipliers().to_vec();
+        let [stationarity, infeasibility, at_bound, negative] = kkt_violation(
+            &hessian,
+            &gradient,
+            &a,
+            &lower,
+            &upper,
+            &x,
+            &working,
+            &multipliers,
+        );
+        let scale = 1.0 + gradient.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        assert!(
+            stationarity <= 1e-9 * scale,
+            "QP {k}: stationarity {stationarity:e}, working set {working:?}, multipliers {multipliers:?}"
+        );
+        assert!(
+            infeasibility <= 1e-9,
+            "QP {k}: infeasible by {infeasibility:e}"
+        );
+        assert!(
+            at_bound <= 1e-9,
+            "QP {k}: a working-set row off its bound by {at_bound:e}"
+        );
+        assert!(negative == 0.0, "QP {k}: multipliers {multipliers:?}");
+        // One side of a row at most, each row once.
+        let mut seen: Vec<usize> = working.iter().map(|&(i, _)| i).collect();
+        seen.sort_unstable();
+        seen.dedup();
+        assert_eq!(seen.len(), working.len(), "QP {k}: {working:?}");
+        active_total += working.len();
+        if working.len() >= 2 {
+            dropped_possible += 1;
+        }
+    }
+    // The instances exercise the working set.
+    assert!(active_total as f64 / count as f64 > 1.5, "{active_total}");
+    assert!(dropped_possible * 4 > count, "{dropped_possible}");
+}
+
+/// The same KKT check on the MPC planner's QP shape (the instances the
+/// comparison with Clarabel uses), without the reference solver.
+#[test]
+fn active_set_meets_the_kkt_conditions_on_the_mpc_shape() {
+    let count = if cfg!(debug_assertions) { 200 } else { 2000 };
+    let mut rng = common::rng(3737);
+    let mut shapes: Vec<Shape> = [(6, 1), (7, 3), (9, 5), (6, 5), (7, 2)]
+        .iter()
+        .map(|&(dof, m)| Shape::new(dof, m))
+        .collect();
+    for k in 0..count {
+        let s = k % shapes.len();
+        let shape = &mut shapes[s];
+        let (hessian, gradient, lower, upper) = random_instance(shape, &mut rng);
+        let mut x = vec![0.0; shape.dof * shape.m];
+        let outcome = shape
+            .active_set
+            .solve(&hessian, &gradient, &lower, &upper, &mut x);
+        assert_eq!(outcome.status, QpStatus::Solved, "QP {k}");
+        let working: Vec<(usize, BoundSide)> = shape.active_set.active_set().collect();
+        let multipliers = shape.active_set.active_multipliers().to_vec();
+        let [stationarity, infeasibility, at_bound, negative] = kkt_violation(
+            &hessian,
+            &gradient,
+            &shape.dense,
+            &lower,
+            &upper,
+            &x,
+            &working,
+            &multipliers,
+        );
+        assert!(
+            stationarity <= 1e-9 && infeasibility <= 1e-9 && at_bound <= 1e-9 && negative == 0.0,
+            "QP {k}: stationarity {stationarity:e}, infeasibility {infeasibility:e}, \
+             off the bound {at_bound:e}, multipliers {multipliers:?}"
+        );
+    }
+}
+
+/// Known multipliers: `min 1/2 |x|^2 + x0 + 2 x1` with `x0 >= 0` and
+/// `x1 >= -1` active (lower sides): `x = (0, -1)`, `u = (1, 1)`; with
+/// `x0 + x1 <= 1` on `min 1/2 |x|^2 - 2 x0 - 2 x1` (upper side): `x = (0.5,
+/// 0.5)`, `u = 1.5`.
+#[test]
+fn multipliers_of_small_problems_are_the_known_ones() {
+    let problem = small_problem(
+        vec![1.0, 0.0, 1.0],
+        vec![1.0, 2.0],
+        &[1.0, 0.0, 0.0, 1.0],
+        vec![0.0, -1.0],
+        vec![10.0, 10.0],
+    );
+    let mut solver = ActiveSetQp::new(&problem).unwrap();
+    let mut x = [0.0; 2];
+    let outcome = solver.solve(
+        &problem.hessian_upper,
+        &problem.gradient,
+        &problem.lower,
+        &problem.upper,
+        &mut x,
+    );
+    assert_eq!(outcome.status, QpStatus::Solved);
+    assert!(x[0].abs() < 1e-14 && (x[1] + 1.0).abs() < 1e-14, "{x:?}");
+    let mut pairs: Vec<((usize, BoundSide), f64)> = solver
+        .active_set()
+        .zip(solver.active_multipliers().iter().copied())
+        .collect();
+    pairs.sort_by_key(|p| p.0 .0);
+    assert_eq!(pairs.len(), 2, "{pairs:?}");
+    for (((row, side), u), expected_row) in pairs.into_iter().zip([0, 1]) {
+        assert_eq!((row, side), (expected_row, BoundSide::Lower));
+        assert!((u - 1.0).abs() < 1e-14, "row {row}: {u}");
+    }
+    let problem = small_problem(
+        vec![1.0, 0.0, 1.0],
+        vec![-2.0, -2.0],
+        &[1.0, 1.0],
+        vec![-10.0],
+        vec![1.0],
+    );
+    let mut solver = ActiveSetQp::new(&problem).unwrap();
+    let outcome = solver.solve(
+        &problem.hessian_upper,
+        &problem.gradient,
+        &problem.lower,
+        &problem.upper,
+        &mut x,
+    );
+    assert_eq!(outcome.status, QpStatus::Solved);
+    assert!(
+        (x[0] - 0.5).abs() < 1e-14 && (x[1] - 0.5).abs() < 1e-14,
+        "{x:?}"
+    );
+    assert_eq!(
+        solver.active_set().collect::<Vec<_>>(),
+        vec![(0, BoundSide::Upper)]
+    );
+    assert!((solver.active_multipliers()[0] - 1.5).abs() < 1e-14);
+}

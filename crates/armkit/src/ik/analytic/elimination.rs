@@ -934,15 +934,10 @@ impl Trigonometric {
         if largest == 0.0 || !largest.is_finite() {
             return 0;
         }
-        // The fourth derivative's bound, sum k^4 (|a_k| + |b_k|), bounds the
-        // cubic Hermite interpolants' errors in `isolate`.
-        let fourth = (1..=HARMONICS)
-            .map(|k| (k * k * k * k) as f64 * (self.cosines[k].abs() + self.sines[k].abs()))
-            .sum::<f64>();
-        // And the second derivative's, sum k^2 (|a_k| + |b_k|).
-        let second = (1..=HARMONICS)
-            .map(|k| (k * k) as f64 * (self.cosines[k].abs() + self.sines[k].abs()))
-            .sum::<f64>();
+        // The fourth derivative's bound bounds the cubic Hermite
+        // interpolants' errors in `isolate`; the second's, the cheap test.
+        let fourth = derivative_bound(&self.cosines, &self.sines, 4);
+        let second = derivative_bound(&self.cosines, &self.sines, 2);
         let mut found = Found {
             roots,
             count: 0,
@@ -998,7 +993,7 @@ impl Trigonometric {
         }
         let cubic = Hermite::new(start, end);
         let (low, high) = cubic.value_range();
-        let value_error = found.fourth * h.powi(4) / 384.0;
+        let (value_error, slope_error) = hermite_error_bounds(found.fourth, h);
         if low > value_error || high < -value_error {
             // No root, but one of a pair made complex by rounding may be
             // near: the interpolant's closest approach to zero (`low` or
@@ -1018,7 +1013,6 @@ impl Trigonometric {
         }
         let sign_change = start.value * end.value < 0.0;
         let (slope_low, slope_high) = cubic.slope_range();
-        let slope_error = found.fourth * h.powi(3) / 72.0;
         if sign_change && (slope_low > slope_error || slope_high < -slope_error) {
             found.push(self.bracketed(start.t, end.t));
             return;
@@ -1060,7 +1054,10 @@ impl Trigonometric {
                 t1 = t;
             }
             let newton = t - value / slope;
-            let (next, step) = if newton > t0 && newton < t1 {
+            // A root on an end of the bracket (an end of the isolation's
+            // halving can fall on it within the rounding) is reached by
+            // Newton: only a step beyond an end is replaced by bisection.
+            let (next, step) = if newton >= t0 && newton <= t1 {
                 let step = (newton - t).abs();
                 if step < 1e-9 && step >= last_newton {
                     return t;
@@ -1184,6 +1181,46 @@ fn regula_falsi(f: &dyn Fn(f64) -> f64, (a, fa): (f64, f64), (b, fb): (f64, f64)
     }
 }
 
+/// The real roots in `[0, 2 pi)` of `a0 + sum_k (a_k cos k t + b_k sin k t)`
+/// (`k = 1..8`, `a = cosines`, `b = sines`; `sines[0]` unused) by the
+/// certified isolation of the module docs (**Roots**), with `function` (the
+/// same polynomial, evaluated directly) scanned where the samples are
+/// quiet; written into `roots` (at most its length), how many. (The
+/// isolation's entry point for its tests; `Elimination::solve` keeps its
+/// table.)
+#[cfg(test)]
+pub(crate) fn trigonometric_roots(
+    cosines: [f64; HARMONICS + 1],
+    sines: [f64; HARMONICS + 1],
+    function: &dyn Fn(f64) -> f64,
+    roots: &mut [f64],
+) -> usize {
+    let mut table = [(1.0, 0.0); ROOT_SAMPLES];
+    for (j, entry) in table.iter_mut().enumerate() {
+        let (s, c) = sin_cos(TAU * j as f64 / ROOT_SAMPLES as f64);
+        *entry = (c, s);
+    }
+    let mut sines = sines;
+    sines[0] = 0.0;
+    Trigonometric { cosines, sines }.roots(&table, function, roots)
+}
+
+/// A bound on the `order`-th derivative of `a0 + sum_k (a_k cos k t + b_k
+/// sin k t)` over every `t`: `sum_k k^order (|a_k| + |b_k|)` (per rad^order).
+pub(crate) fn derivative_bound(cosines: &[f64], sines: &[f64], order: i32) -> f64 {
+    (1..cosines.len())
+        .map(|k| (k as f64).powi(order) * (cosines[k].abs() + sines[k].abs()))
+        .sum()
+}
+
+/// The errors of cubic Hermite interpolation (values and slopes at both
+/// ends) over an interval of `h` rad of a function whose fourth derivative
+/// is at most `fourth` in magnitude: `(fourth h^4 / 384, fourth h^3 / 72)`,
+/// on the values and on the slope (per rad).
+pub(crate) fn hermite_error_bounds(fourth: f64, h: f64) -> (f64, f64) {
+    (fourth * h.powi(4) / 384.0, fourth * h.powi(3) / 72.0)
+}
+
 /// Smallest interval [`Trigonometric::isolate`] halves, rad.
 const SMALLEST_INTERVAL: f64 = 1e-9;
 
@@ -1299,12 +1336,19 @@ impl Hermite {
     }
 
     /// The zeros of the slope, `3 c3 s^2 + 2 c2 s + c1 = 0` (any `s`).
+    /// Written without cancellation: with `c3` small beside `c2` (an
+    /// interpolant nearly a parabola, as over a symmetric dip), `(-c2 +-
+    /// sqrt(...)) / (3 c3)` would lose the zero near the vertex.
     fn slope_zeros(&self) -> [Option<f64>; 2] {
         let [_, b, c, d] = self.coefficients;
         let discriminant = c * c - 3.0 * d * b;
         if d != 0.0 && discriminant >= 0.0 {
-            let root = discriminant.sqrt();
-            [Some((-c + root) / (3.0 * d)), Some((-c - root) / (3.0 * d))]
+            let q = -(c + c.signum() * discriminant.sqrt());
+            if q == 0.0 {
+                // c = 0 and b = 0: a double zero at s = 0.
+                return [Some(0.0), None];
+            }
+            [Some(q / (3.0 * d)), Some(b / q)]
         } else if d == 0.0 && c != 0.0 {
             [Some(-b / (2.0 * c)), None]
         } else {

@@ -91,6 +91,8 @@ mod parallel;
 mod parallel_offset;
 pub mod parallel_pair;
 mod ranges;
+#[cfg(test)]
+mod root_isolation_tests;
 mod route;
 pub mod search;
 pub mod search2d;

@@ -1,7 +1,7 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)]
 
-use armkit::kinematics::{forward_kinematics, Data};
+use armkit::kinematics::{forward_kinematics, Data, JacobianFrame};
 use armkit::math::{Matrix6xX, Pose, Vector3};
 use armkit::Model;
 use rand::{Rng, SeedableRng};
@@ -80,7 +80,21 @@ pub fn random_configuration(model: &Model, rng: &mut impl Rng) -> Vec<f64> {
 /// Central finite-difference Jacobian of the end-effector pose (world frame):
 /// linear rows from the position, angular rows from the rotation's log.
 pub fn finite_difference_jacobian(model: &Model, q: &[f64], step: f64) -> Matrix6xX<f64> {
+    finite_difference_jacobian_in(model, q, step, JacobianFrame::World)
+}
+
+/// Central finite-difference Jacobian of the end-effector pose in the axes
+/// of `frame`: the velocity of the end-effector origin (`R' dp` in tool
+/// axes) and the angular velocity (from `R+ R-'` in world axes, `R-' R+`
+/// in tool axes, each `exp(2h [w]) + O(h^3)`).
+pub fn finite_difference_jacobian_in(
+    model: &Model,
+    q: &[f64],
+    step: f64,
+    frame: JacobianFrame,
+) -> Matrix6xX<f64> {
     let mut data = Data::new(model);
+    let rotation = forward_kinematics(model, &mut data, q).unwrap().rotation;
     let mut jac = Matrix6xX::zeros(model.dof());
     for j in 0..model.dof() {
         let mut plus = q.to_vec();
@@ -89,11 +103,17 @@ pub fn finite_difference_jacobian(model: &Model, q: &[f64], step: f64) -> Matrix
         minus[j] -= step;
         let tp = *forward_kinematics(model, &mut data, &plus).unwrap();
         let tm = *forward_kinematics(model, &mut data, &minus).unwrap();
-        let linear = (tp.translation - tm.translation) / (2.0 * step);
-        // R+ R-' = exp(2h [w]) + O(h^3); for so small an angle its skew part
-        // (sin of the angle times the axis) is the angle times the axis to
-        // 1e-12 relative, where acos of the trace would lose half the digits.
-        let relative = tp.rotation * tm.rotation.transpose();
+        let mut linear = (tp.translation - tm.translation) / (2.0 * step);
+        // For so small an angle the skew part of the relative rotation (sin
+        // of the angle times the axis) is the angle times the axis to 1e-12
+        // relative, where acos of the trace would lose half the digits.
+        let relative = match frame {
+            JacobianFrame::World => tp.rotation * tm.rotation.transpose(),
+            JacobianFrame::EndEffector => {
+                linear = rotation.transpose() * linear;
+                tm.rotation.transpose() * tp.rotation
+            }
+        };
         let skew = (relative - relative.transpose()) * 0.5;
         let angular = Vector3::new(skew[(2, 1)], skew[(0, 2)], skew[(1, 0)]) / (2.0 * step);
         jac.fixed_view_mut::<3, 1>(0, j).copy_from(&linear);

@@ -1,0 +1,76 @@
+#!/usr/bin/env bash
+# Mutation testing with cargo-mutants (https://mutants.rs), configured in
+# .cargo/mutants.toml: plant small bugs (an operator flipped, a return value
+# replaced) one at a time in the library's core and check that a test fails.
+# See docs/DEVELOPING.md, "Mutation testing".
+#
+#   scripts/mutants.sh                   the core code this branch changed
+#                                        against main (cargo mutants --in-diff)
+#   scripts/mutants.sh --base BRANCH     ... against BRANCH
+#   scripts/mutants.sh --file PATH       every mutant of one core file
+#   scripts/mutants.sh --tests FILTER    run only the tests whose names
+#                                        contain FILTER (e.g. `mpc::`; the
+#                                        library's unit tests and the
+#                                        integration crate use the module's
+#                                        name), for speed
+#   scripts/mutants.sh --list ...        list the mutants, build nothing
+#
+# Any other argument goes to cargo mutants (e.g. --in-place, --timeout 600).
+# The results are in mutants.out/ (outcomes.json, caught.txt, missed.txt,
+# timeout.txt, unviable.txt). Needs `cargo install --locked cargo-mutants`.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+base=main
+file=""
+tests=""
+extra=()
+while (($#)); do
+    case "$1" in
+        --base) base="$2"; shift 2 ;;
+        --file) file="$2"; shift 2 ;;
+        --tests) tests="$2"; shift 2 ;;
+        *) extra+=("$1"); shift ;;
+    esac
+done
+
+if ! cargo mutants --version >/dev/null 2>&1; then
+    echo "cargo-mutants is not installed: cargo install -j 1 --locked cargo-mutants" >&2
+    exit 2
+fi
+
+args=()
+if [[ -n "$file" ]]; then
+    if [[ ! -f "$file" ]]; then
+        echo "--file: no such file: $file" >&2
+        exit 2
+    fi
+    # The config with its core globs replaced by this one file (a
+    # command-line --file would add to the config's globs).
+    mkdir -p target
+    scoped=target/mutants-file.toml
+    {
+        echo "examine_globs = [\"$file\"]"
+        sed '/^examine_globs = \[/,/^\]/d' .cargo/mutants.toml
+    } >"$scoped"
+    args+=(--config "$scoped")
+else
+    if ! git rev-parse --verify --quiet "$base" >/dev/null; then
+        echo "--base: no such branch or commit: $base" >&2
+        exit 2
+    fi
+    mkdir -p target
+    diff=target/mutants.diff
+    git diff "$(git merge-base "$base" HEAD)" -- crates/armkit/src >"$diff"
+    if [[ ! -s "$diff" ]]; then
+        echo "no change to crates/armkit/src against $base: nothing to mutate"
+        exit 0
+    fi
+    args+=(--in-diff "$diff")
+fi
+
+test_args=()
+if [[ -n "$tests" ]]; then
+    test_args=(-- -- "$tests")
+fi
+exec cargo mutants "${args[@]}" "${extra[@]}" "${test_args[@]}"
