@@ -39,6 +39,15 @@ const WIDTH: f64 = 560.0;
 const HEIGHT: f64 = 420.0;
 const MAX_FRAMES: usize = 400;
 
+/// Which frames the stick figure shows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Playback {
+    /// Every kept frame, played in a loop with a slider.
+    Animated,
+    /// The last frame only: the 3-D view's fallback image.
+    LastFrame,
+}
+
 impl Animation {
     /// An animation from frame times and points.
     pub fn new(times: Vec<f64>, frames: Vec<Vec<[f64; 3]>>) -> Self {
@@ -219,6 +228,16 @@ impl Animation {
 
     /// The HTML block: an SVG canvas, play/pause, a time slider and the script.
     pub fn to_svg_html(&self) -> String {
+        self.svg_html(Playback::Animated)
+    }
+
+    /// The stick figure at the last frame over the whole end-effector path:
+    /// the 3-D view's fallback where the browser has no WebGL.
+    pub fn to_still_svg_html(&self) -> String {
+        self.svg_html(Playback::LastFrame)
+    }
+
+    fn svg_html(&self, playback: Playback) -> String {
         let picks = self.decimated();
         if picks.is_empty() {
             return String::new();
@@ -249,7 +268,12 @@ impl Animation {
                 HEIGHT / 2.0 - scale * (y - cy),
             )
         };
-        let frames_json: Vec<String> = projected
+        // The path spans every kept frame; the figure shows `shown` of them.
+        let shown = match playback {
+            Playback::Animated => 0..picks.len(),
+            Playback::LastFrame => picks.len() - 1..picks.len(),
+        };
+        let frames_json: Vec<String> = projected[shown.clone()]
             .iter()
             .map(|frame| {
                 let pts: Vec<String> = frame
@@ -262,7 +286,7 @@ impl Animation {
                 format!("[{}]", pts.join(","))
             })
             .collect();
-        let times_json: Vec<String> = picks
+        let times_json: Vec<String> = picks[shown.clone()]
             .iter()
             .map(|&k| format!("{:.3}", self.times[k]))
             .collect();
@@ -274,7 +298,7 @@ impl Animation {
                 format!("{sx:.1},{sy:.1}")
             })
             .collect();
-        let last = picks.len() - 1;
+        let last = shown.len() - 1;
         format!(
             r##"<div class="animation-block">
 <svg id="animation" viewBox="0 0 {WIDTH} {HEIGHT}" width="{WIDTH}" height="{HEIGHT}" role="img" aria-label="robot animation">

@@ -125,13 +125,16 @@ pub fn report_page(report: &Report, svgs: &[(String, String)]) -> String {
     }
     if let Some(animation) = &report.animation {
         body += "<h2>Motion</h2>\n";
-        // The 3-D view, with the stick figure as its fallback where the
-        // browser has no WebGL; the scripts are the one shared file that
+        // The 3-D view, with the stick figure's last frame as its fallback
+        // image where the browser has no WebGL; the scripts are the one shared file that
         // `Report::write` puts beside the report folders.
         match animation.scene() {
             Some(Ok(scene)) => {
-                body +=
-                    &armkit_view::viewer_block(&scene, "motion", Some(&animation.to_svg_html()));
+                body += &armkit_view::viewer_block(
+                    &scene,
+                    "motion",
+                    Some(&animation.to_still_svg_html()),
+                );
                 body += &armkit_view::Scripts::Shared(format!("../{}", armkit_view::ASSET_FILE))
                     .to_html();
             }
