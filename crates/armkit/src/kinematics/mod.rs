@@ -19,11 +19,11 @@
 
 mod batch;
 mod frame;
-mod frames;
+mod link_frames;
 mod measures;
 
 pub use batch::{forward_kinematics_batch, jacobian_batch, BatchData, InstructionSet, POSE_VALUES};
-pub use frames::link_frames;
+pub use link_frames::link_frames;
 pub use measures::{condition_number, manipulability, singular_values, smallest_singular_value};
 
 use crate::error::{Error, Result};
