@@ -134,11 +134,7 @@ impl InertiaEntry {
 /// Loads a description file (format from the extension or the content).
 pub fn load(path: impl AsRef<Path>) -> Result<Model> {
     let path = path.as_ref();
-    let source_name = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|e| Error::Parse {
-        source_name: source_name.clone(),
-        reason: format!("cannot read the file: {e}"),
-    })?;
+    let (text, source_name) = crate::error::read_source(path)?;
     parse_str(&text, Format::detect(path, &text), &source_name)
 }
 

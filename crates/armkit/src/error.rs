@@ -154,6 +154,19 @@ pub fn check_finite(what: &'static str, values: &[f64]) -> Result<()> {
     }
 }
 
+/// A text file's contents and its name for messages (the path as given);
+/// a file that cannot be read is an [`Error::Parse`] naming it.
+pub fn read_source(path: &std::path::Path) -> Result<(String, String)> {
+    let source_name = path.display().to_string();
+    match std::fs::read_to_string(path) {
+        Ok(text) => Ok((text, source_name)),
+        Err(e) => Err(Error::Parse {
+            source_name,
+            reason: format!("cannot read the file: {e}"),
+        }),
+    }
+}
+
 /// `value` as a message prints it: plain between 1e-4 and 1e6 (and 0, NaN,
 /// infinities), in exponent form outside (`1e300`, not 301 digits).
 pub fn brief(value: f64) -> String {

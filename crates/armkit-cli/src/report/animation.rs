@@ -37,7 +37,6 @@ const AZIMUTH: f64 = -0.9;
 const ELEVATION: f64 = 0.45;
 const WIDTH: f64 = 560.0;
 const HEIGHT: f64 = 420.0;
-const MAX_FRAMES: usize = 400;
 
 /// Which frames the stick figure shows.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -204,17 +203,9 @@ impl Animation {
         })
     }
 
-    /// Keeps at most `MAX_FRAMES` evenly spaced frames (the last one always).
+    /// The frames kept: those the 3-D view keeps ([`armkit_view::decimate`]).
     fn decimated(&self) -> Vec<usize> {
-        let n = self.frames.len().min(self.times.len());
-        if n <= MAX_FRAMES {
-            return (0..n).collect();
-        }
-        let mut picks: Vec<usize> = (0..MAX_FRAMES)
-            .map(|k| k * (n - 1) / (MAX_FRAMES - 1))
-            .collect();
-        picks.dedup();
-        picks
+        armkit_view::decimate(self.frames.len().min(self.times.len()))
     }
 
     /// The oblique projection of a world point onto the screen (right, up).

@@ -179,11 +179,7 @@ impl ChainSelection {
 /// with the path).
 pub fn load(path: impl AsRef<Path>, selection: &ChainSelection) -> Result<Model> {
     let path = path.as_ref();
-    let source_name = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|e| Error::Parse {
-        source_name: source_name.clone(),
-        reason: format!("cannot read the file: {e}"),
-    })?;
+    let (text, source_name) = crate::error::read_source(path)?;
     parse_str(&text, &source_name, selection)
 }
 

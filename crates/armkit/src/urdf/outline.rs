@@ -43,11 +43,7 @@ pub struct Outline {
 /// any error of [`outline_str`].
 pub fn outline(path: impl AsRef<Path>) -> Result<Outline> {
     let path = path.as_ref();
-    let source_name = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|e| Error::Parse {
-        source_name: source_name.clone(),
-        reason: format!("cannot read the file: {e}"),
-    })?;
+    let (text, source_name) = crate::error::read_source(path)?;
     outline_str(&text, &source_name)
 }
 

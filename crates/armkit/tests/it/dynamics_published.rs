@@ -7,7 +7,7 @@
 //! dynamics is refused on the singular chain at every configuration, and the
 //! decision is relative to the mass matrix's scale.
 
-use crate::common::{data_path, random_configuration, rng};
+use crate::common::{self, data_path, random_configuration, rng};
 use armkit::dynamics::{
     aba, gravity_torques, mass_matrix, mass_matrix_inverse, rnea, DynamicsData,
     MASS_MATRIX_THRESHOLD,
@@ -62,14 +62,6 @@ fn reference(chain: &str) -> (Model, Vec<Sample>) {
     (model, samples)
 }
 
-fn max_difference(x: &[f64], y: &[f64]) -> f64 {
-    assert_eq!(x.len(), y.len());
-    x.iter()
-        .zip(y)
-        .map(|(x, y)| (x - y).abs())
-        .fold(0.0, f64::max)
-}
-
 /// RNEA, CRBA and gravity torques within [`TOLERANCE`] of Pinocchio's.
 fn check_against_pinocchio(chain: &str) {
     let (model, samples) = reference(chain);
@@ -81,9 +73,9 @@ fn check_against_pinocchio(chain: &str) {
         // Row-major, as the file.
         let m: Vec<f64> = m.transpose().as_slice().to_vec();
         let checks = [
-            max_difference(rnea(&model, &mut data, &s.q, &s.v, &s.a).unwrap(), &s.tau),
-            max_difference(&m, &s.mass_matrix.concat()),
-            max_difference(
+            common::max_abs_difference(rnea(&model, &mut data, &s.q, &s.v, &s.a).unwrap(), &s.tau),
+            common::max_abs_difference(&m, &s.mass_matrix.concat()),
+            common::max_abs_difference(
                 gravity_torques(&model, &mut data, &s.q).unwrap(),
                 &s.gravity,
             ),
@@ -170,7 +162,7 @@ fn forward_dynamics_where_the_mass_matrix_is_regular_undoes_inverse_dynamics() {
             let ddq = aba(&model, &mut data, &s.q, &s.v, &s.tau).unwrap().to_vec();
             let scale = s.a.iter().fold(1.0_f64, |m, a| m.max(a.abs()));
             assert!(
-                max_difference(&ddq, &s.a) <= 1e-9 * scale,
+                common::max_abs_difference(&ddq, &s.a) <= 1e-9 * scale,
                 "{chain}: {ddq:?} vs {:?}",
                 s.a
             );

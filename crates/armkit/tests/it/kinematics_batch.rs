@@ -11,7 +11,7 @@ use armkit::kinematics::{
 use armkit::urdf::{load, ChainSelection};
 use armkit::Model;
 
-use crate::common::{data_path, random_configuration, rng};
+use crate::common::{self, data_path, random_configuration, rng};
 
 /// Tolerance of the comparisons (the 1e-14; the lanes round as the
 /// single call does, so the differences are exact zeros in practice).
@@ -43,14 +43,6 @@ fn configurations(model: &Model, count: usize, seed: u64) -> Vec<f64> {
         .collect()
 }
 
-fn max_difference(a: &[f64], b: &[f64]) -> f64 {
-    assert_eq!(a.len(), b.len());
-    a.iter()
-        .zip(b)
-        .map(|(x, y)| (x - y).abs())
-        .fold(0.0, f64::max)
-}
-
 #[test]
 fn batched_fk_equals_the_single_call_on_every_model_and_both_instruction_sets() {
     // 13 configurations: three full blocks of four and a partial one.
@@ -72,7 +64,7 @@ fn batched_fk_equals_the_single_call_on_every_model_and_both_instruction_sets() 
             let mut batch = BatchData::with_instruction_set(&model, set);
             let mut poses = vec![f64::NAN; 13 * POSE_VALUES];
             forward_kinematics_batch(&model, &mut batch, &q, &mut poses).unwrap();
-            let d = max_difference(&poses, &expected);
+            let d = common::max_abs_difference(&poses, &expected);
             assert!(d <= TOLERANCE, "{} {set:?}: {d:e}", model.name());
         }
     }
@@ -98,7 +90,7 @@ fn batched_jacobians_equal_the_single_call_in_both_frames() {
                 let mut batch = BatchData::with_instruction_set(&model, set);
                 let mut out = vec![f64::NAN; 9 * 6 * dof];
                 jacobian_batch(&model, &mut batch, &q, frame, &mut out).unwrap();
-                let d = max_difference(&out, &expected);
+                let d = common::max_abs_difference(&out, &expected);
                 assert!(d <= TOLERANCE, "{} {frame:?} {set:?}: {d:e}", model.name());
             }
         }
@@ -123,8 +115,8 @@ fn the_two_instruction_sets_agree_on_large_batches_over_wide_angles() {
         jacobian_batch(&model, &mut batch, &q, JacobianFrame::World, &mut jacobians).unwrap();
         outs.push((poses, jacobians));
     }
-    assert!(max_difference(&outs[0].0, &outs[1].0) <= TOLERANCE);
-    assert!(max_difference(&outs[0].1, &outs[1].1) <= TOLERANCE);
+    assert!(common::max_abs_difference(&outs[0].0, &outs[1].0) <= TOLERANCE);
+    assert!(common::max_abs_difference(&outs[0].1, &outs[1].1) <= TOLERANCE);
 }
 
 #[test]

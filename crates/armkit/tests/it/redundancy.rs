@@ -95,14 +95,6 @@ fn as_dvector(values: &[f64]) -> DVector<f64> {
     DVector::from_column_slice(values)
 }
 
-fn max_abs_difference(a: &[f64], b: &[f64]) -> f64 {
-    assert_eq!(a.len(), b.len());
-    a.iter()
-        .zip(b)
-        .map(|(x, y)| (x - y).abs())
-        .fold(0.0, f64::max)
-}
-
 #[test]
 fn partitioned_form_equals_weighted_least_norm_for_random_robots() {
     let mut rng = common::rng(5001);
@@ -123,7 +115,7 @@ fn partitioned_form_equals_weighted_least_norm_for_random_robots() {
             .unwrap()
             .to_vec();
         let scale = a.iter().fold(1.0_f64, |m, v| m.max(v.abs()));
-        worst = worst.max(max_abs_difference(&a, &b) / scale);
+        worst = worst.max(common::max_abs_difference(&a, &b) / scale);
         // Both meet the twist.
         let residual = (&case.jacobian * as_dvector(&b) - case.twist).amax();
         assert!(residual < 1e-10, "partitioned J q_dot - V = {residual:e}");
@@ -157,8 +149,8 @@ fn unit_weights_give_the_pseudo_inverse() {
             .unwrap()
             .to_vec();
         let scale = expected.amax().max(1.0);
-        assert!(max_abs_difference(&a, expected.as_slice()) < 1e-9 * scale);
-        assert!(max_abs_difference(&b, expected.as_slice()) < 1e-9 * scale);
+        assert!(common::max_abs_difference(&a, expected.as_slice()) < 1e-9 * scale);
+        assert!(common::max_abs_difference(&b, expected.as_slice()) < 1e-9 * scale);
     }
 }
 
@@ -235,14 +227,14 @@ fn locked_joints_do_not_move_and_huge_weights_approach_locking() {
             .unwrap()
             .to_vec();
         let scale = with_lock.iter().fold(1.0_f64, |m, v| m.max(v.abs()));
-        assert!(max_abs_difference(&with_lock, &with_huge) < 1e-6 * scale);
+        assert!(common::max_abs_difference(&with_lock, &with_huge) < 1e-6 * scale);
         // The partitioned form agrees (the locked joint is an extra joint).
         let mut partitioned = PartitionedSolver::new(dof, 1e10).unwrap();
         let p = partitioned
             .solve(&case.jacobian, &locked, &case.twist, &case.partition)
             .unwrap()
             .to_vec();
-        assert!(max_abs_difference(&with_lock, &p) < 1e-9 * scale);
+        assert!(common::max_abs_difference(&with_lock, &p) < 1e-9 * scale);
         // Seed 001's "lock the k extra joints": q_dot = G0 V on the block.
         let all_extra = case.weights.clone().with_locked(&extra).unwrap();
         let p = partitioned
@@ -384,7 +376,7 @@ fn damping_keeps_velocities_bounded_at_a_singularity() {
         .solved()
         .unwrap()
         .to_vec();
-    assert!(max_abs_difference(&a, &b) < 1e-14);
+    assert!(common::max_abs_difference(&a, &b) < 1e-14);
 }
 
 #[test]
@@ -662,7 +654,7 @@ fn gantry9_holding_torques_match_a_hand_count() {
             .clone();
         joint_torques(&model, &mut data, &q, &Load::payload(50.0), &mut tau).unwrap();
         let expected = j.transpose() * Vector6::new(0.0, 0.0, 50.0, 0.0, 0.0, 0.0);
-        assert!(max_abs_difference(&tau, expected.as_slice()) < 1e-12);
+        assert!(common::max_abs_difference(&tau, expected.as_slice()) < 1e-12);
     }
 }
 
@@ -740,7 +732,7 @@ fn eq17_from_torques_matches_the_weighted_form_and_its_floor_limit() {
             .solved()
             .unwrap()
             .to_vec();
-        let gap = max_abs_difference(&floored, &raw);
+        let gap = common::max_abs_difference(&floored, &raw);
         let f = energy_measure(&floored, &tau).unwrap();
         assert!(
             gap < previous_gap,
@@ -772,7 +764,7 @@ fn eq17_from_torques_matches_the_weighted_form_and_its_floor_limit() {
         .solved()
         .unwrap()
         .to_vec();
-    assert!(max_abs_difference(&eq17, &eq19) < 1e-9);
+    assert!(common::max_abs_difference(&eq17, &eq19) < 1e-9);
 }
 
 #[test]
@@ -925,7 +917,7 @@ fn tracking_follows_lines_on_gantry9_and_panda_with_every_method() {
     assert_limits_respected(&panda, &a.samples);
     let last_a = &a.samples.last().unwrap().q;
     let last_b = &b.samples.last().unwrap().q;
-    assert!(max_abs_difference(last_a, last_b) < 1e-9);
+    assert!(common::max_abs_difference(last_a, last_b) < 1e-9);
 }
 
 /// `|N A^-1 grad H|`: the joint-limit gradient projected on the null space.
@@ -1291,7 +1283,7 @@ fn zero_generalized_weights_lock_the_extra_joints_along_the_motion() {
         // The twist is met, and the rates are the locked run's.
         assert!((&j * as_dvector(&q_dot) - twist).norm() < 1e-12);
         largest_difference =
-            largest_difference.max(max_abs_difference(&q_dot, &sample.joint_rates));
+            largest_difference.max(common::max_abs_difference(&q_dot, &sample.joint_rates));
         largest_rate = largest_rate.max(sample.joint_rates.iter().fold(0.0, |m, v| m.max(v.abs())));
         // A_Q small but not zero: the extra joints move.
         let q_dot = solver

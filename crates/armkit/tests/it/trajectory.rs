@@ -44,14 +44,6 @@ fn segment_state(traj: &Trajectory, segment: usize, phi: f64) -> JointState {
     s
 }
 
-fn max_diff(a: &[f64], b: &[f64]) -> f64 {
-    assert_eq!(a.len(), b.len());
-    a.iter()
-        .zip(b)
-        .map(|(x, y)| (x - y).abs())
-        .fold(0.0, f64::max)
-}
-
 /// Largest |a - b| / max(1, |b|).
 fn rel_diff(a: &[f64], b: &[f64]) -> f64 {
     assert_eq!(a.len(), b.len());
@@ -160,7 +152,10 @@ fn trapezoid_seed004_meets_boundaries_and_is_c1_at_every_knot() {
     assert_eq!(traj.knots(), &[0.0, 4.0, 16.0, 20.0]);
     let start = segment_state(&traj, 0, 0.0);
     let end = segment_state(&traj, 2, 1.0);
-    assert!(max_diff(&start.position, &q0) < BC && max_diff(&end.position, &qf) < BC);
+    assert!(
+        common::max_abs_difference(&start.position, &q0) < BC
+            && common::max_abs_difference(&end.position, &qf) < BC
+    );
     assert!(start
         .velocity
         .iter()
@@ -189,7 +184,7 @@ fn trapezoid_seed004_meets_boundaries_and_is_c1_at_every_knot() {
     // A triangular profile (ta = T/2) has two segments.
     let triangle = trajectory::trapezoidal(&q0, &qf, 2.0, 1.0).unwrap();
     assert_eq!(triangle.segment_count(), 2);
-    assert!(max_diff(&triangle.end_state().position, &qf) < BC);
+    assert!(common::max_abs_difference(&triangle.end_state().position, &qf) < BC);
 }
 
 #[test]
@@ -355,7 +350,7 @@ fn minimum_time_profiles_touch_the_binding_limit() {
                 (usage - 1.0).abs() < 1e-9,
                 "{shape:?}: largest limit usage {usage}"
             );
-            assert!(max_diff(&traj.end_state().position, &qf) < BC);
+            assert!(common::max_abs_difference(&traj.end_state().position, &qf) < BC);
         }
     }
     let unlimited = TrajectoryLimits::new(vec![1.0], vec![f64::INFINITY]).unwrap();
@@ -387,11 +382,16 @@ fn clamped_spline_interpolates_and_is_c2() {
     let spline = clamped_cubic_spline(&times, &points, &v0, &vf).unwrap();
     assert_eq!(spline.start_time(), 0.5);
     for i in 0..spline.segment_count() {
-        assert!(max_diff(&segment_state(&spline, i, 0.0).position, &points[i]) < BC);
-        assert!(max_diff(&segment_state(&spline, i, 1.0).position, &points[i + 1]) < BC * 10.0);
+        assert!(
+            common::max_abs_difference(&segment_state(&spline, i, 0.0).position, &points[i]) < BC
+        );
+        assert!(
+            common::max_abs_difference(&segment_state(&spline, i, 1.0).position, &points[i + 1])
+                < BC * 10.0
+        );
     }
-    assert!(max_diff(&spline.start_state().velocity, &v0) < BC * 100.0);
-    assert!(max_diff(&spline.end_state().velocity, &vf) < BC * 100.0);
+    assert!(common::max_abs_difference(&spline.start_state().velocity, &v0) < BC * 100.0);
+    assert!(common::max_abs_difference(&spline.end_state().velocity, &vf) < BC * 100.0);
     let [dq, dv, da] = spline.knot_discontinuities();
     println!("spline knot jumps: position {dq:.1e}, velocity {dv:.1e}, acceleration {da:.1e}");
     assert!(dq < BC * 10.0 && dv < 1e-11 && da < 1e-9, "{dq} {dv} {da}");
@@ -643,9 +643,9 @@ fn time_scaling_meets_the_limits_and_keeps_the_path() {
             spline.sample(t).unwrap(),
             scaled.trajectory.sample(ts).unwrap(),
         );
-        assert!(max_diff(&a.position, &b.position) < 1e-12);
+        assert!(common::max_abs_difference(&a.position, &b.position) < 1e-12);
         assert!(
-            max_diff(
+            common::max_abs_difference(
                 &a.velocity
                     .iter()
                     .map(|v| v / scaled.factor)
@@ -1023,7 +1023,7 @@ fn adaptive_segmentation_meets_the_tolerance_on_arm4_and_panda() {
                     } else {
                         report.trajectory.end_state()
                     };
-                    assert!(max_diff(&at.position, q) < BC);
+                    assert!(common::max_abs_difference(&at.position, q) < BC);
                 }
                 let [dq, dv, da] = report.trajectory.knot_discontinuities();
                 println!("    knot jumps: position {dq:.1e}, velocity {dv:.1e}, acceleration {da:.1e} (C1 scheme)");

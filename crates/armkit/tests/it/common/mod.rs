@@ -161,3 +161,12 @@ pub fn random_link(
             inertia,
         })
 }
+
+/// The largest absolute difference between two equally long slices.
+pub fn max_abs_difference(a: &[f64], b: &[f64]) -> f64 {
+    assert_eq!(a.len(), b.len());
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
+}
