@@ -192,24 +192,24 @@ impl AutoSolver {
                 route: IkRoute::Unreachable,
             });
         }
-        let analytic = |found: Option<(AnalyticSolution, IkRoute)>| {
-            found.map(|(solution, route)| AutoReport {
-                report: IkReport {
-                    status: IkStatus::Converged,
-                    q: solution.q().to_vec(),
-                    position_error: solution.position_error,
-                    orientation_error: solution.orientation_error,
-                    iterations: 0,
-                    restarts: 0,
-                    elapsed: began.elapsed(),
-                },
-                route,
-            })
+        // The answer's joint values are copied out once, for the answer
+        // returned (the report owns its `q`).
+        let analytic = |(solution, route): (AnalyticSolution, IkRoute)| AutoReport {
+            report: IkReport {
+                status: IkStatus::Converged,
+                q: solution.q().to_vec(),
+                position_error: solution.position_error,
+                orientation_error: solution.orientation_error,
+                iterations: 0,
+                restarts: 0,
+                elapsed: began.elapsed(),
+            },
+            route,
         };
-        if let Some(answer) = analytic(self.analytic_answer(target, start, Stage::OwnParameter)?) {
-            let far = distance2(&answer.report.q, start) > NEAREST_WINDOW * NEAREST_WINDOW;
-            if self.spare == Spare::None || !far {
-                return Ok(answer);
+        if let Some(found) = self.analytic_answer(target, start, Stage::OwnParameter)? {
+            let nearest = distance2(found.0.q(), start);
+            if self.spare == Spare::None || nearest <= NEAREST_WINDOW * NEAREST_WINDOW {
+                return Ok(analytic(found));
             }
             // A 7-joint arm's start on a branch the parameter window did not
             // reach (near a fold of the self-motion, where the held
@@ -217,23 +217,20 @@ impl AutoSolver {
             // random restarts: a restart lands anywhere), when it converges
             // nearer.
             let mut report = self.local.solve(target, start)?;
-            if report.converged()
-                && distance2(&report.q, start) < distance2(&answer.report.q, start)
-            {
+            if report.converged() && distance2(&report.q, start) < nearest {
                 report.elapsed = began.elapsed();
                 return Ok(AutoReport {
                     report,
                     route: IkRoute::Numeric,
                 });
             }
-            return Ok(answer);
+            return Ok(analytic(found));
         }
         let mut report = self.numeric.solve(target, start)?;
         if !report.converged() {
             // The numeric solver gave up: sweep the 7-DOF parameter.
-            if let Some(mut answer) = analytic(self.analytic_answer(target, start, Stage::Sweep)?) {
-                answer.report.elapsed = began.elapsed();
-                return Ok(answer);
+            if let Some(found) = self.analytic_answer(target, start, Stage::Sweep)? {
+                return Ok(analytic(found));
             }
         }
         report.elapsed = began.elapsed();
