@@ -441,3 +441,46 @@ mod tests {
         .iter()
         .any(|(_, name)| name == "trajectory"));
 }
+
+/// The `src/` folders of every crate of the workspace.
+fn workspace_source_dirs() -> Vec<PathBuf> {
+    let crates = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("..")
+        .canonicalize()
+        .unwrap();
+    let mut dirs: Vec<PathBuf> = fs::read_dir(&crates)
+        .unwrap()
+        .map(|entry| entry.unwrap().path().join("src"))
+        .filter(|src| src.is_dir())
+        .collect();
+    dirs.sort();
+    dirs
+}
+
+/// Two house rules of docs/DEVELOPING.md ("Layout") that keep a module
+/// readable on its own: a module with files of its own is `foo/mod.rs`
+/// (never `foo.rs` beside `foo/`), and code names what it imports (no
+/// `use super::*` outside the `#[cfg(test)]` part of a file).
+#[test]
+fn one_submodule_convention_and_named_imports() {
+    let mut problems = Vec::new();
+    for src in workspace_source_dirs() {
+        for file in rust_files(&src) {
+            if file.with_extension("").is_dir() && file.file_name().is_some_and(|n| n != "mod.rs") {
+                problems.push(format!(
+                    "{}: move it to {}/mod.rs",
+                    file.display(),
+                    file.with_extension("").display()
+                ));
+            }
+            let source = fs::read_to_string(&file).unwrap();
+            if code_of(&source).contains("use super::*") {
+                problems.push(format!(
+                    "{}: `use super::*` outside #[cfg(test)]",
+                    file.display()
+                ));
+            }
+        }
+    }
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+}
