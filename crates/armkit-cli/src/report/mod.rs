@@ -6,7 +6,7 @@
 //! that looks complete.
 
 mod animation;
-mod html;
+pub mod html;
 
 use std::path::{Path, PathBuf};
 
@@ -369,83 +369,4 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> CliResult {
     std::fs::write(&temporary, bytes)?;
     std::fs::rename(&temporary, path)?;
     Ok(())
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn sample_report() -> Report {
-        let x = vec![0.0, 1.0, 2.0];
-        Report {
-            name: "sample".into(),
-            title: "A sample".into(),
-            description: "Shows <everything> & more".into(),
-            checks: vec![
-                Check::at_most("error", 1e-7, 1e-6, "m"),
-                Check::at_least("speed", 0.5, 0.6, "m/s"),
-            ],
-            tables: vec![Table {
-                title: "T".into(),
-                header: vec!["a".into()],
-                rows: vec![vec!["1".into()]],
-            }],
-            figures: vec![(
-                "curve".into(),
-                Figure::new("Curve", "t (s)", "y", x.clone()).with_series("y", x),
-            )],
-            findings: vec![Finding::new(
-                "seed 999: the sky is green",
-                "blue",
-                armkit::study::FindingStatus::NotReproduced,
-            )],
-            notes: vec!["a note".into()],
-            animation: Some(Animation::new(
-                vec![0.0, 1.0],
-                vec![
-                    vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]],
-                    vec![[0.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
-                ],
-            )),
-        }
-    }
-
-    #[test]
-    fn write_produces_every_file_and_a_summary_with_pass_and_fail() {
-        let dir = std::env::temp_dir().join(format!("armkit-report-test-{}", std::process::id()));
-        let summary = sample_report().write(&dir).unwrap();
-        assert_eq!((summary.passed, summary.total), (1, 2));
-        for file in ["curve.csv", "curve.svg", "summary.json", "report.html"] {
-            assert!(dir.join("sample").join(file).exists(), "{file}");
-        }
-        let json: serde_json::Value = serde_json::from_str(
-            &std::fs::read_to_string(dir.join("sample/summary.json")).unwrap(),
-        )
-        .unwrap();
-        assert_eq!(json["checks"][0]["pass"], true);
-        assert_eq!(json["checks"][1]["pass"], false);
-        assert_eq!(json["findings"][0]["status"], "not reproduced");
-        let html = std::fs::read_to_string(dir.join("sample/report.html")).unwrap();
-        assert!(html.contains("Shows &lt;everything&gt; &amp; more"));
-        assert!(html.contains("<svg") && html.contains("id=\"animation\""));
-        assert!(
-            !html.contains("src=\"http") && !html.contains("href=\"http"),
-            "external resource"
-        );
-        let index = write_index(&dir, &[summary]).unwrap();
-        let index_html = std::fs::read_to_string(index).unwrap();
-        assert!(index_html.contains("sample/report.html") && index_html.contains("1 of 2"));
-        assert!(
-            index_html.contains("class=\"not-reproduced\">1<"),
-            "findings counts in the index"
-        );
-        assert!(html.contains("not reproduced") && html.contains("the sky is green"));
-        std::fs::remove_dir_all(&dir).unwrap();
-    }
-
-    #[test]
-    fn nan_never_passes() {
-        assert!(!Check::at_most("x", f64::NAN, 1.0, "").passed());
-        assert!(!Check::at_least("x", f64::NAN, 1.0, "").passed());
-    }
 }

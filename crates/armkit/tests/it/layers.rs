@@ -484,3 +484,68 @@ fn one_submodule_convention_and_named_imports() {
     }
     assert!(problems.is_empty(), "{}", problems.join("\n"));
 }
+
+/// Whether a target table (`[lib]`, or one `[[bin]]`) switches its tests off.
+fn tests_off(target: Option<&toml::Value>) -> bool {
+    target
+        .and_then(|t| t.get("test"))
+        .and_then(toml::Value::as_bool)
+        == Some(false)
+}
+
+/// The test binaries `cargo test --workspace` links for one crate: its
+/// library's unit tests, its binaries' (where not switched off), one per
+/// integration-test target under `tests/`. A crate whose library's tests are
+/// off must hold no `#[cfg(test)]` code: those tests would never run.
+fn test_binaries(crate_dir: &Path, problems: &mut Vec<String>) -> Vec<String> {
+    let manifest: toml::Value =
+        toml::from_str(&fs::read_to_string(crate_dir.join("Cargo.toml")).unwrap()).unwrap();
+    let name = manifest["package"]["name"].as_str().unwrap().to_string();
+    let mut binaries = Vec::new();
+    let src = crate_dir.join("src");
+    if src.join("lib.rs").exists() {
+        if tests_off(manifest.get("lib")) {
+            for file in rust_files(&src) {
+                if fs::read_to_string(&file).unwrap().contains("#[cfg(test)]") {
+                    problems.push(format!(
+                        "{}: #[cfg(test)] in a library whose tests are off (move them to tests/)",
+                        file.display()
+                    ));
+                }
+            }
+        } else {
+            binaries.push(format!("{name} (lib)"));
+        }
+    }
+    let bins = manifest.get("bin").and_then(toml::Value::as_array);
+    let bin_tests_off = bins.is_some_and(|bins| bins.iter().all(|b| tests_off(Some(b))));
+    if src.join("main.rs").exists() && !bin_tests_off {
+        binaries.push(format!("{name} (bin)"));
+    }
+    if let Ok(entries) = fs::read_dir(crate_dir.join("tests")) {
+        for entry in entries {
+            let path = entry.unwrap().path();
+            if path.extension().is_some_and(|e| e == "rs") || path.join("main.rs").exists() {
+                binaries.push(format!("{name} ({})", path.display()));
+            }
+        }
+    }
+    binaries
+}
+
+/// `cargo test --workspace` links at most four test binaries (each link is
+/// seconds of a 2-core machine's time; the doctests of edition 2024 merge
+/// into one more), and no unit test sits where it would not run.
+#[test]
+fn the_workspace_links_at_most_four_test_binaries() {
+    let mut problems = Vec::new();
+    let binaries: Vec<String> = workspace_source_dirs()
+        .iter()
+        .flat_map(|src| test_binaries(src.parent().unwrap(), &mut problems))
+        .collect();
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+    assert!(
+        (3..=4).contains(&binaries.len()),
+        "test binaries: {binaries:#?}"
+    );
+}

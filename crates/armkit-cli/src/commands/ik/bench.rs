@@ -69,7 +69,7 @@ const PREEMPTION_RETRIES: usize = 3;
 /// The calling thread's CPU time, or `None` where the platform has no
 /// per-thread clock.
 #[cfg(unix)]
-fn thread_cpu_time() -> Option<Duration> {
+pub fn thread_cpu_time() -> Option<Duration> {
     let mut now = libc::timespec {
         tv_sec: 0,
         tv_nsec: 0,
@@ -81,7 +81,7 @@ fn thread_cpu_time() -> Option<Duration> {
 }
 
 #[cfg(not(unix))]
-fn thread_cpu_time() -> Option<Duration> {
+pub fn thread_cpu_time() -> Option<Duration> {
     None
 }
 
@@ -89,7 +89,7 @@ fn thread_cpu_time() -> Option<Duration> {
 /// reached the budget while its thread ran for less than half of it (the
 /// solver's budget is wall-clock; a loaded machine cuts a solve short that
 /// a quiet one finishes).
-fn preempted(wall: Duration, cpu: Option<Duration>, budget_ms: f64) -> bool {
+pub fn preempted(wall: Duration, cpu: Option<Duration>, budget_ms: f64) -> bool {
     let budget = Duration::from_secs_f64(budget_ms * 1e-3);
     cpu.is_some_and(|cpu| wall >= budget && cpu.as_secs_f64() < 0.5 * wall.as_secs_f64())
 }
@@ -293,41 +293,4 @@ fn bench_solver(
         mean_iterations: iterations as f64 / targets.len() as f64,
         preempted: preemptions,
     })
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn a_failed_solve_is_preempted_only_when_its_thread_lacked_the_processor() {
-        let ms = Duration::from_millis;
-        // Budget reached, thread ran 1 of 6 ms: preempted.
-        assert!(preempted(ms(6), Some(ms(1)), 5.0));
-        // Budget reached with the processor most of the time: a real failure.
-        assert!(!preempted(ms(6), Some(ms(5)), 5.0));
-        // Failed before the budget: the solver gave up by itself.
-        assert!(!preempted(ms(2), Some(ms(0)), 5.0));
-        // No thread clock: never called preempted.
-        assert!(!preempted(ms(60), None, 5.0));
-    }
-
-    #[test]
-    fn the_thread_clock_advances_with_work_and_not_with_sleep() {
-        let Some(before) = thread_cpu_time() else {
-            return; // a platform without a thread clock
-        };
-        std::thread::sleep(Duration::from_millis(30));
-        let slept = thread_cpu_time().unwrap() - before;
-        assert!(
-            slept < Duration::from_millis(15),
-            "{slept:?} of CPU while asleep"
-        );
-        let mut x = 1.0f64;
-        let busy = Instant::now();
-        while busy.elapsed() < Duration::from_millis(30) {
-            x = std::hint::black_box(x.sin() + 1.0);
-        }
-        assert!(thread_cpu_time().unwrap() - before > slept, "{x}");
-    }
 }

@@ -5,7 +5,7 @@ mod analytic;
 mod bench;
 mod report;
 
-pub use bench::{run_bench, BenchIkArgs};
+pub use bench::{preempted, run_bench, thread_cpu_time, BenchIkArgs};
 
 use std::time::Duration;
 
