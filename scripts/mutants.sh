@@ -39,27 +39,36 @@ if ! cargo mutants --version >/dev/null 2>&1; then
     exit 2
 fi
 
-args=()
+# The config, scoped: with --file its core globs are replaced by that one
+# file (a command-line --file would add to the config's globs); with
+# --tests the test filter joins the config's test arguments (cargo-mutants
+# puts the config's `additional_cargo_test_args` after the command line's,
+# so a filter given as `-- -- FILTER` would land before `--lib`).
+mkdir -p target
+scoped=target/mutants-scoped.toml
+cp .cargo/mutants.toml "$scoped"
 if [[ -n "$file" ]]; then
     if [[ ! -f "$file" ]]; then
         echo "--file: no such file: $file" >&2
         exit 2
     fi
-    # The config with its core globs replaced by this one file (a
-    # command-line --file would add to the config's globs).
-    mkdir -p target
-    scoped=target/mutants-file.toml
     {
         echo "examine_globs = [\"$file\"]"
         sed '/^examine_globs = \[/,/^\]/d' .cargo/mutants.toml
     } >"$scoped"
-    args+=(--config "$scoped")
-else
+fi
+if [[ -n "$tests" ]]; then
+    sed -i "s|^additional_cargo_test_args = \[\(.*\)\]|additional_cargo_test_args = [\1, \"--\", \"$tests\"]|" "$scoped"
+fi
+# A release build of armkit takes minutes on a loaded 2-core machine; a
+# multiple of the baseline's build time is no bound (the baseline may find
+# the build fresh).
+args=(--config "$scoped" --build-timeout 1200)
+if [[ -z "$file" ]]; then
     if ! git rev-parse --verify --quiet "$base" >/dev/null; then
         echo "--base: no such branch or commit: $base" >&2
         exit 2
     fi
-    mkdir -p target
     diff=target/mutants.diff
     git diff "$(git merge-base "$base" HEAD)" -- crates/armkit/src >"$diff"
     if [[ ! -s "$diff" ]]; then
@@ -69,8 +78,4 @@ else
     args+=(--in-diff "$diff")
 fi
 
-test_args=()
-if [[ -n "$tests" ]]; then
-    test_args=(-- -- "$tests")
-fi
-exec cargo mutants "${args[@]}" "${extra[@]}" "${test_args[@]}"
+exec cargo mutants "${args[@]}" "${extra[@]}"
