@@ -10,6 +10,7 @@ from conftest import DATA, data_file, reference
 
 POSE_TOLERANCE = 1e-12
 JACOBIAN_TOLERANCE = 1e-9
+BATCHED_TOLERANCE = 1e-14
 
 BUILTIN = [
     ("puma560", "reference_puma560_dh.json"),
@@ -57,9 +58,13 @@ def test_batched_equals_looped_on_every_thread_count(ur5):
     looped_J = np.array([ur5.jacobian(q) for q in Q])
     looped_Je = np.array([ur5.jacobian(q, frame="end-effector") for q in Q])
     for threads in (None, 1, 2, 3):
-        assert np.array_equal(ur5.fk(Q, threads=threads), looped_T)
-        assert np.array_equal(ur5.jacobian(Q, threads=threads), looped_J)
-        assert np.array_equal(ur5.jacobian(Q, frame="end-effector", threads=threads), looped_Je)
+        for batched, looped in [
+            (ur5.fk(Q, threads=threads), looped_T),
+            (ur5.jacobian(Q, threads=threads), looped_J),
+            (ur5.jacobian(Q, frame="end-effector", threads=threads), looped_Je),
+        ]:
+            assert batched.shape == looped.shape
+            np.testing.assert_allclose(batched, looped, rtol=0, atol=BATCHED_TOLERANCE)
 
 
 def test_end_effector_jacobian_is_the_world_one_in_tool_axes(ur5):
