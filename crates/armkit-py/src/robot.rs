@@ -169,15 +169,8 @@ impl Robot {
                     |q: &[f64], out: &mut [f64]| per_row(model, &mut Data::new(model), q, out);
                 rows.by_blocks(out, KERNEL_BLOCK_ROWS, batch, block, row)
             };
-            let (rows, per_thread) = (q.len() / dof, KINEMATICS_ROWS_PER_THREAD);
-            for_each_chunk(
-                rows,
-                threads,
-                per_thread,
-                out,
-                || BatchData::new(model),
-                chunk,
-            )
+            let (rows, min) = (q.len() / dof, KINEMATICS_ROWS_PER_THREAD);
+            for_each_chunk(rows, threads, min, out, || BatchData::new(model), chunk)
         })
     }
 
@@ -195,12 +188,9 @@ impl Robot {
         if shape[1] != dof {
             return Err(shape_error("q", &format!("(N, {dof})"), shape));
         }
-        let rows = shape[0];
-        let threads = thread_count(threads)?;
-        let input = RowMajor::new(array)?;
-        let q = input.as_slice();
-        let width: usize = item_shape.iter().product();
-        let mut dims = vec![rows];
+        let (threads, input) = (thread_count(threads)?, RowMajor::new(array)?);
+        let (q, width) = (input.as_slice(), item_shape.iter().product());
+        let mut dims = vec![shape[0]];
         dims.extend_from_slice(item_shape);
         let out = new_array(py, numpy::ndarray::IxDyn(&dims), |out| {
             py.detach(|| fill(q, threads, RowsMut::new(out, width)))

@@ -211,16 +211,17 @@ fn kernel_avx2_fma(
     kernel::<crate::math::Avx4>(model, data, q, count, output)
 }
 
-/// Storage lanes to computing lanes.
+/// Storage lanes to computing lanes (`from_fn`, not `map`: `map`'s
+/// `try_map` stays a call in the AVX2 build).
 #[inline(always)]
 fn load<L: Lanes4, const N: usize>(values: &[F64x4; N]) -> [L; N] {
-    values.map(|v| L::from_array(v.0))
+    std::array::from_fn(|i| L::from_array(values[i].0))
 }
 
 /// Computing lanes to storage lanes.
 #[inline(always)]
 fn store<L: Lanes4, const N: usize>(values: &[L; N]) -> [F64x4; N] {
-    values.map(|v| F64x4(v.to_array()))
+    std::array::from_fn(|i| F64x4(values[i].to_array()))
 }
 
 /// The blocks of four configurations, base to tip on each, computed on

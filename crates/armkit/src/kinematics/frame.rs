@@ -27,7 +27,7 @@ fn mix<L: Lane>(a: &[L; 3], ka: L, b: &[L; 3], kb: L) -> [L; 3] {
 /// `a * ka + b * kb + c * kc` with constant coefficients.
 #[inline(always)]
 fn combine<L: Lane>(a: &[L; 3], b: &[L; 3], c: &[L; 3], k: &[f64; 3]) -> [L; 3] {
-    let k = k.map(L::splat);
+    let k: [L; 3] = std::array::from_fn(|i| L::splat(k[i]));
     std::array::from_fn(|i| c[i].mul_add(k[2], a[i].mul_add(k[0], b[i] * k[1])))
 }
 
