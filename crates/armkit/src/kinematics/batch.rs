@@ -21,10 +21,11 @@
 use super::frame::Frame;
 use super::JacobianFrame;
 use crate::error::{Error, Result};
-use crate::math::{sin_cos_x4, F64x4, Lane, LANES};
+use crate::math::{sin_cos_x4, F64x4, Lane, Lanes4, LANES};
 use crate::model::Model;
 
-/// Which instructions the batched kernels use.
+/// Which instructions the kinematics kernels use (the single calls' chain,
+/// through [`super::Data::with_instruction_set`], and the batched kernels).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum InstructionSet {
     /// AVX2 and FMA where the processor has them (detected at run time),
@@ -191,11 +192,13 @@ fn run(model: &Model, data: &mut BatchData, q: &[f64], count: usize, output: Out
         // SAFETY: the function needs only the two features detected above.
         return unsafe { kernel_avx2_fma(model, data, q, count, output) };
     }
-    kernel(model, data, q, count, output)
+    kernel::<F64x4>(model, data, q, count, output)
 }
 
-/// [`kernel`] compiled for AVX2 and FMA: every `F64x4` operation one
-/// 256-bit instruction.
+/// [`kernel`] compiled for AVX2 and FMA on the AVX register lanes
+/// (`math::Avx4`, whose values exist only here and in the other kernels
+/// entered after the detection): every lane operation one 256-bit
+/// instruction, the frame's multiply-adds fused.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
 fn kernel_avx2_fma(
@@ -205,14 +208,28 @@ fn kernel_avx2_fma(
     count: usize,
     output: Output,
 ) -> Result<()> {
-    kernel(model, data, q, count, output)
+    kernel::<crate::math::Avx4>(model, data, q, count, output)
 }
 
-/// The blocks of four configurations, base to tip on each; the last block
+/// Storage lanes to computing lanes (`from_fn`, not `map`: `map`'s
+/// `try_map` stays a call in the AVX2 build).
+#[inline(always)]
+fn load<L: Lanes4, const N: usize>(values: &[F64x4; N]) -> [L; N] {
+    std::array::from_fn(|i| L::from_array(values[i].0))
+}
+
+/// Computing lanes to storage lanes.
+#[inline(always)]
+fn store<L: Lanes4, const N: usize>(values: &[L; N]) -> [F64x4; N] {
+    std::array::from_fn(|i| F64x4(values[i].to_array()))
+}
+
+/// The blocks of four configurations, base to tip on each, computed on
+/// lanes `L` (the workspace keeps them as [`F64x4`]); the last block
 /// repeats its last configuration in the lanes beyond `count` (computed,
 /// not written).
 #[inline(always)]
-fn kernel(
+fn kernel<L: Lanes4>(
     model: &Model,
     data: &mut BatchData,
     q: &[f64],
@@ -243,10 +260,11 @@ fn kernel(
             }
         }
         for (sc, &angle) in data.sin_cos.iter_mut().zip(&data.positions) {
-            *sc = sin_cos_x4(angle);
+            let (s, c) = sin_cos_x4(L::from_array(angle.0));
+            *sc = (F64x4(s.to_array()), F64x4(c.to_array()));
         }
-        let store = matches!(output, Output::Jacobians(..));
-        let mut frame = Frame::<F64x4>::identity();
+        let keep_joints = matches!(output, Output::Jacobians(..));
+        let mut frame = Frame::<L>::identity();
         let joints = forms
             .iter()
             .zip(kinds)
@@ -255,21 +273,27 @@ fn kernel(
         for (((form, kind), (&(s, c), &position)), (axis, origin)) in joints {
             frame.place(form);
             if kind.is_rotational() {
-                frame.rotate_about_z(s, c);
+                frame.rotate_about_z(L::from_array(s.0), L::from_array(c.0));
             } else {
-                frame.translate_along_z(position);
+                frame.translate_along_z(L::from_array(position.0));
             }
-            if store {
-                *axis = frame.z;
-                *origin = frame.t;
+            if keep_joints {
+                *axis = store(&frame.z);
+                *origin = store(&frame.t);
             }
         }
         frame.place(model.end_effector_form());
-        check_finite_lanes(&frame, start, lanes)?;
+        let stored = Frame {
+            x: store(&frame.x),
+            y: store(&frame.y),
+            z: store(&frame.z),
+            t: store(&frame.t),
+        };
+        check_finite_lanes(&stored, start, lanes)?;
         match &mut output {
-            Output::Poses(poses) => write_poses(&frame, &mut poses[start * POSE_VALUES..], lanes),
+            Output::Poses(poses) => write_poses(&stored, &mut poses[start * POSE_VALUES..], lanes),
             Output::Jacobians(jacobians, jacobian_frame) => {
-                chain_columns(data, kinds, &frame.t);
+                chain_columns::<L>(data, kinds, &frame.t);
                 // Uncoupled: the chain's columns are the result.
                 let columns = if identity {
                     &mut data.chain_columns
@@ -281,7 +305,7 @@ fn kernel(
                 };
                 if *jacobian_frame == JacobianFrame::EndEffector {
                     for column in columns.iter_mut() {
-                        *column = to_end_effector_axes(&frame, column);
+                        *column = store(&to_end_effector_axes(&frame, &load(column)));
                     }
                 }
                 write_jacobians(columns, &mut jacobians[start * 6 * dof..], lanes);
@@ -296,21 +320,23 @@ fn kernel(
 /// `[z_j x (p_e - p_j); z_j]` (rotational) or `[z_j; 0]` (prismatic), as
 /// [`super::jacobian`].
 #[inline(always)]
-fn chain_columns(data: &mut BatchData, kinds: &[crate::model::JointKind], end: &[F64x4; 3]) {
-    let zero = F64x4::splat(0.0);
+fn chain_columns<L: Lanes4>(data: &mut BatchData, kinds: &[crate::model::JointKind], end: &[L; 3]) {
+    let zero = L::splat(0.0);
     let joints = data
         .chain_columns
         .iter_mut()
         .zip(kinds)
         .zip(data.axes.iter().zip(&data.origins));
     for ((column, kind), (z, p)) in joints {
-        *column = if kind.is_rotational() {
+        let z = load::<L, 3>(z);
+        *column = store(&if kind.is_rotational() {
+            let p = load::<L, 3>(p);
             let d = [end[0] - p[0], end[1] - p[1], end[2] - p[2]];
-            let v = cross(z, &d);
+            let v = cross(&z, &d);
             [v[0], v[1], v[2], z[0], z[1], z[2]]
         } else {
             [z[0], z[1], z[2], zero, zero, zero]
-        };
+        });
     }
 }
 
@@ -325,8 +351,8 @@ fn cross<L: Lane>(a: &[L; 3], b: &[L; 3]) -> [L; 3] {
 
 /// A column `[v; w]` in the end-effector's axes: `[R' v; R' w]`.
 #[inline(always)]
-fn to_end_effector_axes(frame: &Frame<F64x4>, column: &[F64x4; 6]) -> [F64x4; 6] {
-    let dot = |axis: &[F64x4; 3], v: &[F64x4]| axis[0] * v[0] + axis[1] * v[1] + axis[2] * v[2];
+fn to_end_effector_axes<L: Lane>(frame: &Frame<L>, column: &[L; 6]) -> [L; 6] {
+    let dot = |axis: &[L; 3], v: &[L]| axis[2].mul_add(v[2], axis[0].mul_add(v[0], axis[1] * v[1]));
     let (v, w) = column.split_at(3);
     [
         dot(&frame.x, v),

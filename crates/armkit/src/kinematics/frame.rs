@@ -1,6 +1,9 @@
 //! The running frame of the chain's product, written once for one
 //! configuration (`f64`) and for four side by side (`F64x4`): the single
-//! call and the batched kernels take the same steps.
+//! call and the batched kernels take the same steps. The sums are written
+//! with [`Lane::mul_add`] in the order of the plain `a * b + c` (addition
+//! commutes bit for bit), so `f64` and `F64x4` round as the plain products
+//! do, and the AVX lanes fuse each multiply-add.
 
 use crate::math::{Lane, Pose};
 use crate::model::PlacementForm;
@@ -18,21 +21,14 @@ pub(super) struct Frame<L> {
 /// `a * ka + b * kb`, lane-wise on 3-vectors.
 #[inline(always)]
 fn mix<L: Lane>(a: &[L; 3], ka: L, b: &[L; 3], kb: L) -> [L; 3] {
-    [
-        a[0] * ka + b[0] * kb,
-        a[1] * ka + b[1] * kb,
-        a[2] * ka + b[2] * kb,
-    ]
+    std::array::from_fn(|i| a[i].mul_add(ka, b[i] * kb))
 }
 
 /// `a * ka + b * kb + c * kc` with constant coefficients.
 #[inline(always)]
 fn combine<L: Lane>(a: &[L; 3], b: &[L; 3], c: &[L; 3], k: &[f64; 3]) -> [L; 3] {
-    [
-        a[0] * k[0] + b[0] * k[1] + c[0] * k[2],
-        a[1] * k[0] + b[1] * k[1] + c[1] * k[2],
-        a[2] * k[0] + b[2] * k[1] + c[2] * k[2],
-    ]
+    let k: [L; 3] = std::array::from_fn(|i| L::splat(k[i]));
+    std::array::from_fn(|i| c[i].mul_add(k[2], a[i].mul_add(k[0], b[i] * k[1])))
 }
 
 impl<L: Lane> Frame<L> {
@@ -84,11 +80,7 @@ impl<L: Lane> Frame<L> {
     #[inline(always)]
     pub(super) fn translate_along_z(&mut self, distance: L) {
         let (t, z) = (self.t, self.z);
-        self.t = [
-            t[0] + z[0] * distance,
-            t[1] + z[1] * distance,
-            t[2] + z[2] * distance,
-        ];
+        self.t = std::array::from_fn(|i| z[i].mul_add(distance, t[i]));
     }
 }
 

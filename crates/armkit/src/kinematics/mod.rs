@@ -49,6 +49,7 @@ pub enum JacobianFrame {
 #[derive(Clone, Debug)]
 pub struct Data {
     dof: usize,
+    instruction_set: InstructionSet,
     /// One per chain joint (mimic joints included).
     effective_positions: Vec<f64>,
     /// `(sin, cos)` of each effective joint position (used for rotational joints).
@@ -62,8 +63,15 @@ pub struct Data {
 }
 
 impl Data {
-    /// A workspace for `model`.
+    /// A workspace for `model`, with the instructions detected at run time.
     pub fn new(model: &Model) -> Self {
+        Self::with_instruction_set(model, InstructionSet::Detected)
+    }
+
+    /// A workspace for `model` whose calls use `instruction_set`
+    /// ([`InstructionSet::Baseline`] forces the reference build, to compare
+    /// it with the AVX2 + FMA one; both give the same bits).
+    pub fn with_instruction_set(model: &Model, instruction_set: InstructionSet) -> Self {
         let dof = model.dof();
         let chain = model.chain_joints().len();
         let folded = if model.joint_map().is_identity() {
@@ -73,6 +81,7 @@ impl Data {
         };
         Data {
             dof,
+            instruction_set,
             effective_positions: vec![0.0; chain],
             joint_sin_cos: vec![(0.0, 1.0); chain],
             joint_frames: vec![Pose::identity(); chain],
@@ -80,6 +89,11 @@ impl Data {
             jacobian: Matrix6xX::zeros(dof),
             chain_jacobian: Matrix6xX::zeros(folded),
         }
+    }
+
+    /// The instructions this workspace's calls use.
+    pub fn instruction_set(&self) -> InstructionSet {
+        self.instruction_set
     }
 
     /// World pose of each chain joint's frame after its motion (one per
@@ -142,14 +156,19 @@ pub fn forward_kinematics<'d>(model: &Model, data: &'d mut Data, q: &[f64]) -> R
 }
 
 /// The chain's trigonometry and product ([`chain_kernel`]) in the build the
-/// processor allows: with AVX2 and FMA (detected at run time, as the
-/// batched kernels and the mass matrix do) the six to nine sine-cosine
-/// pairs of a chain go four to a 256-bit instruction and every product is
-/// a three-operand instruction; the results are the baseline build's, bit
-/// for bit (no operation is fused: Rust never contracts `a * b + c`).
+/// workspace's [`InstructionSet`] and the processor allow: with AVX2 and FMA
+/// (detected at run time, as the batched kernels and the mass matrix do)
+/// the six to nine sine-cosine pairs of a chain go four to a 256-bit
+/// register (`math::Avx4`) and every product is a three-operand
+/// instruction; the results are the baseline build's, bit for bit (no
+/// operation is fused: the sine-cosine fuses nothing, and Rust never
+/// contracts the chain's `f64` products).
 fn evaluate_chain(model: &Model, data: &mut Data) -> Frame<f64> {
     #[cfg(target_arch = "x86_64")]
-    if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma") {
+    if data.instruction_set == InstructionSet::Detected
+        && std::arch::is_x86_feature_detected!("avx2")
+        && std::arch::is_x86_feature_detected!("fma")
+    {
         // SAFETY: the function needs only the two features detected above.
         return unsafe { chain_avx2_fma(model, data) };
     }
@@ -161,25 +180,29 @@ fn evaluate_chain(model: &Model, data: &mut Data) -> Frame<f64> {
 /// registers whatever the caller inlines around it.
 #[inline(never)]
 fn chain_baseline(model: &Model, data: &mut Data) -> Frame<f64> {
+    sin_cos_slice(&data.effective_positions, &mut data.joint_sin_cos);
     chain_kernel(model, data)
 }
 
-/// [`chain_kernel`] compiled for AVX2 and FMA.
+/// [`chain_kernel`] compiled for AVX2 and FMA, the sine-cosine four joints
+/// per AVX register (the module `math::lanes_avx`'s values exist only in
+/// functions entered after the detection, as this one).
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
 fn chain_avx2_fma(model: &Model, data: &mut Data) -> Frame<f64> {
+    crate::math::sin_cos_slice_x4::<crate::math::Avx4>(
+        &data.effective_positions,
+        &mut data.joint_sin_cos,
+    );
     chain_kernel(model, data)
 }
 
-/// Sine and cosine of every chain joint, then the chain's product; returns
-/// the last joint's frame.
+/// The chain's product from the sine-cosine of every chain joint (computed
+/// before, all at once: the calls are independent, so the processor
+/// overlaps them, where inside the chain each would wait for the previous
+/// frame product); returns the last joint's frame.
 #[inline(always)]
 fn chain_kernel(model: &Model, data: &mut Data) -> Frame<f64> {
-    // All the trigonometry first, in a loop of its own: the calls are
-    // independent, so the processor overlaps them (and the vector build
-    // computes four at once), where inside the chain below each would wait
-    // for the previous frame product.
-    sin_cos_slice(&data.effective_positions, &mut data.joint_sin_cos);
     chain_frames(
         model.placement_forms(),
         model.chain_kinds(),

@@ -23,6 +23,12 @@ pub trait Lane:
 {
     /// Every lane `value`.
     fn splat(value: f64) -> Self;
+    /// `self * a + b`, lane-wise: two roundings for `f64` and [`F64x4`]
+    /// (the reference), one where a vector build fuses it (`vfmadd`).
+    #[inline(always)]
+    fn mul_add(self, a: Self, b: Self) -> Self {
+        self * a + b
+    }
     /// `(sin, cos)` of `r + n pi/2` from `(sin r, cos r)`, `n` the integer in
     /// the low bits of `shifted`'s representation (`trig`'s quadrant), lane-wise.
     fn by_quadrant(s: Self, c: Self, shifted: Self) -> (Self, Self);
@@ -37,6 +43,28 @@ impl Lane for f64 {
     #[inline(always)]
     fn by_quadrant(s: f64, c: f64, shifted: f64) -> (f64, f64) {
         super::trig::by_quadrant(s, c, shifted.to_bits())
+    }
+}
+
+/// A four-lane number type: [`F64x4`] (the reference), or the AVX
+/// register type of the vector builds (`lanes_avx`), loaded from and
+/// stored to `[f64; 4]`.
+pub trait Lanes4: Lane {
+    /// The lanes `values[0..4]`.
+    fn from_array(values: [f64; 4]) -> Self;
+    /// The four lanes.
+    fn to_array(self) -> [f64; 4];
+}
+
+impl Lanes4 for F64x4 {
+    #[inline(always)]
+    fn from_array(values: [f64; 4]) -> Self {
+        F64x4(values)
+    }
+
+    #[inline(always)]
+    fn to_array(self) -> [f64; 4] {
+        self.0
     }
 }
 

@@ -11,7 +11,9 @@
 
 #![allow(clippy::excessive_precision)]
 
-use super::lanes::{F64x4, Lane};
+#[cfg(test)]
+use super::lanes::F64x4;
+use super::lanes::{Lane, Lanes4};
 
 // fdlibm kernel coefficients, written as fdlibm prints them.
 const S1: f64 = -1.666_666_666_666_663_243_48e-01;
@@ -64,22 +66,38 @@ pub fn sin_cos_slice(angles: &[f64], out: &mut [(f64, f64)]) {
 }
 
 /// `(sin, cos)` of four angles at once, lane by lane (each lane equal, bit
-/// for bit, to [`sin_cos`] of its angle): the vectorised form of the batched
-/// kinematics. One range check for the four lanes, then the branch-free
-/// reduction and polynomials on all four; a lane out of range (or NaN)
-/// sends the four to the checked scalar path.
+/// for bit, to [`sin_cos`] of its angle: no product is fused here), on
+/// [`super::F64x4`] or the AVX register lanes: the vectorised form of the
+/// batched kinematics. One range check for the four lanes, then the
+/// branch-free reduction and polynomials on all four; a lane out of range
+/// (or NaN) sends the four to the checked scalar path.
 #[inline(always)]
-pub fn sin_cos_x4(x: F64x4) -> (F64x4, F64x4) {
-    if x.0.iter().all(|v| v.abs() < REDUCTION_LIMIT) {
+pub fn sin_cos_x4<L: Lanes4>(x: L) -> (L, L) {
+    let values = x.to_array();
+    if values.iter().all(|v| v.abs() < REDUCTION_LIMIT) {
         reduced_sin_cos(x)
     } else {
-        let mut out = (F64x4::default(), F64x4::default());
-        for (l, &v) in x.0.iter().enumerate() {
-            let (s, c) = sin_cos(v);
-            out.0 .0[l] = s;
-            out.1 .0[l] = c;
+        let pairs = values.map(sin_cos);
+        (
+            L::from_array(pairs.map(|p| p.0)),
+            L::from_array(pairs.map(|p| p.1)),
+        )
+    }
+}
+
+/// [`sin_cos_slice`] four angles per [`sin_cos_x4`] on lanes `L` (the
+/// last group padded with zeros, computed and dropped): the same bits, in a
+/// quarter of the instructions where `L` is a vector register.
+#[inline(always)]
+pub fn sin_cos_slice_x4<L: Lanes4>(angles: &[f64], out: &mut [(f64, f64)]) {
+    for (angles, out) in angles.chunks(4).zip(out.chunks_mut(4)) {
+        let mut group = [0.0; 4];
+        group[..angles.len()].copy_from_slice(angles);
+        let (s, c) = sin_cos_x4(L::from_array(group));
+        let (s, c) = (s.to_array(), c.to_array());
+        for (k, o) in out.iter_mut().enumerate().take(angles.len()) {
+            *o = (s[k], c[k]);
         }
-        out
     }
 }
 
@@ -184,6 +202,15 @@ mod tests {
         sin_cos_x4(x)
     }
 
+    /// [`sin_cos_x4`] on the AVX register lanes, as the vector kernels run it.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn sin_cos_x4_avx_registers(x: F64x4) -> (F64x4, F64x4) {
+        use crate::math::Avx4;
+        let (s, c) = sin_cos_x4(Avx4::from_array(x.0));
+        (F64x4(s.to_array()), F64x4(c.to_array()))
+    }
+
     #[test]
     fn four_lanes_match_libm_over_the_joint_ranges_in_both_builds() {
         type Lanes = fn(F64x4) -> (F64x4, F64x4);
@@ -193,6 +220,7 @@ mod tests {
         {
             // SAFETY: both features detected.
             builds.push(("avx2+fma", |x| unsafe { sin_cos_x4_avx2_fma(x) }));
+            builds.push(("avx registers", |x| unsafe { sin_cos_x4_avx_registers(x) }));
         }
         for (name, lanes) in builds {
             let mut worst: f64 = 0.0;
@@ -229,8 +257,40 @@ mod tests {
         assert!(sin_cos(f64::INFINITY).1.is_nan());
     }
 
+    /// [`sin_cos_slice_x4`] on the AVX register lanes.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn sin_cos_slice_avx(angles: &[f64], out: &mut [(f64, f64)]) {
+        sin_cos_slice_x4::<crate::math::Avx4>(angles, out)
+    }
+
     #[test]
-    fn the_slice_form_equals_the_scalar_form_bit_for_bit() {
+    fn the_slice_forms_equal_the_scalar_form_bit_for_bit() {
+        type Slice = fn(&[f64], &mut [(f64, f64)]);
+        let mut forms: Vec<Slice> = vec![sin_cos_slice, sin_cos_slice_x4::<F64x4>];
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma")
+        {
+            // SAFETY: both features detected.
+            forms.push(|a, o| unsafe { sin_cos_slice_avx(a, o) });
+        }
+        for form in forms {
+            // 199 angles: the last group of four is partial.
+            let angles: Vec<f64> = (0..199).map(|i| (i as f64 - 100.0) * 0.377).collect();
+            let mut out = vec![(0.0, 0.0); angles.len()];
+            form(&angles, &mut out);
+            for (&x, &(s, c)) in angles.iter().zip(&out) {
+                let (s0, c0) = sin_cos(x);
+                assert_eq!((s.to_bits(), c.to_bits()), (s0.to_bits(), c0.to_bits()));
+            }
+            let mixed = [0.3, 1e6, f64::NAN, -2.0, 0.5];
+            let mut out = [(0.0, 0.0); 5];
+            form(&mixed, &mut out);
+            assert_eq!(out[1], 1e6f64.sin_cos());
+            assert!(out[2].0.is_nan() && out[2].1.is_nan());
+            assert_eq!(out[3], sin_cos(-2.0));
+            assert_eq!(out[4], sin_cos(0.5));
+        }
         let angles: Vec<f64> = (0..200).map(|i| (i as f64 - 100.0) * 0.377).collect();
         let mut out = vec![(0.0, 0.0); angles.len()];
         sin_cos_slice(&angles, &mut out);

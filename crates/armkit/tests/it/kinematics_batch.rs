@@ -2,7 +2,8 @@
 //! `jacobian_batch`) against the single calls, configuration by
 //! configuration, on every built-in robot, the URDF chains and a mimic-joint
 //! chain, with the detected instructions (AVX2 + FMA where present) and the
-//! baseline ones; and their errors.
+//! baseline ones; the single calls' two builds against each other; and the
+//! batched kernels' errors.
 
 use armkit::kinematics::{
     forward_kinematics, forward_kinematics_batch, jacobian, jacobian_batch, BatchData, Data,
@@ -13,8 +14,9 @@ use armkit::Model;
 
 use crate::common::{self, data_path, random_configuration, rng};
 
-/// Tolerance of the comparisons (the 1e-14; the lanes round as the
-/// single call does, so the differences are exact zeros in practice).
+/// Tolerance of the comparisons (the 1e-14): the baseline lanes
+/// round as the single call does, the AVX2 kernels fuse the frame's
+/// multiply-adds (one rounding where the single call has two).
 const TOLERANCE: f64 = 1e-14;
 
 fn models() -> Vec<Model> {
@@ -117,6 +119,34 @@ fn the_two_instruction_sets_agree_on_large_batches_over_wide_angles() {
     }
     assert!(common::max_abs_difference(&outs[0].0, &outs[1].0) <= TOLERANCE);
     assert!(common::max_abs_difference(&outs[0].1, &outs[1].1) <= TOLERANCE);
+}
+
+#[test]
+fn the_single_call_gives_the_same_bits_in_both_instruction_sets() {
+    // The single call fuses nothing: its AVX2 build (sine-cosine four
+    // joints per register) must give the baseline's bits, FK and Jacobian.
+    for model in models() {
+        let dof = model.dof();
+        let q = configurations(&model, 25, 5);
+        let mut detected = Data::with_instruction_set(&model, InstructionSet::Detected);
+        let mut baseline = Data::with_instruction_set(&model, InstructionSet::Baseline);
+        assert_eq!(baseline.instruction_set(), InstructionSet::Baseline);
+        for row in q.chunks(dof) {
+            let a = forward_kinematics(&model, &mut detected, row)
+                .unwrap()
+                .to_matrix4();
+            let b = forward_kinematics(&model, &mut baseline, row)
+                .unwrap()
+                .to_matrix4();
+            assert_eq!(a, b, "{} FK at {row:?}", model.name());
+            assert_eq!(detected.joint_frames(), baseline.joint_frames());
+            for frame in [JacobianFrame::World, JacobianFrame::EndEffector] {
+                let a = jacobian(&model, &mut detected, row, frame).unwrap().clone();
+                let b = jacobian(&model, &mut baseline, row, frame).unwrap();
+                assert_eq!(&a, b, "{} {frame:?} Jacobian at {row:?}", model.name());
+            }
+        }
+    }
 }
 
 #[test]
