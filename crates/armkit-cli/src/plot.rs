@@ -3,10 +3,11 @@
 //! A [`Figure`] is a titled chart of named series against one x axis; it
 //! renders to an SVG string that can be written to a file or inlined in an
 //! HTML report. The same data goes to CSV through [`Figure::to_csv`], so a
-//! plot never shows what its CSV does not hold (the limit lines are columns
-//! too). The legend sits below the chart, never over the curves; a curve
-//! keeps at most four points per pixel column (first, lowest, highest,
-//! last), which draws the same picture with far fewer coordinates.
+//! plot never shows a curve its CSV does not hold (the dashed limit lines
+//! are the robot's joint limits, which `armkit info` lists). The legend
+//! sits below the chart, never over the curves; a curve keeps at most four
+//! points per two pixel columns (first, lowest, highest, last), which draws
+//! the same picture with far fewer coordinates.
 
 use plotters::prelude::*;
 
@@ -37,11 +38,15 @@ pub struct Figure {
     pub limits: Vec<(String, f64)>,
 }
 
-/// Font sizes (px) of the title, tick labels, axis labels and legend.
-const FONT_TITLE: u32 = 26;
-const FONT_TICKS: u32 = 17;
-const FONT_AXES: u32 = 19;
-const FONT_LEGEND: u32 = 17;
+/// Font sizes of the title, tick labels, axis labels and legend (plotters
+/// writes them into the SVG at 0.8 of these, in px).
+const FONT_TITLE: u32 = 28;
+const FONT_TICKS: u32 = 19;
+const FONT_AXES: u32 = 21;
+const FONT_LEGEND: u32 = 19;
+/// The opacity that marks a limit line in plotters' output, replaced by a
+/// dash pattern.
+const DASH_MARK: f64 = 0.997;
 /// Height of a legend row, px.
 const LEGEND_ROW: u32 = 26;
 /// Width of the y labels' area, px (the plot is the rest, less margins).
@@ -101,11 +106,6 @@ impl Figure {
     pub fn to_csv(&self) -> String {
         let mut out = std::iter::once(csv_field(&self.x_label))
             .chain(self.series.iter().map(|s| csv_field(&s.name)))
-            .chain(
-                self.limits
-                    .iter()
-                    .map(|(s, y)| csv_field(&format!("limit {s} ({y})"))),
-            )
             .collect::<Vec<_>>()
             .join(",");
         out.push('\n');
@@ -116,7 +116,6 @@ impl Figure {
                         .iter()
                         .map(|s| s.y.get(i).map_or(String::new(), |v| format!("{v}"))),
                 )
-                .chain(self.limits.iter().map(|(_, y)| format!("{y}")))
                 .collect();
             out += &row.join(",");
             out.push('\n');
@@ -150,11 +149,12 @@ impl Figure {
                 .x_desc(self.x_label.as_str())
                 .y_desc(self.y_label.as_str())
                 .light_line_style(RGBColor(235, 235, 235))
+                .max_light_lines(2)
                 .label_style(("sans-serif", FONT_TICKS))
                 .axis_desc_style(("sans-serif", FONT_AXES))
                 .draw()
                 .map_err(|e| e.to_string())?;
-            let columns = width.saturating_sub(Y_LABEL_AREA + 20).max(1) as usize;
+            let columns = (width.saturating_sub(Y_LABEL_AREA + 20) / 2).max(1) as usize;
             for (k, series) in self.series.iter().enumerate() {
                 let points = thinned(&self.x, &series.y, columns);
                 chart
@@ -165,14 +165,12 @@ impl Figure {
                     .map_err(|e| e.to_string())?;
             }
             for (name, y) in &self.limits {
+                // One line each, marked by its opacity and dashed below
+                // (plotters would draw a dashed line as one element per dash).
                 let line = [(x_range.start, *y), (x_range.end, *y)];
+                let style = self.limit_color(name).mix(DASH_MARK).stroke_width(2);
                 chart
-                    .draw_series(DashedLineSeries::new(
-                        line,
-                        9,
-                        6,
-                        self.limit_color(name).stroke_width(2),
-                    ))
+                    .draw_series(LineSeries::new(line, style))
                     .map_err(|e| e.to_string())?;
             }
             for (i, (label, color, dashed)) in entries.iter().enumerate() {
@@ -202,7 +200,10 @@ impl Figure {
             }
             root.present().map_err(|e| e.to_string())?;
         }
-        Ok(svg)
+        Ok(svg.replace(
+            &format!("opacity=\"{DASH_MARK}\""),
+            "opacity=\"1\" stroke-dasharray=\"10 6\"",
+        ))
     }
 
     /// The colour of the limit line of series `name`.
@@ -260,7 +261,8 @@ fn legend_layout(entries: &[(String, RGBColor, bool)], width: u32) -> (usize, u3
         .max()
         .unwrap_or(0) as u32;
     let usable = width.saturating_sub(20).max(1);
-    let entry = (longest * FONT_LEGEND * 11 / 20 + 52).min(usable);
+    // About half an em per character at the size plotters writes (0.8).
+    let entry = (longest * FONT_LEGEND * 9 / 20 + 52).min(usable);
     (((usable / entry) as usize).max(1), entry)
 }
 
