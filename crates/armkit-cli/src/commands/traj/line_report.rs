@@ -139,7 +139,8 @@ fn unplanned_report(
         table.push(vec![quantity.to_string(), value]);
     }
     report.tables = vec![table];
-    report.animation = Animation::from_configurations(model, &[0.0], &[study.start.clone()]).ok();
+    report.animation =
+        Animation::from_configurations(model, &[0.0], std::slice::from_ref(&study.start)).ok();
     report
 }
 
