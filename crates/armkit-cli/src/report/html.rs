@@ -1,5 +1,7 @@
-//! The self-contained HTML pages: one report per scenario and the index.
-//! Everything is inline (CSS, SVG, script): the pages open offline.
+//! The HTML pages: one report per scenario and the index. CSS is inline;
+//! figures are the report folder's own SVG files (an `<img>` each, not a
+//! second copy inline), scripts the shared file beside the folders: the
+//! pages open offline.
 
 use std::path::Path;
 
@@ -10,7 +12,7 @@ h1{font-size:1.6em;margin-bottom:0.2em}h2{font-size:1.2em;margin-top:1.6em;borde
 table{border-collapse:collapse;margin:8px 0}td,th{border:1px solid #ccc;padding:4px 8px;text-align:left;font-size:0.92em}
 th{background:#f3f3f6}.pass{color:#1a7f37;font-weight:bold}.fail{color:#c62828;font-weight:bold}
 .figures{display:flex;flex-wrap:wrap;gap:12px}.figure{border:1px solid #eee;padding:4px}
-.figure svg{max-width:100%;height:auto}.caption{color:#666;font-size:0.9em}.note{background:#fff8e1;padding:6px 10px;border-left:4px solid #f0b400}
+.figure svg,.figure img{max-width:100%;height:auto}.caption{color:#666;font-size:0.9em}.note{background:#fff8e1;padding:6px 10px;border-left:4px solid #f0b400}
 footer{margin-top:2.4em;border-top:1px solid #ddd;color:#555;font-size:0.88em}footer li{margin:2px 0}
 .reproduced{background:#d7f5dd}.reproduced-with-deviation{background:#fff1c2}.not-reproduced{background:#fbd5d5}.not-attempted{background:#e6e6ea}";
 
@@ -105,8 +107,9 @@ pub fn page(title: &str, body: &str) -> String {
     )
 }
 
-/// The report page of one scenario; `svgs` are the figures' rendered SVGs.
-pub fn report_page(report: &Report, svgs: &[(String, String)]) -> String {
+/// The report page of one scenario; `figures` are `(file stem, title)` of
+/// the SVG files written beside it.
+pub fn report_page(report: &Report, figures: &[(String, String)]) -> String {
     let mut body = format!(
         "<p><a href=\"../index.html\">all scenarios</a></p>\n<h1>{}</h1>\n<p>{}</p>\n<p>Checks: {} of {} pass.</p>\n",
         escape(&report.title),
@@ -152,18 +155,23 @@ pub fn report_page(report: &Report, svgs: &[(String, String)]) -> String {
         for row in &table.rows {
             body += "<tr>";
             for cell in row {
-                body += &format!("<td>{}</td>", escape(cell));
+                // An empty cell is a dash: a blank reads as missing data.
+                if cell.is_empty() {
+                    body += "<td>&ndash;</td>";
+                } else {
+                    body += &format!("<td>{}</td>", escape(cell));
+                }
             }
             body += "</tr>\n";
         }
         body += "</table>\n";
     }
-    if !svgs.is_empty() {
+    if !figures.is_empty() {
         body += "<h2>Figures</h2>\n<div class=\"figures\">\n";
-        for (stem, svg) in svgs {
+        for (stem, title) in figures {
             body += &format!(
-                "<div class=\"figure\">{}<p class=\"caption\">data: <a href=\"{stem}.csv\">{stem}.csv</a></p></div>\n",
-                strip_xml_declaration(svg)
+                "<div class=\"figure\"><img src=\"{stem}.svg\" alt=\"{}\"><p class=\"caption\">data: <a href=\"{stem}.csv\">{stem}.csv</a></p></div>\n",
+                escape(title)
             );
         }
         body += "</div>\n";
@@ -237,13 +245,6 @@ fn status_class(status: armkit::study::FindingStatus) -> &'static str {
         FindingStatus::ReproducedWithDeviation => "reproduced-with-deviation",
         FindingStatus::NotReproduced => "not-reproduced",
         FindingStatus::NotAttempted => "not-attempted",
-    }
-}
-
-fn strip_xml_declaration(svg: &str) -> &str {
-    match svg.find("<svg") {
-        Some(start) => &svg[start..],
-        None => svg,
     }
 }
 

@@ -93,7 +93,8 @@ impl Table {
             cells
                 .iter()
                 .zip(&widths)
-                .map(|(c, w)| format!("{c:<w$}"))
+                // An empty cell is a dash: a blank reads as missing data.
+                .map(|(c, w)| format!("{:<w$}", if c.is_empty() { "-" } else { c }))
                 .collect::<Vec<_>>()
                 .join("  ")
         };
@@ -240,7 +241,7 @@ impl Report {
             write_atomic(&dir.join(format!("{stem}.csv")), figure.to_csv().as_bytes())?;
             let svg = figure.to_svg(760, 420)?;
             write_atomic(&dir.join(format!("{stem}.svg")), svg.as_bytes())?;
-            svgs.push((stem.clone(), svg));
+            svgs.push((stem.clone(), figure.title.clone()));
         }
         write_atomic(
             &dir.join("summary.json"),

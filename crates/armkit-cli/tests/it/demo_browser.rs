@@ -217,7 +217,18 @@ fn demo_reports_open_offline_with_plots_and_animation() {
         report_visit.page_requests
     );
     let dom = &report_visit.dom;
-    assert!(dom.matches("<svg").count() >= 6, "plots missing");
+    // The figures are the report folder's SVG files, each referenced by an
+    // image (not inlined a second time), each file there.
+    let images: Vec<&str> = dom
+        .split("<img src=\"")
+        .skip(1)
+        .filter_map(|rest| rest.split('"').next())
+        .filter(|src| src.ends_with(".svg"))
+        .collect();
+    assert!(images.len() >= 6, "plots missing: {images:?}");
+    for src in &images {
+        assert!(report.with_file_name(src).is_file(), "{src} missing");
+    }
     assert!(dom.contains("id=\"animation\""), "animation missing");
     // The script ran: the stick figure has points and joint markers.
     let robot = dom.split("id=\"robot\"").nth(1).unwrap_or("");

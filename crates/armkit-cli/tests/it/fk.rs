@@ -45,6 +45,7 @@ fn robots_lists_every_builtin() {
         [
             "puma560",
             "ur5",
+            "ur5-urdf",
             "panda",
             "stanford",
             "arm4",
@@ -53,7 +54,40 @@ fn robots_lists_every_builtin() {
             "gantry9-flex"
         ]
     );
-    assert_eq!(list[6]["dof"], 9);
+    assert_eq!(list[7]["dof"], 9);
+    // The two UR5s name their frames: the DH base, and the URDF's base_link.
+    assert!(list[1]["frames"]
+        .as_str()
+        .unwrap()
+        .starts_with("DH base frame"));
+    assert!(list[2]["frames"]
+        .as_str()
+        .unwrap()
+        .starts_with("the UR URDF's base_link"));
+    // Same configuration, same pose as the URDF, and ur5's turned 180 deg.
+    let pose = |args: &[&str]| {
+        let value = json(&armkit(args));
+        serde_json::from_value::<Vec<f64>>(value["position"].clone()).unwrap()
+    };
+    let q = "0.3,-1.1,0.9,-0.4,1.2,0.5";
+    let builtin = pose(&["fk", "--robot", "ur5-urdf", "--q", q, "--json"]);
+    let urdf = pose(&[
+        "fk",
+        "--urdf",
+        "tests/data/urdf/ur5.urdf",
+        "--base",
+        "base_link",
+        "--tip",
+        "tool0",
+        "--q",
+        q,
+        "--json",
+    ]);
+    let dh = pose(&["fk", "--robot", "ur5", "--q", q, "--json"]);
+    for k in 0..3 {
+        assert!((builtin[k] - urdf[k]).abs() < 1e-9, "{builtin:?} {urdf:?}");
+    }
+    assert!((builtin[0] + dh[0]).abs() < 1e-9 && (builtin[1] + dh[1]).abs() < 1e-9);
 }
 
 #[test]
@@ -100,7 +134,7 @@ fn bad_input_is_a_one_line_error_with_a_non_zero_exit() {
     let cases: [(&[&str], &str); 6] = [
         (&["fk", "--robot", "ur5", "--q", "0,0,0"], "error: --q: expected 6 values, got 3"),
         (&["fk", "--robot", "ur5", "--q", "0,0,zero,0,0,0"], "error: --q: value 3: `zero` is not a number"),
-        (&["fk", "--robot", "r2d2", "--q", "0"], "error: unknown robot `r2d2`; the built-in robots are: puma560, ur5, panda, stanford, arm4, space6r, gantry9, gantry9-flex"),
+        (&["fk", "--robot", "r2d2", "--q", "0"], "error: unknown robot `r2d2`; the built-in robots are: puma560, ur5, ur5-urdf, panda, stanford, arm4, space6r, gantry9, gantry9-flex"),
         (
             &["fk", "--robot", "panda", "--q", "0,0,0,0,0,0,0"],
             "error: joint 3 (`q4`) = 0 is outside its limits [-3.0718, -0.0698] (pass --allow-out-of-limits to evaluate anyway)",

@@ -74,7 +74,12 @@ fn write_produces_every_file_and_a_summary_with_pass_and_fail() {
     assert_eq!(json["findings"][0]["status"], "not reproduced");
     let html = std::fs::read_to_string(dir.join("sample/report.html")).unwrap();
     assert!(html.contains("Shows &lt;everything&gt; &amp; more"));
-    assert!(html.contains("<svg") && html.contains("id=\"animation\""));
+    assert!(html.contains("id=\"animation\""));
+    // The figure is the folder's SVG file, referenced once, not a second copy inline.
+    assert!(html.contains("<img src=\"curve.svg\" alt=\""), "{html}");
+    let figures = &html[html.find("<h2>Figures</h2>").unwrap()..];
+    let figures = &figures[..figures.find("Every check is also").unwrap()];
+    assert!(!figures.contains("<svg"), "{figures}");
     assert!(
         !html.contains("src=\"http") && !html.contains("href=\"http"),
         "external resource"

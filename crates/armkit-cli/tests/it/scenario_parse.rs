@@ -36,7 +36,7 @@ fn errors_name_file_line_and_column() {
     );
     assert_eq!(
         error("name = \"b\"\ntitle = \"t\"\n[robot]\nbuiltin = \"r2d2\"\n[beam]\n"),
-        "s.toml: line 4, column 11: unknown robot `r2d2`; the built-in robots are: puma560, ur5, panda, stanford, arm4, space6r, gantry9, gantry9-flex"
+        "s.toml: line 4, column 11: unknown robot `r2d2`; the built-in robots are: puma560, ur5, ur5-urdf, panda, stanford, arm4, space6r, gantry9, gantry9-flex"
     );
     assert!(error("title = \"t\"\n[beam]\n").contains("missing field `name`"));
     let untitled = parse("name = \"b\"\n[beam]\n", "s.toml", Path::new(".")).unwrap();

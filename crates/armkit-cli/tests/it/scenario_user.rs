@@ -388,3 +388,113 @@ fn a_dh_file_robot_works_for_mpc_and_singularity() {
     assert_all_pass(&singularity);
     assert!(check(&singularity, "avoidance k=1: final position error").value <= 1e-6);
 }
+
+const PANDA_LINE: &str = "name = \"u\"\ntitle = \"t\"\n[robot]\nbuiltin = \"panda\"\n\
+                          [continuous_path]\nfrom = \"0,-0.3,0,-2.2,0,2.0,0.8\"\n";
+
+#[test]
+fn a_users_continuous_path_grades_only_armkits_promises() {
+    let report = run(&format!(
+        "{PANDA_LINE}to_pose = \"0.5,0.2,0.4,3.14159,0,0\"\n"
+    ));
+    assert_all_pass(&report);
+    // No seed 002 claim, variant or sweep on the user's robot.
+    assert!(report.findings.is_empty(), "{:#?}", report.findings);
+    assert!(
+        !report.description.contains("seed 002") && !report.description.contains("paper"),
+        "{}",
+        report.description
+    );
+    let tables: Vec<&str> = report.tables.iter().map(|t| t.title.as_str()).collect();
+    assert_eq!(tables, ["Plan"]);
+    assert!(report
+        .checks
+        .iter()
+        .all(|c| !c.name.contains("comparison") && !c.name.contains("midpoint")));
+    assert!(check(&report, "the plan meets the tolerance").passed());
+    // The paper's scope, asked for, adds the variants and the claims.
+    let paper = run(&format!(
+        "{PANDA_LINE}to_pose = \"0.5,0.2,0.4,3.14159,0,0\"\nscope = \"paper\"\n\
+         sweep_segments = [4, 8]\ncubic_quintic_segments = [4]\n"
+    ));
+    assert!(
+        paper
+            .findings
+            .iter()
+            .any(|f| f.claim.starts_with("seed 002, Fig 6")),
+        "{:#?}",
+        paper.findings
+    );
+    assert_eq!(paper.tables.len(), 3);
+    assert!(paper.checks.iter().any(|c| c.name.contains("(comparison)")));
+    // Seed 002's own arm gets the paper's grading by default.
+    let arm4 = run(
+        "name = \"u\"\ntitle = \"t\"\n[robot]\nbuiltin = \"arm4\"\n[continuous_path]\n\
+         from = [0.33824988933280115, -1.9358832167391893, 0.3, 0.4]\n\
+         to_q = [1.2655451073344133, -1.935883216739189, 0.3, 0.4]\n\
+         law = \"trapezoidal\"\naccel_time = 0.5\nsweep_segments = [4, 8]\n",
+    );
+    assert!(arm4.findings.iter().any(|f| f.claim.contains("eqs 10-18")));
+}
+
+#[test]
+fn a_continuous_path_that_fails_names_the_point_and_the_cause_and_still_reports() {
+    // The tool turned sideways at 0.3 m: the Panda's wrist runs into joint
+    // 4's and joint 5's limits at the goal (the last knot).
+    let report = run(&format!("{PANDA_LINE}to_pose = \"0.3,0,0.4,0,1.57,0\"\n"));
+    let failed = check(
+        &report,
+        "every path point is solved within the joint limits",
+    );
+    assert!(!failed.passed());
+    for part in [
+        "knot 4 of knots 0..4, t = 2.000000 s",
+        "position [0.300000, 0.000000, 0.400000] m",
+        "blocked by joint 4 at its lower limit -3.0718 and joint 5 at its upper limit 2.8973",
+    ] {
+        assert!(failed.detail.contains(part), "{part}: {}", failed.detail);
+    }
+    assert!(!failed.detail.contains("out of reach"), "{}", failed.detail);
+    // The report holds what was asked for, and the run exits 3 with it written.
+    let plan = &report.tables[0];
+    assert!(plan
+        .rows
+        .iter()
+        .any(|r| r[0] == "status" && r[1] == "not planned"));
+    assert!(plan
+        .rows
+        .iter()
+        .any(|r| r[0] == "goal" && r[1].starts_with("[0.3000, 0.0000, 0.4000] m")));
+    let out = common::scratch("failing-line");
+    let file = out.join("failing.toml");
+    std::fs::write(
+        &file,
+        format!("{PANDA_LINE}to_pose = \"0.3,0,0.4,0,1.57,0\"\n").replace("\"u\"", "\"failing\""),
+    )
+    .unwrap();
+    let output = common::armkit(&[
+        "run",
+        file.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(output.status.code(), Some(3), "{}", common::stderr(&output));
+    assert!(out.join("failing/report.html").is_file());
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("failing/summary.json")).unwrap())
+            .unwrap();
+    assert_eq!(summary["checks"][0]["pass"], false);
+    // A joint limit broken along a planned line: which joint, which limit, when.
+    let report = run(&format!(
+        "{PANDA_LINE}to_pose = \"-0.3,-0.4,0.3,3.14159,0,0\"\n"
+    ));
+    let limits = check(&report, "within the robot's joint position");
+    assert!(!limits.passed());
+    assert!(
+        limits
+            .detail
+            .contains("joint 2 exceeds its acceleration limit -7.5 (rad/s^2 or m/s^2) from "),
+        "{}",
+        limits.detail
+    );
+}

@@ -212,8 +212,9 @@ fn line_errors_and_unmet_tolerance() {
     assert!(!output.status.success());
     let text = stderr(&output);
     assert!(
-        text.starts_with("error: invalid argument `path`: path point at t = ")
-            && text.contains("out of reach"),
+        text.starts_with("error: invalid argument `path`: IK failed at the path point (knot ")
+            && text.contains("numeric IK from the previous configuration did not converge")
+            && text.contains("no joint at a limit: the point is beyond the arm's reach"),
         "{text}"
     );
     // One fixed segment cannot meet 0.1 mm: exit code 3, trajectory still written.

@@ -5,7 +5,7 @@ Units: q rad or m, v rad/s or m/s, a rad/s^2 or m/s^2, torques N m or N,
 mass matrix kg m^2 / kg, energy J; ``gravity`` a world-frame acceleration
 (m/s^2), default (0, 0, -9.81). The robot needs mass properties (URDF
 inertials, DH ``mass``/``com``/``inertia``; the built-ins with them:
-``ur5``, ``panda``, ``space6r``, ``gantry9``, ``gantry9-flex``); a model
+``ur5``, ``ur5-urdf``, ``panda``, ``space6r``, ``gantry9``, ``gantry9-flex``); a model
 with joint couplings (mimic joints, gantry9-flex's beam) runs in its
 independent joints."""
 

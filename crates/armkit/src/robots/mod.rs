@@ -4,6 +4,7 @@
 //! | --- | --- | --- | --- |
 //! | `puma560` | 6 | standard DH | Corke, Robotics Toolbox `models.DH.Puma560` |
 //! | `ur5` | 6 | standard DH | Universal Robots' published DH, RTB `models.DH.UR5`; UR's masses and centres of mass, limits with effort ([`ur5`]) |
+//! | `ur5-urdf` | 6 | standard DH + base | `ur5` with its poses in the UR URDF's `base_link` (turned 180 deg about z, d1 as the URDF's) ([`ur5_urdf`]) |
 //! | `panda` | 7 | modified DH + tool | Franka Emika's published DH, RTB `models.DH.Panda`; Gaz et al. 2019's inertial parameters with the hand, data-sheet limits ([`panda`]) |
 //! | `stanford` | 6 (RRPRRR) | standard DH | Scheinman's Stanford arm, RTB `models.DH.Stanford` |
 //! | `arm4` | 4 | standard DH | seed 002's 4-DOF arm, our dimensions |
@@ -31,7 +32,9 @@
 mod published;
 mod seeds;
 
-pub use published::{panda, panda_mass_properties, puma560, stanford, ur5, ur5_mass_properties};
+pub use published::{
+    panda, panda_mass_properties, puma560, stanford, ur5, ur5_mass_properties, ur5_urdf,
+};
 pub use seeds::{
     arm4, gantry9, gantry9_flex, gantry9_mass_properties, gantry9_with_beam, space6r,
     space6r_base_body, space6r_free_floating, space6r_mass_properties, GANTRY9_BEAM_HEIGHT,
@@ -72,6 +75,14 @@ pub const BUILTIN: &[BuiltinRobot] = &[
         description: "Universal Robots UR5, standard DH (UR's published table; RTB models.DH.UR5)",
         frames: "DH base frame: the UR URDF's base_link turned 180 deg about z (base_link x = -x here)",
         build: ur5,
+    },
+    BuiltinRobot {
+        name: "ur5-urdf",
+        dof: 6,
+        description: "ur5 (same table, masses and limits) with poses in the frame of UR's URDF",
+        frames: "the UR URDF's base_link (ur5's DH base turned 180 deg about z, 0.3 mm lower): \
+                 same poses as tests/data/urdf/ur5.urdf base_link -> tool0",
+        build: ur5_urdf,
     },
     BuiltinRobot {
         name: "panda",

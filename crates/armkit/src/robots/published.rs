@@ -75,6 +75,22 @@ pub fn ur5() -> Result<Model> {
     Model::from_dh("ur5", DhConvention::Standard, &links)
 }
 
+/// The UR5 of [`ur5`] (same DH table, mass properties and limits) with
+/// poses in the frame of UR's URDF (`base_link`, as in
+/// `tests/data/urdf/ur5.urdf` from `base_link` to `tool0`): the DH base
+/// placed in `base_link` turned by 180 deg about z and lowered by 0.3 mm,
+/// the URDF's d1 (0.089159 m) against the table's 0.089459 m. The same
+/// configuration gives the URDF's end-effector pose (to rounding), and
+/// `ur5`'s pose turned by 180 deg about z.
+pub fn ur5_urdf() -> Result<Model> {
+    let dh = ur5()?;
+    let (convention, links) = dh.dh_table().ok_or_else(|| {
+        Error::invalid_argument("ur5", "the built-in UR5 is described by a DH table")
+    })?;
+    let base = Pose::trans_z(0.089159 - 0.089459) * Pose::rot_z(PI);
+    Model::from_dh_with_transforms("ur5-urdf", convention, links, base, Pose::identity())
+}
+
 /// Mass properties of the UR5's links in their standard-DH frames (frame j at
 /// the distal end of link j), from Universal Robots' published table (masses,
 /// centres of mass) and uniform cylinders (inertia; see [`ur5`]).

@@ -43,9 +43,9 @@ pub use beam_table::{
     TABLE1_TOLERANCE,
 };
 pub use continuous_path::{
-    BoundaryKind, ContinuousPathOutcome, ContinuousPathStudy, IkKind, LawKind, OrientationKind,
-    PathGoal, PlannedPath, SchemeKind, SchemeRun, SweepRow, TaskKind, TorqueOutcome, TorqueStudy,
-    ARM4_LINE_END, ARM4_LINE_START, MEASURE_POINTS,
+    violation_text, BoundaryKind, ContinuousPathOutcome, ContinuousPathStudy, IkKind, LawKind,
+    OrientationKind, PathGoal, PathScope, PlannedPath, SchemeKind, SchemeRun, SweepRow, TaskKind,
+    TorqueOutcome, TorqueStudy, ARM4_LINE_END, ARM4_LINE_START, MEASURE_POINTS,
 };
 pub use distribution::{
     DistributionOutcome, DistributionStudy, DurationPoint, DurationSweep, FormulationKind,

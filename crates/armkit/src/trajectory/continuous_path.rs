@@ -55,6 +55,7 @@
 //! ```
 
 use super::cartesian::CartesianTrajectory;
+use super::path_ik::{solve_path_point, PathPoint};
 use super::poly;
 use super::spline::check_via_points;
 use super::{JointState, Trajectory};
@@ -575,8 +576,9 @@ pub fn plan_continuous_path(
     let mut ik_solves = times.len();
     let mut configurations = Vec::with_capacity(initial + 1);
     let mut previous = start.to_vec();
-    for &t in &times {
-        let q = solve_path_point(model, path, ik, t, &previous)?;
+    for (k, &t) in times.iter().enumerate() {
+        let point = PathPoint::Knot { k, n: initial };
+        let q = solve_path_point(model, path, ik, t, &previous, point)?;
         previous.clone_from(&q);
         configurations.push(q);
     }
@@ -664,35 +666,11 @@ pub fn plan_continuous_path(
         // so that indices stay valid), IK nearest the segment's start.
         for &i in failing.iter().rev() {
             let t = 0.5 * (times[i] + times[i + 1]);
-            let q = solve_path_point(model, path, ik, t, &configurations[i])?;
+            let point = PathPoint::Midpoint { segment: i };
+            let q = solve_path_point(model, path, ik, t, &configurations[i], point)?;
             ik_solves += 1;
             times.insert(i + 1, t);
             configurations.insert(i + 1, q);
         }
     }
-}
-
-/// IK at the path's pose at time `t`, with the point named in errors.
-fn solve_path_point(
-    model: &Model,
-    path: &CartesianTrajectory,
-    ik: &mut dyn PathIk,
-    t: f64,
-    previous: &[f64],
-) -> Result<Vec<f64>> {
-    let target = path.pose_at(t);
-    let p = target.translation;
-    let at = || {
-        format!(
-            "path point at t = {t:.6} s (position [{:.6}, {:.6}, {:.6}] m)",
-            p.x, p.y, p.z
-        )
-    };
-    let q = ik
-        .solve_near(&target, previous)
-        .map_err(|e| Error::invalid_argument("path", format!("{} is out of reach: {e}", at())))?;
-    model.check_limits(&q).map_err(|e| {
-        Error::invalid_argument("path", format!("IK solution for the {}: {e}", at()))
-    })?;
-    Ok(q)
 }

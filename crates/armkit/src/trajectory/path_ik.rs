@@ -27,6 +27,7 @@
 //! assert!((reached.translation - target.translation).norm() < 1e-9);
 //! ```
 
+use super::cartesian::CartesianTrajectory;
 use super::continuous_path::PathIk;
 use crate::error::{Error, Result};
 use crate::ik::closed_form::{ClosedFormSolver, Fit};
@@ -92,6 +93,9 @@ impl PathIk for ClosedFormPathIk {
 #[derive(Clone, Debug)]
 pub struct NumericPathIk {
     solver: IkSolver,
+    /// The joints' position limits (lower, upper), to name the joints the
+    /// search ended on when it fails.
+    limits: (Vec<f64>, Vec<f64>),
 }
 
 impl NumericPathIk {
@@ -99,6 +103,7 @@ impl NumericPathIk {
     pub fn new(model: &Model, options: IkOptions) -> Result<Self> {
         Ok(NumericPathIk {
             solver: IkSolver::new(model, options)?,
+            limits: model.position_limits(),
         })
     }
 
@@ -135,17 +140,41 @@ impl PathIk for NumericPathIk {
     fn solve_near(&mut self, target: &Pose, previous: &[f64]) -> Result<Vec<f64>> {
         let report = self.solver.solve(target, previous)?;
         if report.converged() {
-            Ok(report.q)
-        } else {
-            Err(Error::invalid_argument(
-                "target",
-                format!(
-                    "numeric IK from the previous configuration did not converge \
-                     (best: position error {:.3e} m, orientation error {:.3e} rad)",
-                    report.position_error, report.orientation_error
-                ),
-            ))
+            return Ok(report.q);
         }
+        // The search keeps the joints within their limits: a joint that
+        // ended on one is what stopped it short of a target in reach.
+        let (lower, upper) = &self.limits;
+        let blocked: Vec<String> = report
+            .q
+            .iter()
+            .enumerate()
+            .filter_map(|(j, &v)| {
+                let at = |bound: f64| (v - bound).abs() <= 1e-6 * (1.0 + bound.abs());
+                if at(lower[j]) {
+                    Some(format!("joint {} at its lower limit {}", j + 1, lower[j]))
+                } else if at(upper[j]) {
+                    Some(format!("joint {} at its upper limit {}", j + 1, upper[j]))
+                } else {
+                    None
+                }
+            })
+            .collect();
+        let cause = if blocked.is_empty() {
+            "no joint at a limit: the point is beyond the arm's reach from there, or a singularity \
+             blocks the way"
+                .to_string()
+        } else {
+            format!("blocked by {}", blocked.join(" and "))
+        };
+        Err(Error::invalid_argument(
+            "target",
+            format!(
+                "numeric IK from the previous configuration did not converge (best: position error \
+                 {:.3e} m, orientation error {:.3e} rad; {cause})",
+                report.position_error, report.orientation_error
+            ),
+        ))
     }
 }
 
@@ -161,5 +190,60 @@ pub fn path_ik_for(model: &Model, task: IkTask) -> Result<(Box<dyn PathIk>, &'st
             Box::new(NumericPathIk::for_path(model, task)?),
             "numeric (Levenberg-Marquardt from the previous knot)",
         )),
+    }
+}
+
+/// Which path point an IK solve is for, to name it in errors.
+#[derive(Clone, Copy, Debug)]
+pub(super) enum PathPoint {
+    /// Knot `k` of the `n` initial segments (0 the start, `n` the goal).
+    Knot { k: usize, n: usize },
+    /// The midpoint inserted into segment `segment` (0-based) by Fig 6's
+    /// adaptive segmentation.
+    Midpoint { segment: usize },
+}
+
+/// IK at the path's pose at time `t`, near `previous`, within the joint
+/// limits; errors name the point (knot or inserted midpoint, time,
+/// position) and the cause (the IK's, or the joint and limit).
+pub(super) fn solve_path_point(
+    model: &Model,
+    path: &CartesianTrajectory,
+    ik: &mut dyn PathIk,
+    t: f64,
+    previous: &[f64],
+    point: PathPoint,
+) -> Result<Vec<f64>> {
+    let target = path.pose_at(t);
+    let p = target.translation;
+    let which = match point {
+        PathPoint::Knot { k, n } => format!("knot {k} of knots 0..{n}"),
+        PathPoint::Midpoint { segment } => format!("midpoint inserted into segment {segment}"),
+    };
+    let at = format!(
+        "path point ({which}, t = {t:.6} s, position [{:.6}, {:.6}, {:.6}] m)",
+        p.x, p.y, p.z
+    );
+    let q = ik.solve_near(&target, previous).map_err(|e| {
+        Error::invalid_argument("path", format!("IK failed at the {at}: {}", reason(&e)))
+    })?;
+    model.check_limits(&q).map_err(|e| {
+        Error::invalid_argument(
+            "path",
+            format!(
+                "IK solution for the {at} is outside the joint limits: {}",
+                reason(&e)
+            ),
+        )
+    })?;
+    Ok(q)
+}
+
+/// The reason of an argument error (without its `invalid argument` prefix),
+/// else the error's text.
+fn reason(e: &Error) -> String {
+    match e {
+        Error::InvalidArgument { reason, .. } => reason.clone(),
+        other => other.to_string(),
     }
 }

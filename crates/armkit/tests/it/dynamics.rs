@@ -270,7 +270,7 @@ fn models_with_masses() -> Vec<Model> {
     let builtins: Vec<&str> = models.iter().map(|m| m.name()).collect();
     assert_eq!(
         builtins,
-        ["ur5", "panda", "space6r", "gantry9"],
+        ["ur5", "ur5-urdf", "panda", "space6r", "gantry9"],
         "built-ins with masses changed"
     );
     for seed in 0..4 {

@@ -301,3 +301,52 @@ fn link_frames_equal_pinocchio_joint_placements() {
     let err = link_frames(&model, &mut data, &[0.0; 6], &mut []).unwrap_err();
     assert!(err.to_string().contains("frames"), "{err}");
 }
+
+/// "Same name, different robot": the built-in `ur5-urdf` is `ur5` with its
+/// poses in the UR URDF's `base_link`, so it gives the URDF's end-effector
+/// pose (base_link -> tool0) at every configuration, and `ur5`'s pose turned
+/// by 180 deg about z (and 0.3 mm lower, the two tables' d1).
+#[test]
+fn builtin_ur5_urdf_gives_the_urdf_poses_and_ur5s_turned_about_z() {
+    let urdf = armkit::urdf::load(
+        data_path("urdf/ur5.urdf"),
+        &armkit::urdf::ChainSelection::between("base_link", "tool0"),
+    )
+    .unwrap();
+    let builtin = armkit::robots::by_name("ur5-urdf").unwrap();
+    let dh = armkit::robots::ur5().unwrap();
+    assert_eq!(builtin.name(), "ur5-urdf");
+    let (mut a, mut b, mut c) = (Data::new(&builtin), Data::new(&urdf), Data::new(&dh));
+    let turn = Pose::trans_z(0.089159 - 0.089459) * Pose::rot_z(std::f64::consts::PI);
+    let mut rng = rng(34);
+    let (mut worst_urdf, mut worst_dh, mut apart) = (0.0_f64, 0.0_f64, 0.0_f64);
+    for _ in 0..200 {
+        let q = random_configuration(&builtin, &mut rng);
+        let pose = *forward_kinematics(&builtin, &mut a, &q).unwrap();
+        let reference = *forward_kinematics(&urdf, &mut b, &q).unwrap();
+        let turned = turn * *forward_kinematics(&dh, &mut c, &q).unwrap();
+        let (m, r, t) = (
+            pose.to_matrix4(),
+            reference.to_matrix4(),
+            turned.to_matrix4(),
+        );
+        for i in 0..3 {
+            for j in 0..4 {
+                worst_urdf = worst_urdf.max((m[(i, j)] - r[(i, j)]).abs());
+                worst_dh = worst_dh.max((m[(i, j)] - t[(i, j)]).abs());
+            }
+        }
+        let dh_pose = forward_kinematics(&dh, &mut c, &q).unwrap().translation;
+        apart = apart.max((dh_pose - reference.translation).norm());
+    }
+    println!("ur5-urdf vs ur5.urdf: {worst_urdf:.2e}; vs ur5 turned: {worst_dh:.2e}");
+    // The URDF's origins are decimals (rounded at 1e-11 to 1e-12 of a
+    // metre or radian): the two models agree to that.
+    assert!(worst_urdf < 2e-11, "{worst_urdf:e}");
+    assert!(worst_dh < 1e-12, "{worst_dh:e}");
+    // The two built-ins are different frames of one arm (not a rounding).
+    assert!(apart > 0.1, "{apart}");
+    let (limits, dh_limits) = (builtin.position_limits(), dh.position_limits());
+    assert_eq!(limits, dh_limits);
+    assert!(builtin.has_inertias());
+}

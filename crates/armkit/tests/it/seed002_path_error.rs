@@ -8,7 +8,9 @@
 
 use armkit::kinematics::{forward_kinematics, Data};
 use armkit::math::rotation_angle;
-use armkit::study::{BoundaryKind, ContinuousPathStudy, LawKind, OrientationKind, PathGoal};
+use armkit::study::{
+    BoundaryKind, ContinuousPathStudy, LawKind, OrientationKind, PathGoal, PathScope,
+};
 use armkit::trajectory::{
     plan_continuous_path, CartesianTrajectory, ContinuousPathOptions, PathError, PathStatus,
     PathTolerance, Segmentation, Trajectory,
@@ -36,6 +38,7 @@ fn scenarios() -> Vec<(&'static str, ContinuousPathStudy)> {
         boundary: BoundaryKind::FiniteDifference,
         tolerance: 1e-4,
         orientation_tolerance: 1e-3,
+        scope: PathScope::Paper,
         ..ContinuousPathStudy::default()
     };
     vec![("seed002-arm4", arm4), ("seed002-panda", panda)]

@@ -260,7 +260,7 @@ fn seed002_continuous_path_study_shows_the_papers_variants() {
 fn seed002_panda_study_checks_the_orientation_law_and_the_torques() {
     use armkit::study::{
         BoundaryKind, ContinuousPathStudy, FindingStatus, LawKind, OrientationKind, PathGoal,
-        TorqueStudy,
+        PathScope, TorqueStudy,
     };
     use armkit::urdf::{load, ChainSelection};
     let data = concat!(env!("CARGO_MANIFEST_DIR"), "/../../tests/data/urdf/");
@@ -283,6 +283,7 @@ fn seed002_panda_study_checks_the_orientation_law_and_the_torques() {
             speed_up: 20.0,
             ..TorqueStudy::default()
         }),
+        scope: PathScope::Paper,
         ..ContinuousPathStudy::default()
     };
     assert_eq!(study.orientation, OrientationKind::RpyLinear);
@@ -372,4 +373,52 @@ fn seed002_continuous_path_study_checks_its_options() {
         ..Default::default()
     });
     assert!(text.contains("3"), "{text}");
+}
+
+#[test]
+fn a_continuous_path_on_another_robot_grades_armkits_promises_only() {
+    use armkit::study::{BoundaryKind, ContinuousPathStudy, LawKind, PathGoal, PathScope};
+    let panda = armkit::robots::by_name("panda").unwrap();
+    let study = ContinuousPathStudy {
+        robot: "panda".into(),
+        start: vec![0.0, -0.3, 0.0, -2.2, 0.0, 2.0, 0.8],
+        goal: PathGoal::Pose([0.484, 0.268, 0.279, -2.94, 0.1, 0.385]),
+        law: LawKind::Linear,
+        acceleration_time: None,
+        boundary: BoundaryKind::FiniteDifference,
+        segment_sweep: vec![4, 8],
+        cubic_quintic_segments: vec![4],
+        ..ContinuousPathStudy::default()
+    };
+    assert_eq!(study.scope.resolve(&panda), PathScope::Armkit);
+    let outcome = study.outcome(&panda, None).unwrap();
+    assert_eq!(outcome.scope, PathScope::Armkit);
+    assert!(outcome.other_orientation.is_none() && outcome.midpoint_only.is_none());
+    assert!(outcome.sweep.is_empty() && outcome.cubic_quintic.is_empty());
+    let report = outcome.report();
+    assert!(report.findings.is_empty(), "{:#?}", report.findings);
+    assert!(report.series.is_empty());
+    assert!(report.all_passed(), "{:#?}", report.checks);
+    // The paper's scope on the same line runs the variants.
+    let paper = ContinuousPathStudy {
+        scope: PathScope::Paper,
+        ..study
+    }
+    .outcome(&panda, None)
+    .unwrap();
+    assert!(paper.other_orientation.is_some() && paper.midpoint_only.is_some());
+    assert_eq!(paper.sweep.len(), 2);
+    assert!(!paper.report().findings.is_empty());
+    // Seed 002's arm: the paper by default, armkit's promises when asked.
+    let arm4 = armkit::robots::by_name("arm4").unwrap();
+    assert_eq!(PathScope::Auto.resolve(&arm4), PathScope::Paper);
+    let only = ContinuousPathStudy {
+        scope: PathScope::Armkit,
+        segment_sweep: vec![4],
+        ..ContinuousPathStudy::default()
+    }
+    .outcome(&arm4, None)
+    .unwrap()
+    .report();
+    assert!(only.findings.is_empty());
 }

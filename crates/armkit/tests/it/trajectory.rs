@@ -1146,8 +1146,8 @@ fn library_ik_reports_points_out_of_reach() {
         ));
         println!("{text}");
         assert!(
-            text.starts_with("invalid argument `path`: path point at t = ")
-                && text.contains("is out of reach"),
+            text.starts_with("invalid argument `path`: IK failed at the path point (knot ")
+                && text.contains(", t = "),
             "{text}"
         );
     }
@@ -1280,11 +1280,12 @@ fn a_path_point_out_of_reach_is_a_clear_error() {
         &ContinuousPathOptions::default(),
     ));
     println!("{text}");
+    // The point is named (which knot, when, where) before the IK's cause.
     assert!(
-        text.starts_with("invalid argument `path`: path point at t = "),
+        text.starts_with("invalid argument `path`: IK failed at the path point (knot "),
         "{text}"
     );
-    assert!(text.contains("is out of reach: "), "{text}");
+    assert!(text.contains(" of knots 0..4, t = "), "{text}");
     // Options and sizes are checked first.
     let bad = ContinuousPathOptions {
         tolerance: PathTolerance::Position(0.0),

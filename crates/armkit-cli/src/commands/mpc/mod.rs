@@ -238,7 +238,7 @@ fn run_target(args: &MpcArgs) -> CliResult<Outcome> {
     let final_q = run.samples.last().map(|s| s.q.clone()).unwrap_or_default();
     let status = diagnose_run(&planner, &final_q, run.summary.converged)?;
     let files = match &args.out {
-        Some(dir) => write_outputs(dir, &run, model.name())?,
+        Some(dir) => write_outputs(dir, &run, model.name(), &model)?,
         None => Vec::new(),
     };
     let summary = &run.summary;
@@ -304,7 +304,7 @@ fn run_examples(args: &MpcArgs, id: &str) -> CliResult<Outcome> {
         let findings = example.findings(&run)?;
         all_passed &= checks.iter().all(|c| c.passed);
         let files = match &args.out {
-            Some(dir) => write_outputs(&dir.join(example.id()), &run, example.title())?,
+            Some(dir) => write_outputs(&dir.join(example.id()), &run, example.title(), &model)?,
             None => Vec::new(),
         };
         if args.json {

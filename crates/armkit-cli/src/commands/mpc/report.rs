@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 use armkit::mpc::scenario::{simulate_on_plant, MpcRun, SimulationOptions};
 use armkit::mpc::{MpcPlanner, PlantModel};
 use armkit::study::Seed000Example;
+use armkit::Model;
 
 use super::MpcArgs;
 use crate::common::{CliError, CliResult};
@@ -13,14 +14,19 @@ use crate::plot::Figure;
 use crate::report::{write_text, Animation, Check, Report, Table};
 
 /// Writes `mpc.csv` and the plots of Figs 7-9 into `dir`; returns the paths.
-pub(super) fn write_outputs(dir: &Path, run: &MpcRun, title: &str) -> CliResult<Vec<PathBuf>> {
+pub(super) fn write_outputs(
+    dir: &Path,
+    run: &MpcRun,
+    title: &str,
+    model: &Model,
+) -> CliResult<Vec<PathBuf>> {
     std::fs::create_dir_all(dir)
         .map_err(|e| CliError(format!("{}: cannot create directory: {e}", dir.display())))?;
     let mut files = Vec::new();
     let csv = dir.join("mpc.csv");
     write_text(&csv, &run.to_csv())?;
     files.push(csv);
-    for (name, figure) in figures(run, title) {
+    for (name, figure) in figures(run, title, model) {
         let path = dir.join(format!("{name}.svg"));
         let svg = figure
             .to_svg(900, 500)
@@ -40,8 +46,9 @@ enum Quantity {
 
 /// The panels of seed 000's Figs 7-9: (a) end-effector coordinates, (b)
 /// rotary joint velocities, (c) rotary joint angles, (d) prismatic joint
-/// velocities, (e) prismatic joint positions.
-pub(super) fn figures(run: &MpcRun, title: &str) -> Vec<(&'static str, Figure)> {
+/// velocities, (e) prismatic joint positions; the joints' velocity and
+/// position limits of `model` as dashed lines.
+pub(super) fn figures(run: &MpcRun, title: &str, model: &Model) -> Vec<(&'static str, Figure)> {
     let t: Vec<f64> = run.samples.iter().map(|s| s.time).collect();
     let mut end_effector = Figure::new(
         format!("{title}: (a) end-effector position"),
@@ -106,6 +113,16 @@ pub(super) fn figures(run: &MpcRun, title: &str) -> Vec<(&'static str, Figure)> 
                     })
                     .collect();
                 figure = figure.with_series(run.joint_names[j].clone(), values);
+                if let Some(joint) = model.joints().get(j) {
+                    let l = &joint.limits;
+                    let bounds = match quantity {
+                        Quantity::Velocity => l.velocity.map_or([f64::INFINITY; 2], |v| [-v, v]),
+                        Quantity::Position => [l.lower, l.upper],
+                    };
+                    for bound in bounds {
+                        figure = figure.with_limit(run.joint_names[j].clone(), bound);
+                    }
+                }
             }
             figures.push((name, figure));
         }
@@ -191,7 +208,7 @@ pub fn example_report(args: &MpcArgs) -> CliResult<Report> {
         checks,
         findings,
         tables: vec![table],
-        figures: figures(&run, example.id())
+        figures: figures(&run, example.id(), &model)
             .into_iter()
             .map(|(stem, figure)| (stem.to_string(), figure))
             .collect(),

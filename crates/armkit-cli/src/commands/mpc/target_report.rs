@@ -114,7 +114,7 @@ pub fn target_report(args: &MpcArgs) -> CliResult<Report> {
         checks,
         findings: Vec::new(),
         tables: vec![joint_table(&model, &run, &start, &final_q)],
-        figures: figures(&run, model.name())
+        figures: figures(&run, model.name(), &model)
             .into_iter()
             .map(|(stem, figure)| (stem.to_string(), figure))
             .collect(),

@@ -1,8 +1,8 @@
 //! `armkit traj line`: seed 002's continuous path along a Cartesian line.
 
 use armkit::study::{
-    BoundaryKind, ContinuousPathStudy, IkKind, LawKind, OrientationKind, PathGoal, SchemeKind,
-    TaskKind, TorqueStudy,
+    BoundaryKind, ContinuousPathStudy, IkKind, LawKind, OrientationKind, PathGoal, PathScope,
+    SchemeKind, TaskKind, TorqueStudy,
 };
 use armkit::trajectory::{PathStatus, TrajectoryLimits};
 use armkit::Model;
@@ -74,6 +74,17 @@ pub enum IkArg {
     Auto,
     /// Numeric (Levenberg-Marquardt from the previous knot).
     Numeric,
+}
+
+/// `--scope` values: what a report grades.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum ScopeArg {
+    /// Seed 002's paper on its 4-DOF arm, armkit's promises on any other robot.
+    Auto,
+    /// Seed 002: its variants beside the main run, and its claims.
+    Paper,
+    /// armkit's promises only (tolerance, continuity, joint limits, torques).
+    Armkit,
 }
 
 /// `armkit traj line`.
@@ -160,6 +171,9 @@ pub struct LineArgs {
     /// Report only: the segment counts at which the cubic-quintic scheme is shown.
     #[arg(long, value_name = "N,N,...", value_delimiter = ',', default_values_t = [4, 8, 16])]
     pub cubic_quintic_segments: Vec<usize>,
+    /// Report only: what the report grades.
+    #[arg(long, value_enum, default_value_t = ScopeArg::Auto)]
+    pub scope: ScopeArg,
     #[command(flatten)]
     pub torques: TorqueArgs,
     /// Play the planned motion this many times faster before the torque
@@ -279,6 +293,11 @@ impl LineArgs {
             segment_sweep: self.sweep_segments.clone(),
             cubic_quintic_segments: self.cubic_quintic_segments.clone(),
             torques: torques.transpose()?,
+            scope: match self.scope {
+                ScopeArg::Auto => PathScope::Auto,
+                ScopeArg::Paper => PathScope::Paper,
+                ScopeArg::Armkit => PathScope::Armkit,
+            },
         })
     }
 

@@ -1,42 +1,69 @@
 //! Seed 002's continuous path as a scenario report: the library's
 //! [`ContinuousPathStudy`] run and formatted.
 
-use armkit::study::{ContinuousPathOutcome, PlannedPath, TorqueOutcome};
+use armkit::study::{
+    Check, ContinuousPathOutcome, ContinuousPathStudy, PathScope, PlannedPath, TorqueOutcome,
+};
 use armkit::trajectory::IkTask;
 use armkit::trajectory::PathError;
+use armkit::Model;
 
 use super::line::LineArgs;
 use super::output::{joint_figures, sample};
 use crate::common::CliResult;
 use crate::report::{Animation, Report, Table};
 
-/// Seed 002's continuous path as a report (a scenario's `[continuous_path]`
-/// table, with the options of `armkit traj line`): the main run, the
-/// paper's variants beside it, the torque check when asked for, the joint
-/// motion, the arm moving.
+/// A continuous path as a report (a scenario's `[continuous_path]` table,
+/// with the options of `armkit traj line`): the main run, with `scope`
+/// paper seed 002's variants beside it and its claims, the torque check
+/// when asked for, the joint motion, the arm moving. A line that cannot be
+/// planned (a path point the IK cannot solve within the joint limits) is a
+/// report with a failed check naming the point and the cause, and the line
+/// that was asked for.
 pub fn line_report(args: &LineArgs) -> CliResult<Report> {
     let model = args.robot.load()?;
     let study = args.study(&model)?;
     let dynamics = args.dynamics_model()?;
-    let outcome = study.outcome(&model, dynamics.as_ref())?;
     let (start, goal) = study.end_poses(&model)?;
     let length = (goal.translation - start.translation).norm();
-    let mut report = Report::from_study(
-        "continuous-path",
-        format!("Seed 002: continuous path on {}", model.name()),
-        format!(
-            "A straight line of {length:.3} m, planned by seed 002's method (sec 3): IK at the n + 1 path points \
-             (nearest the previous solution), joint rates by finite differences (eqs 23-24), one polynomial per \
-             segment in normalized time (eq 25), and the adaptive segmentation of Fig 6 until the tolerance is met \
-             at the check points; the paper's variants beside it, each labelled."
-        ),
-        outcome.report(),
-    );
-    report.tables = vec![
-        plan_table(&outcome, length),
-        variants_table(&outcome),
-        sweep_table(&outcome),
-    ];
+    let paper = study.scope.resolve(&model) == PathScope::Paper;
+    let (title, method) = if paper {
+        (
+            format!("Seed 002: continuous path on {}", model.name()),
+            "planned by seed 002's method (sec 3): IK at the n + 1 path points (nearest the previous \
+             solution), joint rates by finite differences (eqs 23-24), one polynomial per segment in \
+             normalized time (eq 25), and the adaptive segmentation of Fig 6 until the tolerance is met at the \
+             check points; the paper's variants beside it, each labelled.",
+        )
+    } else {
+        (
+            format!("Continuous path on {}", model.name()),
+            "planned by IK at the path points (nearest the previous solution), one polynomial per segment \
+             with continuous joint positions and velocities, and segments halved until the tolerance is met \
+             at the check points; graded on armkit's promises (tolerance, continuity, joint limits).",
+        )
+    };
+    let description = format!("A straight line of {length:.3} m, {method}");
+    let outcome = match study.outcome(&model, dynamics.as_ref()) {
+        Ok(outcome) => outcome,
+        Err(e @ armkit::Error::InvalidArgument { .. }) if e.to_string().contains("path point") => {
+            return Ok(unplanned_report(
+                &model,
+                &study,
+                &e,
+                title,
+                description,
+                length,
+            ));
+        }
+        Err(e) => return Err(e.into()),
+    };
+    let mut report = Report::from_study("continuous-path", title, description, outcome.report());
+    report.tables = vec![plan_table(&outcome, length)];
+    if paper {
+        report.tables.push(variants_table(&outcome));
+        report.tables.push(sweep_table(&outcome));
+    }
     if let Some(torques) = &outcome.torques {
         report.tables.push(torque_table(torques));
     }
@@ -44,7 +71,7 @@ pub fn line_report(args: &LineArgs) -> CliResult<Report> {
     let (times, states) = sample(traj, (traj.duration() / 400.0).max(1e-3))?;
     let configurations: Vec<Vec<f64>> = states.iter().map(|s| s.position.clone()).collect();
     report.figures.extend(
-        joint_figures(model.name(), &times, &states)
+        joint_figures(&model, &times, &states)
             .into_iter()
             .map(|(stem, figure)| (stem.to_string(), figure)),
     );
@@ -54,6 +81,67 @@ pub fn line_report(args: &LineArgs) -> CliResult<Report> {
         &configurations,
     )?);
     Ok(report)
+}
+
+/// The report of a line that could not be planned: the failed check with
+/// the planner's cause (which path point, which joint or limit), the line
+/// asked for, and the arm at the start.
+fn unplanned_report(
+    model: &Model,
+    study: &ContinuousPathStudy,
+    error: &armkit::Error,
+    title: String,
+    description: String,
+    length: f64,
+) -> Report {
+    let reason = match error {
+        armkit::Error::InvalidArgument { reason, .. } => reason.clone(),
+        other => other.to_string(),
+    };
+    let mut report = Report::from_study(
+        "continuous-path",
+        title,
+        description,
+        armkit::study::StudyReport {
+            checks: vec![Check::holds(
+                "every path point is solved within the joint limits",
+                false,
+                reason,
+            )],
+            findings: Vec::new(),
+            series: Vec::new(),
+            notes: vec![
+                "The line was not planned: the check above names the path point that failed and why. \
+                 Nothing after that point was computed."
+                    .to_string(),
+            ],
+        },
+    );
+    let mut table = Table::new("Plan", &["quantity", "value"]);
+    let pose_text = |p: &armkit::math::Pose| {
+        let (r, pi, y) = p.rpy();
+        let t = p.translation;
+        format!(
+            "[{:.4}, {:.4}, {:.4}] m, rpy [{r:.4}, {pi:.4}, {y:.4}] rad",
+            t.x, t.y, t.z
+        )
+    };
+    let ends = study.end_poses(model).ok();
+    let rows = [
+        ("robot", model.name().to_string()),
+        ("line length", format!("{length:.4} m")),
+        ("start", ends.map_or("-".into(), |(s, _)| pose_text(&s))),
+        ("goal", ends.map_or("-".into(), |(_, g)| pose_text(&g))),
+        ("duration", format!("{} s", study.duration)),
+        ("status", "not planned".to_string()),
+    ];
+    for (quantity, value) in rows {
+        table.push(vec![quantity.to_string(), value]);
+    }
+    report.tables = vec![table];
+    report.animation =
+        Animation::from_configurations(model, &[0.0], std::slice::from_ref(&study.start)).ok();
+    report
 }
 
 fn error_text(error: &PathError, task: IkTask) -> String {

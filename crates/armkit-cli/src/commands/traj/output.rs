@@ -69,7 +69,7 @@ pub fn write_outputs(
     if let Some(dir) = &output.plots {
         std::fs::create_dir_all(dir)
             .map_err(|e| CliError(format!("{}: cannot create: {e}", dir.display())))?;
-        for (name, figure) in joint_figures(model.name(), &times, &states) {
+        for (name, figure) in joint_figures(model, &times, &states) {
             let path = dir.join(format!("{name}.svg"));
             let svg = figure
                 .to_svg(800, 450)
@@ -113,42 +113,58 @@ fn trajectory_csv(model: &Model, times: &[f64], states: &[JointState]) -> CliRes
 
 /// Joint positions, velocities and accelerations against time: three
 /// figures named `positions`, `velocities`, `accelerations`, one series per
-/// joint. Self-contained so that it can move to a shared plotting module.
+/// joint, each with its joint's limits as dashed lines (position bounds,
+/// +- the velocity and acceleration limits, where the model has them).
 pub fn joint_figures(
-    robot: &str,
+    model: &Model,
     times: &[f64],
     states: &[JointState],
 ) -> Vec<(&'static str, Figure)> {
     let dof = states.first().map_or(0, JointState::dof);
     type Field = fn(&JointState) -> &Vec<f64>;
-    let quantities: [(&'static str, &str, &str, Field); 3] = [
-        ("positions", "joint positions", "q (rad or m)", |s| {
-            &s.position
-        }),
-        ("velocities", "joint velocities", "qd (rad/s or m/s)", |s| {
-            &s.velocity
-        }),
+    type Bounds = fn(&armkit::model::JointLimits) -> [f64; 2];
+    let quantities: [(&'static str, &str, &str, Field, Bounds); 3] = [
+        (
+            "positions",
+            "joint positions",
+            "q (rad or m)",
+            |s| &s.position,
+            |l| [l.lower, l.upper],
+        ),
+        (
+            "velocities",
+            "joint velocities",
+            "qd (rad/s or m/s)",
+            |s| &s.velocity,
+            |l| l.velocity.map_or([f64::INFINITY; 2], |v| [-v, v]),
+        ),
         (
             "accelerations",
             "joint accelerations",
             "qdd (rad/s^2 or m/s^2)",
             |s| &s.acceleration,
+            |l| l.acceleration.map_or([f64::INFINITY; 2], |a| [-a, a]),
         ),
     ];
+    let joints = model.joints();
     quantities
         .into_iter()
-        .map(|(name, title, y_label, field)| {
+        .map(|(name, title, y_label, field, bounds)| {
             let mut figure = Figure::new(
-                format!("{robot}: {title}"),
+                format!("{}: {title}", model.name()),
                 "t (s)",
                 y_label,
                 times.to_vec(),
             );
             for j in 0..dof {
-                figure = figure.with_series(
-                    format!("joint {}", j + 1),
-                    states.iter().map(|s| field(s)[j]).collect(),
-                );
+                let label = format!("joint {}", j + 1);
+                figure =
+                    figure.with_series(label.clone(), states.iter().map(|s| field(s)[j]).collect());
+                if let Some(joint) = joints.get(j) {
+                    for bound in bounds(&joint.limits) {
+                        figure = figure.with_limit(label.clone(), bound);
+                    }
+                }
             }
             (name, figure)
         })

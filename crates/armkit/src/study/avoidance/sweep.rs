@@ -346,50 +346,21 @@ impl MissSweep {
         ]
     }
 
-    /// One note: the sweep's table in words.
+    /// One note: how to read the sweep (its figures are in [`Self::lines`],
+    /// which a report shows as a table; the note does not repeat them).
     pub fn notes(&self) -> Vec<String> {
         if self.lines.is_empty() {
             return Vec::new();
         }
-        let rows = self
-            .lines
-            .iter()
-            .map(|l| {
-                let cells = l
-                    .methods()
-                    .iter()
-                    .map(|(name, s)| {
-                        format!(
-                            "{name} {:.3} rad/s, {:.2e} m / {:.2e} rad",
-                            s.peak_joint_rate, s.max_position_error, s.max_orientation_error
-                        )
-                    })
-                    .collect::<Vec<_>>()
-                    .join("; ");
-                let floor = l.floor.map_or(String::new(), |f| {
-                    format!(
-                        "; floor {:.2e} m / {:.2e} rad (|e| {:.2e})",
-                        f.position, f.orientation, f.norm
-                    )
-                });
-                format!(
-                    "{:+} mm: {cells}{floor} ({} least-squares knots, {} regions planned jointly)",
-                    l.miss * 1e3,
-                    l.bounded_knots,
-                    l.joint_planned_regions
-                )
-            })
-            .collect::<Vec<_>>()
-            .join(" | ");
         vec![format!(
-            "Lines missing the singular pose (peak joint rate, largest position / orientation \
-             error; {} for the avoidance): {rows}. A region the arm cannot follow exactly \
-             (least-squares knots: the nearest pose within eps_dq per period) is planned \
-             jointly: all its knots chosen together to minimise the largest error under the \
-             joint-step bound, from the greedy knots, kept where it errs less ('avoidance \
-             greedy': the knot-by-knot plan). The floor is the distance from the line to the \
-             wrist-singular poses (q5 held at 0): the error of any plan that switches wrist \
-             branch, as a rate-bounded plan must on a near miss.",
+            "Lines missing the singular pose by {} distances (their peak joint rates and largest errors, \
+             {} for the avoidance, are in the table of that name). A region the arm cannot follow exactly \
+             (least-squares knots: the nearest pose within eps_dq per period) is planned jointly: all its \
+             knots chosen together to minimise the largest error under the joint-step bound, from the \
+             greedy knots, kept where it errs less ('avoidance greedy': the knot-by-knot plan). The floor \
+             is the distance from the line to the wrist-singular poses (q5 held at 0): the error of any \
+             plan that switches wrist branch, as a rate-bounded plan must on a near miss.",
+            self.lines.len(),
             self.avoidance_label()
         )]
     }

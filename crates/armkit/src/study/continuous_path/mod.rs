@@ -25,9 +25,11 @@ use crate::trajectory::{
 use crate::trajectory::{CartesianTrajectory, LinePath, OrientationLaw, TimeLaw};
 
 mod outcome;
+mod scope;
 mod seed002;
 
 pub use outcome::{ContinuousPathOutcome, PlannedPath, SchemeRun, SweepRow, TorqueOutcome};
+pub use scope::{violation_text, PathScope};
 
 /// The start of the arm4 line (rad): joints 3-4 at 0.3 and 0.4 rad, the
 /// tool at x = -0.15 m on the line y = -0.30 m (joints 1-2 by Newton).
@@ -273,6 +275,9 @@ pub struct ContinuousPathStudy {
     pub cubic_quintic_segments: Vec<usize>,
     /// The torque check. Default none.
     pub torques: Option<TorqueStudy>,
+    /// The paper's variants and claims, or armkit's promises only. Default
+    /// auto: the paper on seed 002's 4-DOF arm, armkit's on other robots.
+    pub scope: PathScope,
 }
 
 impl Default for ContinuousPathStudy {
@@ -297,6 +302,7 @@ impl Default for ContinuousPathStudy {
             segment_sweep: vec![2, 4, 8, 16, 32, 64],
             cubic_quintic_segments: vec![4, 8, 16],
             torques: None,
+            scope: PathScope::Auto,
         }
     }
 }
@@ -455,15 +461,17 @@ impl ContinuousPathStudy {
         let options = self.options(task);
         let label = self.orientation.as_str();
         let main = self.plan_with(model, &mut *ik, self.orientation, &options, label)?;
+        let scope = self.scope.resolve(model);
+        let paper = scope == PathScope::Paper;
         let other_orientation = match task {
-            IkTask::Pose => {
+            IkTask::Pose if paper => {
                 let other = self.orientation.other();
                 let label = format!("{} (comparison)", other.as_str());
                 Some(self.plan_with(model, &mut *ik, other, &options, &label)?)
             }
-            IkTask::Position => None,
+            _ => None,
         };
-        let midpoint_only = if self.checks_per_segment == 1 {
+        let midpoint_only = if self.checks_per_segment == 1 || !paper {
             None
         } else {
             let midpoint = ContinuousPathOptions {
@@ -474,7 +482,11 @@ impl ContinuousPathStudy {
             Some(self.plan_with(model, &mut *ik, self.orientation, &midpoint, label)?)
         };
         let mut cubic_quintic = Vec::new();
-        for &n in &self.cubic_quintic_segments {
+        let (cubic_counts, sweep_counts): (&[usize], &[usize]) = match scope {
+            PathScope::Armkit => (&[], &[]),
+            _ => (&self.cubic_quintic_segments, &self.segment_sweep),
+        };
+        for &n in cubic_counts {
             let fixed = ContinuousPathOptions {
                 scheme: SegmentScheme::CubicQuinticLast,
                 segmentation: Segmentation::Fixed(n),
@@ -489,7 +501,7 @@ impl ContinuousPathStudy {
             });
         }
         let mut sweep = Vec::new();
-        for &n in &self.segment_sweep {
+        for &n in sweep_counts {
             let fixed = ContinuousPathOptions {
                 segmentation: Segmentation::Fixed(n),
                 checks_per_segment: 1,
@@ -505,19 +517,23 @@ impl ContinuousPathStudy {
         let limit_violations = check_limits(
             &main.report.trajectory,
             &TrajectoryLimits::from_model(model),
-        )?
-        .len();
+        )?;
         let torques = match &self.torques {
             Some(study) => Some(torque_outcome(model, dynamics, &main.report, study)?),
             None => None,
         };
-        let mut seed002_findings = seed002::arm4_findings(model)?;
+        let mut seed002_findings = if paper {
+            seed002::arm4_findings(model)?
+        } else {
+            Vec::new()
+        };
         // The orientation law matters where the orientation is followed.
-        if matches!(task, IkTask::Pose) {
+        if paper && matches!(task, IkTask::Pose) {
             seed002_findings.push(seed002::orientation_law_finding(&main));
         }
         Ok(ContinuousPathOutcome {
             robot: model.name().to_string(),
+            scope,
             task,
             tolerance,
             ik_method: method,
