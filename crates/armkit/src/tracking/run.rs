@@ -22,6 +22,29 @@ pub enum Feedback {
     /// one period later (seed 004, eqs 26-27): the planned motion and the
     /// correction of the current error in one period.
     NextPose,
+    /// `V = V_d(t)`: the path's twist alone, no error feedback (open loop).
+    /// The pose error the discrete steps make accumulates instead of being
+    /// corrected: the tracker seed 004's explanation of Figs 7-8 assumes
+    /// (the error carried into a singular region is what was accumulated
+    /// before it).
+    OpenLoop,
+}
+
+impl Feedback {
+    /// `proportional`, `next-pose` or `open-loop`.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            Feedback::Proportional { .. } => "proportional",
+            Feedback::NextPose => "next-pose",
+            Feedback::OpenLoop => "open-loop",
+        }
+    }
+}
+
+impl std::fmt::Display for Feedback {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
 }
 
 /// Most control periods one tracking run takes (`ceil(duration / dt)`): a
@@ -302,6 +325,11 @@ pub fn track<P: Plant + ?Sized, L: RateLaw<P> + ?Sized, R: Recorder + ?Sized>(
                 planned + error * gain
             }
             Feedback::NextPose => pose_error(&desired_at(time + dt)?, plant.end_effector()) / dt,
+            Feedback::OpenLoop => {
+                let planned = path.twist(time);
+                check_finite("path twist", planned.as_slice())?;
+                planned
+            }
         };
         let step = Step {
             index,
