@@ -10,6 +10,8 @@ use crate::trajectory::TimedPath;
 
 /// How the commanded twist feeds the pose error back.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "io", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "io", serde(rename_all = "kebab-case"))]
 pub enum Feedback {
     /// `V = V_d(t) + K e(t)`: the path's twist plus the gain `K` (1/s, with
     /// `0 <= K dt <= 1`) times the pose error `e = [p_d - p; log(R_d R')]`
@@ -38,6 +40,24 @@ impl Feedback {
             Feedback::NextPose => "next-pose",
             Feedback::OpenLoop => "open-loop",
         }
+    }
+}
+
+impl std::str::FromStr for Feedback {
+    type Err = Error;
+
+    /// `next-pose` or `open-loop` (the proportional law needs its gain);
+    /// the error (named `feedback`) lists them.
+    fn from_str(name: &str) -> Result<Self> {
+        [Feedback::NextPose, Feedback::OpenLoop]
+            .into_iter()
+            .find(|f| f.as_str() == name)
+            .ok_or_else(|| {
+                Error::invalid_argument(
+                    "feedback",
+                    format!("expected \"next-pose\" or \"open-loop\", got \"{name}\""),
+                )
+            })
     }
 }
 

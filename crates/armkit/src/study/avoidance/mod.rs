@@ -16,10 +16,10 @@ use crate::error::{check_positive, Error, Result};
 use crate::math::{Pose, Vector3};
 use crate::singularity::{
     line_through, AvoidanceOptions, BaseKind, Baselines, Comparison, DetectionOptions, LineThrough,
-    Manipulator, MethodRun, PathTracker, SEED004_DIRECTION, SEED004_THROUGH,
+    Manipulator, MethodRun, PathTracker, RegionPlan, SEED004_DIRECTION, SEED004_THROUGH,
 };
 use crate::space::center_of_mass;
-use crate::tracking::{TrackingOptions, TrackingStatus};
+use crate::tracking::{Feedback, TrackingOptions, TrackingStatus};
 
 /// Seed 004's singularity avoidance on space6r: a straight pose line through
 /// the wrist singularity tracked by plain resolved rate, the avoidance for
@@ -90,6 +90,14 @@ pub struct AvoidanceStudy {
     /// ([`crate::tracking::Feedback::OpenLoop`], `V = V_d`): Figs 7-8's
     /// explanation tested. Default true.
     pub open_loop: bool,
+    /// How the avoidance plans a region's knots on the study's line and the
+    /// miss sweep. Default [`RegionPlan::Joint`]; [`RegionPlan::Exact`] is
+    /// seed 004's step 3 as printed.
+    pub region_plan: RegionPlan,
+    /// The tracking feedback of every run. Default
+    /// [`Feedback::NextPose`] (seed 004, eqs 26-27); [`Feedback::OpenLoop`]
+    /// tracks `V = V_d`.
+    pub feedback: Feedback,
 }
 
 impl Default for AvoidanceStudy {
@@ -110,6 +118,8 @@ impl Default for AvoidanceStudy {
             as_printed_miss: Some(SEED004_AS_PRINTED_MISS),
             as_printed_eps_dq: SEED004_EPS_DQ_DEG_PER_S,
             open_loop: true,
+            region_plan: RegionPlan::Joint,
+            feedback: Feedback::NextPose,
         }
     }
 }
@@ -201,12 +211,13 @@ impl AvoidanceStudy {
         AvoidanceOptions {
             tracking: TrackingOptions {
                 dt: self.dt,
-                ..TrackingOptions::default()
+                feedback: self.feedback,
             },
             detection: DetectionOptions {
                 determinant_threshold,
                 joint_step_threshold: self.joint_step_threshold,
             },
+            region_plan: self.region_plan,
             ..AvoidanceOptions::default()
         }
     }
