@@ -541,7 +541,9 @@ fn as_printed_line_exact_plan_and_open_loop_from_the_command_line() {
         .iter()
         .map(|f| f["claim"].as_str().unwrap())
         .collect();
-    assert!(claims.iter().any(|c| c.contains("the method as printed on a near-miss line")));
+    assert!(claims
+        .iter()
+        .any(|c| c.contains("the method as printed on a near-miss line")));
     assert_eq!(value["open_loop"].as_array().unwrap().len(), 2);
     assert!(claims.iter().any(|c| c.contains("open-loop tracker")));
     // The main runs with the plan as printed and without feedback.
@@ -559,10 +561,16 @@ fn as_printed_line_exact_plan_and_open_loop_from_the_command_line() {
     assert_eq!(changed["feedback"], "open-loop");
     assert!(changed["as_printed"].is_null());
     assert!(changed["open_loop"].as_array().unwrap().is_empty());
-    let regions = method(&changed, "avoidance k=1")["regions"].as_array().unwrap();
+    let regions = method(&changed, "avoidance k=1")["regions"]
+        .as_array()
+        .unwrap();
     assert!(!regions.is_empty() && regions.iter().all(|r| r["plan"] == "exact"));
     // Open loop: plain's error is no longer corrected each period.
-    let open = method(&changed, "plain")["final_position_error"].as_f64().unwrap();
-    let closed = method(&value, "plain")["final_position_error"].as_f64().unwrap();
+    let open = method(&changed, "plain")["final_position_error"]
+        .as_f64()
+        .unwrap();
+    let closed = method(&value, "plain")["final_position_error"]
+        .as_f64()
+        .unwrap();
     assert!(open > 100.0 * closed.max(1e-12), "{open} vs {closed}");
 }

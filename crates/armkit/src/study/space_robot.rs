@@ -24,7 +24,12 @@ use crate::tracking::TrackingOptions;
 /// external torque, so it is not checked there; the attitude is); the
 /// generalized Jacobian `J*` predicts the end-effector twist of the
 /// simulation (a step of 1e-6 s, differenced) to 1e-4 relative; the base
-/// moves. Series: base translation and rotation (roll, pitch, yaw) against
+/// moves. Those hold by construction (the simulator re-places the base from
+/// the centre of mass): they are invariants. The results: the same motion
+/// with the base integrated from the momentum equations' twist
+/// ([`step_integrated`], never re-placed), its centre of mass and momenta
+/// computed apart; the attitude-held run is seed 004's finding (eqs 10-16,
+/// eq 15). Series: base translation and rotation (roll, pitch, yaw) against
 /// time for both modes, and the joint positions (for an animation).
 ///
 /// ```

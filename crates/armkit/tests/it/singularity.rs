@@ -1253,7 +1253,10 @@ fn the_exact_region_plan_keeps_newton_knots_beyond_the_rate_bound() {
         assert_eq!(plan.as_str().parse::<RegionPlan>().unwrap(), plan);
     }
     let err = "printed".parse::<RegionPlan>().unwrap_err().to_string();
-    assert!(err.contains("region_plan") && err.contains("exact"), "{err}");
+    assert!(
+        err.contains("region_plan") && err.contains("exact"),
+        "{err}"
+    );
 }
 
 /// Open loop (`V = V_d`) lets the discrete steps' error accumulate; the

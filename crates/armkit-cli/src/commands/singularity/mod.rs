@@ -34,8 +34,8 @@ mod tables;
 
 use outputs::{summary_json, write_outputs};
 use page::build_report;
-use plant::{load_plant, Plant};
 pub use page::report;
+use plant::{load_plant, Plant};
 
 /// Track a straight-line pose path through a wrist singularity (seed 004):
 /// plain, avoidance, DLS, SRI and singularity separation (reference [9]).
@@ -121,10 +121,20 @@ pub struct SingularityArgs {
     /// Miss of the line on which seed 004's method also runs as printed
     /// (exact knots, no rate bound, eps_dq = --as-printed-eps-dq deg/s), m
     /// and rad; `none` skips it.
-    #[arg(long, value_name = "M|none", default_value = "0.003", allow_hyphen_values = true)]
+    #[arg(
+        long,
+        value_name = "M|none",
+        default_value = "0.003",
+        allow_hyphen_values = true
+    )]
     pub as_printed_miss: String,
     /// eps_dq of the as-printed run, deg/s (seed 004 prints 5).
-    #[arg(long, value_name = "DEG/S", default_value_t = 5.0, allow_hyphen_values = true)]
+    #[arg(
+        long,
+        value_name = "DEG/S",
+        default_value_t = 5.0,
+        allow_hyphen_values = true
+    )]
     pub as_printed_eps_dq: f64,
     /// Also run the avoidance for every k with open-loop tracking (Figs
     /// 7-8's explanation tested): `on` or `off`.

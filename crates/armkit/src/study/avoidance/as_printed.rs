@@ -250,6 +250,55 @@ impl AsPrintedLine {
             format!("{}; {conditions}", in_region.measured),
             FindingStatus::from_holds(in_region.holds),
         );
+        let entry = k_ordering(
+            ks,
+            &self.k_sweep,
+            self.options.ik_tolerance,
+            KOrdering::Entry,
+        );
+        let entry = Finding::new(
+            "seed 004, Figs 7-8, the method as printed on a near-miss line: the smaller k, the \
+             larger the error on entering the region",
+            format!("{}; {conditions}", entry.measured),
+            FindingStatus::from_holds(entry.holds),
+        );
+        // Figs 5-6: which joints jump under plain tracking on this line.
+        let eps = self.options.detection.joint_step_threshold;
+        let h = self.options.tracking.dt;
+        let steps: Vec<f64> = self
+            .plain
+            .joint_rates
+            .iter()
+            .map(|rates| rates.iter().fold(0.0, |m: f64, r| m.max((r * h).abs())))
+            .collect();
+        let jumping: Vec<usize> = (0..steps.len()).filter(|&j| steps[j] > eps).collect();
+        let named = |joints: &[usize]| {
+            joints
+                .iter()
+                .map(|j| (j + 1).to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        let jumps = Finding::new(
+            "seed 004, Figs 5-6, the method as printed on a near-miss line: the joints that jump \
+             at the singularity are 4 and 6",
+            format!(
+                "plain tracking's largest joint step per period (rad; a jump: above eps_dq = \
+                 {eps:.2e}): {}; jumping: {}; {conditions}",
+                steps
+                    .iter()
+                    .enumerate()
+                    .map(|(j, s)| format!("joint {}: {s:.3e}", j + 1))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+                if jumping.is_empty() {
+                    "none".to_string()
+                } else {
+                    named(&jumping)
+                }
+            ),
+            FindingStatus::from_holds(jumping == [3, 5]),
+        );
         // Conclusion 1: smaller error than every comparator, on this line.
         let comparators = [
             (SEPARATION, &self.separation),
@@ -325,7 +374,7 @@ impl AsPrintedLine {
             FindingStatus::from_holds(failing.is_empty()),
         )
         .same_evidence_as("the as-printed rows above");
-        vec![region, fig6, figs78, conclusion1, together]
+        vec![region, jumps, fig6, entry, figs78, conclusion1, together]
     }
 }
 
