@@ -4,7 +4,8 @@
 usage: scripts/claims-table.py OUT_DIR   (OUT_DIR as written by `armkit demo --out`)
 
 One row per finding of every scenario's summary.json (claim, what armkit
-measured, verdict), then the counts per verdict. The README's table is this
+measured, verdict), then the counts per verdict, then the invariants apart
+(checks true by construction: never evidence for a claim). The README's table is this
 script's output, pasted; rerun it after a demo run to refresh it.
 """
 import json
@@ -40,6 +41,12 @@ def main() -> int:
                 counts[finding["status"]] = counts.get(finding["status"], 0) + 1
             cells = [summary["scenario"], finding["claim"], finding["measured"], verdict]
             print("| " + " | ".join(c.replace("|", "\\|") for c in cells) + " |")
+    rows = []
+    for path in summaries:
+        summary = json.loads(path.read_text())
+        for check in summary.get("invariants", []):
+            value = f"{check['value']:.3g} {check['comparison']} {check['threshold']:.3g} {check['unit']}".strip()
+            rows.append([summary["scenario"], check["name"], value])
     print()
     total = sum(counts.values())
     print(
@@ -50,6 +57,14 @@ def main() -> int:
         f"evidence); {checks} checks and {invariants} invariants (true by construction, not "
         f"evidence) in the demo."
     )
+    if rows:
+        print()
+        print("Invariants of the implementation (true by construction; kept as tests, not counted as evidence):")
+        print()
+        print("| scenario | invariant | value |")
+        print("|---|---|---|")
+        for cells in rows:
+            print("| " + " | ".join(c.replace("|", "\\|") for c in cells) + " |")
     return 0
 
 

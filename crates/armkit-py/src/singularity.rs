@@ -10,7 +10,7 @@ use armkit::singularity::{
     PathTracker, RegionPlan, SEPARATION,
 };
 use armkit::study::FITTED_DETERMINANT_THRESHOLD;
-use armkit::tracking::TrackingOptions;
+use armkit::tracking::{Feedback, TrackingOptions};
 use numpy::ndarray::Dim;
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
@@ -80,19 +80,6 @@ fn tracking_method(name: &str, k: usize, max_rate: f64) -> armkit::Result<Method
     Ok(method)
 }
 
-/// The region plan named in Python.
-fn region_plan_named(name: &str) -> armkit::Result<RegionPlan> {
-    [RegionPlan::Joint, RegionPlan::Greedy]
-        .into_iter()
-        .find(|plan| plan.as_str() == name)
-        .ok_or_else(|| {
-            armkit::Error::invalid_argument(
-                "region_plan",
-                format!("expected \"joint\" or \"greedy\", got \"{name}\""),
-            )
-        })
-}
-
 /// A straight pose line whose midpoint is the pose at `through` (rad or m)
 /// and whose direction is the end-effector motion of the joint displacement
 /// `joint_direction` there (seed 004's path construction: a `through` with
@@ -135,7 +122,10 @@ pub fn line_through<'py>(
 /// or `"separation"` (singularity separation with a damped reciprocal, seed
 /// 004's reference [9]; 6-joint arms). `region_plan`: how the avoidance chooses a region's knots when
 /// the arm cannot reach them exactly, `"joint"` (all knots together, the
-/// default) or `"greedy"` (knot by knot). The region is entered when |det J| < `determinant_threshold`
+/// default), `"greedy"` (knot by knot) or `"exact"` (seed 004's step 3 as
+/// printed: the Newton-Raphson knots, no rate bound). `feedback`:
+/// `"next-pose"` (seed 004, eqs 26-27) or `"open-loop"` (`V = V_d`, no error
+/// feedback). The region is entered when |det J| < `determinant_threshold`
 /// (m^3 for a 6R arm) or a plain joint step exceeds `joint_step_threshold`
 /// (rad). Without `determinant_threshold`, seed 004's rule sets it: the
 /// largest |det J| where the plain run of this line jumps (the fitted
@@ -148,7 +138,7 @@ pub fn line_through<'py>(
 /// [`armkit::tracking::MAX_PERIODS`] control periods (`duration / dt`) and
 /// `k` in `1..=MAX_PERIODS`: ValueError naming `dt` or `k` before any work.
 #[pyfunction]
-#[pyo3(signature = (robot, q_start, T_goal, method="avoidance", k=5, duration=20.0, acceleration_time=4.0, dt=0.01, determinant_threshold=None, joint_step_threshold=0.005, max_rate=0.5, region_plan="joint"))]
+#[pyo3(signature = (robot, q_start, T_goal, method="avoidance", k=5, duration=20.0, acceleration_time=4.0, dt=0.01, determinant_threshold=None, joint_step_threshold=0.005, max_rate=0.5, region_plan="joint", feedback="next-pose"))]
 #[allow(non_snake_case, clippy::too_many_arguments)]
 pub fn track_line<'py>(
     py: Python<'py>,
@@ -164,13 +154,15 @@ pub fn track_line<'py>(
     joint_step_threshold: f64,
     max_rate: f64,
     region_plan: &str,
+    feedback: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
     let model = &robot.model;
     let dof = model.dof();
     let start = vector_argument(q_start, "q_start", dof)?;
     let goal = pose_argument(T_goal, "T_goal")?;
     let method = tracking_method(method, k, max_rate).or_raise()?;
-    let region_plan = region_plan_named(region_plan).or_raise()?;
+    let region_plan: RegionPlan = region_plan.parse().or_raise()?;
+    let feedback: Feedback = feedback.parse().or_raise()?;
     let task = LineTask {
         start,
         goal,
@@ -178,10 +170,7 @@ pub fn track_line<'py>(
         acceleration_time,
     };
     let options = |determinant_threshold| AvoidanceOptions {
-        tracking: TrackingOptions {
-            dt,
-            ..TrackingOptions::default()
-        },
+        tracking: TrackingOptions { dt, feedback },
         detection: DetectionOptions {
             determinant_threshold,
             joint_step_threshold,

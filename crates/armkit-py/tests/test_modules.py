@@ -279,6 +279,26 @@ def test_near_miss_lines_joint_region_plan_and_clamped_dls():
         singularity.track_line(arm, q_start, goal, method="dls_clamped", max_rate=0.0)
 
 
+def test_as_printed_exact_knots_and_open_loop_tracking():
+    # Seed 004's knots as printed (exact Newton solutions, no rate bound) on
+    # the 3 mm near miss: far smaller error than the rate-bounded joint plan,
+    # at wrist rates beyond its 0.5 rad/s. Open loop (V = V_d) lets the
+    # error grow where next-pose feedback corrects it each period.
+    arm = armkit.Robot.builtin("space6r")
+    through, direction = [0.4, 1.2, -0.5, 0.6, 0.0, -0.3], [0.5, -0.3, 0.4, 0.0, 0.8, 0.0]
+    q_start, goal = singularity.line_through(arm, through, direction, miss=0.003)
+    exact = singularity.track_line(arm, q_start, goal, k=1, region_plan="exact")
+    joint = singularity.track_line(arm, q_start, goal, k=1, region_plan="joint")
+    assert exact["peak_joint_rate"] > 0.5 >= joint["peak_joint_rate"] - 1e-12
+    assert exact["max_position_error"] < 1e-2 * joint["max_position_error"]
+    q_far, goal_far = singularity.line_through(arm, through, direction, miss=0.03)
+    open_loop = singularity.track_line(arm, q_far, goal_far, method="plain", feedback="open-loop")
+    closed = singularity.track_line(arm, q_far, goal_far, method="plain", feedback="next-pose")
+    assert open_loop["final_position_error"] > 100 * max(closed["final_position_error"], 1e-12)
+    with pytest.raises(ValueError, match="feedback"):
+        singularity.track_line(arm, q_start, goal, feedback="closed")
+
+
 def test_the_reference_method_separation_by_name():
     # Seed 004's reference [9]: singularity separation with a damped
     # reciprocal, selected by name; it crosses the wrist singularity with

@@ -41,3 +41,20 @@ def test_continuous_path_study_takes_the_library_options():
     assert list(report.series["error_vs_segments"]["x"]) == [4.0, 16.0]
     midpoint = [f for f in report.findings if "midpoint" in f["claim"]]
     assert midpoint and midpoint[0]["status"] == "not reproduced"
+
+
+def test_avoidance_study_as_printed_line_and_open_loop_options():
+    # Seed 004's method as printed on a near-miss line and the open-loop
+    # runs: rows of their own; `None` / False leave them out; the plan and
+    # the feedback of the main runs by the CLI's names.
+    base = dict(miss_sweep=[], joint_step_sweep=[], ks=[1, 5])
+    report = study.run("avoidance", as_printed_miss=0.003, as_printed_eps_dq=5.0, **base)
+    claims = [f["claim"] for f in report.findings]
+    assert any("the method as printed on a near-miss line" in c for c in claims)
+    assert any("open-loop tracker" in c for c in claims)
+    bare = study.run("avoidance", as_printed_miss=None, open_loop=False, region_plan="exact",
+                     feedback="next-pose", **base)
+    assert not any("as printed on a near-miss" in f["claim"] or "open-loop" in f["claim"]
+                   for f in bare.findings)
+    with pytest.raises(ValueError, match="region_plan|unknown variant"):
+        study.run("avoidance", region_plan="printed", **base)

@@ -470,6 +470,12 @@ fn bad_input_is_an_error_naming_the_option() {
         (&["--direction", "1,2,3,4,5,x"], "--direction"),
         (&["--robot", "ur5"], "--base attitude-held"),
         (&["--base", "fixed", "--robot", "ur5"], "--through"),
+        (&["--region-plan", "printed"], "--region-plan"),
+        (&["--feedback", "closed"], "--feedback"),
+        (&["--as-printed-miss", "nan"], "--as-printed-miss"),
+        (&["--as-printed-miss", "few"], "--as-printed-miss"),
+        (&["--as-printed-eps-dq", "0"], "--as-printed-eps-dq"),
+        (&["--open-loop-runs", "yes"], "--open-loop-runs"),
     ] {
         let mut argv = vec!["singularity"];
         argv.extend_from_slice(args);
@@ -493,4 +499,78 @@ fn bad_input_is_an_error_naming_the_option() {
     let message = stderr(&output);
     assert_eq!(output.status.code(), Some(1), "{message}");
     assert!(message.contains("out of reach"), "{message}");
+}
+
+/// `--region-plan exact`, `--feedback open-loop`, the as-printed line and
+/// the open-loop runs on a fixed-base arm: each in the JSON with its
+/// figures and its rows; `none` / `off` leave them out.
+#[test]
+fn as_printed_line_exact_plan_and_open_loop_from_the_command_line() {
+    let base = [
+        "singularity",
+        "--json",
+        "--base",
+        "fixed",
+        "--miss-sweep",
+        "0",
+        "--k",
+        "1,5",
+    ];
+    let run = |extra: &[&str]| {
+        let mut argv = base.to_vec();
+        argv.extend_from_slice(extra);
+        json(&armkit(&argv))
+    };
+    let value = run(&["--as-printed-miss", "0.003", "--as-printed-eps-dq", "5"]);
+    assert_eq!(value["region_plan"], "joint");
+    assert_eq!(value["feedback"], "next-pose");
+    let printed = &value["as_printed"];
+    assert_eq!(printed["miss"], 0.003);
+    let eps = printed["joint_step_threshold"].as_f64().unwrap();
+    assert!((eps - 5f64.to_radians() * 0.01).abs() < 1e-12, "{printed}");
+    let rows = printed["methods"].as_array().unwrap();
+    let peak = |name: &str| {
+        rows.iter().find(|m| m["method"] == name).unwrap()["peak_joint_rate"]
+            .as_f64()
+            .unwrap()
+    };
+    // Exact knots on the near miss: the wrist flips beyond eps_dq per period.
+    assert!(peak("avoidance k=1") > eps / 0.01, "{printed}");
+    let findings = value["findings"].as_array().unwrap();
+    let claims: Vec<&str> = findings
+        .iter()
+        .map(|f| f["claim"].as_str().unwrap())
+        .collect();
+    assert!(claims
+        .iter()
+        .any(|c| c.contains("the method as printed on a near-miss line")));
+    assert_eq!(value["open_loop"].as_array().unwrap().len(), 2);
+    assert!(claims.iter().any(|c| c.contains("open-loop tracker")));
+    // The main runs with the plan as printed and without feedback.
+    let changed = run(&[
+        "--region-plan",
+        "exact",
+        "--feedback",
+        "open-loop",
+        "--as-printed-miss",
+        "none",
+        "--open-loop-runs",
+        "off",
+    ]);
+    assert_eq!(changed["region_plan"], "exact");
+    assert_eq!(changed["feedback"], "open-loop");
+    assert!(changed["as_printed"].is_null());
+    assert!(changed["open_loop"].as_array().unwrap().is_empty());
+    let regions = method(&changed, "avoidance k=1")["regions"]
+        .as_array()
+        .unwrap();
+    assert!(!regions.is_empty() && regions.iter().all(|r| r["plan"] == "exact"));
+    // Open loop: plain's error is no longer corrected each period.
+    let open = method(&changed, "plain")["final_position_error"]
+        .as_f64()
+        .unwrap();
+    let closed = method(&value, "plain")["final_position_error"]
+        .as_f64()
+        .unwrap();
+    assert!(open > 100.0 * closed.max(1e-12), "{open} vs {closed}");
 }

@@ -27,12 +27,16 @@ def track_line(
     method: Literal["plain", "avoidance", "dls", "dls_clamped", "sri", "separation"] = "avoidance", k: int = 5,
     duration: float = 20.0, acceleration_time: float = 4.0, dt: float = 0.01,
     determinant_threshold: Optional[float] = None, joint_step_threshold: float = 0.005,
-    max_rate: float = 0.5, region_plan: Literal["joint", "greedy"] = "joint",
+    max_rate: float = 0.5, region_plan: Literal["joint", "greedy", "exact"] = "joint",
+    feedback: Literal["next-pose", "open-loop"] = "next-pose",
 ) -> Dict[str, Any]:
     """Tracks the pose line from FK(q_start) to T_goal (trapezoidal speed)
     every ``dt`` s with ``method`` (``"dls_clamped"``: DLS with its rates
     scaled to at most ``max_rate`` rad/s; ``region_plan``: the avoidance's
-    knots of a region all together, ``"joint"``, or one by one, ``"greedy"``); arrays ``time``, ``q``, ``joint_rates``
+    knots of a region all together, ``"joint"``, one by one, ``"greedy"``, or
+    seed 004's Newton knots as printed without a rate bound, ``"exact"``;
+    ``feedback``: ``"next-pose"`` (seed 004, eqs 26-27) or ``"open-loop"``,
+    the path's twist alone); arrays ``time``, ``q``, ``joint_rates``
     (samples, dof), ``position_error`` (m), ``orientation_error`` (rad),
     ``determinant``, ``in_region``; summary ``status``, ``peak_joint_rate``
     (rad/s), ``max_position_error``, ``max_orientation_error``,

@@ -198,7 +198,8 @@ pub struct SingularRegion {
     pub max_knot_error: (f64, f64),
     /// The plan kept: [`RegionPlan::Joint`] when the joint plan ran on a
     /// region with least-squares knots and lowered its largest error, else
-    /// [`RegionPlan::Greedy`] (also for regions whose knots are all exact).
+    /// [`RegionPlan::Greedy`] (also for regions whose knots are all exact);
+    /// [`RegionPlan::Exact`] under the plan as printed.
     pub plan: RegionPlan,
     /// Largest knot error of the greedy plan (norm of the 6-vector pose
     /// error, m and rad); equal to the kept plan's when that is the greedy.

@@ -39,7 +39,11 @@ impl PathTracker<'_> {
             ik_failures: 0,
             bounded_knots: 0,
             max_knot_error: (0.0, 0.0),
-            plan: RegionPlan::Greedy,
+            plan: if self.options.region_plan == RegionPlan::Exact {
+                RegionPlan::Exact
+            } else {
+                RegionPlan::Greedy
+            },
             greedy_max_error: 0.0,
             cone_programs: 0,
         };
@@ -88,8 +92,12 @@ impl PathTracker<'_> {
                 .zip(&q_last)
                 .map(|(a, b)| (a - b).abs())
                 .fold(0.0, f64::max);
-            let exact = solve.converged && jump <= radius;
-            if !exact {
+            // As printed (RegionPlan::Exact) the Newton solution is the knot
+            // however far it jumps; a solve that did not converge keeps its
+            // best iterate (counted in ik_failures).
+            let as_printed = self.options.region_plan == RegionPlan::Exact;
+            let exact = solve.converged && (as_printed || jump <= radius);
+            if !exact && !as_printed {
                 let bounded = plant.bounded_solve(&target, &q_last, radius, &start)?;
                 region.bounded_knots += 1;
                 region.ik_iterations += bounded.iterations;

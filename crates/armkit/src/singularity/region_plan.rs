@@ -98,6 +98,12 @@ pub enum RegionPlan {
     /// of the last one (Levenberg-Marquardt on the box). Reacts late to a
     /// near miss; kept as the labelled comparison.
     Greedy,
+    /// Seed 004's step 3 as printed: every knot the Newton-Raphson solution
+    /// of its planned pose (to `eps_T`), however far it moves a joint from
+    /// the last knot; no joint-step bound on the knots. Exact knots on a
+    /// line that misses the singular pose: the fit then turns the wrist flip
+    /// into whatever joint rates it takes.
+    Exact,
 }
 
 impl RegionPlan {
@@ -106,7 +112,26 @@ impl RegionPlan {
         match self {
             RegionPlan::Joint => "joint",
             RegionPlan::Greedy => "greedy",
+            RegionPlan::Exact => "exact",
         }
+    }
+}
+
+impl std::str::FromStr for RegionPlan {
+    type Err = crate::error::Error;
+
+    /// `joint`, `greedy` or `exact`; the error (named `region_plan`) lists
+    /// them.
+    fn from_str(name: &str) -> Result<Self> {
+        [RegionPlan::Joint, RegionPlan::Greedy, RegionPlan::Exact]
+            .into_iter()
+            .find(|plan| plan.as_str() == name)
+            .ok_or_else(|| {
+                Error::invalid_argument(
+                    "region_plan",
+                    format!("expected \"joint\", \"greedy\" or \"exact\", got \"{name}\""),
+                )
+            })
     }
 }
 

@@ -139,7 +139,7 @@ mod simulate;
 mod tracking;
 
 pub use dynamics::{center_of_mass, end_effector_pose, generalized_jacobian, momentum, Momentum};
-pub use simulate::{step, SinusoidalJointMotion};
+pub use simulate::{step, step_integrated, SinusoidalJointMotion};
 pub use tracking::{track_pose_path, FloatingBase};
 
 use nalgebra::Matrix3xX;

@@ -68,6 +68,86 @@ pub fn step(
     Ok(())
 }
 
+/// Advances `state` by `dt` seconds with constant joint rates
+/// `joint_rates`, the base moved by integrating its twist from the momentum
+/// equations (seed 004, eqs 10-16: `v0 = -J_g q_dot` with `w0 = 0` when
+/// the attitude is held; `w0 = B_w q_dot`, `v0 = (r_g - p0) x w0 - J_g q_dot`
+/// when free-floating) with a classical fourth-order Runge-Kutta step
+/// (rotation stages through the exponential map). Unlike [`step`], the
+/// base is never re-placed from the centre of mass: whether the centre of
+/// mass stays put and the momenta stay zero is then a property of the
+/// integrated motion, checked against [`super::center_of_mass`] and
+/// [`super::momentum`] (computed independently of the base Jacobian).
+///
+/// Afterwards `data` holds the base Jacobian at the last stage, not at the
+/// new state. Allocates nothing. Errors as [`step`].
+pub fn step_integrated(
+    model: &FreeFloatingModel,
+    data: &mut SpaceData,
+    state: &mut FreeFloatingState,
+    joint_rates: &[f64],
+    dt: f64,
+    mode: BaseMode,
+) -> Result<()> {
+    check_finite_vector("joint_rates", joint_rates, model.dof())?;
+    if !(dt.is_finite() && dt >= 0.0) {
+        return Err(Error::invalid_argument(
+            "dt",
+            format!("must be finite and >= 0 s, got {dt}"),
+        ));
+    }
+    let (p, r) = (state.base.translation, state.base.rotation);
+    let k1 = base_twist(model, data, state, joint_rates, 0.0, &p, &r, mode)?;
+    let stage = |k: &(Vector3<f64>, Vector3<f64>), h: f64| {
+        (p + k.0 * h, orthonormalize(&(exp_so3(&(k.1 * h)) * r)))
+    };
+    let (p2, r2) = stage(&k1, 0.5 * dt);
+    let k2 = base_twist(model, data, state, joint_rates, 0.5 * dt, &p2, &r2, mode)?;
+    let (p3, r3) = stage(&k2, 0.5 * dt);
+    let k3 = base_twist(model, data, state, joint_rates, 0.5 * dt, &p3, &r3, mode)?;
+    let (p4, r4) = stage(&k3, dt);
+    let k4 = base_twist(model, data, state, joint_rates, dt, &p4, &r4, mode)?;
+    let v = (k1.0 + (k2.0 + k3.0) * 2.0 + k4.0) / 6.0;
+    let w = (k1.1 + (k2.1 + k3.1) * 2.0 + k4.1) / 6.0;
+    let (p_new, r_new) = stage(&(v, w), dt);
+    state.base.translation = p_new;
+    state.base.rotation = r_new;
+    for (q, rate) in state.q.iter_mut().zip(joint_rates) {
+        *q += rate * dt;
+    }
+    Ok(())
+}
+
+/// The base twist `(v0, w0)` (inertial frame, m/s and rad/s) that the
+/// momentum equations give at base `(p, r)` and joint positions
+/// `q + tau q_dot`, under rates `q_dot`.
+#[allow(clippy::too_many_arguments)]
+fn base_twist(
+    model: &FreeFloatingModel,
+    data: &mut SpaceData,
+    state: &FreeFloatingState,
+    joint_rates: &[f64],
+    tau: f64,
+    p: &Vector3<f64>,
+    r: &Matrix3<f64>,
+    mode: BaseMode,
+) -> Result<(Vector3<f64>, Vector3<f64>)> {
+    let mut q_node = std::mem::take(&mut data.q_node);
+    for ((node, q), rate) in q_node.iter_mut().zip(&state.q).zip(joint_rates) {
+        *node = q + rate * tau;
+    }
+    let base = crate::math::Pose::new(*r, *p);
+    let result = generalized_jacobian(model, data, &base, &q_node, mode).map(|_| ());
+    data.q_node = q_node;
+    result?;
+    let (mut v, mut w) = (Vector3::zeros(), Vector3::zeros());
+    for (j, rate) in joint_rates.iter().enumerate() {
+        v += data.base_jacobian.fixed_view::<3, 1>(0, j) * *rate;
+        w += data.base_jacobian.fixed_view::<3, 1>(3, j) * *rate;
+    }
+    Ok((v, w))
+}
+
 /// The base's body-frame angular velocity (rad/s) at joint positions
 /// `q + tau q_dot` under rates `q_dot`: `R0' B_w q_dot`. The world-frame
 /// `B_w` turns with the base, so the product depends on `q` only.

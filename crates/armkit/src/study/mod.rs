@@ -35,8 +35,9 @@ mod mpc_examples;
 mod space_robot;
 
 pub use avoidance::{
-    interpolating_polynomial_rate, AvoidanceOutcome, AvoidanceStudy, EpsRegion, MissLine,
-    MissSweep, ThresholdRule, FITTED_DETERMINANT_THRESHOLD, SEED004_EPS_SWEEP, SEED004_MISS_SWEEP,
+    interpolating_polynomial_rate, AsPrintedLine, AvoidanceOutcome, AvoidanceStudy, EpsRegion,
+    MissLine, MissSweep, ThresholdRule, FITTED_DETERMINANT_THRESHOLD, SEED004_EPS_SWEEP,
+    SEED004_MISS_SWEEP,
 };
 pub use beam_table::{
     BeamTableStudy, Table1Row, TABLE1_ROUNDING, TABLE1_SIMULATION, TABLE1_SPAN_GRID,

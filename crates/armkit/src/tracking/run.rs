@@ -10,6 +10,8 @@ use crate::trajectory::TimedPath;
 
 /// How the commanded twist feeds the pose error back.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "io", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "io", serde(rename_all = "kebab-case"))]
 pub enum Feedback {
     /// `V = V_d(t) + K e(t)`: the path's twist plus the gain `K` (1/s, with
     /// `0 <= K dt <= 1`) times the pose error `e = [p_d - p; log(R_d R')]`
@@ -22,6 +24,47 @@ pub enum Feedback {
     /// one period later (seed 004, eqs 26-27): the planned motion and the
     /// correction of the current error in one period.
     NextPose,
+    /// `V = V_d(t)`: the path's twist alone, no error feedback (open loop).
+    /// The pose error the discrete steps make accumulates instead of being
+    /// corrected: the tracker seed 004's explanation of Figs 7-8 assumes
+    /// (the error carried into a singular region is what was accumulated
+    /// before it).
+    OpenLoop,
+}
+
+impl Feedback {
+    /// `proportional`, `next-pose` or `open-loop`.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            Feedback::Proportional { .. } => "proportional",
+            Feedback::NextPose => "next-pose",
+            Feedback::OpenLoop => "open-loop",
+        }
+    }
+}
+
+impl std::str::FromStr for Feedback {
+    type Err = Error;
+
+    /// `next-pose` or `open-loop` (the proportional law needs its gain);
+    /// the error (named `feedback`) lists them.
+    fn from_str(name: &str) -> Result<Self> {
+        [Feedback::NextPose, Feedback::OpenLoop]
+            .into_iter()
+            .find(|f| f.as_str() == name)
+            .ok_or_else(|| {
+                Error::invalid_argument(
+                    "feedback",
+                    format!("expected \"next-pose\" or \"open-loop\", got \"{name}\""),
+                )
+            })
+    }
+}
+
+impl std::fmt::Display for Feedback {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
 }
 
 /// Most control periods one tracking run takes (`ceil(duration / dt)`): a
@@ -302,6 +345,11 @@ pub fn track<P: Plant + ?Sized, L: RateLaw<P> + ?Sized, R: Recorder + ?Sized>(
                 planned + error * gain
             }
             Feedback::NextPose => pose_error(&desired_at(time + dt)?, plant.end_effector()) / dt,
+            Feedback::OpenLoop => {
+                let planned = path.twist(time);
+                check_finite("path twist", planned.as_slice())?;
+                planned
+            }
         };
         let step = Step {
             index,

@@ -1209,3 +1209,89 @@ fn the_study_rows_on_joints_eps_dq_runge_and_the_reference_method() {
     assert_eq!(separation.method.label(), "separation");
     assert_eq!(separation.status, TrackingStatus::Completed);
 }
+
+/// The plan as printed ([`RegionPlan::Exact`]) keeps every Newton knot on a
+/// 3 mm near miss: no least-squares knot, the pose tracked to the IK's
+/// accuracy, and the wrist flipping faster than the eps_dq bound the other
+/// plans keep (the joint plan stays within it on the same line).
+#[test]
+fn the_exact_region_plan_keeps_newton_knots_beyond_the_rate_bound() {
+    use armkit::singularity::{RegionPlan, SEED004_DIRECTION};
+    let arm = armkit::robots::space6r().unwrap();
+    let manipulator = Manipulator::FixedBase(&arm);
+    let line = line_through(&manipulator, &SEED004_THROUGH, &SEED004_DIRECTION, 0.003).unwrap();
+    let task = line.task(20.0, 4.0);
+    let options = AvoidanceOptions::default();
+    let eps_dq = options.detection.joint_step_threshold;
+    let run = |plan: RegionPlan| {
+        let options = AvoidanceOptions {
+            region_plan: plan,
+            ..options
+        };
+        PathTracker::new(manipulator, task.clone(), options)
+            .unwrap()
+            .run(&Method::Avoidance { k: 1 })
+            .unwrap()
+    };
+    let exact = run(RegionPlan::Exact);
+    let joint = run(RegionPlan::Joint);
+    assert_eq!(exact.status, TrackingStatus::Completed);
+    assert!(!exact.regions.is_empty());
+    assert!(exact
+        .regions
+        .iter()
+        .all(|r| r.plan == RegionPlan::Exact && r.bounded_knots == 0));
+    assert!(joint.regions.iter().any(|r| r.bounded_knots > 0));
+    assert!(largest_step(&exact, 0.01) > 5.0 * eps_dq);
+    assert!(largest_step(&joint, 0.01) <= eps_dq * (1.0 + 1e-9));
+    // Exact knots: the error stays orders below the joint plan's (about
+    // the 3 mm miss).
+    assert!(exact.summary.max_pose_error < 1e-5, "{:?}", exact.summary);
+    assert!(joint.summary.max_pose_error > 1e-3, "{:?}", joint.summary);
+    // The plans by name, and a bad one named.
+    for plan in [RegionPlan::Joint, RegionPlan::Greedy, RegionPlan::Exact] {
+        assert_eq!(plan.as_str().parse::<RegionPlan>().unwrap(), plan);
+    }
+    let err = "printed".parse::<RegionPlan>().unwrap_err().to_string();
+    assert!(
+        err.contains("region_plan") && err.contains("exact"),
+        "{err}"
+    );
+}
+
+/// Open loop (`V = V_d`) lets the discrete steps' error accumulate; the
+/// next-pose feedback of seed 004 (eqs 26-27) corrects it every period.
+#[test]
+fn open_loop_tracking_accumulates_the_error_next_pose_feedback_removes() {
+    use armkit::singularity::SEED004_DIRECTION;
+    use armkit::tracking::Feedback;
+    let arm = armkit::robots::space6r().unwrap();
+    let manipulator = Manipulator::FixedBase(&arm);
+    let line = line_through(&manipulator, &SEED004_THROUGH, &SEED004_DIRECTION, 0.03).unwrap();
+    let task = line.task(20.0, 4.0);
+    let run = |feedback: Feedback| {
+        let mut options = AvoidanceOptions::default();
+        options.tracking.feedback = feedback;
+        PathTracker::new(manipulator, task.clone(), options)
+            .unwrap()
+            .run(&Method::Plain)
+            .unwrap()
+    };
+    let open = run(Feedback::OpenLoop);
+    let closed = run(Feedback::NextPose);
+    assert_eq!(open.status, TrackingStatus::Completed);
+    assert_eq!(Feedback::OpenLoop.to_string(), "open-loop");
+    // Open loop: the error grows along the path (the second half's largest
+    // above the first quarter's) and ends far above the closed loop's.
+    let quarter = open.position_error.len() / 4;
+    let early = open.position_error[..quarter]
+        .iter()
+        .fold(0.0, |m: f64, e| m.max(*e));
+    assert!(open.summary.final_position_error > 2.0 * early, "{early}");
+    assert!(
+        open.summary.final_position_error > 100.0 * closed.summary.final_position_error.max(1e-12),
+        "{:?} {:?}",
+        open.summary,
+        closed.summary
+    );
+}

@@ -17,27 +17,25 @@ use std::path::PathBuf;
 use armkit::error::brief;
 use armkit::math::Pose;
 use armkit::singularity::{
-    AvoidanceOptions, BaseKind, Manipulator, SEED004_DIRECTION, SEED004_THROUGH,
+    AvoidanceOptions, BaseKind, RegionPlan, SEED004_DIRECTION, SEED004_THROUGH,
 };
-use armkit::space::FreeFloatingModel;
 use armkit::study::{AvoidanceOutcome, AvoidanceStudy, ThresholdRule};
-use armkit::tracking::{TrackingStatus, MAX_PERIODS};
-use armkit::Model;
+use armkit::tracking::{Feedback, TrackingStatus, MAX_PERIODS};
 use clap::{Args, ValueEnum};
 
-use crate::common::{
-    parse_fixed_numbers, parse_numbers, print_json, CliError, CliResult, Outcome, RobotArgs,
-};
+use crate::common::{parse_fixed_numbers, parse_numbers, print_json, CliError, CliResult, Outcome};
 use crate::report::join;
 
 mod figures;
 mod outputs;
 mod page;
+mod plant;
 mod tables;
 
 use outputs::{summary_json, write_outputs};
 use page::build_report;
 pub use page::report;
+use plant::{load_plant, Plant};
 
 /// Track a straight-line pose path through a wrist singularity (seed 004):
 /// plain, avoidance, DLS, SRI and singularity separation (reference [9]).
@@ -109,6 +107,39 @@ pub struct SingularityArgs {
     /// Control period, s. Default: the library's (0.01 s).
     #[arg(long, value_name = "S", allow_hyphen_values = true)]
     pub dt: Option<f64>,
+    /// How the avoidance plans a singular region's knots: `joint` (all
+    /// together, every step within the joint-step threshold), `greedy`
+    /// (knot by knot, within it) or `exact` (seed 004's step 3 as printed:
+    /// the Newton-Raphson knots, however fast the joints must move).
+    #[arg(long, value_name = "joint|greedy|exact", default_value = "joint")]
+    pub region_plan: String,
+    /// Tracking feedback of every run: `next-pose` (seed 004, eqs 26-27:
+    /// the twist to the pose due one period later) or `open-loop` (the
+    /// path's twist alone, no error feedback).
+    #[arg(long, value_name = "next-pose|open-loop", default_value = "next-pose")]
+    pub feedback: String,
+    /// Miss of the line on which seed 004's method also runs as printed
+    /// (exact knots, no rate bound, eps_dq = --as-printed-eps-dq deg/s), m
+    /// and rad; `none` skips it.
+    #[arg(
+        long,
+        value_name = "M|none",
+        default_value = "0.003",
+        allow_hyphen_values = true
+    )]
+    pub as_printed_miss: String,
+    /// eps_dq of the as-printed run, deg/s (seed 004 prints 5).
+    #[arg(
+        long,
+        value_name = "DEG/S",
+        default_value_t = 5.0,
+        allow_hyphen_values = true
+    )]
+    pub as_printed_eps_dq: f64,
+    /// Also run the avoidance for every k with open-loop tracking (Figs
+    /// 7-8's explanation tested): `on` or `off`.
+    #[arg(long, value_name = "on|off", default_value = "on")]
+    pub open_loop_runs: String,
     /// Output directory for the CSV and SVG files, summary.json and
     /// report.html (created if missing). Without it, nothing is written.
     #[arg(long, value_name = "DIR")]
@@ -132,28 +163,6 @@ impl BaseArg {
         match self {
             BaseArg::Fixed => "fixed base",
             BaseArg::AttitudeHeld => "free-floating base, attitude held",
-        }
-    }
-}
-
-/// The arm, and the free-floating system when the base is held.
-enum Plant {
-    Fixed(Box<Model>),
-    Held(Box<FreeFloatingModel>),
-}
-
-impl Plant {
-    fn arm(&self) -> &Model {
-        match self {
-            Plant::Fixed(model) => model,
-            Plant::Held(system) => system.arm(),
-        }
-    }
-
-    fn manipulator(&self, base: Pose) -> Manipulator<'_> {
-        match self {
-            Plant::Fixed(model) => Manipulator::FixedBase(model),
-            Plant::Held(system) => Manipulator::AttitudeHeld { system, base },
         }
     }
 }
@@ -251,6 +260,37 @@ pub fn study(args: &SingularityArgs) -> CliResult<Study> {
             args.miss
         )));
     }
+    let region_plan: RegionPlan = args
+        .region_plan
+        .parse()
+        .map_err(|e| CliError(format!("--region-plan: {e}")))?;
+    let feedback: Feedback = args
+        .feedback
+        .parse()
+        .map_err(|e| CliError(format!("--feedback: {e}")))?;
+    let as_printed_miss = match args.as_printed_miss.trim() {
+        "none" => None,
+        text => Some(
+            text.parse::<f64>()
+                .ok()
+                .filter(|m| m.is_finite())
+                .ok_or_else(|| {
+                    CliError(format!(
+                        "--as-printed-miss: a finite number (m and rad) or `none`, got \"{text}\""
+                    ))
+                })?,
+        ),
+    };
+    let as_printed_eps_dq = positive("--as-printed-eps-dq", args.as_printed_eps_dq)?;
+    let open_loop = match args.open_loop_runs.as_str() {
+        "on" => true,
+        "off" => false,
+        other => {
+            return Err(CliError(format!(
+                "--open-loop-runs: `on` or `off`, got \"{other}\""
+            )))
+        }
+    };
     let plant = load_plant(args)?;
     let arm = plant.arm();
     let space6r = arm.name() == "space6r";
@@ -282,6 +322,11 @@ pub fn study(args: &SingularityArgs) -> CliResult<Study> {
         threshold,
         joint_step_threshold,
         dt,
+        as_printed_miss,
+        as_printed_eps_dq,
+        open_loop,
+        region_plan,
+        feedback,
         ..AvoidanceStudy::default()
     };
     let outcome = library
@@ -305,7 +350,7 @@ pub fn study(args: &SingularityArgs) -> CliResult<Study> {
         "{} on a {}: a straight line through q = ({}) at mid-path, {} s with {} s acceleration and \
          deceleration (trapezoidal speed), dt {} s; smallest |det J| along the plain run {} at \
          t = {:.2} s; singular where |det J| < {} ({}) or a joint would step more than {} per \
-         period",
+         period; region plan {}, feedback {}",
         arm.name(),
         args.base.text(),
         join(&through, 3),
@@ -317,6 +362,8 @@ pub fn study(args: &SingularityArgs) -> CliResult<Study> {
         short(options.detection.determinant_threshold),
         outcome.threshold,
         short(options.detection.joint_step_threshold),
+        options.region_plan,
+        options.tracking.feedback,
     );
     Ok(Study {
         base: args.base,
@@ -326,36 +373,6 @@ pub fn study(args: &SingularityArgs) -> CliResult<Study> {
         outcome,
         plant,
     })
-}
-
-/// The arm, and the satellite when the base is held.
-fn load_plant(args: &SingularityArgs) -> CliResult<Plant> {
-    match args.base {
-        BaseArg::Fixed => {
-            let robot = RobotArgs {
-                robot: args.robot.clone(),
-                robot_file: args.robot_file.clone(),
-                ..RobotArgs::default()
-            };
-            if robot.robot.is_none() && robot.robot_file.is_none() {
-                return Ok(Plant::Fixed(Box::new(armkit::robots::space6r()?)));
-            }
-            Ok(Plant::Fixed(Box::new(robot.load()?)))
-        }
-        BaseArg::AttitudeHeld => {
-            let named_other = args.robot.as_deref().is_some_and(|r| r != "space6r");
-            if named_other || args.robot_file.is_some() {
-                return Err(CliError(
-                    "--base attitude-held: the free-floating system is seed 004's space6r on its \
-                     satellite; other arms work with --base fixed"
-                        .into(),
-                ));
-            }
-            Ok(Plant::Held(Box::new(
-                armkit::robots::space6r_free_floating()?,
-            )))
-        }
-    }
 }
 
 /// `--k`: integers >= 1.

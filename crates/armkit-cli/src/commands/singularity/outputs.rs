@@ -66,7 +66,7 @@ fn summary_csv(study: &Study) -> String {
 pub(super) fn summary_json(study: &Study, args: &SingularityArgs) -> serde_json::Value {
     let goal = &study.outcome.line.goal;
     let (roll, pitch, yaw) = goal.rpy();
-    serde_json::json!({
+    let mut value = serde_json::json!({
         "robot": study.plant.arm().name(),
         "base": match study.base { BaseArg::Fixed => "fixed", BaseArg::AttitudeHeld => "attitude-held" },
         "through": study.through,
@@ -125,5 +125,53 @@ pub(super) fn summary_json(study: &Study, args: &SingularityArgs) -> serde_json:
                 "cone_programs": g.cone_programs,
             })).collect::<Vec<_>>(),
         })).collect::<Vec<_>>(),
+    });
+    let outcome = &study.outcome;
+    value["region_plan"] = outcome.options.region_plan.as_str().into();
+    value["feedback"] = outcome.options.tracking.feedback.as_str().into();
+    value["as_printed"] = outcome.as_printed.as_ref().map(as_printed_json).into();
+    value["open_loop"] = outcome
+        .open_loop
+        .iter()
+        .map(|r| {
+            serde_json::json!({
+                "method": r.method.label(),
+                "status": r.status.to_string(),
+                "max_position_error": r.summary.max_position_error,
+                "mean_region_position_error": r.summary.mean_region_position_error,
+                "mean_region_orientation_error": r.summary.mean_region_orientation_error,
+            })
+        })
+        .collect::<Vec<_>>()
+        .into();
+    value
+}
+
+/// The as-printed line's figures in the `--json` summary.
+fn as_printed_json(a: &armkit::study::AsPrintedLine) -> serde_json::Value {
+    let methods: Vec<serde_json::Value> = std::iter::once(("plain".to_string(), &a.plain.summary))
+        .chain(a.k_sweep.iter().map(|r| (r.method.label(), &r.summary)))
+        .chain([
+            ("dls".to_string(), &a.damped_least_squares),
+            ("sri".to_string(), &a.singularity_robust),
+            (armkit::singularity::SEPARATION.to_string(), &a.separation),
+        ])
+        .map(|(name, s)| {
+            serde_json::json!({
+                "method": name,
+                "peak_joint_rate": s.peak_joint_rate,
+                "max_position_error": s.max_position_error,
+                "max_orientation_error": s.max_orientation_error,
+                "mean_region_position_error": s.mean_region_position_error,
+            })
+        })
+        .collect();
+    serde_json::json!({
+        "miss": a.miss,
+        "eps_dq_deg_per_s": a.eps_dq_deg_per_s,
+        "joint_step_threshold": a.options.detection.joint_step_threshold,
+        "determinant_threshold": a.options.detection.determinant_threshold,
+        "threshold_rule": a.threshold.as_str(),
+        "methods": methods,
     })
 }

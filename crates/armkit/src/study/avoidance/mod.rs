@@ -2,10 +2,12 @@
 //! singularity, every method on it, lines that miss the singular pose, the
 //! checks of the demo and the paper's claims as findings.
 
+mod as_printed;
 mod findings;
 mod rows;
 mod sweep;
 
+pub use as_printed::{AsPrintedLine, SEED004_AS_PRINTED_MISS, SEED004_EPS_DQ_DEG_PER_S};
 pub use rows::{interpolating_polynomial_rate, EpsRegion, SEED004_EPS_SWEEP};
 pub use sweep::{MissLine, MissSweep, SEED004_MISS_SWEEP};
 
@@ -14,10 +16,10 @@ use crate::error::{check_positive, Error, Result};
 use crate::math::{Pose, Vector3};
 use crate::singularity::{
     line_through, AvoidanceOptions, BaseKind, Baselines, Comparison, DetectionOptions, LineThrough,
-    Manipulator, MethodRun, PathTracker, SEED004_DIRECTION, SEED004_THROUGH,
+    Manipulator, MethodRun, PathTracker, RegionPlan, SEED004_DIRECTION, SEED004_THROUGH,
 };
 use crate::space::center_of_mass;
-use crate::tracking::{TrackingOptions, TrackingStatus};
+use crate::tracking::{Feedback, TrackingOptions, TrackingStatus};
 
 /// Seed 004's singularity avoidance on space6r: a straight pose line through
 /// the wrist singularity tracked by plain resolved rate, the avoidance for
@@ -75,6 +77,27 @@ pub struct AvoidanceStudy {
     /// run by the avoidance with the first `k`, the threshold by the
     /// study's rule. Default [`SEED004_EPS_SWEEP`]; empty: no sweep.
     pub joint_step_sweep: Vec<f64>,
+    /// The miss of the line the paper's method runs on as written (m and
+    /// rad; exact Newton-Raphson knots, no rate bound on them,
+    /// [`crate::singularity::RegionPlan::Exact`], `eps_dq` =
+    /// `as_printed_eps_dq` deg/s). Default [`SEED004_AS_PRINTED_MISS`];
+    /// `None`: not run.
+    pub as_printed_miss: Option<f64>,
+    /// `eps_dq` of the as-printed run, deg/s (> 0). Default
+    /// [`SEED004_EPS_DQ_DEG_PER_S`], the paper's 5 read as deg/s.
+    pub as_printed_eps_dq: f64,
+    /// Also run the avoidance for every `k` with the open-loop tracker
+    /// ([`crate::tracking::Feedback::OpenLoop`], `V = V_d`): Figs 7-8's
+    /// explanation tested. Default true.
+    pub open_loop: bool,
+    /// How the avoidance plans a region's knots on the study's line and the
+    /// miss sweep. Default [`RegionPlan::Joint`]; [`RegionPlan::Exact`] is
+    /// seed 004's step 3 as printed.
+    pub region_plan: RegionPlan,
+    /// The tracking feedback of every run. Default
+    /// [`Feedback::NextPose`] (seed 004, eqs 26-27); [`Feedback::OpenLoop`]
+    /// tracks `V = V_d`.
+    pub feedback: Feedback,
 }
 
 impl Default for AvoidanceStudy {
@@ -92,6 +115,11 @@ impl Default for AvoidanceStudy {
             joint_step_threshold: DetectionOptions::default().joint_step_threshold,
             dt: TrackingOptions::default().dt,
             joint_step_sweep: SEED004_EPS_SWEEP.to_vec(),
+            as_printed_miss: Some(SEED004_AS_PRINTED_MISS),
+            as_printed_eps_dq: SEED004_EPS_DQ_DEG_PER_S,
+            open_loop: true,
+            region_plan: RegionPlan::Joint,
+            feedback: Feedback::NextPose,
         }
     }
 }
@@ -168,6 +196,12 @@ pub struct AvoidanceOutcome {
     /// The `eps_dq` sweep (sec 2.3.1), in the order of the study's
     /// `joint_step_sweep`.
     pub eps_sweep: Vec<EpsRegion>,
+    /// Seed 004's method as written on a near-miss line (the study's
+    /// `as_printed_miss`).
+    pub as_printed: Option<AsPrintedLine>,
+    /// The avoidance for every `k` with the open-loop tracker (empty unless
+    /// the study's `open_loop`).
+    pub open_loop: Vec<MethodRun>,
 }
 
 impl AvoidanceStudy {
@@ -177,12 +211,13 @@ impl AvoidanceStudy {
         AvoidanceOptions {
             tracking: TrackingOptions {
                 dt: self.dt,
-                ..TrackingOptions::default()
+                feedback: self.feedback,
             },
             detection: DetectionOptions {
                 determinant_threshold,
                 joint_step_threshold: self.joint_step_threshold,
             },
+            region_plan: self.region_plan,
             ..AvoidanceOptions::default()
         }
     }
@@ -282,6 +317,8 @@ impl AvoidanceStudy {
         let sweep = MissSweep::run(self, manipulator, options, &baselines)?;
         let singular_end = self.singular_end(manipulator, options, &comparison.avoidance.method)?;
         let eps_sweep = self.eps_sweep(manipulator)?;
+        let as_printed = self.as_printed(manipulator, &baselines)?;
+        let open_loop = self.open_loop_runs(manipulator, options)?;
         Ok(AvoidanceOutcome {
             line,
             comparison,
@@ -293,6 +330,8 @@ impl AvoidanceStudy {
             sweep,
             singular_end,
             eps_sweep,
+            as_printed,
+            open_loop,
         })
     }
 
