@@ -12,6 +12,7 @@
 mod analytic;
 mod arrays;
 mod beam;
+mod description;
 mod dynamics;
 mod errors;
 mod ik;
