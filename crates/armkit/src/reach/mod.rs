@@ -1,0 +1,123 @@
+//! Reachability and capability maps: which tool poses an arm reaches, over a
+//! position grid times a set of tool orientations.
+//!
+//! * [`MapLayout`]: cubic position cells (edge [`MapSpec::resolution`], m)
+//!   over the box of the arm's reach bound ([`crate::ik::ReachBound`]),
+//!   times [`MapSpec::approach_directions`] near-uniform approach directions
+//!   of the tool z axis (a Fibonacci lattice) times [`MapSpec::rolls`] roll
+//!   samples about each.
+//! * [`build_chunk`]: one deterministic piece of the map. By
+//!   [`Builder::InverseKinematics`] each (cell centre, orientation) pose is
+//!   solved: analytic IK where the arm's class allows (every solution within
+//!   the joint limits, counted), numeric IK with seeded restarts otherwise;
+//!   per cell the best manipulability over the solutions found. By
+//!   [`Builder::ForwardSampling`] (RM4D's way) configurations are drawn
+//!   uniformly within the limits from a seeded RNG and each pose is binned.
+//! * [`ReachMap`]: the merged map with the capability index per cell (the
+//!   reachable fraction of the cell's orientations, after Zacharias et al.,
+//!   "Capturing robot workspace structure", IROS 2007) and constant-time
+//!   queries.
+//! * [`build`]: the whole map on local threads; [`chunks`] partitions it for
+//!   a distributed build whose merged result is the same.
+//!
+//! Frames and units: positions in the world frame (the frame of the model's
+//! base transform), metres; tool orientations as rotation matrices in the
+//! world frame; manipulability is Yoshikawa's `sqrt(det(J J'))` of the
+//! world-frame geometric Jacobian (units mix m and rad).
+
+mod build;
+mod chunk;
+mod layout;
+mod map;
+
+pub use build::{build, chunks};
+pub use chunk::{build_chunk, Chunk, ChunkResult};
+pub use layout::{fibonacci_directions, MapLayout, MAX_BINS};
+pub use map::ReachMap;
+
+use crate::error::{check_positive, Error, Result};
+
+/// How a map's bins are decided.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "io", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "io", serde(rename_all = "snake_case"))]
+pub enum Builder {
+    /// Inverse kinematics at every (cell centre, orientation) pose: exact at
+    /// the bin's centre.
+    InverseKinematics,
+    /// Forward kinematics of `samples` configurations drawn uniformly within
+    /// the joint limits (ChaCha8 seeded by `seed`; sample `s` from its own
+    /// stream position, so any partition gives the same samples): a bin is
+    /// reachable when a sample lands in it. Fast, but misses bins the
+    /// samples did not hit (the coverage).
+    ForwardSampling {
+        /// Number of configurations drawn.
+        samples: u64,
+        /// RNG seed.
+        seed: u64,
+    },
+}
+
+/// What a map is: its resolution, orientation set and builder.
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "io", derive(serde::Serialize, serde::Deserialize))]
+pub struct MapSpec {
+    /// Edge of a cubic position cell, m.
+    pub resolution: f64,
+    /// Near-uniform (Fibonacci) approach directions of the tool z axis.
+    pub approach_directions: usize,
+    /// Roll samples about each direction (orientations = directions x rolls).
+    pub rolls: usize,
+    /// How the bins are decided.
+    pub builder: Builder,
+}
+
+impl MapSpec {
+    /// A spec of `orientations` orientations split into directions and rolls
+    /// with about equal angular spacing: the direction lattice's spacing
+    /// `sqrt(4 pi / D)` equals the roll step `2 pi / R` when `R^3 = pi N`
+    /// (`N = D R`); `R = round((pi N)^(1/3))`, `D = round(N / R)`, both >= 1.
+    /// 200 orientations give 25 directions x 8 rolls.
+    pub fn with_orientations(resolution: f64, orientations: usize, builder: Builder) -> MapSpec {
+        let n = orientations as f64;
+        let rolls =
+            ((std::f64::consts::PI * n).cbrt().round() as usize).clamp(1, orientations.max(1));
+        let directions = ((n / rolls as f64).round() as usize).max(1);
+        MapSpec {
+            resolution,
+            approach_directions: if orientations == 0 { 0 } else { directions },
+            rolls,
+            builder,
+        }
+    }
+
+    /// Orientations per cell (`approach_directions * rolls`).
+    pub fn orientation_count(&self) -> usize {
+        self.approach_directions.saturating_mul(self.rolls)
+    }
+
+    /// Checks the spec: a finite resolution > 0, at least one direction, one
+    /// roll and (sampling builder) one sample; errors name the field.
+    pub fn validate(&self) -> Result<()> {
+        check_positive("resolution", self.resolution)?;
+        if self.approach_directions == 0 {
+            return Err(Error::invalid_argument(
+                "approach_directions",
+                "must be at least 1 (zero orientations make an empty map)",
+            ));
+        }
+        if self.rolls == 0 {
+            return Err(Error::invalid_argument(
+                "rolls",
+                "must be at least 1 (zero orientations make an empty map)",
+            ));
+        }
+        if let Builder::ForwardSampling { samples: 0, .. } = self.builder {
+            return Err(Error::invalid_argument(
+                "samples",
+                "must be at least 1 for the forward-sampling builder",
+            ));
+        }
+        Ok(())
+    }
+}
