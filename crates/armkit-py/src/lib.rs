@@ -18,6 +18,7 @@ mod errors;
 mod ik;
 mod mpc;
 mod parallel;
+mod reach;
 mod redundancy;
 mod robot;
 mod singularity;
@@ -77,5 +78,6 @@ fn _armkit(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<mpc::MpcPlanner>()?;
     m.add_class::<beam::Beam>()?;
     m.add_class::<space::SpaceRobot>()?;
+    reach::add_module(m)?;
     Ok(())
 }
