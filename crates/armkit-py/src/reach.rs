@@ -1,4 +1,4 @@
-//! `armkit._armkit.reach`: the library's reachability maps (`armkit::reach`)
+//! `armkit._armkit._reach`: the library's reachability maps (`armkit::reach`)
 //! for `armkit.reach` (python/armkit/reach.py), which adds the Dask build,
 //! `.npz` and Zarr files.
 //!
@@ -416,9 +416,9 @@ impl Map {
     }
 }
 
-/// Adds the `reach` submodule to the extension module.
+/// Adds the `_reach` submodule to the extension module.
 pub fn add_module(parent: &Bound<'_, PyModule>) -> PyResult<()> {
-    let m = PyModule::new(parent.py(), "reach")?;
+    let m = PyModule::new(parent.py(), "_reach")?;
     m.add_function(wrap_pyfunction!(spec_json, &m)?)?;
     m.add_function(wrap_pyfunction!(build_chunk, &m)?)?;
     m.add_function(wrap_pyfunction!(from_chunks, &m)?)?;

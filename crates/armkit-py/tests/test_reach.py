@@ -107,3 +107,175 @@ def test_toml_description_round_trips():
 def test_bad_descriptions_raise_value_error_naming_the_problem(text, message):
     with pytest.raises(ValueError, match=message):
         armkit.Robot.from_description(text)
+
+
+# ------------------------------------------------------------------ the maps
+
+import armkit.reach  # noqa: E402
+
+# Small maps, fixed seeds: each builds in well under a second.
+SMALL = dict(resolution=0.2, orientations=8, progress=False)
+SAMPLED = dict(resolution=0.2, orientations=8, builder="fk-samples", samples=20_000, seed=3, progress=False)
+
+
+@pytest.fixture(scope="module")
+def ur5_map(ur5):
+    return armkit.reach.build(ur5, threads=2, **SMALL)
+
+
+def pose(R, p):
+    T = np.eye(4)
+    T[:3, :3], T[:3, 3] = R, p
+    return T
+
+
+def assert_same_map(a, b):
+    assert a.dims == b.dims and a.spec == b.spec
+    np.testing.assert_array_equal(a.origin, b.origin)
+    for name in ("reachable", "solutions", "capability", "manipulability"):
+        np.testing.assert_array_equal(getattr(a, name), getattr(b, name), err_msg=name)
+    assert a.calls == b.calls
+
+
+def test_local_map_arrays_agree_with_each_other_and_with_queries(ur5_map):
+    m = ur5_map
+    nx, ny, nz = m.dims
+    K = m.layout.orientation_count
+    assert (m.reachable.shape, m.capability.shape) == ((nx, ny, nz, K), (nx, ny, nz))
+    # Capability: the reachable fraction of each cell's orientations.
+    np.testing.assert_allclose(m.capability, m.reachable.mean(axis=3), rtol=0, atol=1e-12)
+    assert 0 < m.coverage < 1 and m.reachable_volume > 0
+    # A reachable bin has a solution; an unreachable one none.
+    assert np.all((m.solutions > 0) == m.reachable)
+    assert np.all((m.manipulability > 0) <= (m.capability > 0))
+    # Each bin's centre pose queries as the bin says, for every bin of a few cells.
+    R = m.orientations
+    cells = [np.unravel_index(i, m.dims) for i in np.flatnonzero(m.capability.reshape(-1) > 0)[::37]]
+    cells += [np.unravel_index(i, m.dims) for i in np.flatnonzero(m.capability.reshape(-1) == 0)[::97]]
+    Ts = np.array([pose(R[k], m.cell_center(c)) for c in cells for k in range(K)])
+    expected = np.array([m.reachable[c][k] for c in cells for k in range(K)])
+    np.testing.assert_array_equal(m.query(Ts), expected)
+    assert m.query(Ts[0]) == expected[0]
+    assert m.query(pose(np.eye(3), [50.0, 0, 0])) is False
+
+
+def test_nearest_reachable_cell_and_capability_at(ur5_map):
+    m = ur5_map
+    reachable = np.argwhere(m.capability > 0)
+    centres = np.array([m.cell_center(tuple(c)) for c in reachable])
+    for p in ([2.0, 0.3, -0.1], [0.0, 0.0, 0.0], m.cell_center(tuple(reachable[5]))):
+        cell = m.nearest_reachable_cell(p)
+        assert m.capability[cell] > 0
+        best = np.min(np.linalg.norm(centres - p, axis=1))
+        assert np.linalg.norm(m.cell_center(cell) - p) == pytest.approx(best, abs=1e-12)
+    c = tuple(reachable[3])
+    assert m.capability_at(m.cell_center(c)) == m.capability[c]
+    assert m.capability_at([50.0, 0.0, 0.0]) == 0.0
+
+
+def test_local_build_does_not_depend_on_threads(ur5, ur5_map):
+    assert_same_map(armkit.reach.build(ur5, threads=1, **SMALL), ur5_map)
+
+
+def test_progress_callback_counts_chunks(ur5):
+    seen = []
+    armkit.reach.build(ur5, resolution=0.2, orientations=8, progress=lambda d, t: seen.append((d, t)))
+    assert seen and seen[-1][0] == seen[-1][1] and [d for d, _ in seen] == sorted(d for d, _ in seen)
+
+
+def test_npz_round_trip(tmp_path, ur5_map):
+    path = ur5_map.save(tmp_path / "map.npz")
+    again = armkit.reach.load(path)
+    assert_same_map(again, ur5_map)
+    assert again.robot_description == "ur5" and again.robot().name == "ur5"
+    with np.load(path) as data:  # plain NumPy reads it
+        np.testing.assert_array_equal(data["capability"], ur5_map.capability)
+
+
+def test_zarr_round_trip(tmp_path, ur5_map):
+    pytest.importorskip("zarr", reason="the zarr extra is not installed")
+    path = ur5_map.save(tmp_path / "map.zarr")
+    assert path.is_dir()
+    assert_same_map(armkit.reach.ReachMap.load(path), ur5_map)
+
+
+def test_out_writes_the_map(tmp_path, ur5, ur5_map):
+    m = armkit.reach.build(ur5, out=tmp_path / "built.npz", **SMALL)
+    assert_same_map(armkit.reach.load(tmp_path / "built.npz"), m)
+
+
+@pytest.mark.parametrize(
+    "options, message",
+    [
+        (dict(resolution=0.0), "resolution"),
+        (dict(resolution=float("nan")), "resolution"),
+        (dict(orientations=0), "approach_directions"),
+        (dict(rolls=0), "rolls"),
+        (dict(builder="rrt"), 'expected "ik" or "fk-samples"'),
+        (dict(builder="fk-samples", samples=0), "samples"),
+        (dict(resolution=1e-4), "exceeds the limit"),
+        (dict(threads=0), "threads"),
+        (dict(progress="yes"), "progress"),
+    ],
+)
+def test_bad_build_arguments_raise_value_error(ur5, options, message):
+    with pytest.raises(ValueError, match=message):
+        armkit.reach.build(ur5, **{**SMALL, **options})
+
+
+def test_bad_files_raise(tmp_path, ur5_map):
+    with pytest.raises(FileNotFoundError):
+        armkit.reach.load(tmp_path / "none.npz")
+    (tmp_path / "junk.npz").write_text("not a zip")
+    with pytest.raises(ValueError, match="not a NumPy .npz file"):
+        armkit.reach.load(tmp_path / "junk.npz")
+    np.savez(tmp_path / "other.npz", x=np.zeros(3))
+    with pytest.raises(ValueError, match="not a reach map"):
+        armkit.reach.load(tmp_path / "other.npz")
+    ur5_map.save(tmp_path / "ur5.npz")
+    with pytest.raises(ValueError, match="a different robot or spec"):
+        armkit.reach.load(tmp_path / "ur5.npz", robot=armkit.Robot.builtin("panda"))
+
+
+# ---------------------------------------------------------------- on Dask
+
+
+@pytest.fixture(scope="module")
+def client():
+    distributed = pytest.importorskip("distributed", reason="dask.distributed is not installed (the dask extra)")
+    with distributed.LocalCluster(
+        n_workers=2, processes=True, threads_per_worker=1, dashboard_address=None
+    ) as cluster, distributed.Client(cluster) as client:
+        yield client
+
+
+def test_dask_build_equals_local_build(client, ur5, ur5_map):
+    m = armkit.reach.build(ur5, client=client, chunk_seconds=0.01, **SMALL)
+    assert_same_map(m, ur5_map)
+
+
+def test_dask_sampling_build_equals_local_build(client, ur5):
+    local = armkit.reach.build(ur5, **SAMPLED)
+    assert 0 < local.coverage < 1
+    assert_same_map(armkit.reach.build(ur5, client=client, chunk_seconds=0.01, **SAMPLED), local)
+
+
+def test_dask_build_survives_a_worker_killed_mid_build(client, ur5):
+    import os
+    import signal
+
+    options = dict(resolution=0.1, orientations=30, progress=False)
+    local = armkit.reach.build(ur5, **options)
+    pids = client.run(os.getpid)
+    victim = next(iter(pids.values()))
+    events = []
+
+    def kill_one(done, total):
+        if done == 1:
+            events.append(total)
+            os.kill(victim, signal.SIGKILL)
+
+    m = armkit.reach.build(ur5, client=client, chunk_seconds=0.05, **{**options, "progress": kill_one})
+    assert events and events[0] >= 8  # killed with chunks still to come
+    assert victim not in client.run(os.getpid).values()
+    assert_same_map(m, local)

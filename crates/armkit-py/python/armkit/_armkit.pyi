@@ -19,7 +19,7 @@ import numpy.typing as npt
 __version__: str
 __all__ = [
     "__version__", "Beam", "ContinuousPath", "IkResult", "IkSolutions", "MpcPlanner", "Robot", "SpaceRobot", "Trajectory",
-    "_view_page", "builtin_robots", "continuous_path", "dynamics", "redundancy", "singularity", "study",
+    "_reach", "_view_page", "builtin_robots", "continuous_path", "dynamics", "redundancy", "singularity", "study",
 ]
 
 _ArrayLike = npt.ArrayLike
@@ -435,3 +435,4 @@ dynamics: ModuleType
 redundancy: ModuleType
 singularity: ModuleType
 study: ModuleType
+_reach: ModuleType
