@@ -1,5 +1,6 @@
 //! The merged map and its queries.
 
+use super::nearest::nearest_sites;
 use super::{ChunkResult, MapLayout};
 use crate::error::{Error, Result};
 use crate::math::Pose;
@@ -7,6 +8,9 @@ use crate::math::Pose;
 /// A reachability map: per (cell, orientation) bin reachable or not and its
 /// IK solution count, per cell the capability index and best
 /// manipulability (see the module docs for frames and units).
+///
+/// Arrays are flat in the layout's C order: per cell `(nx, ny, nz)`, per bin
+/// `(nx, ny, nz, orientations)`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ReachMap {
     layout: MapLayout,
@@ -14,19 +18,156 @@ pub struct ReachMap {
     solutions: Vec<u8>,
     capability: Vec<f64>,
     manipulability: Vec<f64>,
+    /// Per cell, the nearest cell with capability > 0 (`u32::MAX`: none).
+    nearest: Vec<u32>,
     calls: u64,
 }
 
+/// A zeroed vector of `len` entries, or an error naming the size when the
+/// memory cannot be had (never an allocation abort).
+fn zeroed<T: Clone + Default>(what: &str, len: usize) -> Result<Vec<T>> {
+    let mut v = Vec::new();
+    v.try_reserve_exact(len).map_err(|_| {
+        Error::invalid_argument(
+            what,
+            format!(
+                "cannot allocate {len} entries of {} bytes for the map",
+                std::mem::size_of::<T>()
+            ),
+        )
+    })?;
+    v.resize(len, T::default());
+    Ok(v)
+}
+
+fn mismatch(what: &str, expected: usize, got: usize) -> Error {
+    Error::invalid_argument(
+        "chunks",
+        format!("a chunk's `{what}` holds {got} values where its range needs {expected}"),
+    )
+}
+
 impl ReachMap {
+    /// An empty map of `layout` (every bin unreachable), to merge into.
+    fn empty(layout: MapLayout) -> Result<ReachMap> {
+        let (cells, bins) = (layout.cell_count(), layout.bin_count());
+        Ok(ReachMap {
+            reachable: zeroed("reachable", bins)?,
+            solutions: zeroed("solutions", bins)?,
+            capability: Vec::new(),
+            manipulability: zeroed("manipulability", cells)?,
+            nearest: Vec::new(),
+            calls: 0,
+            layout,
+        })
+    }
+
+    /// Adds one chunk's bins (order-independent: chunks of the IK builder
+    /// cover disjoint cells, the sampling builder's hits are a union with
+    /// the best manipulability kept).
+    fn merge(&mut self, chunk: &ChunkResult) -> Result<()> {
+        let orientations = self.layout.orientation_count();
+        let cells = chunk.cells.clone();
+        if cells.end > self.layout.cell_count() || cells.start > cells.end {
+            return Err(Error::invalid_argument(
+                "chunks",
+                format!(
+                    "a chunk's cells {cells:?} are not within the layout's 0..{}",
+                    self.layout.cell_count()
+                ),
+            ));
+        }
+        let bins = cells.len() * orientations;
+        if chunk.reachable.len() != bins {
+            return Err(mismatch("reachable", bins, chunk.reachable.len()));
+        }
+        if chunk.solutions.len() != bins {
+            return Err(mismatch("solutions", bins, chunk.solutions.len()));
+        }
+        if chunk.manipulability.len() != cells.len() {
+            return Err(mismatch(
+                "manipulability",
+                cells.len(),
+                chunk.manipulability.len(),
+            ));
+        }
+        if chunk.hit_manipulability.len() != chunk.hits.len() {
+            return Err(mismatch(
+                "hit_manipulability",
+                chunk.hits.len(),
+                chunk.hit_manipulability.len(),
+            ));
+        }
+        let first = cells.start * orientations;
+        for (i, (&r, &s)) in chunk.reachable.iter().zip(&chunk.solutions).enumerate() {
+            self.reachable[first + i] |= (r != 0) as u8;
+            self.solutions[first + i] = self.solutions[first + i].max(s);
+        }
+        for (i, &m) in chunk.manipulability.iter().enumerate() {
+            let cell = &mut self.manipulability[cells.start + i];
+            *cell = cell.max(m);
+        }
+        for (&bin, &m) in chunk.hits.iter().zip(&chunk.hit_manipulability) {
+            let bin = usize::try_from(bin)
+                .ok()
+                .filter(|&b| b < self.reachable.len())
+                .ok_or_else(|| {
+                    Error::invalid_argument(
+                        "chunks",
+                        format!(
+                            "a hit bin {bin} is beyond the layout's {} bins",
+                            self.reachable.len()
+                        ),
+                    )
+                })?;
+            self.reachable[bin] = 1;
+            let cell = &mut self.manipulability[bin / orientations];
+            *cell = cell.max(m);
+        }
+        self.calls += chunk.calls;
+        Ok(())
+    }
+
+    /// The capability index and the nearest-reachable table, once merged.
+    fn finish(mut self) -> Result<ReachMap> {
+        let orientations = self.layout.orientation_count();
+        let mut capability = zeroed::<f64>("capability", self.layout.cell_count())?;
+        for (c, bins) in capability
+            .iter_mut()
+            .zip(self.reachable.chunks_exact(orientations))
+        {
+            let hit: usize = bins.iter().map(|&b| b as usize).sum();
+            *c = hit as f64 / orientations as f64;
+        }
+        self.nearest = nearest_sites(self.layout.dims(), &capability)?;
+        self.capability = capability;
+        Ok(self)
+    }
+
     /// Merges chunk results (in any order) into a map; bins no chunk covers
-    /// stay unreachable. Errors: a chunk whose arrays do not fit the layout.
+    /// stay unreachable. Errors: a chunk whose arrays do not fit the layout,
+    /// or a map too large for memory (named, never an allocation abort).
     pub fn from_chunks(
         layout: MapLayout,
         chunks: impl IntoIterator<Item = ChunkResult>,
     ) -> Result<ReachMap> {
-        let _ = chunks;
-        let _ = &layout;
-        Err(Error::invalid_argument("chunks", "not merged yet"))
+        let mut map = ReachMap::empty(layout)?;
+        for chunk in chunks {
+            map.merge(&chunk)?;
+        }
+        map.finish()
+    }
+
+    /// Merges results as they arrive (the local build's streaming merge).
+    pub(crate) fn from_results(
+        layout: MapLayout,
+        chunks: impl IntoIterator<Item = Result<ChunkResult>>,
+    ) -> Result<ReachMap> {
+        let mut map = ReachMap::empty(layout)?;
+        for chunk in chunks {
+            map.merge(&chunk?)?;
+        }
+        map.finish()
     }
 
     /// The map's layout.
@@ -39,12 +180,14 @@ impl ReachMap {
         &self.reachable
     }
 
-    /// Per bin: distinct IK solutions within the limits (0 for maps built by sampling).
+    /// Per bin: distinct IK solutions within the limits (0 for maps built
+    /// by sampling; 1 per reachable bin on the automatic solver's route).
     pub fn solutions(&self) -> &[u8] {
         &self.solutions
     }
 
-    /// Per cell: the capability index, the reachable fraction of its orientations, in [0, 1].
+    /// Per cell: the capability index, the reachable fraction of its
+    /// orientations, in [0, 1].
     pub fn capability(&self) -> &[f64] {
         &self.capability
     }
@@ -59,7 +202,49 @@ impl ReachMap {
         self.calls
     }
 
-    /// True when `pose` (world frame, m) falls in a reachable bin.
+    /// Number of cells with capability > 0.
+    pub fn reachable_cells(&self) -> usize {
+        self.capability.iter().filter(|&&c| c > 0.0).count()
+    }
+
+    /// Number of reachable bins.
+    pub fn reachable_bins(&self) -> usize {
+        self.reachable.iter().filter(|&&b| b != 0).count()
+    }
+
+    /// Volume of the cells with capability > 0, m^3.
+    pub fn reachable_volume(&self) -> f64 {
+        self.reachable_cells() as f64 * self.layout.cell_volume()
+    }
+
+    /// The fraction of `reference`'s reachable bins this map also has
+    /// reachable (a sampled map's coverage against an IK map of the same
+    /// layout); 1 when `reference` has none. Errors: different layouts.
+    pub fn coverage_of(&self, reference: &ReachMap) -> Result<f64> {
+        if self.reachable.len() != reference.reachable.len()
+            || self.layout.dims() != reference.layout.dims()
+        {
+            return Err(Error::invalid_argument(
+                "reference",
+                "maps of different layouts cannot be compared bin by bin",
+            ));
+        }
+        let (mut both, mut total) = (0usize, 0usize);
+        for (&a, &b) in self.reachable.iter().zip(&reference.reachable) {
+            total += (b != 0) as usize;
+            both += (a != 0 && b != 0) as usize;
+        }
+        Ok(if total == 0 {
+            1.0
+        } else {
+            both as f64 / total as f64
+        })
+    }
+
+    /// True when `pose` (world frame, m) falls in a reachable bin: its
+    /// position's cell and the orientation nearest its rotation
+    /// ([`MapLayout::orientation_of`]). Allocates nothing.
+    #[inline]
     pub fn query(&self, pose: &Pose) -> bool {
         let p = pose.translation;
         match self.layout.cell_of([p.x, p.y, p.z]) {
@@ -73,16 +258,37 @@ impl ReachMap {
 
     /// The capability index of the cell containing `position` (world frame,
     /// m); 0 outside the box.
+    #[inline]
     pub fn capability_at(&self, position: [f64; 3]) -> f64 {
         self.layout
             .cell_of(position)
             .map_or(0.0, |cell| self.capability[cell])
     }
 
-    /// The reachable cell (capability > 0) whose centre is nearest
-    /// `position` (world frame, m); `None` when no cell is reachable.
+    /// The reachable cell (capability > 0) whose centre is nearest the
+    /// centre of `position`'s cell (world frame, m; a position outside the
+    /// box is clamped into it first); `None` when no cell is reachable or
+    /// the position is not finite. A table lookup (exact Euclidean distance
+    /// transform at merge time).
+    #[inline]
     pub fn nearest_reachable_cell(&self, position: [f64; 3]) -> Option<usize> {
-        let _ = position;
-        None
+        let (origin, dims, r) = (
+            self.layout.origin(),
+            self.layout.dims(),
+            self.layout.resolution(),
+        );
+        let mut cell = 0usize;
+        for axis in 0..3 {
+            let t = ((position[axis] - origin[axis]) / r).floor();
+            if t.is_nan() {
+                return None;
+            }
+            let i = t.clamp(0.0, (dims[axis] - 1) as f64) as usize;
+            cell = cell * dims[axis] + i;
+        }
+        match self.nearest[cell] {
+            u32::MAX => None,
+            n => Some(n as usize),
+        }
     }
 }

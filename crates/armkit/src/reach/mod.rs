@@ -29,8 +29,10 @@ mod build;
 mod chunk;
 mod layout;
 mod map;
+mod nearest;
+mod oracle;
 
-pub use build::{build, chunks};
+pub use build::{build, chunks, LOCAL_CHUNK_WORK};
 pub use chunk::{build_chunk, Chunk, ChunkResult};
 pub use layout::{fibonacci_directions, MapLayout, MAX_BINS};
 pub use map::ReachMap;
@@ -79,10 +81,15 @@ impl MapSpec {
     /// (`N = D R`); `R = round((pi N)^(1/3))`, `D = round(N / R)`, both >= 1.
     /// 200 orientations give 25 directions x 8 rolls.
     pub fn with_orientations(resolution: f64, orientations: usize, builder: Builder) -> MapSpec {
-        let n = orientations as f64;
-        let rolls =
-            ((std::f64::consts::PI * n).cbrt().round() as usize).clamp(1, orientations.max(1));
-        let directions = ((n / rolls as f64).round() as usize).max(1);
+        let n = orientations.max(1);
+        let ideal = (std::f64::consts::PI * n as f64).cbrt().round() as usize;
+        // The nearest roll count within 2 of the ideal that divides N, so
+        // that directions x rolls is N itself where possible.
+        let rolls = (0..=2)
+            .flat_map(|d| [ideal.saturating_sub(d), ideal + d])
+            .find(|&r| r >= 1 && r <= n && n % r == 0)
+            .unwrap_or(ideal.clamp(1, n));
+        let directions = ((n as f64 / rolls as f64).round() as usize).max(1);
         MapSpec {
             resolution,
             approach_directions: if orientations == 0 { 0 } else { directions },

@@ -1,0 +1,165 @@
+//! Reachability maps: the chunked build equals the whole build, the map
+//! agrees with IK at random poses, bad input is an error.
+
+use armkit::ik::{AutoSolver, IkOptions};
+use armkit::math::{Matrix3, Pose, Vector3};
+use armkit::reach::{self, build_chunk, Builder, MapLayout, MapSpec, ReachMap};
+use armkit::Model;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+fn robot(name: &str) -> Model {
+    armkit::robots::by_name(name).unwrap()
+}
+
+/// A rotation drawn uniformly on SO(3): the unit quaternion of a point drawn
+/// uniformly in the 4-ball (by rejection), as a matrix.
+fn random_rotation(rng: &mut ChaCha8Rng) -> Matrix3<f64> {
+    loop {
+        let v: [f64; 4] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
+        let n2: f64 = v.iter().map(|x| x * x).sum();
+        if n2 > 0.01 && n2 <= 1.0 {
+            let n = n2.sqrt();
+            let [w, x, y, z] = v.map(|c| c / n);
+            return Matrix3::new(
+                1.0 - 2.0 * (y * y + z * z),
+                2.0 * (x * y - w * z),
+                2.0 * (x * z + w * y),
+                2.0 * (x * y + w * z),
+                1.0 - 2.0 * (x * x + z * z),
+                2.0 * (y * z - w * x),
+                2.0 * (x * z - w * y),
+                2.0 * (y * z + w * x),
+                1.0 - 2.0 * (x * x + y * y),
+            );
+        }
+    }
+}
+
+/// Ground truth: the automatic IK solver (analytic where the class allows,
+/// numeric with 50 seeded restarts otherwise) at the exact pose.
+fn truth(solver: &mut AutoSolver, start: &[f64], pose: &Pose) -> bool {
+    solver.solve(pose, start).unwrap().report.converged()
+}
+
+/// Random poses in the map's box: (agreement, false positives) as fractions.
+fn accuracy(model: &Model, map: &ReachMap, poses: usize, seed: u64) -> (f64, f64) {
+    let options = IkOptions {
+        max_restarts: 50,
+        time_budget: None,
+        ..IkOptions::default()
+    };
+    let mut solver = AutoSolver::new(model, options).unwrap();
+    let start = model.neutral_configuration();
+    let layout = map.layout();
+    let (origin, dims, r) = (layout.origin(), layout.dims(), layout.resolution());
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let (mut agree, mut false_positive) = (0usize, 0usize);
+    for _ in 0..poses {
+        let p = Vector3::from_fn(|i, _| origin[i] + rng.gen_range(0.0..dims[i] as f64 * r));
+        let pose = Pose {
+            rotation: random_rotation(&mut rng),
+            translation: p,
+        };
+        let (said, is) = (map.query(&pose), truth(&mut solver, &start, &pose));
+        agree += (said == is) as usize;
+        false_positive += (said && !is) as usize;
+    }
+    (
+        agree as f64 / poses as f64,
+        false_positive as f64 / poses as f64,
+    )
+}
+
+fn ik_spec(resolution: f64, orientations: usize) -> MapSpec {
+    MapSpec::with_orientations(resolution, orientations, Builder::InverseKinematics)
+}
+
+#[test]
+fn chunked_build_equals_whole_build() {
+    let model = robot("ur5");
+    let spec = ik_spec(0.2, 12);
+    let layout = MapLayout::new(&model, &spec).unwrap();
+    let whole = ReachMap::from_chunks(
+        layout.clone(),
+        [build_chunk(
+            &model,
+            &layout,
+            &reach::Chunk {
+                cells: 0..layout.cell_count(),
+                samples: 0..0,
+            },
+        )
+        .unwrap()],
+    )
+    .unwrap();
+    let mut parts: Vec<_> = reach::chunks(&layout, &spec, 100)
+        .iter()
+        .map(|c| build_chunk(&model, &layout, c).unwrap())
+        .collect();
+    assert!(parts.len() > 10);
+    parts.reverse();
+    let chunked = ReachMap::from_chunks(layout, parts).unwrap();
+    assert_eq!(whole, chunked);
+    let threaded = reach::build(&model, &spec, 2, &mut |_, _| {}).unwrap();
+    assert_eq!(whole, threaded);
+    assert!(whole.reachable_cells() > 0 && whole.reachable_cells() < whole.layout().cell_count());
+    assert!(whole.capability().iter().all(|c| (0.0..=1.0).contains(c)));
+}
+
+#[test]
+fn sampled_chunks_equal_the_whole_sampling() {
+    let model = robot("panda");
+    let spec = MapSpec::with_orientations(
+        0.2,
+        12,
+        Builder::ForwardSampling {
+            samples: 20_000,
+            seed: 5,
+        },
+    );
+    let layout = MapLayout::new(&model, &spec).unwrap();
+    let one = build_chunk(
+        &model,
+        &layout,
+        &reach::Chunk {
+            cells: 0..0,
+            samples: 0..20_000,
+        },
+    )
+    .unwrap();
+    let whole = ReachMap::from_chunks(layout.clone(), [one]).unwrap();
+    let mut parts: Vec<_> = reach::chunks(&layout, &spec, 3_000)
+        .iter()
+        .map(|c| build_chunk(&model, &layout, c).unwrap())
+        .collect();
+    parts.swap(0, 3);
+    assert_eq!(whole, ReachMap::from_chunks(layout, parts).unwrap());
+    assert_eq!(whole.calls(), 20_000);
+    assert!(whole.reachable_bins() > 100);
+}
+
+#[test]
+fn ur5_map_agrees_with_ik_at_random_poses() {
+    let model = robot("ur5");
+    let map = reach::build(&model, &ik_spec(0.1, 50), 2, &mut |_, _| {}).unwrap();
+    let (agreement, false_positives) = accuracy(&model, &map, 3000, 11);
+    eprintln!("ur5 0.1 m 50: agreement {agreement}, false positives {false_positives}");
+    assert!(agreement > 0.9, "{agreement}");
+}
+
+#[test]
+fn bad_specs_are_errors_naming_the_problem() {
+    let model = robot("ur5");
+    for resolution in [0.0, -0.1, f64::NAN, f64::INFINITY] {
+        let e = MapLayout::new(&model, &ik_spec(resolution, 20)).unwrap_err();
+        assert!(e.to_string().contains("resolution"), "{e}");
+    }
+    let e = MapLayout::new(&model, &ik_spec(0.1, 0)).unwrap_err();
+    assert!(e.to_string().contains("zero orientations"), "{e}");
+    let e = MapLayout::new(&model, &ik_spec(1e-4, 200)).unwrap_err();
+    assert!(
+        e.to_string().contains("cells times 200 orientations"),
+        "{e}"
+    );
+}
