@@ -254,6 +254,18 @@ def test_dask_build_equals_local_build(client, ur5, ur5_map):
     assert_same_map(m, ur5_map)
 
 
+def test_dask_build_into_zarr_equals_local_build(client, ur5, ur5_map, tmp_path):
+    pytest.importorskip("zarr", reason="the zarr extra is not installed")
+    m = armkit.reach.build(ur5, client=client, chunk_seconds=0.01, out=tmp_path / "m.zarr", **SMALL)
+    assert_same_map(m, ur5_map)
+    assert_same_map(armkit.reach.load(tmp_path / "m.zarr"), ur5_map)
+    # Written by the workers, one chunk of x slices per task.
+    import zarr
+
+    chunks = zarr.open_group(str(tmp_path / "m.zarr"), mode="r")["reachable"].chunks
+    assert chunks[1:] == ur5_map.reachable.shape[1:] and chunks[0] < ur5_map.dims[0]
+
+
 def test_dask_sampling_build_equals_local_build(client, ur5):
     local = armkit.reach.build(ur5, **SAMPLED)
     assert 0 < local.coverage < 1

@@ -83,15 +83,20 @@ def build(
     spec = _reach.spec_json(resolution, orientations, rolls, builder, samples, seed)
     report = _progress_function(progress)
     start = time.perf_counter()
-    if client is None:
-        inner = _reach.build(robot, spec, threads, report)
+    to_zarr = out is not None and Path(out).suffix == ".zarr"
+    if client is not None and to_zarr and builder == "ik":
+        reach_map = _build_into_zarr(client, robot, spec, chunk_seconds, report, Path(out))  # type: ignore[arg-type]
+        reach_map.build_seconds = time.perf_counter() - start
     else:
-        inner = _build_on_dask(client, robot, spec, chunk_seconds, report)
-    reach_map = ReachMap(inner, robot.description(), time.perf_counter() - start)
+        if client is None:
+            inner = _reach.build(robot, spec, threads, report)
+        else:
+            inner = _build_on_dask(client, robot, spec, chunk_seconds, report)
+        reach_map = ReachMap(inner, robot.description(), time.perf_counter() - start)
+        if out is not None:
+            reach_map.save(out)
     if progress is True:
         print(f"\r{reach_map.summary()}", file=sys.stderr)
-    if out is not None:
-        reach_map.save(out)
     return reach_map
 
 
@@ -225,6 +230,75 @@ def _build_on_dask(
             report(done, len(futures))
     merged = level[0].result()
     return _reach.from_chunks(layout, [merged])
+
+
+def _zarr_chunk_task(description: str, spec_json: str, slices: Tuple[int, int], path: str) -> int:
+    """A Dask task: the cells of x slices ``slices`` computed and written
+    into their own chunk of the Zarr store at ``path``; returns the calls."""
+    robot, layout = _worker_layout(description, spec_json)
+    nx, ny, nz = layout.dims
+    k = layout.orientation_count
+    slab = ny * nz
+    part = _reach.build_chunk(robot, layout, (slices[0] * slab, slices[1] * slab, 0, 0))
+    n = slices[1] - slices[0]
+    reachable = part["reachable"].reshape(n, ny, nz, k)
+    group = _zarr().open_group(path, mode="r+")
+    region = slice(slices[0], slices[1])
+    group["reachable"][region] = reachable
+    group["solutions"][region] = part["solutions"].reshape(n, ny, nz, k)
+    group["manipulability"][region] = part["manipulability"].reshape(n, ny, nz)
+    # The library's capability index: reachable orientations / orientations.
+    counts = reachable.sum(axis=3, dtype=np.int64)
+    group["capability"][region] = counts.astype(np.float64) / k
+    return int(part["calls"])
+
+
+def _build_into_zarr(
+    client: Any,
+    robot: Robot,
+    spec_json: str,
+    chunk_seconds: float,
+    report: Optional[Callable[[int, int], Any]],
+    path: Path,
+) -> "ReachMap":
+    """The IK build on Dask writing straight into a Zarr store: each task
+    computes whole x slices and writes them into its own chunk of each
+    array (no two tasks write one chunk; the store must be on a file system
+    every worker sees); nothing is merged in memory. Returns the map read
+    back from the store."""
+    from distributed import as_completed
+
+    layout = MapLayout(robot, spec_json)
+    nx, ny, nz = layout.dims
+    k = layout.orientation_count
+    workers = len(client.scheduler_info().get("workers", {})) or 1
+    target = _target_work(robot, layout, chunk_seconds, workers)
+    per = max(1, min(nx, round(target / (ny * nz * k))))
+    description = robot.description()
+    arrays = {
+        "reachable": ((nx, ny, nz, k), np.uint8),
+        "solutions": ((nx, ny, nz, k), np.uint8),
+        "capability": ((nx, ny, nz), np.float64),
+        "manipulability": ((nx, ny, nz), np.float64),
+    }
+    attrs = {
+        "origin": np.asarray(layout.origin).tolist(),
+        "resolution": float(layout.resolution),
+        "spec": layout.spec_json,
+        "robot": description,
+    }
+    _create_zarr(path, arrays, per, attrs)
+    futures = [
+        client.submit(_zarr_chunk_task, description, spec_json, (x, min(x + per, nx)), str(path))
+        for x in range(0, nx, per)
+    ]
+    calls = 0
+    for done, future in enumerate(as_completed(futures), start=1):
+        calls += future.result()
+        if report is not None:
+            report(done, len(futures))
+    _zarr().open_group(str(path), mode="r+").attrs["calls"] = calls
+    return ReachMap.load(path, robot)
 
 
 # ------------------------------------------------------------------ the map
@@ -436,18 +510,26 @@ def _zarr() -> Any:
     return zarr
 
 
-def _save_zarr(path: Path, arrays: Dict[str, Any], dims: Tuple[int, int, int]) -> None:
+def _create_zarr(
+    path: Path, arrays: Dict[str, Tuple[Tuple[int, ...], Any]], slices: int, attrs: Dict[str, Any]
+) -> Any:
+    """A new Zarr store of the given (shape, dtype) arrays, chunked by
+    ``slices`` x slices (a slice of the map reads without the rest)."""
     zarr = _zarr()
     group = zarr.open_group(str(path), mode="w")
-    for name, value in arrays.items():
-        if isinstance(value, np.ndarray) and value.ndim >= 3:
-            # One x slice per chunk: a slice of the map reads without the rest.
-            chunks = (1, *value.shape[1:])
-            create = getattr(group, "create_array", None) or group.create_dataset
-            array = create(name, shape=value.shape, chunks=chunks, dtype=value.dtype)
-            array[...] = value
-        else:
-            group.attrs[name] = value.tolist() if isinstance(value, np.ndarray) else value.item()
+    create = getattr(group, "create_array", None) or group.create_dataset
+    for name, (shape, dtype) in arrays.items():
+        create(name, shape=shape, chunks=(slices, *shape[1:]), dtype=dtype, fill_value=0)
+    group.attrs.update(attrs)
+    return group
+
+
+def _save_zarr(path: Path, arrays: Dict[str, Any], dims: Tuple[int, int, int]) -> None:
+    grids = {k: v for k, v in arrays.items() if isinstance(v, np.ndarray) and v.ndim >= 3}
+    attrs = {k: (v.tolist() if isinstance(v, np.ndarray) else v.item()) for k, v in arrays.items() if k not in grids}
+    group = _create_zarr(path, {k: (v.shape, v.dtype) for k, v in grids.items()}, 1, attrs)
+    for name, value in grids.items():
+        group[name][...] = value
 
 
 def _load_zarr(path: Path) -> Dict[str, Any]:
