@@ -241,11 +241,60 @@ impl ReachMap {
         })
     }
 
-    /// True when `pose` (world frame, m) falls in a reachable bin: its
-    /// position's cell and the orientation nearest its rotation
-    /// ([`MapLayout::orientation_of`]). Allocates nothing.
+    /// True when `pose` (world frame, m) is reachable by the map: at the
+    /// orientation nearest its rotation ([`MapLayout::orientation_of`]),
+    /// the trilinear interpolation of the reachable bits of the 8 cell
+    /// centres around its position (cells beyond the box count as
+    /// unreachable) is at least 1/2. The boundary so found is piecewise
+    /// linear between the centres, not the cells' staircase: its error is
+    /// second order in the resolution where the reachable set's boundary is
+    /// smooth. Allocates nothing.
     #[inline]
     pub fn query(&self, pose: &Pose) -> bool {
+        let p = pose.translation;
+        let (origin, dims, r) = (
+            self.layout.origin(),
+            self.layout.dims(),
+            self.layout.resolution(),
+        );
+        let mut base = [0i64; 3];
+        let mut frac = [0.0f64; 3];
+        for axis in 0..3 {
+            // Coordinates in cell units from cell 0's centre.
+            let t = (p[axis] - origin[axis]) / r - 0.5;
+            if !(t > -1.0 && t < dims[axis] as f64) {
+                return false;
+            }
+            let f = t.floor();
+            base[axis] = f as i64;
+            frac[axis] = t - f;
+        }
+        let orientations = self.layout.orientation_count();
+        let k = self.layout.orientation_of(&pose.rotation);
+        let mut sum = 0.0;
+        for corner in 0..8 {
+            let mut weight = 1.0;
+            let mut cell = 0usize;
+            let mut inside = true;
+            for axis in 0..3 {
+                let up = (corner >> (2 - axis)) & 1 == 1;
+                let i = base[axis] + up as i64;
+                weight *= if up { frac[axis] } else { 1.0 - frac[axis] };
+                inside &= i >= 0 && i < dims[axis] as i64;
+                cell = cell * dims[axis] + i.max(0) as usize;
+            }
+            if inside && self.reachable[cell * orientations + k] != 0 {
+                sum += weight;
+            }
+        }
+        sum >= 0.5
+    }
+
+    /// True when the bin of `pose` (its position's cell, the orientation
+    /// nearest its rotation) is reachable: the map's raw bit, without
+    /// interpolation. Allocates nothing.
+    #[inline]
+    pub fn bin_reachable(&self, pose: &Pose) -> bool {
         let p = pose.translation;
         match self.layout.cell_of([p.x, p.y, p.z]) {
             Some(cell) => {

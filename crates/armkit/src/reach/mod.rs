@@ -38,6 +38,37 @@ pub use layout::{fibonacci_directions, MapLayout, MAX_BINS};
 pub use map::ReachMap;
 
 use crate::error::{check_positive, Error, Result};
+use crate::kinematics::{forward_kinematics, Data};
+use crate::model::Model;
+
+/// True when turning the tool about its own z axis is a motion of the last
+/// joint alone over its whole range: the last joint is rotational with a
+/// range of at least 2 pi, and at the neutral configuration its axis is the
+/// tool's z axis (parallel within 1e-9 rad) through the tool's origin
+/// (within 1e-9 m). Then a map needs one roll per approach direction.
+pub fn roll_free(model: &Model) -> bool {
+    let Some(last) = model.joints().last() else {
+        return false;
+    };
+    if !last.kind.is_rotational()
+        || last.limits.upper - last.limits.lower < std::f64::consts::TAU - 1e-9
+        || model.chain_joints().len() != model.dof()
+    {
+        return false;
+    }
+    let mut data = Data::new(model);
+    let Ok(tool) = forward_kinematics(model, &mut data, &model.neutral_configuration()).copied()
+    else {
+        return false;
+    };
+    let Some(joint) = data.joint_frames().last() else {
+        return false;
+    };
+    let axis = joint.rotation.column(2);
+    let z = tool.rotation.column(2);
+    let offset = tool.translation - joint.translation;
+    axis.cross(&z).norm() <= 1e-9 && offset.cross(&axis).norm() <= 1e-9
+}
 
 /// How a map's bins are decided.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -78,7 +109,8 @@ impl MapSpec {
     /// A spec of `orientations` orientations split into directions and rolls
     /// with about equal angular spacing: the direction lattice's spacing
     /// `sqrt(4 pi / D)` equals the roll step `2 pi / R` when `R^3 = pi N`
-    /// (`N = D R`); `R = round((pi N)^(1/3))`, `D = round(N / R)`, both >= 1.
+    /// (`N = D R`); `R` the divisor of `N` nearest `round((pi N)^(1/3))`
+    /// (within 2, else that value itself), `D = round(N / R)`, both >= 1.
     /// 200 orientations give 25 directions x 8 rolls.
     pub fn with_orientations(resolution: f64, orientations: usize, builder: Builder) -> MapSpec {
         let n = orientations.max(1);
@@ -95,6 +127,30 @@ impl MapSpec {
             approach_directions: if orientations == 0 { 0 } else { directions },
             rolls,
             builder,
+        }
+    }
+
+    /// The spec for `model`: when a roll of the tool about its z axis is a
+    /// motion of the last joint alone ([`roll_free`]), the orientations
+    /// are `orientations` approach directions with one roll each (RM4D's
+    /// reduction, Sundaralingam et al. ICRA 2025: such a roll changes
+    /// neither reachability nor the solutions' count or manipulability);
+    /// otherwise [`MapSpec::with_orientations`].
+    pub fn for_model(
+        model: &Model,
+        resolution: f64,
+        orientations: usize,
+        builder: Builder,
+    ) -> MapSpec {
+        if roll_free(model) {
+            MapSpec {
+                resolution,
+                approach_directions: orientations,
+                rolls: 1,
+                builder,
+            }
+        } else {
+            MapSpec::with_orientations(resolution, orientations, builder)
         }
     }
 

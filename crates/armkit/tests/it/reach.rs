@@ -75,6 +75,46 @@ fn ik_spec(resolution: f64, orientations: usize) -> MapSpec {
     MapSpec::with_orientations(resolution, orientations, Builder::InverseKinematics)
 }
 
+fn model_spec(model: &Model, resolution: f64, orientations: usize) -> MapSpec {
+    MapSpec::for_model(model, resolution, orientations, Builder::InverseKinematics)
+}
+
+/// The full accuracy figure: `ARMKIT_REACH_FULL="robot resolution
+/// orientations poses"` (e.g. `ur5 0.05 200 100000`) runs it and prints it.
+#[test]
+fn full_accuracy_figure_on_request() {
+    let Ok(request) = std::env::var("ARMKIT_REACH_FULL") else {
+        return;
+    };
+    let words: Vec<&str> = request.split_whitespace().collect();
+    let model = robot(words[0]);
+    let spec = model_spec(&model, words[1].parse().unwrap(), words[2].parse().unwrap());
+    let began = std::time::Instant::now();
+    let map = reach::build(&model, &spec, 2, &mut |_, _| {}).unwrap();
+    let seconds = began.elapsed().as_secs_f64();
+    let poses: usize = words[3].parse().unwrap();
+    let (agreement, false_positives) = accuracy(&model, &map, poses, 2026);
+    eprintln!(
+        "{request}: {} x {} orientations, build {seconds:.1} s, {:.0} IK/s, {} reachable cells; agreement {agreement:.5}, false positives {false_positives:.5}",
+        spec.approach_directions,
+        spec.rolls,
+        map.calls() as f64 / seconds,
+        map.reachable_cells()
+    );
+}
+
+#[test]
+fn ur5_orientations_are_directions_only() {
+    let ur5 = robot("ur5");
+    assert!(reach::roll_free(&ur5));
+    let spec = model_spec(&ur5, 0.05, 200);
+    assert_eq!((spec.approach_directions, spec.rolls), (200, 1));
+    let panda = robot("panda");
+    assert!(!reach::roll_free(&panda));
+    let spec = model_spec(&panda, 0.05, 200);
+    assert_eq!((spec.approach_directions, spec.rolls), (25, 8));
+}
+
 #[test]
 fn chunked_build_equals_whole_build() {
     let model = robot("ur5");
@@ -142,10 +182,49 @@ fn sampled_chunks_equal_the_whole_sampling() {
 #[test]
 fn ur5_map_agrees_with_ik_at_random_poses() {
     let model = robot("ur5");
-    let map = reach::build(&model, &ik_spec(0.1, 50), 2, &mut |_, _| {}).unwrap();
+    let map = reach::build(&model, &model_spec(&model, 0.1, 50), 2, &mut |_, _| {}).unwrap();
     let (agreement, false_positives) = accuracy(&model, &map, 3000, 11);
     eprintln!("ur5 0.1 m 50: agreement {agreement}, false positives {false_positives}");
     assert!(agreement > 0.9, "{agreement}");
+}
+
+#[test]
+fn panda_map_agrees_with_ik_at_random_poses() {
+    let model = robot("panda");
+    let began = std::time::Instant::now();
+    let map = reach::build(&model, &model_spec(&model, 0.3, 8), 2, &mut |_, _| {}).unwrap();
+    eprintln!("panda build {:?}, {} calls", began.elapsed(), map.calls());
+    let (agreement, false_positives) = accuracy(&model, &map, 400, 12);
+    eprintln!("panda 0.3 m 8: agreement {agreement}, false positives {false_positives}");
+    assert!(agreement > 0.9, "{agreement}");
+}
+
+#[test]
+fn nearest_reachable_cell_is_the_nearest() {
+    let model = robot("ur5");
+    let map = reach::build(&model, &ik_spec(0.2, 6), 2, &mut |_, _| {}).unwrap();
+    let layout = map.layout();
+    let mut rng = ChaCha8Rng::seed_from_u64(3);
+    let reachable: Vec<usize> = (0..layout.cell_count())
+        .filter(|&c| map.capability()[c] > 0.0)
+        .collect();
+    for _ in 0..200 {
+        let p: [f64; 3] = std::array::from_fn(|i| {
+            layout.origin()[i] + rng.gen_range(0.0..layout.dims()[i] as f64 * layout.resolution())
+        });
+        let found = map.nearest_reachable_cell(p).unwrap();
+        let own = layout.cell_center(layout.cell_of(p).unwrap());
+        let d = |c: usize| {
+            let q = layout.cell_center(c);
+            (0..3).map(|i| (q[i] - own[i]).powi(2)).sum::<f64>()
+        };
+        let best = reachable
+            .iter()
+            .map(|&c| d(c))
+            .fold(f64::INFINITY, f64::min);
+        assert!(map.capability()[found] > 0.0);
+        assert!((d(found) - best).abs() < 1e-9, "{} vs {best}", d(found));
+    }
 }
 
 #[test]
