@@ -25,13 +25,16 @@ use crate::robot::Robot;
 /// A chunk as Python sees it: `(cells_start, cells_end, samples_start, samples_end)`.
 type ChunkTuple = (usize, usize, u64, u64);
 
-/// The spec of a map as canonical JSON. `rolls=None` splits `orientations`
-/// into directions and rolls of about equal angular spacing
-/// (`MapSpec::with_orientations`); else `round(orientations / rolls)`
-/// directions (at least 1) times `rolls`. `builder`: `"ik"` or `"fk-samples"`.
+/// The spec of a map of `robot` as canonical JSON. `rolls=None`: the
+/// library's choice for the robot (`MapSpec::for_model`: one roll per
+/// direction where the last joint rolls the tool freely, else directions
+/// and rolls of about equal angular spacing); else `round(orientations /
+/// rolls)` directions (at least 1) times `rolls`. `builder`: `"ik"` or
+/// `"fk-samples"`.
 #[pyfunction]
-#[pyo3(signature = (resolution, orientations, rolls=None, builder="ik", samples=1_000_000, seed=0))]
+#[pyo3(signature = (robot, resolution, orientations, rolls=None, builder="ik", samples=1_000_000, seed=0))]
 pub fn spec_json(
+    robot: &Robot,
     resolution: f64,
     orientations: usize,
     rolls: Option<usize>,
@@ -51,7 +54,7 @@ pub fn spec_json(
         }
     };
     let spec = match rolls {
-        None => MapSpec::with_orientations(resolution, orientations, builder),
+        None => MapSpec::for_model(&robot.model, resolution, orientations, builder),
         Some(0) => {
             return Err(Error::invalid_argument(
                 "rolls",
@@ -373,10 +376,49 @@ impl Map {
         self.map.calls()
     }
 
-    /// Whether the pose `T` (4, 4) falls in a reachable bin; for `T` of
-    /// shape (N, 4, 4) a bool array of shape (N,).
+    /// Whether the pose `T` (4, 4) is reachable by the map (the trilinear
+    /// interpolation of the 8 surrounding cell centres' bits for the
+    /// orientation nearest its rotation is at least 1/2); for `T` of shape
+    /// (N, 4, 4) a bool array of shape (N,).
     #[allow(non_snake_case)]
     fn query<'py>(&self, py: Python<'py>, T: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
+        self.each_pose(py, T, ReachMap::query)
+    }
+
+    /// Whether the bin of `T` (its position's cell, the orientation nearest
+    /// its rotation) is reachable: the raw bit; (N, 4, 4) gives (N,).
+    #[allow(non_snake_case)]
+    fn bin_reachable<'py>(
+        &self,
+        py: Python<'py>,
+        T: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        self.each_pose(py, T, ReachMap::bin_reachable)
+    }
+
+    /// Capability index of the cell containing `p` (world frame, m); 0 outside the box.
+    fn capability_at(&self, p: &Bound<'_, PyAny>) -> PyResult<f64> {
+        let p = vector_argument(p, "p", 3)?;
+        Ok(self.map.capability_at([p[0], p[1], p[2]]))
+    }
+
+    /// The index of the reachable cell nearest `p` (world frame, m), None
+    /// when no cell is reachable.
+    fn nearest_reachable_cell(&self, p: &Bound<'_, PyAny>) -> PyResult<Option<usize>> {
+        let p = vector_argument(p, "p", 3)?;
+        Ok(self.map.nearest_reachable_cell([p[0], p[1], p[2]]))
+    }
+}
+
+impl Map {
+    /// `answer(map, pose)` for a (4, 4) pose (a bool) or each of (N, 4, 4) (a bool array).
+    #[allow(non_snake_case)]
+    fn each_pose<'py>(
+        &self,
+        py: Python<'py>,
+        T: &Bound<'py, PyAny>,
+        answer: fn(&ReachMap, &armkit::math::Pose) -> bool,
+    ) -> PyResult<Bound<'py, PyAny>> {
         let array = float_array(T, "T")?;
         let shape = array.shape().to_vec();
         let mut values = Vec::with_capacity(array.len());
@@ -396,23 +438,10 @@ impl Map {
         let answers = values
             .chunks_exact(16)
             .enumerate()
-            .map(|(i, m)| read_pose(m, &format!("T[{i}]")).map(|pose| self.map.query(&pose)))
+            .map(|(i, m)| read_pose(m, &format!("T[{i}]")).map(|pose| answer(&self.map, &pose)))
             .collect::<armkit::Result<Vec<bool>>>()
             .or_raise()?;
         Ok(PyArray1::from_vec(py, answers).into_any())
-    }
-
-    /// The capability index of the cell containing `p` (world frame, m); 0 outside the box.
-    fn capability_at(&self, p: &Bound<'_, PyAny>) -> PyResult<f64> {
-        let p = vector_argument(p, "p", 3)?;
-        Ok(self.map.capability_at([p[0], p[1], p[2]]))
-    }
-
-    /// The index of the reachable cell nearest `p` (world frame, m), None
-    /// when no cell is reachable.
-    fn nearest_reachable_cell(&self, p: &Bound<'_, PyAny>) -> PyResult<Option<usize>> {
-        let p = vector_argument(p, "p", 3)?;
-        Ok(self.map.nearest_reachable_cell([p[0], p[1], p[2]]))
     }
 }
 

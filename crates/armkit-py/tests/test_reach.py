@@ -154,6 +154,9 @@ def test_local_map_arrays_agree_with_each_other_and_with_queries(ur5_map):
     cells += [np.unravel_index(i, m.dims) for i in np.flatnonzero(m.capability.reshape(-1) == 0)[::97]]
     Ts = np.array([pose(R[k], m.cell_center(c)) for c in cells for k in range(K)])
     expected = np.array([m.reachable[c][k] for c in cells for k in range(K)])
+    np.testing.assert_array_equal(m.bin_reachable(Ts), expected)
+    assert m.bin_reachable(Ts[0]) == expected[0]
+    # At a cell centre the interpolated query is the bin's bit.
     np.testing.assert_array_equal(m.query(Ts), expected)
     assert m.query(Ts[0]) == expected[0]
     assert m.query(pose(np.eye(3), [50.0, 0, 0])) is False

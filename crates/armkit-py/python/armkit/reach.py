@@ -68,8 +68,10 @@ def build(
 
     ``resolution``: edge of a cubic cell, m. ``orientations``: tool
     orientations per cell, split into near-uniform approach directions times
-    ``rolls`` roll samples (``rolls=None``: about equal angular spacing, 200
-    give 25 x 8). ``builder``: ``"ik"`` (every (cell centre, orientation)
+    ``rolls`` roll samples (``rolls=None``: the library's choice: one roll
+    per direction where the last joint rolls the tool freely, as on the UR5
+    and the Panda (RM4D's reduction), else about equal angular spacing, 200
+    giving 25 x 8). ``builder``: ``"ik"`` (every (cell centre, orientation)
     pose solved: analytic IK where the arm allows, numeric IK with restarts
     otherwise) or ``"fk-samples"`` (``samples`` configurations drawn within
     the joint limits from ``seed``, each pose binned: faster, misses bins no
@@ -80,7 +82,7 @@ def build(
     save the map there (``.npz``, or a Zarr store for a path ending in
     ``.zarr``).
     """
-    spec = _reach.spec_json(resolution, orientations, rolls, builder, samples, seed)
+    spec = _reach.spec_json(robot, resolution, orientations, rolls, builder, samples, seed)
     report = _progress_function(progress)
     start = time.perf_counter()
     to_zarr = out is not None and Path(out).suffix == ".zarr"
@@ -387,10 +389,17 @@ class ReachMap:
         return self.origin + (np.asarray(ijk, dtype=float) + 0.5) * self.resolution
 
     def query(self, T: Any) -> Any:
-        """Whether pose ``T`` (4, 4) falls in a reachable bin (the cell
-        containing its position, the orientation nearest its rotation); for
+        """Whether pose ``T`` (4, 4) is reachable by the map: for the
+        orientation nearest its rotation, the trilinear interpolation of the
+        reachable bits at the 8 cell centres around its position is at least
+        1/2 (a boundary between the centres, not the cells' staircase). For
         ``T`` of shape (N, 4, 4) a bool array (N,). False outside the box."""
         return self._inner.query(T)
+
+    def bin_reachable(self, T: Any) -> Any:
+        """The raw bit of the bin of ``T`` (4, 4): its position's cell, the
+        orientation nearest its rotation; (N, 4, 4) gives a bool array (N,)."""
+        return self._inner.bin_reachable(T)
 
     def capability_at(self, p: Any) -> float:
         """The capability index of the cell containing ``p`` (3,), m; 0 outside the box."""
