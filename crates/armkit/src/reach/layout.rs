@@ -229,17 +229,67 @@ impl MapLayout {
                 best = i;
             }
         }
+        best * self.spec.rolls + self.roll_of(best, rotation)
+    }
+
+    /// The roll sample (0..rolls) nearest the angle of `rotation`'s x axis
+    /// about direction `d`, from the direction's reference x axis.
+    #[inline]
+    fn roll_of(&self, d: usize, rotation: &Matrix3<f64>) -> usize {
         let rolls = self.spec.rolls;
         if rolls == 1 {
-            return best;
+            return 0;
         }
-        let d = Vector3::from(self.directions[best]);
-        let x0 = Vector3::from(self.reference_x[best]);
-        let y0 = d.cross(&x0);
+        let z = Vector3::from(self.directions[d]);
+        let x0 = Vector3::from(self.reference_x[d]);
+        let y0 = z.cross(&x0);
         let x = rotation.column(0);
         let angle = x.dot(&y0).atan2(x.dot(&x0));
         let step = std::f64::consts::TAU / rolls as f64;
         let r = (angle / step).round().rem_euclid(rolls as f64) as usize;
-        best * rolls + r.min(rolls - 1)
+        r.min(rolls - 1)
+    }
+
+    /// The three orientations around `rotation` with interpolation weights
+    /// summing to 1: the three approach directions nearest its z axis, each
+    /// weighted by how much nearer (in cosine) it is than the fourth
+    /// nearest (so a weight falls to 0 as its direction leaves the three),
+    /// each at its nearest roll. Allocates nothing.
+    #[inline]
+    pub fn orientations_around(&self, rotation: &Matrix3<f64>) -> [(usize, f64); 3] {
+        let z = rotation.column(2);
+        // The four largest cosines, largest first.
+        let mut top = [(0usize, f64::NEG_INFINITY); 4];
+        for (i, d) in self.directions.iter().enumerate() {
+            let dot = z[0] * d[0] + z[1] * d[1] + z[2] * d[2];
+            if dot > top[3].1 {
+                let mut j = 3;
+                while j > 0 && dot > top[j - 1].1 {
+                    top[j] = top[j - 1];
+                    j -= 1;
+                }
+                top[j] = (i, dot);
+            }
+        }
+        let floor = if top[3].1.is_finite() { top[3].1 } else { -1.0 };
+        let mut weights = [0.0; 3];
+        for (w, t) in weights.iter_mut().zip(&top) {
+            *w = if t.1.is_finite() {
+                (t.1 - floor).max(0.0)
+            } else {
+                0.0
+            };
+        }
+        let total: f64 = weights.iter().sum();
+        if total <= 0.0 {
+            weights = [1.0, 0.0, 0.0];
+        } else {
+            weights.iter_mut().for_each(|w| *w /= total);
+        }
+        let rolls = self.spec.rolls;
+        std::array::from_fn(|i| {
+            let d = top[i].0.min(self.directions.len() - 1);
+            (d * rolls + self.roll_of(d, rotation), weights[i])
+        })
     }
 }

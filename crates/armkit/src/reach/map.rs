@@ -241,11 +241,11 @@ impl ReachMap {
         })
     }
 
-    /// True when `pose` (world frame, m) is reachable by the map: at the
-    /// orientation nearest its rotation ([`MapLayout::orientation_of`]),
-    /// the trilinear interpolation of the reachable bits of the 8 cell
-    /// centres around its position (cells beyond the box count as
-    /// unreachable) is at least 1/2. The boundary so found is piecewise
+    /// True when `pose` (world frame, m) is reachable by the map: the
+    /// interpolation of the reachable bits over the three orientations
+    /// around its rotation ([`MapLayout::orientations_around`]) and,
+    /// trilinearly, the 8 cell centres around its position (cells beyond
+    /// the box count as unreachable) is at least 1/2. The boundary so found is piecewise
     /// linear between the centres, not the cells' staircase: its error is
     /// second order in the resolution where the reachable set's boundary is
     /// smooth. Allocates nothing.
@@ -270,7 +270,7 @@ impl ReachMap {
             frac[axis] = t - f;
         }
         let orientations = self.layout.orientation_count();
-        let k = self.layout.orientation_of(&pose.rotation);
+        let around = self.layout.orientations_around(&pose.rotation);
         let mut sum = 0.0;
         for corner in 0..8 {
             let mut weight = 1.0;
@@ -283,8 +283,13 @@ impl ReachMap {
                 inside &= i >= 0 && i < dims[axis] as i64;
                 cell = cell * dims[axis] + i.max(0) as usize;
             }
-            if inside && self.reachable[cell * orientations + k] != 0 {
-                sum += weight;
+            if inside {
+                let bins = &self.reachable[cell * orientations..(cell + 1) * orientations];
+                for &(k, w) in &around {
+                    if bins[k] != 0 {
+                        sum += weight * w;
+                    }
+                }
             }
         }
         sum >= 0.5
