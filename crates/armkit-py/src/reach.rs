@@ -153,6 +153,18 @@ impl Layout {
         self.layout.orientation_count()
     }
 
+    /// The unit approach directions (tool z axes, world frame), shape (directions, 3).
+    fn directions<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let directions = self.layout.directions();
+        let out = new_array(py, numpy::ndarray::Dim([directions.len(), 3]), |out| {
+            for (row, d) in out.chunks_exact_mut(3).zip(directions) {
+                row.copy_from_slice(d);
+            }
+            Ok(())
+        })?;
+        Ok(out.into_any())
+    }
+
     /// World-frame centres of every cell, m, shape (cells, 3).
     fn cell_centers<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let n = self.layout.cell_count();
@@ -394,6 +406,13 @@ impl Map {
         T: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, PyAny>> {
         self.each_pose(py, T, ReachMap::bin_reachable)
+    }
+
+    /// The fraction of `reference`'s reachable bins this map also has
+    /// reachable (a sampled map's coverage against an IK map of the same
+    /// layout); 1 when `reference` has none. Errors: different layouts.
+    fn coverage_of(&self, reference: &Map) -> PyResult<f64> {
+        self.map.coverage_of(&reference.map).or_raise()
     }
 
     /// Capability index of the cell containing `p` (world frame, m); 0 outside the box.

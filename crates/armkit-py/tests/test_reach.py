@@ -144,7 +144,8 @@ def test_local_map_arrays_agree_with_each_other_and_with_queries(ur5_map):
     assert (m.reachable.shape, m.capability.shape) == ((nx, ny, nz, K), (nx, ny, nz))
     # Capability: the reachable fraction of each cell's orientations.
     np.testing.assert_allclose(m.capability, m.reachable.mean(axis=3), rtol=0, atol=1e-12)
-    assert 0 < m.coverage < 1 and m.reachable_volume > 0
+    assert m.reachable_bins == np.count_nonzero(m.reachable) and 0 < m.reachable_bins < m.reachable.size
+    assert m.reachable_volume == pytest.approx(m.reachable_cells * 0.2**3) and m.reachable_cells > 0
     # A reachable bin has a solution; an unreachable one none.
     assert np.all((m.solutions > 0) == m.reachable)
     assert np.all((m.manipulability > 0) <= (m.capability > 0))
@@ -156,9 +157,24 @@ def test_local_map_arrays_agree_with_each_other_and_with_queries(ur5_map):
     expected = np.array([m.reachable[c][k] for c in cells for k in range(K)])
     np.testing.assert_array_equal(m.bin_reachable(Ts), expected)
     assert m.bin_reachable(Ts[0]) == expected[0]
-    # At a cell centre the interpolated query is the bin's bit.
-    np.testing.assert_array_equal(m.query(Ts), expected)
-    assert m.query(Ts[0]) == expected[0]
+    # The interpolated query: true inside a block of reachable cells, false
+    # inside a block of unreachable ones (every orientation of the 27 cells
+    # around a centre), whatever it does near the boundary.
+    full = np.ones((3, 3, 3), bool)
+    solid, empty = [], []
+    for c in np.ndindex(*(d - 2 for d in m.dims)):
+        block = m.reachable[c[0] : c[0] + 3, c[1] : c[1] + 3, c[2] : c[2] + 3]
+        centre = tuple(i + 1 for i in c)
+        if np.all(block):
+            solid.append(centre)
+        elif not np.any(block):
+            empty.append(centre)
+    assert solid and empty
+    Ts = np.array([pose(R[k], m.cell_center(c)) for c in solid + empty for k in range(K)])
+    answers = m.query(Ts)
+    assert answers.dtype == bool and answers.shape == (len(Ts),)
+    np.testing.assert_array_equal(answers, np.repeat([True] * len(solid) + [False] * len(empty), K))
+    assert m.query(Ts[0]) is True
     assert m.query(pose(np.eye(3), [50.0, 0, 0])) is False
 
 
@@ -200,6 +216,31 @@ def test_zarr_round_trip(tmp_path, ur5_map):
     path = ur5_map.save(tmp_path / "map.zarr")
     assert path.is_dir()
     assert_same_map(armkit.reach.ReachMap.load(path), ur5_map)
+
+
+def test_coverage_of_a_sampled_map_against_the_ik_map(ur5, ur5_map):
+    sampled = armkit.reach.build(ur5, **SAMPLED)
+    more = armkit.reach.build(ur5, **{**SAMPLED, "samples": 80_000})
+    hit = np.count_nonzero(sampled.reachable & ur5_map.reachable)
+    assert sampled.coverage_of(ur5_map) == pytest.approx(hit / ur5_map.reachable_bins, abs=1e-15)
+    assert 0 < sampled.coverage_of(ur5_map) < more.coverage_of(ur5_map) <= 1
+    assert ur5_map.coverage_of(ur5_map) == 1.0
+    with pytest.raises(ValueError, match="different layouts"):
+        ur5_map.coverage_of(armkit.reach.build(ur5, resolution=0.3, orientations=8, progress=False))
+
+
+def test_load_reads_the_cli_npz(tmp_path, ur5, ur5_map):
+    # `armkit reach --out` writes these arrays (no spec, robot or calls).
+    arrays = ur5_map._arrays()
+    cli = {k: arrays[k] for k in ("reachable", "solutions", "capability", "manipulability", "origin", "resolution",
+                                  "orientations", "directions", "rolls")}
+    np.savez(tmp_path / "cli.npz", **cli)
+    with pytest.raises(ValueError, match="pass robot="):
+        armkit.reach.load(tmp_path / "cli.npz")
+    m = armkit.reach.load(tmp_path / "cli.npz", robot=ur5)
+    for name in ("reachable", "solutions", "capability", "manipulability"):
+        np.testing.assert_array_equal(getattr(m, name), getattr(ur5_map, name))
+    np.testing.assert_array_equal(m.orientations, ur5_map.orientations)
 
 
 def test_out_writes_the_map(tmp_path, ur5, ur5_map):
@@ -271,7 +312,7 @@ def test_dask_build_into_zarr_equals_local_build(client, ur5, ur5_map, tmp_path)
 
 def test_dask_sampling_build_equals_local_build(client, ur5):
     local = armkit.reach.build(ur5, **SAMPLED)
-    assert 0 < local.coverage < 1
+    assert local.calls == SAMPLED["samples"] and 0 < local.reachable_bins
     assert_same_map(armkit.reach.build(ur5, client=client, chunk_seconds=0.01, **SAMPLED), local)
 
 

@@ -371,12 +371,20 @@ class ReachMap:
         return int(self._inner.calls)
 
     @property
-    def coverage(self) -> float:
-        """The reachable fraction of the map's bins (cells times
-        orientations); for the sampling builder, the share of the grid its
-        samples found reachable (compare it with the IK map's to see what
-        the samples missed)."""
-        return float(self.reachable.mean()) if self.reachable.size else 0.0
+    def reachable_cells(self) -> int:
+        """Cells with at least one reachable orientation."""
+        return int(np.count_nonzero(self.capability > 0))
+
+    @property
+    def reachable_bins(self) -> int:
+        """Reachable (cell, orientation) bins."""
+        return int(np.count_nonzero(self.reachable))
+
+    def coverage_of(self, reference: "ReachMap") -> float:
+        """The fraction of ``reference``'s reachable bins this map also has
+        reachable: a sampled map's coverage against the IK map of the same
+        spec (the CLI's ``--coverage``); 1 when ``reference`` has none."""
+        return float(self._inner.coverage_of(reference._inner))
 
     @property
     def reachable_volume(self) -> float:
@@ -423,7 +431,8 @@ class ReachMap:
         text = (
             f"reach map: {nx} x {ny} x {nz} cells at {self.resolution:g} m x "
             f"{self._layout.orientation_count} orientations ({self.builder}), "
-            f"reachable volume {self.reachable_volume:.3f} m^3, coverage {self.coverage:.1%}"
+            f"{self.reachable_cells} reachable cells ({self.reachable_volume:.3f} m^3), "
+            f"{self.reachable_bins} reachable bins"
         )
         if self.build_seconds:
             rate = self.calls / self.build_seconds
@@ -441,6 +450,9 @@ class ReachMap:
             "manipulability": self.manipulability,
             "origin": self.origin,
             "resolution": np.float64(self.resolution),
+            "orientations": self.orientations,
+            "directions": np.asarray(self._layout.directions()),
+            "rolls": np.int64(self.spec["rolls"]),
             "calls": np.uint64(self.calls),
             "spec": np.str_(self._layout.spec_json),
             "robot": np.str_(self.robot_description),
@@ -449,7 +461,9 @@ class ReachMap:
     def save(self, path: Union[str, "Path"]) -> Path:
         """Writes the map as NumPy ``.npz`` (``reachable`` (nx, ny, nz, K)
         uint8, ``solutions``, ``capability``, ``manipulability``, ``origin``,
-        ``resolution``, ``calls``, ``spec`` JSON, ``robot`` description), or
+        ``resolution``, ``orientations`` (K, 3, 3), ``directions`` (D, 3),
+        ``rolls``: the arrays of ``armkit reach --out``; and ``calls``,
+        ``spec`` JSON, ``robot`` description), or
         as a Zarr store (the same arrays, chunked by x slices) when the path
         ends in ``.zarr``. Returns the path."""
         path = Path(path)
@@ -462,12 +476,23 @@ class ReachMap:
 
     @classmethod
     def load(cls, path: Union[str, "Path"], robot: Optional[Robot] = None) -> "ReachMap":
-        """Reads a map :meth:`save` wrote (``.npz`` or ``.zarr``). ``robot``
-        is needed only for a file without the robot's description."""
+        """Reads a map :meth:`save` (``.npz`` or ``.zarr``) or ``armkit reach
+        --out`` wrote. ``robot`` is needed only for a file without the
+        robot's description (the CLI's)."""
         path = Path(path)
         if not path.exists():
             raise FileNotFoundError(f"{path}: no such file or directory")
         arrays = _load_zarr(path) if path.is_dir() or path.suffix == ".zarr" else _load_npz(path)
+        if "spec" not in arrays and {"resolution", "directions", "rolls"} <= set(arrays):
+            # A map of `armkit reach --out`: its grid from the arrays.
+            arrays["spec"] = json.dumps(
+                {
+                    "resolution": float(arrays["resolution"]),
+                    "approach_directions": int(np.shape(arrays["directions"])[0]),
+                    "rolls": int(arrays["rolls"]),
+                    "builder": "inverse_kinematics",
+                }
+            )
         missing = [k for k in ("reachable", "solutions", "manipulability", "spec") if k not in arrays]
         if missing:
             raise ValueError(f"{path}: not a reach map (no {', '.join(missing)})")
