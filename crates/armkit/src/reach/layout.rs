@@ -186,13 +186,13 @@ impl MapLayout {
     pub fn cell_of(&self, position: [f64; 3]) -> Option<usize> {
         let r = self.spec.resolution;
         let mut index = 0usize;
-        for axis in 0..3 {
-            let t = ((position[axis] - self.origin[axis]) / r).floor();
+        for ((&p, &o), &n) in position.iter().zip(&self.origin).zip(&self.dims) {
+            let t = ((p - o) / r).floor();
             // NaN fails both comparisons and is rejected too.
-            if !(t >= 0.0 && t < self.dims[axis] as f64) {
+            if !(t >= 0.0 && t < n as f64) {
                 return None;
             }
-            index = index * self.dims[axis] + t as usize;
+            index = index * n + t as usize;
         }
         Some(index)
     }

@@ -259,15 +259,15 @@ impl ReachMap {
         );
         let mut base = [0i64; 3];
         let mut frac = [0.0f64; 3];
-        for axis in 0..3 {
+        for (axis, (b, fr)) in base.iter_mut().zip(&mut frac).enumerate() {
             // Coordinates in cell units from cell 0's centre.
             let t = (p[axis] - origin[axis]) / r - 0.5;
             if !(t > -1.0 && t < dims[axis] as f64) {
                 return false;
             }
             let f = t.floor();
-            base[axis] = f as i64;
-            frac[axis] = t - f;
+            *b = f as i64;
+            *fr = t - f;
         }
         let orientations = self.layout.orientation_count();
         let around = self.layout.orientations_around(&pose.rotation);
@@ -332,13 +332,13 @@ impl ReachMap {
             self.layout.resolution(),
         );
         let mut cell = 0usize;
-        for axis in 0..3 {
-            let t = ((position[axis] - origin[axis]) / r).floor();
+        for ((&p, &o), &n) in position.iter().zip(&origin).zip(&dims) {
+            let t = ((p - o) / r).floor();
             if t.is_nan() {
                 return None;
             }
-            let i = t.clamp(0.0, (dims[axis] - 1) as f64) as usize;
-            cell = cell * dims[axis] + i;
+            let i = t.clamp(0.0, (n - 1) as f64) as usize;
+            cell = cell * n + i;
         }
         match self.nearest[cell] {
             u32::MAX => None,

@@ -41,10 +41,10 @@ fn transform_line(
         }
     }
     let mut k = 0;
-    for q in 0..f.len() {
+    for (q, (dq, sq)) in d.iter_mut().zip(site_out.iter_mut()).enumerate() {
         if v.is_empty() {
-            d[q] = f64::INFINITY;
-            site_out[q] = u32::MAX;
+            *dq = f64::INFINITY;
+            *sq = u32::MAX;
             continue;
         }
         while k + 1 < v.len() && z[k + 1] < q as f64 {
@@ -52,8 +52,8 @@ fn transform_line(
         }
         let p = v[k];
         let delta = q as f64 - p as f64;
-        d[q] = delta * delta + f[p];
-        site_out[q] = site_in[p];
+        *dq = delta * delta + f[p];
+        *sq = site_in[p];
     }
 }
 
@@ -86,9 +86,9 @@ pub(crate) fn nearest_sites(dims: [usize; 3], weight: &[f64]) -> Result<Vec<u32>
             if (start / stride) % len != 0 {
                 continue;
             }
-            for i in 0..len {
-                f[i] = dist[start + i * stride];
-                s_in[i] = site[start + i * stride];
+            for (i, (fi, si)) in f.iter_mut().zip(s_in.iter_mut()).take(len).enumerate() {
+                *fi = dist[start + i * stride];
+                *si = site[start + i * stride];
             }
             transform_line(
                 &f[..len],
@@ -98,9 +98,9 @@ pub(crate) fn nearest_sites(dims: [usize; 3], weight: &[f64]) -> Result<Vec<u32>
                 &mut v,
                 &mut z,
             );
-            for i in 0..len {
-                dist[start + i * stride] = d[i];
-                site[start + i * stride] = s_out[i];
+            for (i, (&di, &si)) in d.iter().zip(&s_out).take(len).enumerate() {
+                dist[start + i * stride] = di;
+                site[start + i * stride] = si;
             }
         }
     }
