@@ -5,8 +5,10 @@
 #      doctests; about 4 min on a quiet 2-core machine from a fresh clone)
 #   2. the armkit wheel built by pip (pip fetches maturin, the build backend,
 #      from PyPI; the wheel reuses the Rust build of step 1) into a fresh
-#      virtual environment with numpy, pytest and mypy (its stubtest checks
-#      the type stubs), then pytest on crates/armkit-py/tests.
+#      virtual environment with numpy, pytest, mypy (its stubtest checks
+#      the type stubs) and the package's optional dask and zarr extras (the
+#      reachability map's Dask and Zarr tests), then pytest on
+#      crates/armkit-py/tests.
 #
 # Each stage prints a line when it starts and its time when it ends; where the
 # output is not a terminal (CI, a pipe), a line every 30 s says the stage is
@@ -27,8 +29,8 @@ VENV="${ARMKIT_PY_VENV:-target/py-venv}"
 WHEELS=target/py-wheels
 PIP=(-m pip --disable-pip-version-check)
 rm -rf "$VENV" "$WHEELS"
-stage "Python: a virtual environment with numpy, pytest and mypy ($VENV)" \
-    bash -c "'$PYTHON' -m venv '$VENV' && '$VENV/bin/python' ${PIP[*]} install -q numpy pytest mypy"
+stage "Python: a virtual environment with numpy, pytest, mypy, dask and zarr ($VENV)" \
+    bash -c "'$PYTHON' -m venv '$VENV' && '$VENV/bin/python' ${PIP[*]} install -q numpy pytest mypy 'dask[distributed]' zarr"
 # Verbose, so that maturin's cargo build shows as it goes.
 stage "Python: the armkit wheel (pip wheel: maturin, then cargo build --release)" \
     "$VENV/bin/python" "${PIP[@]}" wheel -v --no-deps -w "$WHEELS" crates/armkit-py

@@ -46,6 +46,8 @@ enum Command {
     Mpc(commands::mpc::MpcArgs),
     /// Singular values, singularity kind (wrist, elbow, shoulder) and manipulability ellipsoids at one configuration.
     Manipulability(commands::manipulability::ManipulabilityArgs),
+    /// Reachability and capability map: position cells x tool orientations, by IK or FK sampling; .npz and SVG.
+    Reach(commands::reach::ReachArgs),
     /// Singularity avoidance along a straight line (seed 004): plain, avoidance, DLS, SRI; tables, CSV and SVG.
     Singularity(commands::singularity::SingularityArgs),
     /// The robot in 3-D (at one configuration or along a trajectory CSV), one offline HTML file.
@@ -69,6 +71,7 @@ fn run(command: &Command) -> CliResult<Outcome> {
         Command::Traj(args) => commands::traj::run(args),
         Command::Mpc(args) => commands::mpc::run(args),
         Command::Manipulability(args) => commands::manipulability::run(args),
+        Command::Reach(args) => commands::reach::run(args),
         Command::Singularity(args) => commands::singularity::run(args),
         Command::View(args) => commands::view::run(args),
     }

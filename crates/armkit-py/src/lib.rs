@@ -12,11 +12,13 @@
 mod analytic;
 mod arrays;
 mod beam;
+mod description;
 mod dynamics;
 mod errors;
 mod ik;
 mod mpc;
 mod parallel;
+mod reach;
 mod redundancy;
 mod robot;
 mod singularity;
@@ -76,5 +78,6 @@ fn _armkit(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<mpc::MpcPlanner>()?;
     m.add_class::<beam::Beam>()?;
     m.add_class::<space::SpaceRobot>()?;
+    reach::add_module(m)?;
     Ok(())
 }

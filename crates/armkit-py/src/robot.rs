@@ -20,11 +20,13 @@ use crate::arrays::{
     copy_values, float_array, new_array, pose_argument, read_flat_sequence, read_pose, shape_error,
     vector, write_jacobian, write_pose, RowMajor,
 };
+use crate::description::Source;
 use crate::errors::{load_error, row_error, OrRaise};
 use crate::ik::{IkArguments, IkEngine, IkResult};
 use crate::parallel::{
     for_each_chunk, for_each_row, thread_count, KernelRows, RowError, RowsMut, KERNEL_BLOCK_ROWS,
 };
+use armkit::error::read_source;
 use armkit::ik::IkStatus;
 use numpy::{PyArray2, PyArray3};
 use pyo3::exceptions::PyValueError;
@@ -51,6 +53,8 @@ pub struct Robot {
     dynamics: Mutex<Option<DynamicsData>>,
     /// The URDF the model came from, for the 3-D view's meshes.
     pub(crate) urdf: Option<armkit_view::UrdfSource>,
+    /// The text the model was built from (`description()`).
+    source: Source,
 }
 
 /// Workspace of the one-at-a-time calls: the kinematics data and the joint
@@ -82,7 +86,7 @@ pub(crate) fn jacobian_frame(name: &str) -> armkit::Result<JacobianFrame> {
 }
 
 impl Robot {
-    pub(crate) fn new(model: Model) -> Self {
+    pub(crate) fn new(model: Model, source: Source) -> Self {
         let scratch = Mutex::new(Scratch::new(&model));
         Robot {
             model,
@@ -90,6 +94,7 @@ impl Robot {
             ik_engine: Mutex::new(None),
             dynamics: Mutex::new(None),
             urdf: None,
+            source,
         }
     }
 
@@ -205,7 +210,8 @@ impl Robot {
     /// A built-in robot by name (`armkit.builtin_robots()` lists them).
     #[staticmethod]
     fn builtin(name: &str) -> PyResult<Self> {
-        Ok(Robot::new(armkit::robots::by_name(name).or_raise()?))
+        let model = armkit::robots::by_name(name).or_raise()?;
+        Ok(Robot::new(model, Source::Builtin(name.to_string())))
     }
 
     /// The serial chain from link `base` to link `tip` of a URDF file
@@ -214,14 +220,20 @@ impl Robot {
     #[pyo3(signature = (path, base=None, tip=None))]
     fn from_urdf(path: PathBuf, base: Option<String>, tip: Option<String>) -> PyResult<Self> {
         let selection = armkit::urdf::ChainSelection { base, tip };
-        let model = armkit::urdf::load(&path, &selection).map_err(|e| load_error(&path, e))?;
+        let (text, source_name) = read_source(&path).map_err(|e| load_error(&path, e))?;
+        let model = armkit::urdf::parse_str(&text, &source_name, &selection)
+            .map_err(|e| load_error(&path, e))?;
+        let source = Source::Urdf {
+            text,
+            selection: selection.clone(),
+        };
         Ok(Robot {
             urdf: Some(armkit_view::UrdfSource {
                 path,
                 selection,
                 package_paths: Vec::new(),
             }),
-            ..Robot::new(model)
+            ..Robot::new(model, source)
         })
     }
 
@@ -240,9 +252,34 @@ impl Robot {
     /// A DH description file (TOML or JSON, as the CLI's `--robot-file`).
     #[staticmethod]
     fn from_file(path: PathBuf) -> PyResult<Self> {
-        armkit::description::load(&path)
-            .map(Robot::new)
+        let (text, source_name) = read_source(&path).map_err(|e| load_error(&path, e))?;
+        let format = armkit::description::Format::detect(&path, &text);
+        armkit::description::parse_str(&text, format, &source_name)
+            .map(|model| Robot::new(model, Source::Dh(text)))
             .map_err(|e| load_error(&path, e))
+    }
+
+    /// The robot as text: a built-in robot's name, the URDF text (led by a
+    /// comment naming the chain when it is not the default one) or the DH
+    /// description; `Robot.from_description` reads it back. This is how a
+    /// robot crosses processes (pickle, Dask workers).
+    fn description(&self) -> String {
+        self.source.text()
+    }
+
+    /// The robot a description names (`description()`): a built-in robot's
+    /// name, URDF text (starting with `<`) or a DH description in JSON
+    /// (starting with `{`) or TOML.
+    #[staticmethod]
+    fn from_description(text: &str) -> PyResult<Self> {
+        let (model, source) = Source::parse(text, "<description>").or_raise()?;
+        Ok(Robot::new(model, source))
+    }
+
+    /// Pickling: the robot is rebuilt from its description.
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, (String,))> {
+        let rebuild = slf.get_type().getattr("from_description")?;
+        Ok((rebuild, (slf.get().source.text(),)))
     }
 
     /// Degrees of freedom (moving joints).

@@ -41,6 +41,7 @@ pub mod linalg;
 pub mod math;
 pub mod model;
 pub mod mpc;
+pub mod reach;
 pub mod redundancy;
 pub mod robots;
 pub mod seeds;

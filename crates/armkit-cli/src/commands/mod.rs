@@ -7,6 +7,7 @@ pub mod ik;
 pub mod info;
 pub mod manipulability;
 pub mod mpc;
+pub mod reach;
 pub mod redundancy;
 pub mod robots;
 pub mod run;

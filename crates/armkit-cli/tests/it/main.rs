@@ -15,6 +15,7 @@ mod manipulability;
 mod mpc;
 mod numbers;
 mod plot;
+mod reach;
 mod readme;
 mod redundancy;
 mod report;

@@ -40,7 +40,7 @@ from ._armkit import (
     study,
 )
 
-from . import view
+from . import reach, view
 
 # The extension's submodules, importable as `import armkit.redundancy`.
 for _module in (dynamics, redundancy, singularity, study):
@@ -60,6 +60,7 @@ __all__ = [
     "builtin_robots",
     "continuous_path",
     "dynamics",
+    "reach",
     "view",
     "redundancy",
     "singularity",

@@ -19,7 +19,7 @@ import numpy.typing as npt
 __version__: str
 __all__ = [
     "__version__", "Beam", "ContinuousPath", "IkResult", "IkSolutions", "MpcPlanner", "Robot", "SpaceRobot", "Trajectory",
-    "_view_page", "builtin_robots", "continuous_path", "dynamics", "redundancy", "singularity", "study",
+    "_reach", "_view_page", "builtin_robots", "continuous_path", "dynamics", "redundancy", "singularity", "study",
 ]
 
 _ArrayLike = npt.ArrayLike
@@ -115,6 +115,18 @@ class Robot:
     def from_file(path: _StrPath) -> Robot:
         """A DH description file, TOML or JSON (the format of the CLI's
         ``--robot-file``; a reference JSON loads through its ``dh`` block)."""
+    def description(self) -> str:
+        """The robot as text: a built-in robot's name, the URDF text (led by
+        ``<!-- armkit chain base="..." tip="..." -->`` when the chain is not
+        the default one) or the DH description. ``Robot.from_description``
+        reads it back; pickling and Dask workers use it."""
+    @staticmethod
+    def from_description(text: str) -> Robot:
+        """The robot a description names: a built-in robot's name, URDF text
+        (starting with ``<``) or a DH description in JSON (starting with
+        ``{``) or TOML."""
+    def __reduce__(self) -> Tuple[Any, Tuple[str]]:
+        """Pickling: rebuilt by ``Robot.from_description(description())``."""
     @property
     def dof(self) -> int:
         """Degrees of freedom (moving joints)."""
@@ -423,3 +435,4 @@ dynamics: ModuleType
 redundancy: ModuleType
 singularity: ModuleType
 study: ModuleType
+_reach: ModuleType

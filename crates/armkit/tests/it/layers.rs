@@ -32,6 +32,7 @@ const LAYERS: &[&str] = &[
     "redundancy",
     "space",
     "singularity",
+    "reach",
     "robots",
     "mpc",
     "study",

@@ -25,6 +25,7 @@ mod mpc_priority;
 mod mpc_qp;
 mod mpc_random;
 mod no_allocation;
+mod reach;
 mod redundancy;
 mod reference_dh;
 mod seed000_claims;

@@ -1,0 +1,236 @@
+//! `armkit reach`: a reachability and capability map of one robot, built on
+//! every core, summarized, and written as NumPy `.npz` with an SVG of the
+//! capability index's slices.
+//!
+//! Positions in the world frame, metres (see `armkit::reach`).
+
+mod npz;
+mod slices;
+
+use std::time::Instant;
+
+use armkit::reach::{self, Builder, MapSpec, ReachMap};
+use clap::{Args, ValueEnum};
+use indicatif::{ProgressBar, ProgressStyle};
+
+use crate::common::{print_json, CliError, CliResult, Outcome, RobotArgs};
+use npz::Array;
+
+/// Which builder decides the bins.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum BuilderArg {
+    /// Inverse kinematics at every (cell centre, orientation): exact at the centres.
+    Ik,
+    /// Forward kinematics of uniform random configurations, binned (RM4D's way).
+    FkSamples,
+}
+
+/// Arguments of `armkit reach`.
+#[derive(Args, Debug)]
+pub struct ReachArgs {
+    #[command(flatten)]
+    pub robot: RobotArgs,
+    /// Edge of a cubic position cell, m.
+    #[arg(long, default_value_t = 0.05)]
+    pub resolution: f64,
+    /// Tool orientations per cell (approach directions x rolls; directions
+    /// only when the last joint turns the tool fully about its z axis).
+    #[arg(long, default_value_t = 200)]
+    pub orientations: usize,
+    /// How the bins are decided.
+    #[arg(long, value_enum, default_value_t = BuilderArg::Ik)]
+    pub builder: BuilderArg,
+    /// Configurations drawn by the fk-samples builder.
+    #[arg(long, default_value_t = 1_000_000)]
+    pub samples: u64,
+    /// Seed of the fk-samples builder's generator.
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// With fk-samples: also build the IK map and report the samples'
+    /// coverage of its reachable bins.
+    #[arg(long)]
+    pub coverage: bool,
+    /// Worker threads (default: every core).
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Write the map as NumPy .npz.
+    #[arg(long, value_name = "PATH")]
+    pub out: Option<std::path::PathBuf>,
+    /// Write the capability index's slices through the reach centre as SVG.
+    #[arg(long, value_name = "PATH")]
+    pub svg: Option<std::path::PathBuf>,
+    /// Print the summary as JSON.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// A built map with its wall-clock time, s.
+fn timed_build(
+    model: &armkit::Model,
+    spec: &MapSpec,
+    threads: usize,
+    show: bool,
+) -> CliResult<(ReachMap, f64)> {
+    let bar = if show {
+        ProgressBar::new(0)
+    } else {
+        ProgressBar::hidden()
+    };
+    bar.set_style(
+        ProgressStyle::with_template(
+            "{prefix} [{bar:40}] {pos}/{len} chunks {elapsed_precise} eta {eta}",
+        )
+        .map_err(|e| CliError(format!("progress bar: {e}")))?
+        .progress_chars("=> "),
+    );
+    bar.set_prefix(format!("{} reach", model.name()));
+    let began = Instant::now();
+    let map = reach::build(model, spec, threads, &mut |done, total| {
+        bar.set_length(total as u64);
+        bar.set_position(done as u64);
+    })?;
+    bar.finish_and_clear();
+    Ok((map, began.elapsed().as_secs_f64()))
+}
+
+/// Runs `armkit reach`.
+pub fn run(args: &ReachArgs) -> CliResult<Outcome> {
+    let model = args.robot.load()?;
+    let builder = match args.builder {
+        BuilderArg::Ik => Builder::InverseKinematics,
+        BuilderArg::FkSamples => Builder::ForwardSampling {
+            samples: args.samples,
+            seed: args.seed,
+        },
+    };
+    if args.threads == Some(0) {
+        return Err(CliError("--threads must be at least 1".into()));
+    }
+    let threads = args
+        .threads
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    let spec = MapSpec::for_model(&model, args.resolution, args.orientations, builder);
+    let (map, seconds) = timed_build(&model, &spec, threads, !args.json)?;
+    let coverage = if args.coverage && args.builder == BuilderArg::FkSamples {
+        let ik_spec = MapSpec {
+            builder: Builder::InverseKinematics,
+            ..spec.clone()
+        };
+        let (ik_map, _) = timed_build(&model, &ik_spec, threads, !args.json)?;
+        Some(map.coverage_of(&ik_map)?)
+    } else {
+        None
+    };
+    if let Some(path) = &args.out {
+        std::fs::write(path, npz::npz(&arrays(&map))?)
+            .map_err(|e| CliError(format!("cannot write {}: {e}", path.display())))?;
+    }
+    if let Some(path) = &args.svg {
+        std::fs::write(path, slices::capability_svg(&map, model.name())?)
+            .map_err(|e| CliError(format!("cannot write {}: {e}", path.display())))?;
+    }
+    let layout = map.layout();
+    let [nx, ny, nz] = layout.dims();
+    let per_second = map.calls() as f64 / seconds.max(1e-9);
+    let calls_name = match args.builder {
+        BuilderArg::Ik => "ik_calls",
+        BuilderArg::FkSamples => "fk_samples",
+    };
+    if args.json {
+        print_json(&serde_json::json!({
+            "robot": model.name(),
+            "builder": spec.builder,
+            "resolution": spec.resolution,
+            "dims": [nx, ny, nz],
+            "cells": layout.cell_count(),
+            "approach_directions": spec.approach_directions,
+            "rolls": spec.rolls,
+            "orientations": layout.orientation_count(),
+            "reachable_cells": map.reachable_cells(),
+            "reachable_bins": map.reachable_bins(),
+            "reachable_volume": map.reachable_volume(),
+            "mean_capability": mean_capability(&map),
+            "build_seconds": seconds,
+            calls_name: map.calls(),
+            "calls_per_second": per_second,
+            "threads": threads,
+            "coverage": coverage,
+        }))?;
+    } else {
+        println!(
+            "{}: {nx} x {ny} x {nz} cells of {} m, {} orientations ({} directions x {} rolls), builder {}",
+            model.name(),
+            spec.resolution,
+            layout.orientation_count(),
+            spec.approach_directions,
+            spec.rolls,
+            match args.builder {
+                BuilderArg::Ik => "ik",
+                BuilderArg::FkSamples => "fk-samples",
+            }
+        );
+        println!(
+            "reachable: {} cells, {:.4} m^3, {} bins; mean capability of reachable cells {:.4}",
+            map.reachable_cells(),
+            map.reachable_volume(),
+            map.reachable_bins(),
+            mean_capability(&map)
+        );
+        println!(
+            "build: {seconds:.2} s on {threads} threads, {} {} ({per_second:.0} per second)",
+            map.calls(),
+            calls_name.replace('_', " ")
+        );
+        if let Some(c) = coverage {
+            println!("coverage of the IK map's reachable bins: {:.4}", c);
+        }
+    }
+    Ok(Outcome::Success)
+}
+
+/// Mean capability index over the reachable cells (0 if none).
+fn mean_capability(map: &ReachMap) -> f64 {
+    let reachable: Vec<f64> = map
+        .capability()
+        .iter()
+        .copied()
+        .filter(|&c| c > 0.0)
+        .collect();
+    if reachable.is_empty() {
+        0.0
+    } else {
+        reachable.iter().sum::<f64>() / reachable.len() as f64
+    }
+}
+
+/// The map's arrays for the `.npz`: per bin `(nx, ny, nz, orientations)`,
+/// per cell `(nx, ny, nz)`, and the layout (origin of the grid's lower
+/// corner, m; resolution, m; orientations as rotation matrices).
+fn arrays(map: &ReachMap) -> Vec<Array> {
+    let layout = map.layout();
+    let [nx, ny, nz] = layout.dims();
+    let o = layout.orientation_count();
+    let rotations: Vec<f64> = (0..o)
+        .flat_map(|k| {
+            let m = layout.orientation(k).into_inner();
+            // Row-major 3 x 3 for NumPy.
+            (0..9).map(move |i| m[(i / 3, i % 3)])
+        })
+        .collect();
+    let directions: Vec<f64> = layout.directions().iter().flatten().copied().collect();
+    vec![
+        Array::u8("reachable", vec![nx, ny, nz, o], map.reachable()),
+        Array::u8("solutions", vec![nx, ny, nz, o], map.solutions()),
+        Array::f64("capability", vec![nx, ny, nz], map.capability()),
+        Array::f64("manipulability", vec![nx, ny, nz], map.manipulability()),
+        Array::f64("origin", vec![3], &layout.origin()),
+        Array::f64("resolution", vec![], &[layout.resolution()]),
+        Array::f64("orientations", vec![o, 3, 3], &rotations),
+        Array::f64(
+            "directions",
+            vec![layout.directions().len(), 3],
+            &directions,
+        ),
+        Array::i64("rolls", vec![], &[layout.spec().rolls as i64]),
+    ]
+}

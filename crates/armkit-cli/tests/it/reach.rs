@@ -1,0 +1,146 @@
+//! `armkit reach`: the summary, the .npz (a zip of .npy arrays, checked
+//! byte by byte against the format), the SVG, and bad input.
+
+use crate::common::*;
+
+/// The entries of a stored zip: (name, data), read from the local headers
+/// and checked against the central directory's count.
+fn zip_entries(bytes: &[u8]) -> Vec<(String, Vec<u8>)> {
+    let u16_at = |i: usize| u16::from_le_bytes([bytes[i], bytes[i + 1]]) as usize;
+    let u32_at = |i: usize| u32::from_le_bytes(bytes[i..i + 4].try_into().unwrap()) as usize;
+    let mut entries = Vec::new();
+    let mut at = 0;
+    while u32_at(at) == 0x0403_4b50 {
+        assert_eq!(u16_at(at + 8), 0, "stored, not compressed");
+        let size = u32_at(at + 18);
+        assert_eq!(size, u32_at(at + 22));
+        let name_len = u16_at(at + 26);
+        let name = String::from_utf8(bytes[at + 30..at + 30 + name_len].to_vec()).unwrap();
+        let start = at + 30 + name_len + u16_at(at + 28);
+        entries.push((name, bytes[start..start + size].to_vec()));
+        at = start + size;
+    }
+    let end = bytes.len() - 22;
+    assert_eq!(u32_at(end), 0x0605_4b50);
+    assert_eq!(u16_at(end + 10), entries.len());
+    assert_eq!(
+        u32_at(end + 16),
+        at,
+        "the central directory follows the files"
+    );
+    entries
+}
+
+/// A `.npy` file's header text and data.
+fn npy(data: &[u8]) -> (String, Vec<u8>) {
+    assert_eq!(&data[..8], b"\x93NUMPY\x01\x00");
+    let len = u16::from_le_bytes([data[8], data[9]]) as usize;
+    assert_eq!((10 + len) % 64, 0, "header padded to 64 bytes");
+    let header = String::from_utf8(data[10..10 + len].to_vec()).unwrap();
+    (header, data[10 + len..].to_vec())
+}
+
+#[test]
+fn a_coarse_ur5_map_is_summarized_and_written_as_npz_and_svg() {
+    let dir = std::env::temp_dir().join(format!("armkit-reach-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("map.npz");
+    let svg = dir.join("map.svg");
+    let run = armkit(&[
+        "reach",
+        "--robot",
+        "ur5",
+        "--resolution",
+        "0.25",
+        "--orientations",
+        "20",
+        "--out",
+        out.to_str().unwrap(),
+        "--svg",
+        svg.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(run.status.success(), "{}", stderr(&run));
+    let v = json(&run);
+    let dims: Vec<usize> = serde_json::from_value(v["dims"].clone()).unwrap();
+    let cells = dims.iter().product::<usize>();
+    assert_eq!(v["cells"], cells);
+    assert_eq!(v["orientations"], 20);
+    let reachable = v["reachable_cells"].as_u64().unwrap() as usize;
+    assert!(reachable > 0 && reachable < cells, "{v}");
+    let volume = v["reachable_volume"].as_f64().unwrap();
+    assert!((volume - reachable as f64 * 0.25f64.powi(3)).abs() < 1e-9);
+    assert!(v["ik_calls"].as_u64().unwrap() > 0);
+
+    let entries = zip_entries(&std::fs::read(&out).unwrap());
+    let names: Vec<&str> = entries.iter().map(|e| e.0.as_str()).collect();
+    for name in [
+        "reachable.npy",
+        "capability.npy",
+        "origin.npy",
+        "orientations.npy",
+    ] {
+        assert!(names.contains(&name), "{names:?}");
+    }
+    let (header, data) = npy(&entries.iter().find(|e| e.0 == "reachable.npy").unwrap().1);
+    let shape = format!("({}, {}, {}, 20)", dims[0], dims[1], dims[2]);
+    assert!(
+        header.contains("'descr': '|u1'") && header.contains(&shape),
+        "{header}"
+    );
+    assert_eq!(data.len(), cells * 20);
+    let bins = data.iter().filter(|&&b| b == 1).count();
+    assert_eq!(bins as u64, v["reachable_bins"].as_u64().unwrap());
+    let (header, data) = npy(&entries.iter().find(|e| e.0 == "capability.npy").unwrap().1);
+    assert!(header.contains("'descr': '<f8'"), "{header}");
+    let capability: Vec<f64> = data
+        .chunks_exact(8)
+        .map(|c| f64::from_le_bytes(c.try_into().unwrap()))
+        .collect();
+    assert_eq!(capability.iter().filter(|&&c| c > 0.0).count(), reachable);
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert!(text.starts_with("<svg") && text.contains("capability index"));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn forward_sampling_reports_its_coverage_of_the_ik_map() {
+    let run = armkit(&[
+        "reach",
+        "--robot",
+        "ur5",
+        "--resolution",
+        "0.3",
+        "--orientations",
+        "10",
+        "--builder",
+        "fk-samples",
+        "--samples",
+        "20000",
+        "--coverage",
+        "--json",
+    ]);
+    assert!(run.status.success(), "{}", stderr(&run));
+    let v = json(&run);
+    assert_eq!(v["fk_samples"], 20000);
+    let coverage = v["coverage"].as_f64().unwrap();
+    assert!(coverage > 0.2 && coverage <= 1.0, "{v}");
+}
+
+#[test]
+fn bad_resolutions_and_orientations_are_named() {
+    for (flag, value, expect) in [
+        ("--resolution", "0", "resolution"),
+        ("--resolution", "nan", "resolution"),
+        ("--orientations", "0", "zero orientations"),
+        ("--resolution", "0.0001", "cells times 200 orientations"),
+    ] {
+        let run = armkit(&["reach", "--robot", "ur5", flag, value]);
+        assert!(!run.status.success());
+        assert!(
+            stderr(&run).contains(expect),
+            "{flag} {value}: {}",
+            stderr(&run)
+        );
+    }
+}

@@ -1,0 +1,186 @@
+//! Reachability and capability maps: which tool poses an arm reaches, over a
+//! position grid times a set of tool orientations.
+//!
+//! * [`MapLayout`]: cubic position cells (edge [`MapSpec::resolution`], m)
+//!   over the box of the arm's reach bound ([`crate::ik::ReachBound`]),
+//!   times [`MapSpec::approach_directions`] near-uniform approach directions
+//!   of the tool z axis (a Fibonacci lattice) times [`MapSpec::rolls`] roll
+//!   samples about each.
+//! * [`build_chunk`]: one deterministic piece of the map. By
+//!   [`Builder::InverseKinematics`] each (cell centre, orientation) pose is
+//!   solved: analytic IK where the arm's class allows (every solution within
+//!   the joint limits, counted), numeric IK with seeded restarts otherwise;
+//!   per cell the best manipulability over the solutions found. By
+//!   [`Builder::ForwardSampling`] (RM4D's way) configurations are drawn
+//!   uniformly within the limits from a seeded RNG and each pose is binned.
+//! * [`ReachMap`]: the merged map with the capability index per cell (the
+//!   reachable fraction of the cell's orientations, after Zacharias et al.,
+//!   "Capturing robot workspace structure", IROS 2007) and constant-time
+//!   queries.
+//! * [`build`]: the whole map on local threads; [`chunks`] partitions it for
+//!   a distributed build whose merged result is the same.
+//!
+//! Frames and units: positions in the world frame (the frame of the model's
+//! base transform), metres; tool orientations as rotation matrices in the
+//! world frame; manipulability is Yoshikawa's `sqrt(det(J J'))` of the
+//! world-frame geometric Jacobian (units mix m and rad).
+
+mod build;
+mod chunk;
+mod layout;
+mod map;
+mod nearest;
+mod oracle;
+
+pub use build::{build, chunks, LOCAL_CHUNK_WORK};
+pub use chunk::{build_chunk, Chunk, ChunkResult};
+pub use layout::{fibonacci_directions, MapLayout, MAX_BINS};
+pub use map::ReachMap;
+
+use crate::error::{check_positive, Error, Result};
+use crate::kinematics::{forward_kinematics, Data};
+use crate::model::Model;
+
+/// True when turning the tool about its own z axis is a motion of the last
+/// joint alone over its whole range: the last joint is rotational with a
+/// range of at least 2 pi, and at the neutral configuration its axis is the
+/// tool's z axis (parallel within 1e-9 rad) through the tool's origin
+/// (within 1e-9 m). Then a map needs one roll per approach direction.
+pub fn roll_free(model: &Model) -> bool {
+    let Some(last) = model.joints().last() else {
+        return false;
+    };
+    if !last.kind.is_rotational()
+        || last.limits.upper - last.limits.lower < std::f64::consts::TAU - 1e-9
+        || model.chain_joints().len() != model.dof()
+    {
+        return false;
+    }
+    let mut data = Data::new(model);
+    let Ok(tool) = forward_kinematics(model, &mut data, &model.neutral_configuration()).copied()
+    else {
+        return false;
+    };
+    let Some(joint) = data.joint_frames().last() else {
+        return false;
+    };
+    let axis = joint.rotation.column(2);
+    let z = tool.rotation.column(2);
+    let offset = tool.translation - joint.translation;
+    axis.cross(&z).norm() <= 1e-9 && offset.cross(&axis).norm() <= 1e-9
+}
+
+/// How a map's bins are decided.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "io", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "io", serde(rename_all = "snake_case"))]
+pub enum Builder {
+    /// Inverse kinematics at every (cell centre, orientation) pose: exact at
+    /// the bin's centre.
+    InverseKinematics,
+    /// Forward kinematics of `samples` configurations drawn uniformly within
+    /// the joint limits (ChaCha8 seeded by `seed`; sample `s` from its own
+    /// stream position, so any partition gives the same samples): a bin is
+    /// reachable when a sample lands in it. Fast, but misses bins the
+    /// samples did not hit (the coverage).
+    ForwardSampling {
+        /// Number of configurations drawn.
+        samples: u64,
+        /// RNG seed.
+        seed: u64,
+    },
+}
+
+/// What a map is: its resolution, orientation set and builder.
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "io", derive(serde::Serialize, serde::Deserialize))]
+pub struct MapSpec {
+    /// Edge of a cubic position cell, m.
+    pub resolution: f64,
+    /// Near-uniform (Fibonacci) approach directions of the tool z axis.
+    pub approach_directions: usize,
+    /// Roll samples about each direction (orientations = directions x rolls).
+    pub rolls: usize,
+    /// How the bins are decided.
+    pub builder: Builder,
+}
+
+impl MapSpec {
+    /// A spec of `orientations` orientations split into directions and rolls
+    /// with about equal angular spacing: the direction lattice's spacing
+    /// `sqrt(4 pi / D)` equals the roll step `2 pi / R` when `R^3 = pi N`
+    /// (`N = D R`); `R` the divisor of `N` nearest `round((pi N)^(1/3))`
+    /// (within 2, else that value itself), `D = round(N / R)`, both >= 1.
+    /// 200 orientations give 25 directions x 8 rolls.
+    pub fn with_orientations(resolution: f64, orientations: usize, builder: Builder) -> MapSpec {
+        let n = orientations.max(1);
+        let ideal = (std::f64::consts::PI * n as f64).cbrt().round() as usize;
+        // The nearest roll count within 2 of the ideal that divides N, so
+        // that directions x rolls is N itself where possible.
+        let rolls = (0..=2)
+            .flat_map(|d| [ideal.saturating_sub(d), ideal + d])
+            .find(|&r| r >= 1 && r <= n && n % r == 0)
+            .unwrap_or(ideal.clamp(1, n));
+        let directions = ((n as f64 / rolls as f64).round() as usize).max(1);
+        MapSpec {
+            resolution,
+            approach_directions: if orientations == 0 { 0 } else { directions },
+            rolls,
+            builder,
+        }
+    }
+
+    /// The spec for `model`: when a roll of the tool about its z axis is a
+    /// motion of the last joint alone ([`roll_free`]), the orientations
+    /// are `orientations` approach directions with one roll each (RM4D's
+    /// reduction, Sundaralingam et al. ICRA 2025: such a roll changes
+    /// neither reachability nor the solutions' count or manipulability);
+    /// otherwise [`MapSpec::with_orientations`].
+    pub fn for_model(
+        model: &Model,
+        resolution: f64,
+        orientations: usize,
+        builder: Builder,
+    ) -> MapSpec {
+        if roll_free(model) {
+            MapSpec {
+                resolution,
+                approach_directions: orientations,
+                rolls: 1,
+                builder,
+            }
+        } else {
+            MapSpec::with_orientations(resolution, orientations, builder)
+        }
+    }
+
+    /// Orientations per cell (`approach_directions * rolls`).
+    pub fn orientation_count(&self) -> usize {
+        self.approach_directions.saturating_mul(self.rolls)
+    }
+
+    /// Checks the spec: a finite resolution > 0, at least one direction, one
+    /// roll and (sampling builder) one sample; errors name the field.
+    pub fn validate(&self) -> Result<()> {
+        check_positive("resolution", self.resolution)?;
+        if self.approach_directions == 0 {
+            return Err(Error::invalid_argument(
+                "approach_directions",
+                "must be at least 1 (zero orientations make an empty map)",
+            ));
+        }
+        if self.rolls == 0 {
+            return Err(Error::invalid_argument(
+                "rolls",
+                "must be at least 1 (zero orientations make an empty map)",
+            ));
+        }
+        if let Builder::ForwardSampling { samples: 0, .. } = self.builder {
+            return Err(Error::invalid_argument(
+                "samples",
+                "must be at least 1 for the forward-sampling builder",
+            ));
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,256 @@
+//! Reachability maps: the chunked build equals the whole build, the map
+//! agrees with IK at random poses, bad input is an error.
+
+use armkit::ik::{AutoSolver, IkOptions};
+use armkit::math::{Matrix3, Pose, Vector3};
+use armkit::reach::{self, build_chunk, Builder, MapLayout, MapSpec, ReachMap};
+use armkit::Model;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+fn robot(name: &str) -> Model {
+    armkit::robots::by_name(name).unwrap()
+}
+
+/// A rotation drawn uniformly on SO(3): the unit quaternion of a point drawn
+/// uniformly in the 4-ball (by rejection), as a matrix.
+fn random_rotation(rng: &mut ChaCha8Rng) -> Matrix3<f64> {
+    loop {
+        let v: [f64; 4] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
+        let n2: f64 = v.iter().map(|x| x * x).sum();
+        if n2 > 0.01 && n2 <= 1.0 {
+            let n = n2.sqrt();
+            let [w, x, y, z] = v.map(|c| c / n);
+            return Matrix3::new(
+                1.0 - 2.0 * (y * y + z * z),
+                2.0 * (x * y - w * z),
+                2.0 * (x * z + w * y),
+                2.0 * (x * y + w * z),
+                1.0 - 2.0 * (x * x + z * z),
+                2.0 * (y * z - w * x),
+                2.0 * (x * z - w * y),
+                2.0 * (y * z + w * x),
+                1.0 - 2.0 * (x * x + y * y),
+            );
+        }
+    }
+}
+
+/// Ground truth: the automatic IK solver (analytic where the class allows,
+/// numeric with 50 seeded restarts otherwise) at the exact pose.
+fn truth(solver: &mut AutoSolver, start: &[f64], pose: &Pose) -> bool {
+    solver.solve(pose, start).unwrap().report.converged()
+}
+
+/// Random poses in the map's box: (agreement, false positives) as
+/// fractions, of the interpolated query and (the last two) of the raw bins.
+fn accuracy(model: &Model, map: &ReachMap, poses: usize, seed: u64) -> (f64, f64, f64, f64) {
+    let options = IkOptions {
+        max_restarts: 50,
+        time_budget: None,
+        ..IkOptions::default()
+    };
+    let mut solver = AutoSolver::new(model, options).unwrap();
+    let start = model.neutral_configuration();
+    let layout = map.layout();
+    let (origin, dims, r) = (layout.origin(), layout.dims(), layout.resolution());
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let (mut agree, mut false_positive) = (0usize, 0usize);
+    let (mut raw_agree, mut raw_false_positive) = (0usize, 0usize);
+    for _ in 0..poses {
+        let p = Vector3::from_fn(|i, _| origin[i] + rng.gen_range(0.0..dims[i] as f64 * r));
+        let pose = Pose {
+            rotation: random_rotation(&mut rng),
+            translation: p,
+        };
+        let (said, is) = (map.query(&pose), truth(&mut solver, &start, &pose));
+        agree += (said == is) as usize;
+        false_positive += (said && !is) as usize;
+        let raw = map.bin_reachable(&pose);
+        raw_agree += (raw == is) as usize;
+        raw_false_positive += (raw && !is) as usize;
+    }
+    let n = poses as f64;
+    (
+        agree as f64 / n,
+        false_positive as f64 / n,
+        raw_agree as f64 / n,
+        raw_false_positive as f64 / n,
+    )
+}
+
+fn ik_spec(resolution: f64, orientations: usize) -> MapSpec {
+    MapSpec::with_orientations(resolution, orientations, Builder::InverseKinematics)
+}
+
+fn model_spec(model: &Model, resolution: f64, orientations: usize) -> MapSpec {
+    MapSpec::for_model(model, resolution, orientations, Builder::InverseKinematics)
+}
+
+/// The full accuracy figure: `ARMKIT_REACH_FULL="robot resolution
+/// orientations poses"` (e.g. `ur5 0.05 200 100000`) runs it and prints it.
+#[test]
+fn full_accuracy_figure_on_request() {
+    let Ok(request) = std::env::var("ARMKIT_REACH_FULL") else {
+        return;
+    };
+    let words: Vec<&str> = request.split_whitespace().collect();
+    let model = robot(words[0]);
+    let spec = model_spec(&model, words[1].parse().unwrap(), words[2].parse().unwrap());
+    let began = std::time::Instant::now();
+    let map = reach::build(&model, &spec, 2, &mut |_, _| {}).unwrap();
+    let seconds = began.elapsed().as_secs_f64();
+    let poses: usize = words[3].parse().unwrap();
+    let (agreement, false_positives, raw, raw_false) = accuracy(&model, &map, poses, 2026);
+    eprintln!(
+        "{request}: {} x {} orientations, build {seconds:.1} s, {:.0} IK/s, {} reachable cells; agreement {agreement:.5}, false positives {false_positives:.5}; raw bins: agreement {raw:.5}, false positives {raw_false:.5}",
+        spec.approach_directions,
+        spec.rolls,
+        map.calls() as f64 / seconds,
+        map.reachable_cells()
+    );
+}
+
+#[test]
+fn ur5_orientations_are_directions_only() {
+    let ur5 = robot("ur5");
+    assert!(reach::roll_free(&ur5));
+    let spec = model_spec(&ur5, 0.05, 200);
+    assert_eq!((spec.approach_directions, spec.rolls), (200, 1));
+    let panda = robot("panda");
+    assert!(!reach::roll_free(&panda));
+    let spec = model_spec(&panda, 0.05, 200);
+    assert_eq!((spec.approach_directions, spec.rolls), (25, 8));
+}
+
+#[test]
+fn chunked_build_equals_whole_build() {
+    let model = robot("ur5");
+    let spec = ik_spec(0.2, 12);
+    let layout = MapLayout::new(&model, &spec).unwrap();
+    let whole = ReachMap::from_chunks(
+        layout.clone(),
+        [build_chunk(
+            &model,
+            &layout,
+            &reach::Chunk {
+                cells: 0..layout.cell_count(),
+                samples: 0..0,
+            },
+        )
+        .unwrap()],
+    )
+    .unwrap();
+    let mut parts: Vec<_> = reach::chunks(&layout, &spec, 100)
+        .iter()
+        .map(|c| build_chunk(&model, &layout, c).unwrap())
+        .collect();
+    assert!(parts.len() > 10);
+    parts.reverse();
+    let chunked = ReachMap::from_chunks(layout, parts).unwrap();
+    assert_eq!(whole, chunked);
+    let threaded = reach::build(&model, &spec, 2, &mut |_, _| {}).unwrap();
+    assert_eq!(whole, threaded);
+    assert!(whole.reachable_cells() > 0 && whole.reachable_cells() < whole.layout().cell_count());
+    assert!(whole.capability().iter().all(|c| (0.0..=1.0).contains(c)));
+}
+
+#[test]
+fn sampled_chunks_equal_the_whole_sampling() {
+    let model = robot("panda");
+    let spec = MapSpec::with_orientations(
+        0.2,
+        12,
+        Builder::ForwardSampling {
+            samples: 20_000,
+            seed: 5,
+        },
+    );
+    let layout = MapLayout::new(&model, &spec).unwrap();
+    let one = build_chunk(
+        &model,
+        &layout,
+        &reach::Chunk {
+            cells: 0..0,
+            samples: 0..20_000,
+        },
+    )
+    .unwrap();
+    let whole = ReachMap::from_chunks(layout.clone(), [one]).unwrap();
+    let mut parts: Vec<_> = reach::chunks(&layout, &spec, 3_000)
+        .iter()
+        .map(|c| build_chunk(&model, &layout, c).unwrap())
+        .collect();
+    parts.swap(0, 3);
+    assert_eq!(whole, ReachMap::from_chunks(layout, parts).unwrap());
+    assert_eq!(whole.calls(), 20_000);
+    assert!(whole.reachable_bins() > 100);
+}
+
+#[test]
+fn ur5_map_agrees_with_ik_at_random_poses() {
+    let model = robot("ur5");
+    let map = reach::build(&model, &model_spec(&model, 0.1, 50), 2, &mut |_, _| {}).unwrap();
+    let (agreement, false_positives, raw, raw_false) = accuracy(&model, &map, 3000, 11);
+    eprintln!("ur5 0.1 m 50: agreement {agreement}, false positives {false_positives}; raw {raw}, {raw_false}");
+    // The interpolated query beats the raw bins, which the coarse grid
+    // leaves well short of it.
+    assert!(agreement > 0.97, "{agreement}");
+    assert!(false_positives < 0.015, "{false_positives}");
+    assert!(agreement > raw, "{agreement} vs {raw}");
+}
+
+#[test]
+fn panda_map_agrees_with_ik_at_random_poses() {
+    let model = robot("panda");
+    let began = std::time::Instant::now();
+    let map = reach::build(&model, &model_spec(&model, 0.3, 8), 2, &mut |_, _| {}).unwrap();
+    eprintln!("panda build {:?}, {} calls", began.elapsed(), map.calls());
+    let (agreement, false_positives, raw, _) = accuracy(&model, &map, 400, 12);
+    eprintln!("panda 0.3 m 8: agreement {agreement}, false positives {false_positives}; raw {raw}");
+    assert!(agreement > 0.9, "{agreement}");
+}
+
+#[test]
+fn nearest_reachable_cell_is_the_nearest() {
+    let model = robot("ur5");
+    let map = reach::build(&model, &ik_spec(0.2, 6), 2, &mut |_, _| {}).unwrap();
+    let layout = map.layout();
+    let mut rng = ChaCha8Rng::seed_from_u64(3);
+    let reachable: Vec<usize> = (0..layout.cell_count())
+        .filter(|&c| map.capability()[c] > 0.0)
+        .collect();
+    for _ in 0..200 {
+        let p: [f64; 3] = std::array::from_fn(|i| {
+            layout.origin()[i] + rng.gen_range(0.0..layout.dims()[i] as f64 * layout.resolution())
+        });
+        let found = map.nearest_reachable_cell(p).unwrap();
+        let own = layout.cell_center(layout.cell_of(p).unwrap());
+        let d = |c: usize| {
+            let q = layout.cell_center(c);
+            (0..3).map(|i| (q[i] - own[i]).powi(2)).sum::<f64>()
+        };
+        let best = reachable
+            .iter()
+            .map(|&c| d(c))
+            .fold(f64::INFINITY, f64::min);
+        assert!(map.capability()[found] > 0.0);
+        assert!((d(found) - best).abs() < 1e-9, "{} vs {best}", d(found));
+    }
+}
+
+#[test]
+fn bad_specs_are_errors_naming_the_problem() {
+    let model = robot("ur5");
+    for resolution in [0.0, -0.1, f64::NAN, f64::INFINITY] {
+        let e = MapLayout::new(&model, &ik_spec(resolution, 20)).unwrap_err();
+        assert!(e.to_string().contains("resolution"), "{e}");
+    }
+    let e = MapLayout::new(&model, &ik_spec(0.1, 0)).unwrap_err();
+    assert!(e.to_string().contains("zero orientations"), "{e}");
+    let e = MapLayout::new(&model, &ik_spec(1e-4, 200)).unwrap_err();
+    assert!(
+        e.to_string().contains("cells times 200 orientations"),
+        "{e}"
+    );
+}
