@@ -8,6 +8,7 @@
 //! reshapes to NumPy's `(nx, ny, nz)`; a per-(cell, orientation) array is
 //! `(nx, ny, nz, orientations)`. Orientation `k = direction * rolls + roll`.
 
+use super::directions::DirectionIndex;
 use super::MapSpec;
 use crate::error::{Error, Result};
 use crate::ik::ReachBound;
@@ -32,6 +33,10 @@ pub struct MapLayout {
     directions: Vec<[f64; 3]>,
     /// Per direction, the unit x axis of its zero-roll tool frame.
     reference_x: Vec<[f64; 3]>,
+    /// Candidate directions per region of the sphere (rebuilt, not
+    /// serialized: a layout read back scans every direction, same answers).
+    #[cfg_attr(feature = "io", serde(skip))]
+    index: DirectionIndex,
 }
 
 /// The `count` points of the Fibonacci lattice on the unit sphere: point `i`
@@ -113,6 +118,7 @@ impl MapLayout {
             spec: spec.clone(),
             origin,
             dims: [n, n, n],
+            index: DirectionIndex::new(&directions),
             directions,
             reference_x,
         })
@@ -220,15 +226,7 @@ impl MapLayout {
     #[inline]
     pub fn orientation_of(&self, rotation: &Matrix3<f64>) -> usize {
         let z = rotation.column(2);
-        let mut best = 0;
-        let mut best_dot = f64::NEG_INFINITY;
-        for (i, d) in self.directions.iter().enumerate() {
-            let dot = z[0] * d[0] + z[1] * d[1] + z[2] * d[2];
-            if dot > best_dot {
-                best_dot = dot;
-                best = i;
-            }
-        }
+        let best = self.index.nearest4(&self.directions, [z[0], z[1], z[2]])[0].0;
         best * self.spec.rolls + self.roll_of(best, rotation)
     }
 
@@ -259,18 +257,7 @@ impl MapLayout {
     pub fn orientations_around(&self, rotation: &Matrix3<f64>) -> [(usize, f64); 3] {
         let z = rotation.column(2);
         // The four largest cosines, largest first.
-        let mut top = [(0usize, f64::NEG_INFINITY); 4];
-        for (i, d) in self.directions.iter().enumerate() {
-            let dot = z[0] * d[0] + z[1] * d[1] + z[2] * d[2];
-            if dot > top[3].1 {
-                let mut j = 3;
-                while j > 0 && dot > top[j - 1].1 {
-                    top[j] = top[j - 1];
-                    j -= 1;
-                }
-                top[j] = (i, dot);
-            }
-        }
+        let top = self.index.nearest4(&self.directions, [z[0], z[1], z[2]]);
         let floor = if top[3].1.is_finite() { top[3].1 } else { -1.0 };
         let mut weights = [0.0; 3];
         for (w, t) in weights.iter_mut().zip(&top) {

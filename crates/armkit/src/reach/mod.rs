@@ -27,6 +27,7 @@
 
 mod build;
 mod chunk;
+mod directions;
 mod layout;
 mod map;
 mod nearest;

@@ -254,3 +254,29 @@ fn bad_specs_are_errors_naming_the_problem() {
         "{e}"
     );
 }
+
+#[test]
+fn the_direction_table_finds_the_nearest_direction_as_a_full_scan_does() {
+    let model = robot("ur5");
+    for orientations in [200, 800] {
+        let layout = MapLayout::new(&model, &model_spec(&model, 0.5, orientations)).unwrap();
+        let mut rng = ChaCha8Rng::seed_from_u64(orientations as u64);
+        for _ in 0..20_000 {
+            let r = random_rotation(&mut rng);
+            let z = r.column(2);
+            let scan = layout
+                .directions()
+                .iter()
+                .map(|d| z[0] * d[0] + z[1] * d[1] + z[2] * d[2])
+                .enumerate()
+                .fold(
+                    (0, f64::NEG_INFINITY),
+                    |b, (i, c)| if c > b.1 { (i, c) } else { b },
+                );
+            assert_eq!(layout.orientation_of(&r), scan.0);
+            let around = layout.orientations_around(&r);
+            assert_eq!(around[0].0, scan.0);
+            assert!((around.iter().map(|a| a.1).sum::<f64>() - 1.0).abs() < 1e-12);
+        }
+    }
+}
