@@ -20,7 +20,7 @@ use crate::errors::OrRaise;
 /// Python argument).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SolutionsArguments {
-    /// `search=`: `"elimination"`, `"1d"` or `"2d"`.
+    /// `search=`: `"elimination"` or `"1d"` (`"2d"`, retired, is an error).
     pub search: SearchPolicy,
     /// `fixed_joint=` (0-based) and `parameter=`.
     pub redundancy: Redundancy,
@@ -55,11 +55,16 @@ impl SolutionsArguments {
         let search = match search {
             "elimination" => SearchPolicy::Elimination,
             "1d" => SearchPolicy::UpToOneDimension,
-            "2d" => SearchPolicy::TwoDimensions,
+            "2d" => {
+                return Err(Error::invalid_argument(
+                    "search",
+                    "\"2d\" is retired (the 2-D search is gone: general 6R arms are solved by elimination, the default; arms elimination does not take need a numeric solver, e.g. robot.ik(T, solver=\"lm\")); expected \"elimination\" or \"1d\"",
+                ))
+            }
             other => {
                 return Err(Error::invalid_argument(
                     "search",
-                    format!("unknown value `{other}`; expected \"elimination\", \"1d\" or \"2d\""),
+                    format!("unknown value `{other}`; expected \"elimination\" or \"1d\""),
                 ))
             }
         };

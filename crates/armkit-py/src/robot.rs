@@ -655,9 +655,8 @@ impl Robot {
     /// `representatives`: `"nearest"` (the default: each distinct solution
     /// once, its 2 pi multiple nearest `q0`) or `"every"` (every 2 pi
     /// multiple within the joint limits), as `--representatives`. `search`: `"elimination"` (the default:
-    /// closed forms, every other 6R arm by algebraic elimination), `"1d"`
-    /// (closed forms and 1-D searches) or `"2d"` (the 1-D searches and a
-    /// general 6R arm's 2-D search). 7-joint
+    /// closed forms, every other 6R arm by algebraic elimination) or `"1d"`
+    /// (closed forms and 1-D searches); `"2d"` (retired) is an error. 7-joint
     /// arms: the elbow angle of a spherical-shoulder-elbow-wrist arm, else a
     /// held joint; `fixed_joint` (0-based, like a numpy index) holds that
     /// joint; `parameter` is the elbow angle (rad) or the held joint's value

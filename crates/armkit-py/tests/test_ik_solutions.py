@@ -210,7 +210,7 @@ def test_a_sweep_gives_more_solutions_than_one_value():
     assert len(np.unique(np.round(swept.q[:, joint], 9))) >= 3
 
 
-def test_general_6r_by_elimination_and_by_the_2d_search(tmp_path):
+def test_general_6r_by_elimination_and_the_2d_search_retired(tmp_path):
     path = tmp_path / "general-6r.toml"
     path.write_text(GENERAL_6R)
     robot = armkit.Robot.from_file(path)
@@ -230,10 +230,9 @@ def test_general_6r_by_elimination_and_by_the_2d_search(tmp_path):
         robot.ik_solutions(T, search="1d")
     assert "general" in str(error.value)
     assert "Elimination" in str(error.value)
-    result = robot.ik_solutions(T, q0=q, search="2d")
-    assert result.arm_class == name
-    check_solutions(robot, result, T, q)
-    assert contains(result.q[result.exact], q)
+    # The retired 2-D search: an error naming the value.
+    with pytest.raises(ValueError, match="retired"):
+        robot.ik_solutions(T, q0=q, search="2d")
 
 
 def test_arm_class_names_a_class_without_solver():

@@ -288,13 +288,9 @@ fn bench_analytic(c: &mut Criterion) {
     // The arms without a closed form, each by elimination (the default)
     // and by its 1-D search (`SearchPolicy::UpToOneDimension`): one pair
     // (axes 5-6 or 3-4 meet), parallel axes 2-3 or 1-2, the rest general;
-    // a general 6R arm by elimination and by the 2-D search.
+    // a general 6R arm by elimination only.
     let searches = AnalyticOptions {
         search: SearchPolicy::UpToOneDimension,
-        ..nearest
-    };
-    let two = AnalyticOptions {
-        search: SearchPolicy::TwoDimensions,
         ..nearest
     };
     // (label, lines, class, the search's bench label, its options)
@@ -327,14 +323,11 @@ fn bench_analytic(c: &mut Criterion) {
             "parallel_pair_1_2_1d_search",
             searches,
         ),
-        (
-            "general_6r",
-            &GENERAL,
-            "general_6r_2d_search",
-            "general_6r_2d_search",
-            two,
-        ),
     ];
+    let model = lines_model("general_6r", &GENERAL);
+    let solver = AnalyticSolver::new(&model, nearest).unwrap();
+    assert_eq!(solver.class().as_str(), "general_6r");
+    bench_analytic_solver(c, "general_6r_elimination/distinct", &model, solver);
     for (label, lines, class, search_label, search) in cases {
         let model = lines_model(label, lines);
         let elimination = format!("{label}_elimination");

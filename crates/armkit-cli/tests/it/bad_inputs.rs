@@ -679,6 +679,22 @@ const CASES: &[Case] = &[
     ),
     case(
         "ik",
+        "retired --search 2d (the value named)",
+        &[
+            "ik",
+            "--robot",
+            "ur5",
+            "--pose",
+            "0.4,0.1,0.5,pi,0,0",
+            "--solver",
+            "analytic",
+            "--search",
+            "2d",
+        ],
+        1,
+    ),
+    case(
+        "ik",
         "target beyond the sum of the link lengths (reason on stderr)",
         &["ik", "--robot", "ur5", "--pose", "100,0,0.5,0,0,0"],
         3,

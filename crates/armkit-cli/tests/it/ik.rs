@@ -807,7 +807,7 @@ fn bench_ik_prints_the_table() {
         "--fixed-joint",
         "1",
         "--search",
-        "2d",
+        "1d",
     ]);
     assert!(output.status.success(), "{}", stderr(&output));
     assert!(

@@ -1188,7 +1188,7 @@ fn parallel_pair_detection_takes_only_its_class() {
         lines[0].1 = lines[1].1;
         let found = class_of(&lines, &mut rng);
         assert!(
-            found.contains("class unsearched_pairs_2d_search"),
+            found == "unsearched_pairs" || found.contains("class unsearched_pairs "),
             "{found}"
         );
         // Axes 1-2 and 5-6 parallel: the 1-2 search, over joint 6 only
@@ -1204,7 +1204,7 @@ fn parallel_pair_detection_takes_only_its_class() {
         lines[2].0 = lines[1].0 + lines[1].1 * 0.3;
         let found = class_of(&lines, &mut rng);
         assert!(
-            found.contains("class unsearched_pairs_2d_search"),
+            found == "unsearched_pairs" || found.contains("class unsearched_pairs "),
             "{found}"
         );
         // A spherical wrist with parallel 2-3 stays closed form.
@@ -1233,18 +1233,14 @@ fn auto_takes_the_numeric_route_on_parallel_pair_arms() {
 #[test]
 fn parallel_end_pairs_are_solved_and_pairs_no_search_takes_are_refused_by_name() {
     let mut rng = common::rng(80);
-    // Parallel 1-2 only: the end-pair 1-D search (was refused, or the 2-D
-    // search on request), with the 2-D option too.
+    // Parallel 1-2 only: elimination (the default) and the end-pair 1-D
+    // search.
     let mut lines: Lines = (0..6)
         .map(|_| (point(&mut rng), unit(&mut rng), false))
         .collect();
     lines[1].1 = lines[0].1;
     let model = model_from_lines("parallel", &lines, random_home(&mut rng));
-    let options = AnalyticOptions {
-        search: armkit::ik::analytic::SearchPolicy::TwoDimensions,
-        ..AnalyticOptions::default()
-    };
-    for options in [AnalyticOptions::default(), options] {
+    for options in [AnalyticOptions::default(), one_dimension()] {
         let mut s = AnalyticSolver::new(&model, options).unwrap();
         assert_eq!(s.class().as_str(), "one_pair_parallel_1_2_1d_search");
         let tally = check(&model, &mut s, 20, 81, &no_parameter);
@@ -1256,30 +1252,31 @@ fn parallel_end_pairs_are_solved_and_pairs_no_search_takes_are_refused_by_name()
     let model = model_from_lines("parallel_ends", &lines, random_home(&mut rng));
     let mut s = solver(&model);
     assert_eq!(s.class().as_str(), "one_pair_parallel_1_2_1d_search");
+    assert!(s.method().contains("elimination"), "{}", s.method());
     let tally = check(&model, &mut s, 20, 82, &no_parameter);
     assert_all_recovered("parallel 1-2 and 5-6", &tally);
     // Parallel 1-2-3: every pair has a parallel neighbour, no 1-D search
-    // takes it: refused with the class named and the 2-D option offered;
-    // with that option, every exact solution reproduces the pose.
+    // takes it: elimination with the loop cut between joints 1 and 6
+    // (every generating configuration on these poses); the searches alone
+    // refuse it, naming the class.
     lines[2].1 = lines[0].1;
     let model = model_from_lines("parallel123", &lines, random_home(&mut rng));
-    let error = AnalyticSolver::new(&model, AnalyticOptions::default())
+    let mut s = solver(&model);
+    assert_eq!(s.class().as_str(), "unsearched_pairs");
+    assert!(s.method().contains("elimination"), "{}", s.method());
+    let tally = check(&model, &mut s, 20, 83, &no_parameter);
+    assert_all_recovered("parallel 1-2-3", &tally);
+    let error = AnalyticSolver::new(&model, one_dimension())
         .unwrap_err()
         .to_string();
     assert!(
-        error.contains("has no analytic solver: class unsearched_pairs_2d_search"),
+        error.contains("has no analytic solver: class unsearched_pairs"),
         "{error}"
     );
-    assert!(error.contains("--search 2d"), "{error}");
-    let mut s = AnalyticSolver::new(&model, options).unwrap();
-    assert_eq!(s.class().as_str(), "unsearched_pairs_2d_search");
-    let tally = check(&model, &mut s, 5, 83, &no_parameter);
-    assert!(tally.solutions > 0, "no solution found on any of 5 poses");
 }
 
 #[test]
-fn a_general_6r_arm_is_solved_by_elimination_and_by_the_2d_search_on_request() {
-    use armkit::ik::analytic::SearchPolicy;
+fn a_general_6r_arm_is_solved_by_elimination_and_refused_by_the_searches() {
     let mut rng = common::rng(90);
     let lines: Lines = (0..6)
         .map(|_| (point(&mut rng), unit(&mut rng), false))
@@ -1290,21 +1287,13 @@ fn a_general_6r_arm_is_solved_by_elimination_and_by_the_2d_search_on_request() {
     assert!(s.method().contains("elimination"), "{}", s.method());
     let tally = check(&model, &mut s, 50, 91, &no_parameter);
     assert_all_recovered("general 6R by elimination", &tally);
-    // The searches alone refuse it, naming both options.
+    // The searches alone refuse it, naming elimination.
     let error = AnalyticSolver::new(&model, one_dimension())
         .unwrap_err()
         .to_string();
-    assert!(error.contains("general_6r_2d_search"), "{error}");
+    assert!(error.contains("class general_6r "), "{error}");
     assert!(error.contains("SearchPolicy::Elimination"), "{error}");
-    assert!(error.contains("SearchPolicy::TwoDimensions"), "{error}");
-    assert!(error.contains("--search 2d"), "{error}");
-    let options = AnalyticOptions {
-        search: SearchPolicy::TwoDimensions,
-        ..AnalyticOptions::default()
-    };
-    let s = AnalyticSolver::new(&model, options).unwrap();
-    assert_eq!(s.class(), ArmClass::General);
-    assert!(s.method().contains("2-D search"), "{}", s.method());
+    assert!(error.contains("--search elimination"), "{error}");
 }
 
 fn general_lines(rng: &mut ChaCha8Rng) -> Lines {
@@ -1320,50 +1309,6 @@ fn one_dimension() -> AnalyticOptions {
     }
 }
 
-fn two_dimensions() -> AnalyticOptions {
-    AnalyticOptions {
-        search: armkit::ik::analytic::SearchPolicy::TwoDimensions,
-        ..AnalyticOptions::default()
-    }
-}
-
-/// The recovery floor of the 2-D search: measured 30/30 poses in the quick
-/// test and 996/1000 (99.6 %) in the ignored one (10 arms, seed 96); it may
-/// miss solutions no grid point leads to.
-const GENERAL_FLOOR: f64 = 0.99;
-
-#[test]
-fn random_general_6r_arms_by_2d_search() {
-    let tally = random_search_arms(
-        95,
-        3,
-        10,
-        &general_lines,
-        "general_6r_2d_search",
-        two_dimensions(),
-    );
-    assert!(
-        tally.recovered as f64 >= GENERAL_FLOOR * tally.poses as f64,
-        "2-D search: {}/{}",
-        tally.recovered,
-        tally.poses
-    );
-}
-
-#[test]
-#[ignore = "slow: cargo test --release -p armkit --test it -- --ignored ik_analytic:: --nocapture"]
-fn many_random_general_6r_arms_by_2d_search() {
-    let tally = random_search_arms(
-        96,
-        10,
-        POSES / 10,
-        &general_lines,
-        "general_6r_2d_search",
-        two_dimensions(),
-    );
-    assert!(tally.recovered as f64 >= GENERAL_FLOOR * tally.poses as f64);
-}
-
 /// `arms` random general 6R arms x 100 poses by elimination: the
 /// generating configuration on >= 99.9 % of the poses.
 fn general_arms_by_elimination(seed: u64, arms: u64) {
@@ -1372,7 +1317,7 @@ fn general_arms_by_elimination(seed: u64, arms: u64) {
         arms,
         POSES / 10,
         &general_lines,
-        "general_6r_2d_search",
+        "general_6r",
         AnalyticOptions::default(),
     );
     assert_search_recovered("general 6R arms by elimination", &tally);
@@ -1512,5 +1457,38 @@ fn the_example_robots_bench_targets_are_all_solved() {
             .map(|(k, _)| k)
             .collect();
         assert!(unsolved.is_empty(), "{name}: targets {unsolved:?} unsolved");
+    }
+}
+
+/// Special pairs at both ends (1-2 and 5-6, each intersecting or
+/// parallel): elimination with the loop cut between joints 1 and 6 takes
+/// every combination, and recovers the generating configuration of each
+/// pose.
+#[test]
+fn special_pairs_at_both_ends_are_solved_by_elimination() {
+    let mut rng = common::rng(85);
+    for (first_parallel, last_parallel) in
+        [(true, true), (true, false), (false, true), (false, false)]
+    {
+        for arm in 0..3 {
+            let mut lines: Lines = (0..6)
+                .map(|_| (point(&mut rng) * 2.0, unit(&mut rng), false))
+                .collect();
+            match first_parallel {
+                true => lines[1].1 = lines[0].1 * sign(&mut rng),
+                false => lines[1].0 = lines[0].0,
+            }
+            match last_parallel {
+                true => lines[5].1 = lines[4].1 * sign(&mut rng),
+                false => lines[5].0 = lines[4].0,
+            }
+            let model = model_from_lines("ends", &lines, random_home(&mut rng));
+            let mut s = solver(&model);
+            let what = format!("{first_parallel} {last_parallel} arm {arm}: {}", s.class());
+            assert!(s.method().contains("elimination"), "{what}: {}", s.method());
+            let tally = check(&model, &mut s, 30, 86 + arm, &no_parameter);
+            println!("{what}: {}/{}", tally.recovered, tally.poses);
+            assert_all_recovered(&what, &tally);
+        }
     }
 }

@@ -22,7 +22,7 @@ pub(super) fn route(
     start: &[f64],
 ) -> CliResult<AnalyticRoute> {
     let options = AnalyticOptions {
-        search: redundancy.search.policy(),
+        search: redundancy.search.policy()?,
         representatives,
         ..AnalyticOptions::default()
     };

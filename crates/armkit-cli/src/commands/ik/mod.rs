@@ -157,13 +157,15 @@ pub struct RedundancyArgs {
     pub sweep: Option<usize>,
     /// How the analytic solver solves 6R arms without a closed form:
     /// `elimination` (the default: algebraic elimination, tens of
-    /// microseconds, every 6R arm with at most one special pair), `1d`
+    /// microseconds, every 6R arm with at most one special pair) or `1d`
     /// (closed forms and the 1-D searches, hundreds of microseconds; a
-    /// general 6R arm refused) or `2d` (also a general 6R arm's 2-D search:
-    /// milliseconds, may miss solutions).
+    /// general 6R arm refused). `2d` (a retired 2-D search) is an error.
     #[arg(long, value_enum, default_value_t = SearchArg::Elimination)]
     pub search: SearchArg,
 }
+
+/// The error of `--search 2d`.
+const RETIRED_2D: &str = "--search 2d: retired (the 2-D search is gone: general 6R arms are solved by elimination, the default; arms elimination does not take need a numeric solver, e.g. --solver lm); expected `elimination` or `1d`";
 
 /// `--search` values.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
@@ -175,8 +177,9 @@ pub enum SearchArg {
     /// Closed forms and 1-D searches.
     #[value(name = "1d")]
     OneD,
-    /// Also the general 6R arm's 2-D search.
-    #[value(name = "2d")]
+    /// Retired (the 2-D search; elimination solves general 6R arms): an
+    /// error naming the value.
+    #[value(name = "2d", hide = true)]
     TwoD,
 }
 
@@ -190,12 +193,12 @@ impl SearchArg {
         }
     }
 
-    /// The library's policy.
-    pub fn policy(self) -> armkit::ik::analytic::SearchPolicy {
+    /// The library's policy. Errors: a retired value (named).
+    pub fn policy(self) -> CliResult<armkit::ik::analytic::SearchPolicy> {
         match self {
-            SearchArg::Elimination => armkit::ik::analytic::SearchPolicy::Elimination,
-            SearchArg::OneD => armkit::ik::analytic::SearchPolicy::UpToOneDimension,
-            SearchArg::TwoD => armkit::ik::analytic::SearchPolicy::TwoDimensions,
+            SearchArg::Elimination => Ok(armkit::ik::analytic::SearchPolicy::Elimination),
+            SearchArg::OneD => Ok(armkit::ik::analytic::SearchPolicy::UpToOneDimension),
+            SearchArg::TwoD => Err(CliError(RETIRED_2D.into())),
         }
     }
 }

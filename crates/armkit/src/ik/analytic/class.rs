@@ -89,15 +89,14 @@ pub enum ArmClass {
         kind: PairKind,
     },
     /// 6 rotation joints without any intersecting or parallel consecutive
-    /// axes: elimination (`SearchPolicy::Elimination`, the default), or a
-    /// 2-D search with `SearchPolicy::TwoDimensions` (see `search2d`).
+    /// axes: elimination (`SearchPolicy::Elimination`, the default).
     General,
     /// 6 rotation joints with special consecutive axes that no closed-form
     /// class and no 1-D search takes (e.g. axes 1-2-3 parallel outside the
     /// UR family, where every parallel pair has a parallel neighbour, or a
-    /// parallel pair on one line): elimination where it applies (not to
-    /// axes 1-2-3 parallel), else the 2-D search of [`ArmClass::General`]
-    /// with `SearchPolicy::TwoDimensions`.
+    /// parallel pair on one line): elimination where it applies (axes 1-2-3
+    /// parallel with the loop cut between joints 1 and 6), else no analytic
+    /// solver.
     UnsearchedPairs,
     /// Another number of joints, or prismatic joints where no class allows
     /// them.
@@ -141,8 +140,8 @@ impl ArmClass {
                 (PairKind::Parallel, 4) => "one_pair_parallel_4_5_1d_search",
                 (PairKind::Parallel, _) => "one_pair_parallel_5_6_1d_search",
             },
-            ArmClass::General => "general_6r_2d_search",
-            ArmClass::UnsearchedPairs => "unsearched_pairs_2d_search",
+            ArmClass::General => "general_6r",
+            ArmClass::UnsearchedPairs => "unsearched_pairs",
             ArmClass::Other => "other",
         }
     }
@@ -221,17 +220,17 @@ impl ArmClass {
                 "parallel axes 5 and 6, no intersecting pair, no closed-form class: 1-D search on the reversed chain over joint 1 and again over joint 4, merged (160 samples per turn each, with the residual's slope; joints 4 and 2, or 3 and 1, by subproblem 6, joint 3 or 2, the pair and its split by subproblem 1; roots to 1e-13 rad), up to 16 solutions"
             }
             ArmClass::General => {
-                "no intersecting or parallel consecutive axes: general 6R, by elimination (the default), or with the search option `two_dimensions` (CLI: --search 2d) a 2-D search (a 16 x 16 grid over joints 1 and 2, each point polished by damped Gauss-Newton; milliseconds, may miss solutions)"
+                "no intersecting or parallel consecutive axes: general 6R, by elimination"
             }
             ArmClass::UnsearchedPairs => {
-                "intersecting or parallel consecutive axes that fit no closed-form class and no 1-D search (a parallel pair with a parallel neighbour outside the UR family, or on one line): by elimination where it applies (not to axes 1-2-3 parallel), else the 2-D search of a general 6R arm with the search option `two_dimensions` (CLI: --search 2d)"
+                "intersecting or parallel consecutive axes that fit no closed-form class and no 1-D search (a parallel pair with a parallel neighbour outside the UR family, or on one line): by elimination where it applies (axes 1-2-3 parallel with the loop cut between joints 1 and 6), else numeric solvers only"
             }
             ArmClass::Other => "not a 6-joint arm of a known class: numeric solver only",
         }
     }
 
-    /// True when the analytic solver handles this class (a general 6R only
-    /// with the two-dimensional search option).
+    /// True when the 1-D searches handle this class (elimination may take
+    /// the others: see [`AnalyticSolver::method`](super::AnalyticSolver::method)).
     pub fn is_solvable(&self) -> bool {
         matches!(
             self,

@@ -68,7 +68,9 @@
 //!
 //! **When it does not apply.** With a special pair at joints 1-2 (parallel
 //! or intersecting axes), or a spherical wrist, `det Sigma` vanishes
-//! identically. Set-up then tries the reversed chain, and it accepts a
+//! identically. Set-up then tries the reversed chain, then the loop cut
+//! elsewhere ([`Cut::Split`]: joints 1 and 6 on the right side, on either
+//! side of `G`, joint 5 eliminated; special pairs at both ends), and it accepts a
 //! chain only when two of three probe poses (forward kinematics of fixed
 //! generic configurations) give back their configurations; otherwise the arm keeps its
 //! 1-D search.
@@ -95,8 +97,8 @@
 //! ```
 
 use super::chain::{Candidates, Chain};
+use super::polish::{chain_pose, settle_root_within, Settle};
 use super::search::illinois;
-use super::search2d::{chain_pose, settle_root_within, Settle};
 use super::subproblems::{rotation, subproblem1};
 use crate::math::{sin_cos, wrap_angle, Matrix3, Pose, Vector3};
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
@@ -162,17 +164,44 @@ const PROBES: [[f64; 6]; 3] = [
 /// A 12 x 12 matrix, row major.
 type Square = [[f64; 12]; 12];
 
+/// Which joints play which part in the loop `E1 ... E6 = G` (0-based):
+/// the two of the right side (with `G`), the three of the left side, the
+/// one eliminated (the left side is applied to a point and direction of
+/// its axis). Manocha and Canny's formulation leaves the choice free; the
+/// loop is cut where no special pair makes `det Sigma` vanish.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Cut {
+    /// `E3 E4 E5 (c6, h6) = E2^-1 E1^-1 G (c6, h6)`: right 1-2, left 3-5,
+    /// joint 6 eliminated.
+    Tip,
+    /// `E2 E3 E4 (c5, h5) = E1^-1 G E6^-1 (c5, h5)`: right 1 and 6 (on
+    /// either side of `G`), left 2-4, joint 5 eliminated: for special
+    /// pairs at both ends (1-2 and 5-6).
+    Split,
+}
+
+impl Cut {
+    /// (right side's two joints, left side's three, the eliminated one).
+    fn roles(self) -> ([usize; 2], [usize; 3], usize) {
+        match self {
+            Cut::Tip => ([0, 1], [2, 3, 4], 5),
+            Cut::Split => ([0, 5], [1, 2, 3], 4),
+        }
+    }
+}
+
 /// The eliminated equations of one arm (see the module docs), prepared
 /// once.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Elimination {
     chain: Chain,
+    cut: Cut,
     home: Pose,
     /// Length scale (m) dividing `p`, so that the functions are of order 1.
     scale: f64,
     /// `P`: row = function, column `9 i3 + 3 i4 + i5` over `m3 (x) m4 (x) m5`.
     left: [[f64; 27]; FUNCTIONS],
-    /// Rotations of joints 1 and 2 by minus each grid angle.
+    /// Rotations of the right side's joints by minus each grid angle.
     turned_back: [[Matrix3<f64>; 3]; 2],
     /// `(cos, sin)(k t_j)` at the det samples `t_j = 2 pi j / 17`, `k <= 8`.
     det_table: [[(f64, f64); HARMONICS + 1]; DET_SAMPLES],
@@ -183,7 +212,7 @@ pub(crate) struct Elimination {
 impl Elimination {
     /// The elimination of `chain` (6 rotation joints), or `None` when it
     /// does not apply (the probe poses are not solved back: see the module docs).
-    pub(crate) fn new(chain: &Chain) -> Option<Elimination> {
+    pub(crate) fn new(chain: &Chain, cut: Cut) -> Option<Elimination> {
         if chain.translation.iter().any(|&t| t) {
             return None;
         }
@@ -193,7 +222,7 @@ impl Elimination {
             .sum::<f64>()
             .max(1e-3);
         let mut turned_back = [[Matrix3::identity(); 3]; 2];
-        for (joint, turns) in turned_back.iter_mut().enumerate() {
+        for (joint, turns) in cut.roles().0.into_iter().zip(turned_back.iter_mut()) {
             for (turn, t) in turns.iter_mut().zip(GRID) {
                 *turn = rotation(&chain.h[joint], -t);
             }
@@ -206,6 +235,7 @@ impl Elimination {
         }
         let mut elimination = Elimination {
             chain: *chain,
+            cut,
             home,
             scale,
             left: [[0.0; 27]; FUNCTIONS],
@@ -271,7 +301,7 @@ impl Elimination {
 
     /// Raghavan and Roth's functions of `p` (divided by the scale) and `l`.
     fn functions(&self, point: &Vector3<f64>, direction: &Vector3<f64>) -> [f64; FUNCTIONS] {
-        let p = (point - self.chain.c[2]) / self.scale;
+        let p = (point - self.chain.c[self.cut.roles().1[0]]) / self.scale;
         let l = direction;
         let (pp, pl) = (p.dot(&p), p.dot(l));
         let cross = p.cross(l);
@@ -287,13 +317,16 @@ impl Elimination {
     fn fit_left(&self) -> [[f64; 27]; FUNCTIONS] {
         let (c, h) = (&self.chain.c, &self.chain.h);
         let turn = |k: usize, t: f64, x: &Vector3<f64>| c[k] + rotation(&h[k], t) * (x - c[k]);
+        let (_, [l3, l4, l5], e) = self.cut.roles();
         let mut values = [[0.0; 27]; FUNCTIONS];
         for (a, t3) in GRID.iter().enumerate() {
             for (b, t4) in GRID.iter().enumerate() {
                 for (d, t5) in GRID.iter().enumerate() {
-                    let point = turn(2, *t3, &turn(3, *t4, &turn(4, *t5, &c[5])));
-                    let direction =
-                        rotation(&h[2], *t3) * rotation(&h[3], *t4) * rotation(&h[4], *t5) * h[5];
+                    let point = turn(l3, *t3, &turn(l4, *t4, &turn(l5, *t5, &c[e])));
+                    let direction = rotation(&h[l3], *t3)
+                        * rotation(&h[l4], *t4)
+                        * rotation(&h[l5], *t5)
+                        * h[e];
                     let f = self.functions(&point, &direction);
                     for (row, value) in values.iter_mut().zip(f) {
                         row[9 * a + 3 * b + d] = value;
@@ -313,16 +346,26 @@ impl Elimination {
     /// (`T home^-1`), as `Q` (row = function, column `3 i1 + i2`).
     fn fit_right(&self, goal: &Pose) -> [[f64; 9]; FUNCTIONS] {
         let (c, h) = (&self.chain.c, &self.chain.h);
-        let point = goal.transform_point(&c[5]);
-        let direction = goal.rotation * h[5];
+        let ([ra, rb], _, e) = self.cut.roles();
+        // Side `side`'s joint turned back by grid angle `i`.
+        let back = |side: usize, i: usize, (p, d): (Vector3<f64>, Vector3<f64>)| {
+            let (joint, turn) = ([ra, rb][side], &self.turned_back[side][i]);
+            (c[joint] + turn * (p - c[joint]), turn * d)
+        };
+        let by_goal =
+            |(p, d): (Vector3<f64>, Vector3<f64>)| (goal.transform_point(&p), goal.rotation * d);
+        let end = (c[e], h[e]);
+        let moved = by_goal(end);
         let mut values = [[0.0; 9]; FUNCTIONS];
         for a in 0..3 {
-            let point1 = c[0] + self.turned_back[0][a] * (point - c[0]);
-            let direction1 = self.turned_back[0][a] * direction;
             for b in 0..3 {
-                let point2 = c[1] + self.turned_back[1][b] * (point1 - c[1]);
-                let direction2 = self.turned_back[1][b] * direction1;
-                let f = self.functions(&point2, &direction2);
+                let (point, direction) = match self.cut {
+                    // E_b^-1 E_a^-1 G (c, h).
+                    Cut::Tip => back(1, b, back(0, a, moved)),
+                    // E_a^-1 G E_b^-1 (c, h).
+                    Cut::Split => back(0, a, by_goal(back(1, b, end))),
+                };
+                let f = self.functions(&point, &direction);
                 for (row, value) in values.iter_mut().zip(f) {
                     row[3 * a + b] = value;
                 }
@@ -428,28 +471,31 @@ impl Elimination {
             x[i] = (x[i] - known) / row[i];
         }
         // X over m1 (x) m2 without the constant: index 3 i1 + i2 - 1.
-        let q1 = x[5].atan2(x[2]);
-        let q2 = x[1].atan2(x[0]);
-        let q6 = self.last_joint(goal, [q1, q2, q3, q4, q5]);
-        let q = [q1, q2, q3, q4, q5, q6];
+        let ([ra, rb], [l3, l4, l5], e) = self.cut.roles();
+        let mut q = [0.0; 6];
+        q[ra] = x[5].atan2(x[2]);
+        q[rb] = x[1].atan2(x[0]);
+        (q[l3], q[l4], q[l5]) = (q3, q4, q5);
+        q[e] = self.eliminated_joint(goal, &q, e);
         q.iter().all(|v| v.is_finite()).then_some(q)
     }
 
-    /// Joint 6 by subproblem 1: `R6 = (R1 ... R5)^-1 R_G` turns a vector
-    /// normal to `h6`.
-    fn last_joint(&self, goal: &Pose, q: [f64; 5]) -> f64 {
+    /// The eliminated joint `e` by subproblem 1: `R_e = (R1 ... R_{e-1})^-1
+    /// R_G (R_{e+1} ... R6)^-1` turns a vector normal to `h_e` (`q[e]`
+    /// unread).
+    fn eliminated_joint(&self, goal: &Pose, q: &[f64; 6], e: usize) -> f64 {
         let h = &self.chain.h;
-        let mut before = Matrix3::<f64>::identity();
-        for (k, value) in q.iter().enumerate() {
-            before *= rotation(&h[k], *value);
-        }
-        let normal = h[5].cross(&if h[5].x.abs() < 0.9 {
+        let product = |joints: std::ops::Range<usize>| {
+            joints.fold(Matrix3::<f64>::identity(), |m, k| m * rotation(&h[k], q[k]))
+        };
+        let (before, after) = (product(0..e), product(e + 1..6));
+        let normal = h[e].cross(&if h[e].x.abs() < 0.9 {
             Vector3::x()
         } else {
             Vector3::y()
         });
-        let turned = before.transpose() * goal.rotation * normal;
-        subproblem1(&h[5], &normal, &turned).0
+        let turned = before.transpose() * goal.rotation * after.transpose() * normal;
+        subproblem1(&h[e], &normal, &turned).0
     }
 }
 
@@ -1400,7 +1446,7 @@ mod tests {
     fn random_case(rng: &mut ChaCha8Rng) -> (ArmStructure, Chain, Elimination, [f64; 6]) {
         let s = random_arm(rng, Special::None);
         let chain = Chain::of(&s).unwrap();
-        let elimination = Elimination::new(&chain).unwrap();
+        let elimination = Elimination::new(&chain, Cut::Tip).unwrap();
         (s, chain, elimination, random_q(rng))
     }
 
@@ -1512,6 +1558,7 @@ mod tests {
                 Special::None,
             ))
             .unwrap(),
+            Cut::Tip,
         )
         .unwrap()
         .root_table;
@@ -1562,12 +1609,12 @@ mod tests {
         for special in layouts {
             for _ in 0..4 {
                 let s = random_arm(&mut rng, special);
-                let (s, reversed) = match Elimination::new(&Chain::of(&s).unwrap()) {
+                let (s, reversed) = match Elimination::new(&Chain::of(&s).unwrap(), Cut::Tip) {
                     Some(_) => (s, false),
                     None => (s.reversed(), true),
                 };
                 let chain = Chain::of(&s).unwrap();
-                let elimination = Elimination::new(&chain)
+                let elimination = Elimination::new(&chain, Cut::Tip)
                     .unwrap_or_else(|| panic!("{special:?}: neither direction applies"));
                 if matches!(special, Special::None) {
                     assert!(!reversed, "the general arm needs no reversal");
@@ -1606,7 +1653,7 @@ mod tests {
         let mut s = random_arm(&mut rng, Special::None);
         s.points[4] = s.points[3];
         s.points[5] = s.points[3];
-        assert!(Elimination::new(&Chain::of(&s).unwrap()).is_none());
-        assert!(Elimination::new(&Chain::of(&s.reversed()).unwrap()).is_none());
+        assert!(Elimination::new(&Chain::of(&s).unwrap(), Cut::Tip).is_none());
+        assert!(Elimination::new(&Chain::of(&s.reversed()).unwrap(), Cut::Tip).is_none());
     }
 }

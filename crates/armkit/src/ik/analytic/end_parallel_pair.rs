@@ -125,8 +125,8 @@ use super::parallel_pair::{
     branch_rates, merged_roots, nearest_among, negated, no_folds, read_system, write_system,
     Branches, Folds, PairBranches, Sweep, Tracker,
 };
+use super::polish::settle_root;
 use super::search::BranchKey;
-use super::search2d::settle_root;
 use super::structure::GEOMETRY_TOLERANCE;
 use super::subproblem6::{Sinusoids, Wave};
 use super::subproblems::{subproblem1, subproblem1_turn, Turn};

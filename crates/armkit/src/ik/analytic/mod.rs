@@ -36,11 +36,11 @@
 //!   5-6 ([`end_parallel_pair`]: up to 16; two joints beyond the pair by
 //!   subproblem 6); under the default these take the pair arms elimination
 //!   does not (special pairs at both ends);
-//! * on request ([`SearchPolicy::TwoDimensions`]), general 6R arms and the
-//!   arms neither elimination nor a 1-D search takes (axes 1-2-3 parallel
-//!   outside the UR family) by a 2-D search ([`search2d`]: a 16 x 16 grid
-//!   over joints 1 and 2 polished by Gauss-Newton; milliseconds, may miss
-//!   solutions).
+//! * elimination cuts the loop where no special pair stops it: from the
+//!   tip, from the base, or between joints 1 and 6 (special pairs at both
+//!   ends, axes 1-2-3 parallel outside the UR family); an arm it cannot
+//!   take at all (e.g. a parallel pair on one line) has no analytic
+//!   solver, and the numeric solvers take it.
 //!
 //! Each solution is checked by forward kinematics (the product of
 //! exponentials of the model's joint lines, compared with the model's own
@@ -59,8 +59,7 @@
 //! The searches sample 128 (spherical wrist), 256 (one pair) or 192 and 160
 //! (parallel pairs) points per turn and refine roots to 1e-13 rad; a double
 //! root may be missed by them and, more rarely, by elimination (>= 99.9 %
-//! of random poses recover the generating configuration; [`search2d`] may
-//! miss more); a solution of a search or of elimination is exact only if
+//! of random poses recover the generating configuration); a solution of a search or of elimination is exact only if
 //! forward kinematics confirms it to 1e-10.
 //!
 //! ```
@@ -90,12 +89,12 @@ pub mod pair_search;
 mod parallel;
 mod parallel_offset;
 pub mod parallel_pair;
+mod polish;
 mod ranges;
 #[cfg(test)]
 mod root_isolation_tests;
 mod route;
 pub mod search;
-pub mod search2d;
 mod srs;
 pub mod structure;
 pub mod subproblem6;
@@ -116,14 +115,13 @@ pub use route::{route_class, solver_for, sweep_values, AnalyticRoute, JointNumbe
 
 use self::chain::{Candidates, Chain};
 use self::class::{detect, Detected};
-use self::elimination::Elimination;
+use self::elimination::{Cut, Elimination};
 use self::end_parallel_pair::EndPairSearch;
 use self::finish::Finisher;
 use self::pair_search::PairSearch;
 use self::parallel::ThreeParallel;
 use self::parallel_offset::ThreeParallelOffset;
 use self::parallel_pair::ParallelPairSearch;
-use self::search2d::GridSearch;
 use self::srs::SrsChain;
 use self::structure::ArmStructure;
 use self::wrist::SphericalWrist;
@@ -164,7 +162,6 @@ enum Plan {
         solver: EndPairSearch,
         end: ChainEnd,
     },
-    TwoDimensional(GridSearch),
     Elimination {
         solver: Elimination,
         end: ChainEnd,
@@ -382,10 +379,6 @@ impl AnalyticSolver {
                 solver.solve(&goal_of(goal, *end), out);
                 Some(*end)
             }
-            Plan::TwoDimensional(solver) => {
-                solver.solve(goal, out);
-                Some(ChainEnd::Tip)
-            }
             Plan::Elimination { solver, end } => {
                 solver.solve(&goal_of(goal, *end), out);
                 Some(*end)
@@ -488,7 +481,7 @@ pub fn joint_to_hold(model: &Model) -> Option<(usize, ArmClass)> {
 /// The class of `model` and the lines it was read from (for `--explain`).
 pub fn explain(model: &Model, parameter: Option<Parameter>) -> Result<(ArmClass, ArmStructure)> {
     let structure = ArmStructure::of_model(model)?;
-    let class = match plan(model, &structure, parameter, SearchPolicy::TwoDimensions) {
+    let class = match plan(model, &structure, parameter, SearchPolicy::Elimination) {
         Ok((class, _)) => class,
         Err(_) => detect(&reduced(&structure, parameter)).class(),
     };
@@ -634,18 +627,6 @@ fn plan(
             let solver = EndPairSearch::new(&chain);
             Ok((class, Plan::EndParallelPair { solver, end }))
         }
-        // The 2-D search needs no special pair: it takes the general arm and
-        // the pairs no 1-D search handles.
-        (
-            Detected::Unsolvable(
-                ArmClass::General | ArmClass::UnsearchedPairs | ArmClass::OnePair { .. },
-            ),
-            Some(Parameter::FixedJoint { .. }) | None,
-        ) if search == SearchPolicy::TwoDimensions =>
-        {
-            let chain = chain_of(&arm, ChainEnd::Tip).ok_or_else(|| unsolvable(""))?;
-            Ok((class, Plan::TwoDimensional(GridSearch::new(&chain))))
-        }
         (
             Detected::Unsolvable(
                 ArmClass::General | ArmClass::UnsearchedPairs | ArmClass::OnePair { .. },
@@ -654,10 +635,10 @@ fn plan(
         ) => Err(unsolvable(match search {
             // Elimination was tried (and does not apply to this arm).
             SearchPolicy::Elimination => {
-                "; elimination does not apply to it (its determinant vanishes identically); it needs the 2-D search: set AnalyticOptions::search = SearchPolicy::TwoDimensions (CLI: --search 2d)"
+                "; elimination does not apply to it (its determinant vanishes identically); use a numeric solver (CLI: --solver lm)"
             }
-            _ => {
-                "; it needs elimination (AnalyticOptions::search = SearchPolicy::Elimination, the default; CLI: --search elimination) or the 2-D search (SearchPolicy::TwoDimensions; CLI: --search 2d)"
+            SearchPolicy::UpToOneDimension => {
+                "; it needs elimination (AnalyticOptions::search = SearchPolicy::Elimination, the default; CLI: --search elimination)"
             }
         })),
         (Detected::Unsolvable(_), Some(Parameter::ElbowAngle(_))) => Err(unsolvable(
@@ -685,10 +666,16 @@ fn eliminable(detected: &Detected, parameter: Option<Parameter>) -> bool {
 }
 
 /// The elimination of `arm`'s chain from the tip, else from the base (a
-/// special pair at joints 1-2 needs the reversed chain), if either applies.
+/// special pair at joints 1-2 needs the reversed chain), else with the loop
+/// cut between joints 1 and 6 (special pairs at both ends), if any applies.
 fn elimination_plan(arm: &ArmStructure) -> Option<Plan> {
-    [ChainEnd::Tip, ChainEnd::Base].into_iter().find_map(|end| {
-        let solver = Elimination::new(&chain_of(arm, end)?)?;
+    let cuts = [
+        (ChainEnd::Tip, Cut::Tip),
+        (ChainEnd::Base, Cut::Tip),
+        (ChainEnd::Tip, Cut::Split),
+    ];
+    cuts.into_iter().find_map(|(end, cut)| {
+        let solver = Elimination::new(&chain_of(arm, end)?, cut)?;
         Some(Plan::Elimination { solver, end })
     })
 }

@@ -37,9 +37,6 @@ pub enum SearchPolicy {
     /// Closed forms and the 1-D searches (the subproblem method of IK-Geo;
     /// hundreds of microseconds); a general 6R arm is refused.
     UpToOneDimension,
-    /// The 1-D searches and the 2-D search of a general 6R arm
-    /// ([`search2d`](super::search2d): milliseconds, may miss solutions).
-    TwoDimensions,
 }
 
 impl SearchPolicy {
@@ -48,7 +45,6 @@ impl SearchPolicy {
         match self {
             SearchPolicy::Elimination => "elimination",
             SearchPolicy::UpToOneDimension => "up_to_one_dimension",
-            SearchPolicy::TwoDimensions => "two_dimensions",
         }
     }
 }

@@ -71,11 +71,11 @@
 //! The residual is formed from the placements' sines and cosines.
 
 use super::chain::{Candidates, Chain, SAME_SOLUTION};
+use super::polish::settle_root;
 use super::search::{
     align_nearest, angle_between, discriminant_sign_change, find_roots, fold_by_extrapolation,
     BranchKey, EndCheck, Point, Residual, Sampling,
 };
-use super::search2d::settle_root;
 use super::subproblems::{rotate_by, rotation, subproblem1, Spoke, Turn};
 use super::three_axes::{Placements, ThreeAxes};
 use super::trig2::{Precision, Trig2, TrigRoots};
@@ -512,7 +512,7 @@ impl<'a> Problem<'a> {
     /// The joint values (chain order) at a root `t` of the branch `key`,
     /// and whether the chain's forward kinematics reproduces the target to
     /// [`EXACT_TOLERANCE`](super::EXACT_TOLERANCE); `None` if it misses by
-    /// more (`search2d::settle_root`).
+    /// more (`polish::settle_root`).
     fn finish(&self, t: f64, key: &Key) -> Option<([f64; 6], bool)> {
         let a = self.nearest(&Turn::of_angle(t), key)?.0.angles;
         let (_, _, [i, j]) = self.form.joints();
@@ -660,7 +660,7 @@ impl Residual<4> for Problem<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ik::analytic::search2d::chain_pose;
+    use crate::ik::analytic::polish::chain_pose;
     use crate::ik::analytic::test_random::{point, unit};
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;

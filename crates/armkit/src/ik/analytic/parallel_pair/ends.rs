@@ -5,10 +5,10 @@
 use super::sloped::{find_roots_sloped, Knot, Samples, Sloped};
 use super::{Key, Point, Problem, END_TOLERANCE, FOLDING, LINK};
 use crate::ik::analytic::chain::Candidates;
+use crate::ik::analytic::polish::settle_root;
 use crate::ik::analytic::search::{
     align_nearest, discriminant_sign_change, fold_by_extrapolation, EndCheck, Residual,
 };
-use crate::ik::analytic::search2d::settle_root;
 use crate::ik::analytic::trig2::Trig2;
 use std::cell::Cell;
 
@@ -70,7 +70,7 @@ pub(in crate::ik::analytic) trait PairBranches {
     /// The joint values (chain order) at a root `t` (rad) of the branch
     /// `key`, and whether the chain's forward kinematics reproduces the
     /// target to [`EXACT_TOLERANCE`](crate::ik::analytic::EXACT_TOLERANCE);
-    /// `None` if it misses by more (`search2d::settle_root`).
+    /// `None` if it misses by more (`polish::settle_root`).
     fn finish(&self, t: f64, key: &Key) -> Option<([f64; 6], bool)>;
 }
 

@@ -1,93 +1,14 @@
-//! General 6R arms (no intersecting or parallel consecutive axes): a 2-D
-//! search, offered only on request (`SearchPolicy::TwoDimensions`) since it
-//! takes milliseconds and may miss solutions.
-//!
-//! A [`GRID`] x [`GRID`] grid over joints 1 and 2 (evenly spaced over one
-//! turn each, the other four joints at 0) gives the starting points; each is
-//! polished by damped Gauss-Newton (Levenberg-Marquardt) on the full 6-D
-//! pose error of the chain's product of exponentials (position error, m,
-//! and the rotation vector of `R_T R'`, rad), at most [`MAX_ITERATIONS`]
-//! steps, stopping once the error's norm is below [`CONVERGED`]. Converged
-//! configurations are kept (those within [`SAME`] of each other merged, the
-//! most accurate kept); a solution
-//! none of the starting points leads to is missed. The recovery rate of the
-//! generating configuration is measured in `tests/ik_analytic.rs`.
+//! A root of a search or of elimination made a solution: the chain's pose
+//! at a configuration, its error to the target, and a few damped
+//! Gauss-Newton (Levenberg-Marquardt) steps on the full 6-D pose error of
+//! the chain's product of exponentials (position error, m, and the rotation
+//! vector of `R_T R'`, rad) where the root misses by more than the
+//! rounding.
 
-use super::chain::{Candidates, Chain};
+use super::chain::Chain;
 use super::subproblems::rotation;
 use super::EXACT_TOLERANCE;
 use crate::math::{wrap_angle, Matrix6, Pose, Vector3, Vector6};
-
-/// Grid points per joint (joints 1 and 2).
-pub const GRID: usize = 16;
-/// Most Gauss-Newton steps per starting point.
-pub const MAX_ITERATIONS: usize = 30;
-/// Largest gap (rad, every joint) between two polished configurations taken
-/// for the same solution (the more accurate is kept).
-pub const SAME: f64 = 1e-6;
-/// Norm of the 6-D pose error (m and rad) at which a polish stops.
-pub const CONVERGED: f64 = 1e-13;
-
-/// The chain of a general 6R arm, read once.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct GridSearch {
-    chain: Chain,
-    home: Pose,
-}
-
-impl GridSearch {
-    pub(crate) fn new(chain: &Chain) -> GridSearch {
-        GridSearch {
-            chain: *chain,
-            home: chain.home_inverse.inverse(),
-        }
-    }
-
-    /// Every solution found for `target` (the chain's end-effector pose).
-    pub(crate) fn solve(&self, target: &Pose, out: &mut Candidates) {
-        use std::f64::consts::{PI, TAU};
-        let step = TAU / GRID as f64;
-        let mut kept = [([0.0; 6], 0.0); 32];
-        let mut count = 0;
-        for i in 0..GRID {
-            for j in 0..GRID {
-                let seed = [
-                    -PI + step * i as f64,
-                    -PI + step * j as f64,
-                    0.0,
-                    0.0,
-                    0.0,
-                    0.0,
-                ];
-                let Some((q, error)) =
-                    polish(&self.chain, &self.home, seed, target, MAX_ITERATIONS)
-                else {
-                    continue;
-                };
-                let q = q.map(wrap_angle);
-                // The same solution reached from several points: keep the
-                // most accurate.
-                let same = kept[..count].iter().position(|(p, _)| {
-                    p.iter()
-                        .zip(&q)
-                        .all(|(a, b)| wrap_angle(a - b).abs() < SAME)
-                });
-                match same {
-                    Some(k) if error < kept[k].1 => kept[k] = (q, error),
-                    Some(_) => {}
-                    None if count < kept.len() => {
-                        kept[count] = (q, error);
-                        count += 1;
-                    }
-                    None => {}
-                }
-            }
-        }
-        for (q, error) in &kept[..count] {
-            out.push(q, *error <= EXACT_TOLERANCE);
-        }
-    }
-}
 
 /// How far a root may miss and how hard it is polished: a root `q` whose
 /// pose misses the target by more than `keep` (m and rad) is dropped; one
@@ -108,8 +29,11 @@ impl Settle {
     };
 }
 
+/// Norm of the 6-D pose error (m and rad) at which a polish stops.
+pub(crate) const CONVERGED: f64 = 1e-13;
+
 /// Pose error (m and rad) above which a root is polished.
-const POLISHED: f64 = 1e-12;
+pub(crate) const POLISHED: f64 = 1e-12;
 
 /// A 1-D search's root `q` (chain order) as a solution for `target`:
 /// [`settle_root_within`] [`Settle::SEARCH`].
