@@ -35,13 +35,7 @@ pub fn step(
     dt: f64,
     mode: BaseMode,
 ) -> Result<()> {
-    check_finite_vector("joint_rates", joint_rates, model.dof())?;
-    if !(dt.is_finite() && dt >= 0.0) {
-        return Err(Error::invalid_argument(
-            "dt",
-            format!("must be finite and >= 0 s, got {dt}"),
-        ));
-    }
+    check_step_inputs(model, joint_rates, dt)?;
     update_kinematics(model, data, &state.base, &state.q)?;
     let com = data.com;
     if mode == BaseMode::FreeFloating {
@@ -89,13 +83,7 @@ pub fn step_integrated(
     dt: f64,
     mode: BaseMode,
 ) -> Result<()> {
-    check_finite_vector("joint_rates", joint_rates, model.dof())?;
-    if !(dt.is_finite() && dt >= 0.0) {
-        return Err(Error::invalid_argument(
-            "dt",
-            format!("must be finite and >= 0 s, got {dt}"),
-        ));
-    }
+    check_step_inputs(model, joint_rates, dt)?;
     let (p, r) = (state.base.translation, state.base.rotation);
     let k1 = base_twist(model, data, state, joint_rates, 0.0, &p, &r, mode)?;
     let stage = |k: &(Vector3<f64>, Vector3<f64>), h: f64| {
@@ -308,4 +296,18 @@ mod tests {
             .to_string()
             .contains("amplitude"));
     }
+}
+
+/// The inputs of one step, checked alike by [`step`] and [`step_integrated`]:
+/// `joint_rates` (rad/s or m/s, one per joint) finite and of the arm's size,
+/// `dt` (s) finite and non-negative.
+fn check_step_inputs(model: &FreeFloatingModel, joint_rates: &[f64], dt: f64) -> Result<()> {
+    check_finite_vector("joint_rates", joint_rates, model.dof())?;
+    if !(dt.is_finite() && dt >= 0.0) {
+        return Err(Error::invalid_argument(
+            "dt",
+            format!("must be finite and >= 0 s, got {dt}"),
+        ));
+    }
+    Ok(())
 }
