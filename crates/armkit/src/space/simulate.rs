@@ -250,6 +250,20 @@ impl SinusoidalJointMotion {
     }
 }
 
+/// The inputs of one step, checked alike by [`step`] and [`step_integrated`]:
+/// `joint_rates` (rad/s or m/s, one per joint) finite and of the arm's size,
+/// `dt` (s) finite and non-negative.
+fn check_step_inputs(model: &FreeFloatingModel, joint_rates: &[f64], dt: f64) -> Result<()> {
+    check_finite_vector("joint_rates", joint_rates, model.dof())?;
+    if !(dt.is_finite() && dt >= 0.0) {
+        return Err(Error::invalid_argument(
+            "dt",
+            format!("must be finite and >= 0 s, got {dt}"),
+        ));
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -296,18 +310,4 @@ mod tests {
             .to_string()
             .contains("amplitude"));
     }
-}
-
-/// The inputs of one step, checked alike by [`step`] and [`step_integrated`]:
-/// `joint_rates` (rad/s or m/s, one per joint) finite and of the arm's size,
-/// `dt` (s) finite and non-negative.
-fn check_step_inputs(model: &FreeFloatingModel, joint_rates: &[f64], dt: f64) -> Result<()> {
-    check_finite_vector("joint_rates", joint_rates, model.dof())?;
-    if !(dt.is_finite() && dt >= 0.0) {
-        return Err(Error::invalid_argument(
-            "dt",
-            format!("must be finite and >= 0 s, got {dt}"),
-        ));
-    }
-    Ok(())
 }
