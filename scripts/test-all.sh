@@ -2,7 +2,11 @@
 # The README's test command: the Rust suite, then the Python package's suite.
 #
 #   1. cargo test --workspace --release (four test binaries and the merged
-#      doctests; about 4 min on a quiet 2-core machine from a fresh clone)
+#      doctests). The browser tests (`demo_browser`, `view_browser`) open the
+#      demo's reports and `armkit view`'s pages in headless Chromium when it
+#      is installed (scripts/install-browser.sh) and skip that half with a
+#      message when it is not; ARMKIT_REQUIRE_BROWSER=1 makes a missing
+#      Chromium a failure (.ci/run sets it once Chromium is installed).
 #   2. the armkit wheel built by pip (pip fetches maturin, the build backend,
 #      from PyPI; the wheel reuses the Rust build of step 1) into a fresh
 #      virtual environment with numpy, pytest, mypy (its stubtest checks
@@ -20,6 +24,15 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/stage.sh
+
+# example-robot-data's UR5 and Panda with their meshes, for the view's
+# browser test, where the peers' environment (../shared/peers/setup.sh) is
+# installed; that test is skipped otherwise.
+if [ -z "${ARMKIT_EXAMPLE_ROBOT_DATA:-}" ]; then
+  for share in ../shared/peers/.venv/lib/python3*/site-packages/cmeel.prefix/share; do
+    if [ -d "$share/example-robot-data" ]; then export ARMKIT_EXAMPLE_ROBOT_DATA="$PWD/$share"; fi
+  done
+fi
 
 stage "Rust: cargo test --workspace --release" \
     cargo test --workspace --release

@@ -4,8 +4,8 @@
 //!
 //! Chromium (Debian's `chromium`) is needed for the browser half. Without it
 //! the test only checks the files, unless `ARMKIT_REQUIRE_BROWSER=1` makes its
-//! absence a failure (`scripts/browser-test.sh`, which `.ci/run` calls after
-//! the README's test command, installs Chromium and runs this test so).
+//! absence a failure (`.ci/run` installs Chromium with
+//! `scripts/install-browser.sh` and sets it).
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -271,23 +271,19 @@ fn check_3d_views(browser: &Path, out: &Path, scratch: &Path) {
     use crate::view_browser::{assert_matches, screenshot, test_result};
     let size: u64 = walk(out).iter().map(|p| p.metadata().unwrap().len()).sum();
     assert!(size < 20_000_000, "the demo's out/ is {size} bytes");
-    let mut views = 0;
+    let reports: Vec<PathBuf> = std::fs::read_dir(out)
+        .unwrap()
+        .map(|entry| entry.unwrap().path().join("report.html"))
+        .filter(|report| {
+            report.exists()
+                && std::fs::read_to_string(report)
+                    .unwrap()
+                    .contains("class=\"armkit-view\"")
+        })
+        .collect();
+    let views = reports.len();
     let mut slowest: f64 = 0.0;
-    for entry in std::fs::read_dir(out).unwrap() {
-        let report = entry.unwrap().path().join("report.html");
-        if !report.exists()
-            || !std::fs::read_to_string(&report)
-                .unwrap()
-                .contains("class=\"armkit-view\"")
-        {
-            continue;
-        }
-        views += 1;
-        let visit = visit_url(
-            browser,
-            &format!("file://{}#armkit-test", report.display()),
-            scratch,
-        );
+    for (report, visit) in visit_in_parallel(browser, &reports, "#armkit-test", scratch) {
         assert!(
             visit.page_requests.is_empty(),
             "{}: {:?}",
@@ -349,6 +345,41 @@ fn check_3d_views(browser: &Path, out: &Path, scratch: &Path) {
         );
         screenshot(browser, &url, &shots.join(format!("{name}.png")), scratch);
     }
+}
+
+/// Each page visited with `fragment` (as [`visit_url`]), two browsers at a
+/// time (each with its own profile folder below `scratch`): a page takes
+/// seconds of the browser's CPU, and the machine has two cores.
+fn visit_in_parallel(
+    browser: &Path,
+    pages: &[PathBuf],
+    fragment: &str,
+    scratch: &Path,
+) -> Vec<(PathBuf, PageVisit)> {
+    let half = pages.len().div_ceil(2);
+    std::thread::scope(|scope| {
+        let workers: Vec<_> = pages
+            .chunks(half.max(1))
+            .enumerate()
+            .map(|(worker, chunk)| {
+                let own = scratch.join(format!("browser-{worker}"));
+                scope.spawn(move || {
+                    std::fs::create_dir_all(&own).unwrap();
+                    chunk
+                        .iter()
+                        .map(|page| {
+                            let url = format!("file://{}{fragment}", page.display());
+                            (page.clone(), visit_url(browser, &url, &own))
+                        })
+                        .collect::<Vec<_>>()
+                })
+            })
+            .collect();
+        workers
+            .into_iter()
+            .flat_map(|worker| worker.join().unwrap())
+            .collect()
+    })
 }
 
 /// A column-major 4x4 matrix from the page as a pose.

@@ -6,7 +6,8 @@
 //! 1e-9; the robot must cover pixels of the canvas; a screenshot is taken.
 //!
 //! Without Chromium the browser half is skipped with a message, unless
-//! `ARMKIT_REQUIRE_BROWSER=1` (`scripts/browser-test.sh`, run by `.ci/run`).
+//! `ARMKIT_REQUIRE_BROWSER=1` (set by `.ci/run` once
+//! `scripts/install-browser.sh` has installed Chromium).
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
