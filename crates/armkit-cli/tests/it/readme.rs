@@ -191,3 +191,34 @@ fn shell_words_keep_quoted_values_and_drop_comments() {
     );
     assert_eq!(shell_words("a#b c"), ["a#b", "c"]);
 }
+
+/// The targets of the README's relative links and images (`](path)`, a
+/// fragment or a URL excluded).
+fn relative_link_targets(text: &str) -> Vec<String> {
+    text.split("](")
+        .skip(1)
+        .filter_map(|rest| rest.split(')').next())
+        .map(|target| target.split('#').next().unwrap_or("").to_string())
+        .filter(|target| !target.is_empty() && !target.contains("://"))
+        .collect()
+}
+
+#[test]
+fn every_relative_link_and_picture_of_the_readme_exists() {
+    let root = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."));
+    let targets = relative_link_targets(&readme());
+    assert!(
+        targets.iter().filter(|t| t.ends_with(".png")).count() >= 3,
+        "{targets:?}"
+    );
+    for target in &targets {
+        assert!(
+            root.join(target).exists(),
+            "the README links {target}, which is not in the repository"
+        );
+    }
+    assert_eq!(
+        relative_link_targets("[a](docs/x.md) [b](#anchor) ![c](https://e.org/y.png)"),
+        ["docs/x.md"]
+    );
+}
