@@ -11,6 +11,7 @@
 
 mod analytic;
 mod arrays;
+mod batched;
 mod beam;
 mod description;
 mod dynamics;
