@@ -321,3 +321,15 @@ pub fn accept_hyphen_values(command: clap::Command) -> clap::Command {
     }
     command
 }
+
+/// `value` when finite and > 0; else an error naming `option`.
+pub fn positive(option: &str, value: f64) -> CliResult<f64> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(CliError(format!(
+            "{option}: must be finite and > 0, got {}",
+            armkit::error::brief(value)
+        )))
+    }
+}

@@ -7,7 +7,8 @@ use armkit::mpc::{MpcOptions, MpcPlanner, TaskWeights, VelocityWeights, MAX_SAMP
 
 use super::MpcArgs;
 use crate::common::{
-    parse_fixed_numbers, parse_joint_positions, parse_pose, CliError, CliResult, LimitPolicy,
+    parse_fixed_numbers, parse_joint_positions, parse_pose, positive, CliError, CliResult,
+    LimitPolicy,
 };
 
 fn task_weights(text: &str, terminal_factor: f64) -> CliResult<TaskWeights> {
@@ -117,13 +118,7 @@ impl MpcArgs {
             ),
         ] {
             if let Some(value) = value {
-                if !(value.is_finite() && value > 0.0) {
-                    return Err(CliError(format!(
-                        "{flag}: must be finite and > 0, got {}",
-                        armkit::error::brief(value)
-                    )));
-                }
-                *field = value;
+                *field = positive(flag, value)?;
             }
         }
         Ok(simulation)

@@ -23,8 +23,10 @@ use armkit::study::{AvoidanceOutcome, AvoidanceStudy, ThresholdRule};
 use armkit::tracking::{Feedback, TrackingStatus, MAX_PERIODS};
 use clap::{Args, ValueEnum};
 
-use crate::common::{parse_fixed_numbers, parse_numbers, print_json, CliError, CliResult, Outcome};
-use crate::report::join;
+use crate::common::{
+    parse_fixed_numbers, parse_numbers, positive, print_json, CliError, CliResult, Outcome,
+};
+use crate::report::{format_value, join};
 
 mod figures;
 mod outputs;
@@ -357,11 +359,11 @@ pub fn study(args: &SingularityArgs) -> CliResult<Study> {
         duration,
         args.accel_time,
         options.tracking.dt,
-        short(closest),
+        format_value(closest),
         closest_time,
-        short(options.detection.determinant_threshold),
+        format_value(options.detection.determinant_threshold),
         outcome.threshold,
-        short(options.detection.joint_step_threshold),
+        format_value(options.detection.joint_step_threshold),
         options.region_plan,
         options.tracking.feedback,
     );
@@ -393,20 +395,4 @@ fn parse_ks(text: &str) -> CliResult<Vec<usize>> {
             }
         })
         .collect()
-}
-
-/// `value` when finite and > 0; else an error naming `option`.
-fn positive(option: &str, value: f64) -> CliResult<f64> {
-    if value.is_finite() && value > 0.0 {
-        Ok(value)
-    } else {
-        Err(CliError(format!(
-            "{option}: must be a finite number > 0, got {value}"
-        )))
-    }
-}
-
-/// A number in 4 significant digits.
-fn short(v: f64) -> String {
-    crate::report::format_value(v)
 }

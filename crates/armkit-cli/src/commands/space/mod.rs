@@ -13,7 +13,7 @@ use clap::{Args, Subcommand, ValueEnum};
 
 use crate::common::{
     format_rows, jacobian_rows, parse_fixed_numbers, parse_joint_positions, parse_pose, pose_rows,
-    print_json, CliError, CliResult, LimitPolicy, Outcome, RobotArgs,
+    positive, print_json, CliError, CliResult, LimitPolicy, Outcome, RobotArgs,
 };
 
 mod csv;
@@ -291,12 +291,7 @@ fn initial_q(text: Option<&str>, model: &FreeFloatingModel) -> CliResult<Vec<f64
 /// Number of steps of `dt` in `duration`, after checking both.
 fn step_count(duration: f64, dt: f64) -> CliResult<usize> {
     for (name, value) in [("--duration", duration), ("--dt", dt)] {
-        if !(value.is_finite() && value > 0.0) {
-            return Err(CliError(format!(
-                "{name}: must be finite and > 0 s, got {}",
-                brief(value)
-            )));
-        }
+        positive(name, value)?;
     }
     let steps = (duration / dt - 1e-9).ceil().max(1.0);
     if steps > 1e7 {

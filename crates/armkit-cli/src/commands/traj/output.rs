@@ -7,7 +7,7 @@ use armkit::trajectory::{JointState, Trajectory};
 use armkit::Model;
 use clap::Args;
 
-use crate::common::{CliError, CliResult};
+use crate::common::{positive, CliError, CliResult};
 use crate::plot::Figure;
 
 /// Where and how densely the trajectory is written.
@@ -35,9 +35,7 @@ pub struct OutputArgs {
 
 /// The trajectory sampled every `dt` (and at its end): times and states.
 pub(super) fn sample(traj: &Trajectory, dt: f64) -> CliResult<(Vec<f64>, Vec<JointState>)> {
-    if !(dt.is_finite() && dt > 0.0) {
-        return Err(CliError(format!("--dt: must be finite and > 0, got {dt}")));
-    }
+    positive("--dt", dt)?;
     let steps = (traj.duration() / dt).ceil() as usize;
     if steps > 10_000_000 {
         return Err(CliError(format!(
