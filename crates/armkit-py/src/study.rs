@@ -49,7 +49,8 @@ pub struct StudyReport {
     #[pyo3(get)]
     notes: Vec<String>,
     /// The paper's claims: each a dict with claim, measured, status
-    /// ("reproduced", "reproduced with deviation", "not reproduced").
+    /// ("reproduced", "reproduced with deviation", "not reproduced", "not
+    /// attempted") and same_evidence_as (the row it restates, or None).
     #[pyo3(get)]
     findings: Py<PyList>,
     /// Number of checks that pass.
@@ -93,6 +94,7 @@ impl StudyReport {
             item.set_item("claim", &finding.claim)?;
             item.set_item("measured", &finding.measured)?;
             item.set_item("status", finding.status.as_str())?;
+            item.set_item("same_evidence_as", finding.same_evidence_as.as_deref())?;
             findings.append(item)?;
         }
         let series = PyDict::new(py);

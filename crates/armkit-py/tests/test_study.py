@@ -52,6 +52,11 @@ def test_avoidance_study_as_printed_line_and_open_loop_options():
     claims = [f["claim"] for f in report.findings]
     assert any("the method as printed on a near-miss line" in c for c in claims)
     assert any("open-loop tracker" in c for c in claims)
+    # A row restating counted evidence names it; counted rows carry None.
+    restating = {f["claim"]: f["same_evidence_as"] for f in report.findings}
+    assert restating["seed 004, Figs 5-6, the method as printed on a near-miss line: the joints "
+                     "that jump at the singularity are 4 and 6"]
+    assert restating["seed 004, Figs 5-6: the joints that jump at the singularity are 4 and 6"] is None
     bare = study.run("avoidance", as_printed_miss=None, open_loop=False, region_plan="exact",
                      feedback="next-pose", **base)
     assert not any("as printed on a near-miss" in f["claim"] or "open-loop" in f["claim"]

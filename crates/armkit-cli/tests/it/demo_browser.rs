@@ -127,6 +127,28 @@ fn demo_reports_open_offline_with_plots_and_animation() {
         stdout.contains(&format!("open {}", out.join("index.html").display())),
         "{stdout}"
     );
+    // The README's claims table is the claims script's output on this run,
+    // line for line (counts, verdicts and invariants in step with the
+    // summaries).
+    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
+    let table = Command::new("python3")
+        .arg(format!("{root}/scripts/claims-table.py"))
+        .arg(&out)
+        .output()
+        .expect("python3 runs scripts/claims-table.py");
+    assert!(table.status.success(), "{table:?}");
+    let table = String::from_utf8(table.stdout).unwrap();
+    let readme = std::fs::read_to_string(format!("{root}/README.md")).unwrap();
+    let stale: Vec<&str> = table
+        .lines()
+        .filter(|line| !readme.lines().any(|r| r == *line))
+        .collect();
+    assert!(
+        stale.is_empty() && readme.contains(table.trim()),
+        "README.md's claims table is out of step with the demo (rerun \
+         scripts/claims-table.py out and paste it); lines not in README.md:\n{}",
+        stale.join("\n")
+    );
     let index = out.join("index.html");
     let report = out.join("seed000-mpc-ex1/report.html");
     for path in [&index, &report] {

@@ -1,6 +1,6 @@
 """The seed studies: run one by name, get its checks, series and notes."""
 
-from typing import Any, Dict, List, final
+from typing import Any, Dict, List, Optional, final
 
 __all__ = ["run", "names", "StudyReport"]
 
@@ -14,9 +14,10 @@ class StudyReport:
     series: Dict[str, Dict[str, Any]]
     """By name: title, x_label, y_label, x (array), columns (label -> array)."""
     notes: List[str]
-    findings: List[Dict[str, str]]
+    findings: List[Dict[str, Optional[str]]]
     """The paper's claims, each: claim, measured, status ("reproduced",
-    "reproduced with deviation", "not reproduced")."""
+    "reproduced with deviation", "not reproduced", "not attempted") and
+    same_evidence_as (the row it restates, not counted; None when counted)."""
     passed: int
     all_passed: bool
 
