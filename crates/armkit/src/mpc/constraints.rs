@@ -484,8 +484,8 @@ mod tests {
             let opts = options(n, m);
             let bounds = JointBounds::new(&model, Some(&limits), n, m).unwrap();
             assert_eq!(bounds.velocity_rows, vec![0, 1]);
-            for joint in 0..2 {
-                let speed = limits[joint].velocity.unwrap();
+            for (joint, limit) in limits.iter().enumerate() {
+                let speed = limit.velocity.unwrap();
                 for l in 0..m {
                     for sign in [1.0, -1.0] {
                         for (scale, crosses) in [(1.01, true), (0.99, false)] {
