@@ -459,4 +459,54 @@ mod tests {
         );
         assert!(last_only > 20, "{last_only}");
     }
+
+    /// With two speed-limited joints (2 and 3 rad/s, positions far from
+    /// their limits), an input of either joint beyond its speed limit at any
+    /// single control sample `l < M`, of either sign, breaks a row, and the
+    /// same plan 1 % within the limit meets every row (eq 17: each joint's
+    /// velocity rows at every control sample, none sharing another's bounds).
+    #[test]
+    fn a_speed_limit_crossed_by_either_joint_at_any_input_breaks_a_row() {
+        let model = arm();
+        let limits = [
+            JointLimits {
+                velocity: Some(2.0),
+                ..JointLimits::position(-10.0, 10.0)
+            },
+            JointLimits {
+                velocity: Some(3.0),
+                ..JointLimits::position(-10.0, 10.0)
+            },
+        ];
+        let (q, v_old) = ([0.0, 0.0], [0.0, 0.0]);
+        let mut tried = 0;
+        for (n, m) in [(10, 10), (10, 5), (6, 1), (5, 4)] {
+            let opts = options(n, m);
+            let bounds = JointBounds::new(&model, Some(&limits), n, m).unwrap();
+            assert_eq!(bounds.velocity_rows, vec![0, 1]);
+            for (joint, limit) in limits.iter().enumerate() {
+                let speed = limit.velocity.unwrap();
+                for l in 0..m {
+                    for sign in [1.0, -1.0] {
+                        for (scale, crosses) in [(1.01, true), (0.99, false)] {
+                            let mut velocities = vec![0.0; n];
+                            let end = if l + 1 == m { n } else { l + 1 };
+                            velocities[l..end]
+                                .iter_mut()
+                                .for_each(|u| *u = sign * scale * speed);
+                            let du = increments_for(&velocities, joint, &v_old, m).unwrap();
+                            assert_eq!(
+                                rows_hold(&bounds, &opts, &q, &v_old, &du),
+                                !crosses,
+                                "N = {n}, M = {m}: joint {joint} at {:.3} rad/s over input {l} only (limit {speed})",
+                                sign * scale * speed
+                            );
+                            tried += 1;
+                        }
+                    }
+                }
+            }
+        }
+        assert_eq!(tried, 2 * 2 * 2 * (10 + 5 + 1 + 4));
+    }
 }
