@@ -310,7 +310,10 @@ fn diagnose_disagreement_on_request() {
     for _ in 0..poses {
         let p = Vector3::from_fn(|i, _| origin[i] + rng.gen_range(0.0..dims[i] as f64 * r));
         let rotation = random_rotation(&mut rng);
-        let pose = Pose { rotation, translation: p };
+        let pose = Pose {
+            rotation,
+            translation: p,
+        };
         let is = truth(&mut solver, &start, &pose);
         let said = map.query(&pose);
         // Position only: trilinear over the 8 centres, exact rotation.
@@ -325,7 +328,10 @@ fn diagnose_disagreement_on_request() {
                 w *= if up { t - f } else { 1.0 - (t - f) };
                 c[axis] = origin[axis] + (f + up as i32 as f64 + 0.5) * r;
             }
-            let q = Pose { rotation, translation: c };
+            let q = Pose {
+                rotation,
+                translation: c,
+            };
             if truth(&mut solver, &start, &q) {
                 sum += w;
             }
@@ -334,7 +340,10 @@ fn diagnose_disagreement_on_request() {
         // Orientation only: the map's 3 orientations at the exact position.
         let mut osum = 0.0;
         for (k, w) in layout.orientations_around(&rotation) {
-            let q = Pose { rotation: layout.orientation(k).into_inner(), translation: p };
+            let q = Pose {
+                rotation: layout.orientation(k).into_inner(),
+                translation: p,
+            };
             if truth(&mut solver, &start, &q) {
                 osum += w;
             }

@@ -85,12 +85,16 @@ fn an_impossible_task_is_an_error_saying_so() {
     let mut task = task_in_base_frame(&model);
     // Two poses 4 m apart: no UR5 base reaches both.
     task[1].translation += Vector3::new(4.0, 0.0, 0.0);
-    let e = base_placements(&map, &task, &floor()).unwrap_err().to_string();
+    let e = base_placements(&map, &task, &floor())
+        .unwrap_err()
+        .to_string();
     assert!(
         e.contains("no base placement reaches all 3 task poses") && e.contains("the best reached"),
         "{e}"
     );
-    let e = base_placements(&map, &[], &floor()).unwrap_err().to_string();
+    let e = base_placements(&map, &[], &floor())
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("at least one pose"), "{e}");
     for (bad, name) in [
         (
@@ -121,6 +125,8 @@ fn an_impossible_task_is_an_error_saying_so() {
     }
     let mut broken = task.clone();
     broken[0].translation.x = f64::NAN;
-    let e = base_placements(&map, &broken, &floor()).unwrap_err().to_string();
+    let e = base_placements(&map, &broken, &floor())
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("pose 0"), "{e}");
 }
