@@ -42,15 +42,20 @@ fn truth(solver: &mut AutoSolver, start: &[f64], pose: &Pose) -> bool {
     solver.solve(pose, start).unwrap().report.converged()
 }
 
-/// Random poses in the map's box: (agreement, false positives) as
-/// fractions, of the interpolated query and (the last two) of the raw bins.
-fn accuracy(model: &Model, map: &ReachMap, poses: usize, seed: u64) -> (f64, f64, f64, f64) {
+/// The ground truth's solver: 50 seeded restarts, no time budget.
+fn truth_solver(model: &Model) -> AutoSolver {
     let options = IkOptions {
         max_restarts: 50,
         time_budget: None,
         ..IkOptions::default()
     };
-    let mut solver = AutoSolver::new(model, options).unwrap();
+    AutoSolver::new(model, options).unwrap()
+}
+
+/// Random poses in the map's box: (agreement, false positives) as
+/// fractions, of the interpolated query and (the last two) of the raw bins.
+fn accuracy(model: &Model, map: &ReachMap, poses: usize, seed: u64) -> (f64, f64, f64, f64) {
+    let mut solver = truth_solver(model);
     let start = model.neutral_configuration();
     let layout = map.layout();
     let (origin, dims, r) = (layout.origin(), layout.dims(), layout.resolution());
@@ -87,20 +92,27 @@ fn model_spec(model: &Model, resolution: f64, orientations: usize) -> MapSpec {
     MapSpec::for_model(model, resolution, orientations, Builder::InverseKinematics)
 }
 
+/// The request in environment `variable`, `"robot resolution orientations
+/// poses"`: (the text, the model, its spec, the poses); None when unset.
+fn requested(variable: &str) -> Option<(String, Model, MapSpec, usize)> {
+    let request = std::env::var(variable).ok()?;
+    let words: Vec<&str> = request.split_whitespace().collect();
+    let model = robot(words[0]);
+    let spec = model_spec(&model, words[1].parse().unwrap(), words[2].parse().unwrap());
+    let poses = words[3].parse().unwrap();
+    Some((request, model, spec, poses))
+}
+
 /// The full accuracy figure: `ARMKIT_REACH_FULL="robot resolution
 /// orientations poses"` (e.g. `ur5 0.05 200 100000`) runs it and prints it.
 #[test]
 fn full_accuracy_figure_on_request() {
-    let Ok(request) = std::env::var("ARMKIT_REACH_FULL") else {
+    let Some((request, model, spec, poses)) = requested("ARMKIT_REACH_FULL") else {
         return;
     };
-    let words: Vec<&str> = request.split_whitespace().collect();
-    let model = robot(words[0]);
-    let spec = model_spec(&model, words[1].parse().unwrap(), words[2].parse().unwrap());
     let began = std::time::Instant::now();
     let map = reach::build(&model, &spec, 2, &mut |_, _| {}).unwrap();
     let seconds = began.elapsed().as_secs_f64();
-    let poses: usize = words[3].parse().unwrap();
     let (agreement, false_positives, raw, raw_false) = accuracy(&model, &map, poses, 2026);
     eprintln!(
         "{request}: {} x {} orientations, build {seconds:.1} s, {:.0} IK/s, {} reachable cells; agreement {agreement:.5}, false positives {false_positives:.5}; raw bins: agreement {raw:.5}, false positives {raw_false:.5}",
@@ -287,20 +299,11 @@ fn the_direction_table_finds_the_nearest_direction_as_a_full_scan_does() {
 /// position with the map's 3 orientations (orientation error alone).
 #[test]
 fn diagnose_disagreement_on_request() {
-    let Ok(request) = std::env::var("ARMKIT_REACH_DIAG") else {
+    let Some((request, model, spec, poses)) = requested("ARMKIT_REACH_DIAG") else {
         return;
     };
-    let words: Vec<&str> = request.split_whitespace().collect();
-    let model = robot(words[0]);
-    let spec = model_spec(&model, words[1].parse().unwrap(), words[2].parse().unwrap());
     let map = reach::build(&model, &spec, 2, &mut |_, _| {}).unwrap();
-    let poses: usize = words[3].parse().unwrap();
-    let options = IkOptions {
-        max_restarts: 50,
-        time_budget: None,
-        ..IkOptions::default()
-    };
-    let mut solver = AutoSolver::new(&model, options).unwrap();
+    let mut solver = truth_solver(&model);
     let start = model.neutral_configuration();
     let layout = map.layout();
     let (origin, dims, r) = (layout.origin(), layout.dims(), layout.resolution());
