@@ -9,9 +9,10 @@
 //! Frames and units (the library's): positions in the world frame, m; cell
 //! `i = (ix * ny + iy) * nz + iz`; bin `cell * orientations + k`.
 
-use armkit::reach::{self, Builder, Chunk, ChunkResult, MapLayout, MapSpec, ReachMap};
+use armkit::reach::{self, Builder, Chunk, ChunkResult, FloorGrid, MapLayout, MapSpec, ReachMap};
 use armkit::Error;
-use numpy::{PyArray1, PyArrayMethods, PyUntypedArrayMethods};
+use numpy::ndarray::Ix2;
+use numpy::{PyArray1, PyArray2, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -427,6 +428,57 @@ impl Map {
         let p = vector_argument(p, "p", 3)?;
         Ok(self.map.nearest_reachable_cell([p[0], p[1], p[2]]))
     }
+
+    /// Inverse reachability (`armkit::reach::base_placements`): the base
+    /// placements on the plane `z` (m), over the grid `x`, `y` ranges (m)
+    /// with `step` (m) times `yaws` headings in [0, 2 pi), from which every
+    /// task pose `T` ((4, 4) or (N, 4, 4), world frame) is reachable; rows
+    /// `(x, y, z, yaw, score)` (m, rad, mean capability index), best first.
+    /// Raises ValueError naming the problem, and when no placement reaches
+    /// every pose.
+    #[allow(non_snake_case)]
+    #[pyo3(signature = (T, x, y, step, z=0.0, yaws=1))]
+    #[allow(clippy::too_many_arguments)]
+    fn base_placements<'py>(
+        &self,
+        py: Python<'py>,
+        T: &Bound<'py, PyAny>,
+        x: (f64, f64),
+        y: (f64, f64),
+        step: f64,
+        z: f64,
+        yaws: usize,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let array = float_array(T, "T")?;
+        let shape = array.shape().to_vec();
+        if !(shape == [4, 4] || (shape.len() == 3 && shape[1..] == [4, 4])) {
+            return Err(shape_error("T", "(4, 4) or (N, 4, 4)", &shape));
+        }
+        let mut values = Vec::with_capacity(array.len());
+        copy_values(&array, &mut values);
+        let task = values
+            .chunks_exact(16)
+            .enumerate()
+            .map(|(i, m)| read_pose(m, &format!("T[{i}]")))
+            .collect::<armkit::Result<Vec<_>>>()
+            .or_raise()?;
+        let floor = FloorGrid {
+            x: [x.0, x.1],
+            y: [y.0, y.1],
+            step,
+            z,
+            yaws,
+        };
+        let found = py
+            .detach(|| reach::base_placements(&self.map, &task, &floor))
+            .or_raise()?;
+        new_array(py, Ix2(found.len(), 5), |out| {
+            for (row, p) in out.chunks_exact_mut(5).zip(&found) {
+                row.copy_from_slice(&[p.x, p.y, p.z, p.yaw, p.score]);
+            }
+            Ok(())
+        })
+    }
 }
 
 impl Map {
@@ -444,9 +496,7 @@ impl Map {
         copy_values(&array, &mut values);
         if shape == [4, 4] {
             let pose = read_pose(&values, "T").or_raise()?;
-            return Ok(self
-                .map
-                .query(&pose)
+            return Ok(answer(&self.map, &pose)
                 .into_pyobject(py)?
                 .to_owned()
                 .into_any());

@@ -335,3 +335,33 @@ def test_dask_build_survives_a_worker_killed_mid_build(client, ur5):
     assert events and events[0] >= 8  # killed with chunks still to come
     assert victim not in client.run(os.getpid).values()
     assert_same_map(m, local)
+
+
+def test_base_placements_find_a_known_base_from_transforms_and_quaternions(ur5):
+    m = armkit.reach.build(ur5, resolution=0.1, orientations=50, threads=2, progress=False)
+    base = np.eye(4)
+    base[:3, :3] = [[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]]  # yaw pi/2
+    base[:3, 3] = [0.7, -0.4, 0.0]
+    Q = [[0.3, -1.2, 1.4, -1.7, -1.5, 0.2], [0.6, -1.0, 1.2, -1.6, -1.5, 0.0], [0.0, -1.4, 1.6, -1.8, -1.4, 0.5]]
+    task = base @ ur5.fk(Q)
+    grid = dict(x=(-0.5, 1.5), y=(-1.5, 0.5), step=0.1, z=0.0, yaws=4)
+    found = m.base_placements(task, **grid)
+    assert found.shape[1] == 5 and 0 < len(found) < 4 * 21 * 21
+    assert np.all(np.diff(found[:, 4]) <= 0)
+    known = np.all(np.abs(found[:, :4] - [0.7, -0.4, 0.0, np.pi / 2]) < 1e-9, axis=1)
+    assert known.sum() == 1
+    # The same task as positions and quaternions (qw, qx, qy, qz).
+    rows = []
+    for T in task:
+        R = T[:3, :3]
+        w = 0.5 * np.sqrt(max(1.0 + np.trace(R), 0.0))
+        rows.append([*T[:3, 3], w, (R[2, 1] - R[1, 2]) / (4 * w), (R[0, 2] - R[2, 0]) / (4 * w), (R[1, 0] - R[0, 1]) / (4 * w)])
+    np.testing.assert_allclose(m.base_placements(np.array(rows), **grid), found, atol=1e-9)
+    far = task.copy()
+    far[1, 0, 3] += 4.0
+    with pytest.raises(ValueError, match="no base placement reaches all 3 task poses"):
+        m.base_placements(far, **grid)
+    with pytest.raises(ValueError, match="step"):
+        m.base_placements(task, **{**grid, "step": 0.0})
+    with pytest.raises(ValueError, match="expected \\(4, 4\\)"):
+        m.base_placements(np.zeros((2, 5)), **grid)

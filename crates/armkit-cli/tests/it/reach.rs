@@ -144,3 +144,106 @@ fn bad_resolutions_and_orientations_are_named() {
         );
     }
 }
+
+/// The task of `tool_poses` moved by the base `(x, y)` as JSON: the first
+/// pose as `[x, y, z, qw, qx, qy, qz]`, the others as 4 x 4 rows.
+fn task_json(x: f64, y: f64, far: bool) -> String {
+    use armkit::math::{UnitQuaternion, Vector3};
+    let model = armkit::robots::by_name("ur5").unwrap();
+    let mut data = armkit::kinematics::Data::new(&model);
+    let items: Vec<serde_json::Value> = [
+        [0.3, -1.2, 1.4, -1.7, -1.5, 0.2],
+        [0.6, -1.0, 1.2, -1.6, -1.5, 0.0],
+        [0.0, -1.4, 1.6, -1.8, -1.4, 0.5],
+    ]
+    .iter()
+    .enumerate()
+    .map(|(i, q)| {
+        let mut t = *armkit::kinematics::forward_kinematics(&model, &mut data, q).unwrap();
+        t.translation += Vector3::new(x, y, 0.0);
+        if far && i == 1 {
+            t.translation.x += 4.0;
+        }
+        if i == 0 {
+            let u = UnitQuaternion::from_matrix(&t.rotation);
+            let p = t.translation;
+            serde_json::json!([p.x, p.y, p.z, u.w, u.i, u.j, u.k])
+        } else {
+            let rows: Vec<Vec<f64>> = (0..4)
+                .map(|r| {
+                    (0..4)
+                        .map(|c| match (r, c) {
+                            (3, 3) => 1.0,
+                            (3, _) => 0.0,
+                            (_, 3) => t.translation[r],
+                            _ => t.rotation[(r, c)],
+                        })
+                        .collect()
+                })
+                .collect();
+            serde_json::json!(rows)
+        }
+    })
+    .collect();
+    serde_json::Value::Array(items).to_string()
+}
+
+#[test]
+fn base_placements_find_the_known_base_and_name_an_impossible_task() {
+    let dir = std::env::temp_dir().join(format!("armkit-reach-base-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let task = dir.join("task.json");
+    let grid = [
+        "reach",
+        "--robot",
+        "ur5",
+        "--resolution",
+        "0.1",
+        "--orientations",
+        "50",
+        "--floor-x",
+        "-0.5",
+        "1.0",
+        "--floor-y",
+        "-1.0",
+        "0.5",
+        "--floor-step",
+        "0.1",
+        "--json",
+        "--base-placements",
+        task.to_str().unwrap(),
+    ];
+    std::fs::write(&task, task_json(0.5, -0.3, false)).unwrap();
+    let run = armkit(&grid);
+    assert!(run.status.success(), "{}", stderr(&run));
+    let v = json(&run);
+    let found = v["base_placements"].as_array().unwrap();
+    assert!(
+        !found.is_empty() && found.len() < 16 * 16,
+        "{}",
+        found.len()
+    );
+    assert!(
+        found
+            .iter()
+            .any(|p| (p["x"].as_f64().unwrap() - 0.5).abs() < 1e-9
+                && (p["y"].as_f64().unwrap() + 0.3).abs() < 1e-9),
+        "{v}"
+    );
+    std::fs::write(&task, task_json(0.5, -0.3, true)).unwrap();
+    let run = armkit(&grid);
+    assert!(!run.status.success());
+    assert!(
+        stderr(&run).contains("no base placement reaches all 3 task poses"),
+        "{}",
+        stderr(&run)
+    );
+    std::fs::write(&task, "[[1, 2, 3]]").unwrap();
+    let run = armkit(&grid);
+    assert!(
+        stderr(&run).contains("task pose 0 is neither"),
+        "{}",
+        stderr(&run)
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -222,3 +222,19 @@ fn every_relative_link_and_picture_of_the_readme_exists() {
         ["docs/x.md"]
     );
 }
+
+/// The README's capability-map picture is a committed SVG written by
+/// `armkit reach --svg`, and the README shows it.
+#[test]
+fn the_readme_shows_the_committed_capability_map() {
+    let name = "docs/images/ur5_capability.svg";
+    assert!(
+        readme().contains(&format!("]({name})")),
+        "the README does not show {name}"
+    );
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../..")
+        .join(name);
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert!(text.starts_with("<svg") && text.contains("capability index"));
+}

@@ -421,6 +421,29 @@ class ReachMap:
             return None
         return tuple(int(i) for i in np.unravel_index(index, self.dims))  # type: ignore[return-value]
 
+    def base_placements(
+        self,
+        task: Any,
+        x: Tuple[float, float],
+        y: Tuple[float, float],
+        step: float,
+        z: float = 0.0,
+        yaws: int = 1,
+    ) -> np.ndarray:
+        """Inverse reachability: the base placements from which the map
+        reaches every task pose, best first.
+
+        ``task``: world-frame tool poses, (4, 4) or (N, 4, 4) transforms, or
+        (7,) or (N, 7) rows ``(x, y, z, qw, qx, qy, qz)`` (m, unit
+        quaternion scalar first). Candidates: the robot's base frame at
+        ``(x, y, z)`` on the grid over the ``x`` and ``y`` ranges (m) with
+        ``step`` (m), turned by ``yaws`` headings in [0, 2 pi) about the
+        world z axis. Returns rows ``(x, y, z, yaw, score)`` (m, rad, the
+        mean capability index of the task's cells seen from the base).
+        Raises ValueError naming the problem, and when no placement reaches
+        every pose (how many were tried, the most poses one reached)."""
+        return self._inner.base_placements(_task_transforms(task), tuple(x), tuple(y), step, z, yaws)
+
     def robot(self) -> Robot:
         """The robot the map is of (rebuilt from its description)."""
         return Robot.from_description(self.robot_description)
@@ -521,6 +544,28 @@ class ReachMap:
             "calls": int(arrays.get("calls", 0)),
         }
         return cls(_reach.from_chunks(layout, [whole]), robot.description())
+
+
+def _task_transforms(task: Any) -> np.ndarray:
+    """Task poses as (N, 4, 4): transforms as given, rows ``(x, y, z, qw,
+    qx, qy, qz)`` converted (the quaternion normalized; a zero one raises)."""
+    a = np.asarray(task, dtype=float)
+    if a.shape[-2:] == (4, 4):
+        return a.reshape(-1, 4, 4)
+    if a.ndim not in (1, 2) or a.shape[-1] != 7:
+        raise ValueError(f"task: expected (4, 4), (N, 4, 4), (7,) or (N, 7) (x, y, z, qw, qx, qy, qz), got shape {a.shape}")
+    a = a.reshape(-1, 7)
+    q = a[:, 3:]
+    norm = np.linalg.norm(q, axis=1)
+    if not np.all(np.isfinite(norm)) or np.any(norm < 1e-12):
+        raise ValueError("task: every quaternion (qw, qx, qy, qz) must be finite and non-zero")
+    w, qx, qy, qz = (q / norm[:, None]).T
+    T = np.zeros((len(a), 4, 4))
+    T[:, 0] = np.stack([1 - 2 * (qy * qy + qz * qz), 2 * (qx * qy - w * qz), 2 * (qx * qz + w * qy), a[:, 0]], axis=1)
+    T[:, 1] = np.stack([2 * (qx * qy + w * qz), 1 - 2 * (qx * qx + qz * qz), 2 * (qy * qz - w * qx), a[:, 1]], axis=1)
+    T[:, 2] = np.stack([2 * (qx * qz - w * qy), 2 * (qy * qz + w * qx), 1 - 2 * (qx * qx + qy * qy), a[:, 2]], axis=1)
+    T[:, 3, 3] = 1.0
+    return T
 
 
 def load(path: Union[str, "Path"], robot: Optional[Robot] = None) -> ReachMap:

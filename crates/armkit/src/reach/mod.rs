@@ -19,6 +19,9 @@
 //!   queries.
 //! * [`build`]: the whole map on local threads; [`chunks`] partitions it for
 //!   a distributed build whose merged result is the same.
+//! * [`base_placements`]: inverse reachability, the base positions on a
+//!   floor grid ([`FloorGrid`]) from which every task pose is reachable,
+//!   scored by the capability index.
 //!
 //! Frames and units: positions in the world frame (the frame of the model's
 //! base transform), metres; tool orientations as rotation matrices in the
@@ -32,11 +35,13 @@ mod layout;
 mod map;
 mod nearest;
 mod oracle;
+mod placement;
 
 pub use build::{build, chunks, LOCAL_CHUNK_WORK};
 pub use chunk::{build_chunk, Chunk, ChunkResult};
 pub use layout::{fibonacci_directions, MapLayout, MAX_BINS};
 pub use map::ReachMap;
+pub use placement::{base_placements, BasePlacement, FloorGrid};
 
 use crate::error::{check_positive, Error, Result};
 use crate::kinematics::{forward_kinematics, Data};

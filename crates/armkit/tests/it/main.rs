@@ -26,6 +26,7 @@ mod mpc_qp;
 mod mpc_random;
 mod no_allocation;
 mod reach;
+mod reach_placement;
 mod redundancy;
 mod reference_dh;
 mod seed000_claims;

@@ -42,15 +42,20 @@ fn truth(solver: &mut AutoSolver, start: &[f64], pose: &Pose) -> bool {
     solver.solve(pose, start).unwrap().report.converged()
 }
 
-/// Random poses in the map's box: (agreement, false positives) as
-/// fractions, of the interpolated query and (the last two) of the raw bins.
-fn accuracy(model: &Model, map: &ReachMap, poses: usize, seed: u64) -> (f64, f64, f64, f64) {
+/// The ground truth's solver: 50 seeded restarts, no time budget.
+fn truth_solver(model: &Model) -> AutoSolver {
     let options = IkOptions {
         max_restarts: 50,
         time_budget: None,
         ..IkOptions::default()
     };
-    let mut solver = AutoSolver::new(model, options).unwrap();
+    AutoSolver::new(model, options).unwrap()
+}
+
+/// Random poses in the map's box: (agreement, false positives) as
+/// fractions, of the interpolated query and (the last two) of the raw bins.
+fn accuracy(model: &Model, map: &ReachMap, poses: usize, seed: u64) -> (f64, f64, f64, f64) {
+    let mut solver = truth_solver(model);
     let start = model.neutral_configuration();
     let layout = map.layout();
     let (origin, dims, r) = (layout.origin(), layout.dims(), layout.resolution());
@@ -87,20 +92,27 @@ fn model_spec(model: &Model, resolution: f64, orientations: usize) -> MapSpec {
     MapSpec::for_model(model, resolution, orientations, Builder::InverseKinematics)
 }
 
+/// The request in environment `variable`, `"robot resolution orientations
+/// poses"`: (the text, the model, its spec, the poses); None when unset.
+fn requested(variable: &str) -> Option<(String, Model, MapSpec, usize)> {
+    let request = std::env::var(variable).ok()?;
+    let words: Vec<&str> = request.split_whitespace().collect();
+    let model = robot(words[0]);
+    let spec = model_spec(&model, words[1].parse().unwrap(), words[2].parse().unwrap());
+    let poses = words[3].parse().unwrap();
+    Some((request, model, spec, poses))
+}
+
 /// The full accuracy figure: `ARMKIT_REACH_FULL="robot resolution
 /// orientations poses"` (e.g. `ur5 0.05 200 100000`) runs it and prints it.
 #[test]
 fn full_accuracy_figure_on_request() {
-    let Ok(request) = std::env::var("ARMKIT_REACH_FULL") else {
+    let Some((request, model, spec, poses)) = requested("ARMKIT_REACH_FULL") else {
         return;
     };
-    let words: Vec<&str> = request.split_whitespace().collect();
-    let model = robot(words[0]);
-    let spec = model_spec(&model, words[1].parse().unwrap(), words[2].parse().unwrap());
     let began = std::time::Instant::now();
     let map = reach::build(&model, &spec, 2, &mut |_, _| {}).unwrap();
     let seconds = began.elapsed().as_secs_f64();
-    let poses: usize = words[3].parse().unwrap();
     let (agreement, false_positives, raw, raw_false) = accuracy(&model, &map, poses, 2026);
     eprintln!(
         "{request}: {} x {} orientations, build {seconds:.1} s, {:.0} IK/s, {} reachable cells; agreement {agreement:.5}, false positives {false_positives:.5}; raw bins: agreement {raw:.5}, false positives {raw_false:.5}",
@@ -279,4 +291,77 @@ fn the_direction_table_finds_the_nearest_direction_as_a_full_scan_does() {
             assert!((around.iter().map(|a| a.1).sum::<f64>() - 1.0).abs() < 1e-12);
         }
     }
+}
+
+/// Where the disagreement comes from: `ARMKIT_REACH_DIAG="robot resolution
+/// orientations poses"`. Per random pose, the truth at the 8 cell centres
+/// with the pose's exact rotation (position error alone) and at the exact
+/// position with the map's 3 orientations (orientation error alone).
+#[test]
+fn diagnose_disagreement_on_request() {
+    let Some((request, model, spec, poses)) = requested("ARMKIT_REACH_DIAG") else {
+        return;
+    };
+    let map = reach::build(&model, &spec, 2, &mut |_, _| {}).unwrap();
+    let mut solver = truth_solver(&model);
+    let start = model.neutral_configuration();
+    let layout = map.layout();
+    let (origin, dims, r) = (layout.origin(), layout.dims(), layout.resolution());
+    let mut rng = ChaCha8Rng::seed_from_u64(2026);
+    let mut wrong = [0usize; 8];
+    let (mut pos_wrong, mut ori_wrong, mut total_wrong, mut fp) = (0, 0, 0, 0);
+    for _ in 0..poses {
+        let p = Vector3::from_fn(|i, _| origin[i] + rng.gen_range(0.0..dims[i] as f64 * r));
+        let rotation = random_rotation(&mut rng);
+        let pose = Pose {
+            rotation,
+            translation: p,
+        };
+        let is = truth(&mut solver, &start, &pose);
+        let said = map.query(&pose);
+        // Position only: trilinear over the 8 centres, exact rotation.
+        let mut sum = 0.0;
+        for corner in 0..8 {
+            let mut w = 1.0;
+            let mut c = Vector3::zeros();
+            for axis in 0..3 {
+                let t = (p[axis] - origin[axis]) / r - 0.5;
+                let f = t.floor();
+                let up = (corner >> axis) & 1 == 1;
+                w *= if up { t - f } else { 1.0 - (t - f) };
+                c[axis] = origin[axis] + (f + up as i32 as f64 + 0.5) * r;
+            }
+            let q = Pose {
+                rotation,
+                translation: c,
+            };
+            if truth(&mut solver, &start, &q) {
+                sum += w;
+            }
+        }
+        let by_position = sum >= 0.5;
+        // Orientation only: the map's 3 orientations at the exact position.
+        let mut osum = 0.0;
+        for (k, w) in layout.orientations_around(&rotation) {
+            let q = Pose {
+                rotation: layout.orientation(k).into_inner(),
+                translation: p,
+            };
+            if truth(&mut solver, &start, &q) {
+                osum += w;
+            }
+        }
+        let by_orientation = osum >= 0.5;
+        pos_wrong += (by_position != is) as usize;
+        ori_wrong += (by_orientation != is) as usize;
+        if said != is {
+            total_wrong += 1;
+            fp += said as usize;
+            wrong[(by_position != is) as usize * 2 + (by_orientation != is) as usize] += 1;
+        }
+    }
+    eprintln!(
+        "{request}: wrong {total_wrong} (fp {fp}); position-only wrong {pos_wrong}, orientation-only wrong {ori_wrong}; of the map's wrong: neither {} ori {} pos {} both {}",
+        wrong[0], wrong[1], wrong[2], wrong[3]
+    );
 }

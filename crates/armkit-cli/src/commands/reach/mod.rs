@@ -5,11 +5,12 @@
 //! Positions in the world frame, metres (see `armkit::reach`).
 
 mod npz;
+mod placement;
 mod slices;
 
 use std::time::Instant;
 
-use armkit::reach::{self, Builder, MapSpec, ReachMap};
+use armkit::reach::{self, Builder, FloorGrid, MapSpec, ReachMap};
 use clap::{Args, ValueEnum};
 use indicatif::{ProgressBar, ProgressStyle};
 
@@ -59,6 +60,26 @@ pub struct ReachArgs {
     /// Write the capability index's slices through the reach centre as SVG.
     #[arg(long, value_name = "PATH")]
     pub svg: Option<std::path::PathBuf>,
+    /// Inverse reachability: a JSON list of task poses (world frame; 4 x 4
+    /// transforms or `[x, y, z, qw, qx, qy, qz]`, m); prints the base
+    /// placements on the floor grid from which every pose is reachable.
+    #[arg(long, value_name = "PATH")]
+    pub base_placements: Option<std::path::PathBuf>,
+    /// Floor grid's x range of base positions, m.
+    #[arg(long, num_args = 2, value_names = ["LO", "HI"], allow_negative_numbers = true, default_values_t = [-1.0, 1.0])]
+    pub floor_x: Vec<f64>,
+    /// Floor grid's y range of base positions, m.
+    #[arg(long, num_args = 2, value_names = ["LO", "HI"], allow_negative_numbers = true, default_values_t = [-1.0, 1.0])]
+    pub floor_y: Vec<f64>,
+    /// Floor grid's step along x and y, m.
+    #[arg(long, default_value_t = 0.1)]
+    pub floor_step: f64,
+    /// Height of the floor plane (the base frame's origin), m.
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub floor_z: f64,
+    /// Base headings sampled in [0, 2 pi).
+    #[arg(long, default_value_t = 1)]
+    pub yaws: usize,
     /// Print the summary as JSON.
     #[arg(long)]
     pub json: bool,
@@ -129,6 +150,19 @@ pub fn run(args: &ReachArgs) -> CliResult<Outcome> {
         std::fs::write(path, slices::capability_svg(&map, model.name())?)
             .map_err(|e| CliError(format!("cannot write {}: {e}", path.display())))?;
     }
+    let placements = match &args.base_placements {
+        Some(path) => {
+            let floor = FloorGrid {
+                x: [args.floor_x[0], args.floor_x[1]],
+                y: [args.floor_y[0], args.floor_y[1]],
+                step: args.floor_step,
+                z: args.floor_z,
+                yaws: args.yaws,
+            };
+            Some(placement::placements(&map, path, &floor)?)
+        }
+        None => None,
+    };
     let layout = map.layout();
     let [nx, ny, nz] = layout.dims();
     let per_second = map.calls() as f64 / seconds.max(1e-9);
@@ -155,6 +189,7 @@ pub fn run(args: &ReachArgs) -> CliResult<Outcome> {
             "calls_per_second": per_second,
             "threads": threads,
             "coverage": coverage,
+            "base_placements": placements.as_deref().map(placement::json),
         }))?;
     } else {
         println!(
@@ -183,6 +218,9 @@ pub fn run(args: &ReachArgs) -> CliResult<Outcome> {
         );
         if let Some(c) = coverage {
             println!("coverage of the IK map's reachable bins: {:.4}", c);
+        }
+        if let Some(found) = &placements {
+            placement::print(found);
         }
     }
     Ok(Outcome::Success)
