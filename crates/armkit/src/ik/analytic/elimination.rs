@@ -98,47 +98,47 @@
 
 use super::chain::{Candidates, Chain};
 use super::polish::{chain_pose, settle_root_within, Settle};
-use super::search::illinois;
+use super::roots::illinois;
 use super::subproblems::{rotation, subproblem1};
 use crate::math::{sin_cos, wrap_angle, Matrix3, Pose, Vector3};
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 /// [`AnalyticSolver::method`](super::AnalyticSolver::method) for an arm
 /// solved by elimination.
-pub const METHOD: &str = "no closed-form class: algebraic elimination (Raghavan and Roth's 14 equations, Manocha and Canny's 12 x 12 matrix in joint 3; the real roots of a degree-8 trigonometric polynomial read from 17 determinants, isolated with certified bounds, refined by Newton, on the determinant itself where the polynomial is flat or below its rounding; joints 4-5 from the null vector, 1-2 by least squares, 6 by subproblem 1, each polished on the chain), up to 16 solutions";
+pub(crate) const METHOD: &str = "no closed-form class: algebraic elimination (Raghavan and Roth's 14 equations, Manocha and Canny's 12 x 12 matrix in joint 3; the real roots of a degree-8 trigonometric polynomial read from 17 determinants, isolated with certified bounds, refined by Newton, on the determinant itself where the polynomial is flat or below its rounding; joints 4-5 from the null vector, 1-2 by least squares, 6 by subproblem 1, each polished on the chain), up to 16 solutions";
 /// Raghavan and Roth's functions of `p` and `l`.
 const FUNCTIONS: usize = 14;
 /// Evaluations of `det Sigma(q3)` per solve (one turn, evenly spaced): a
 /// trigonometric polynomial of degree 8 has 17 coefficients.
-pub const DET_SAMPLES: usize = 17;
+pub(crate) const DET_SAMPLES: usize = 17;
 /// Harmonics of `det Sigma(q3)`.
 const HARMONICS: usize = 8;
 /// Samples per turn of the polynomial when its roots are bracketed.
-pub const ROOT_SAMPLES: usize = 128;
+pub(crate) const ROOT_SAMPLES: usize = 128;
 /// Where the polynomial dips between two points to within this fraction of
 /// its values there without crossing zero, the lowest point is tried as a
 /// double root (two real roots made complex by rounding: a pose at a
 /// singular configuration).
-pub const TANGENT: f64 = 1e-3;
+pub(crate) const TANGENT: f64 = 1e-3;
 /// The rounding of the polynomial's values, relative to its largest sample
 /// (each determinant's rounding, measured: 1e-14 to 1e-13 per harmonic).
-pub const ROUNDING: f64 = 1e-13;
+pub(crate) const ROUNDING: f64 = 1e-13;
 /// Samples of the polynomial below this fraction of the largest are
 /// rounding-dominated: [`QUIET_STEPS`] direct evaluations per interval there.
-pub const QUIET: f64 = 1e-11;
+pub(crate) const QUIET: f64 = 1e-11;
 /// Direct evaluations of `det Sigma` per sample interval where the
 /// polynomial is quiet (and per window around a dip of it).
-pub const QUIET_STEPS: usize = 8;
+pub(crate) const QUIET_STEPS: usize = 8;
 /// How many times a dip of the direct evaluations is scanned again, a
 /// quarter of the step each time.
-pub const QUIET_REFINEMENTS: usize = 1;
+pub(crate) const QUIET_REFINEMENTS: usize = 1;
 /// A root where the polynomial's slope (per rad) is below this fraction of
 /// its largest sample is refined on the determinant itself.
-pub const FLAT: f64 = 1e-4;
+pub(crate) const FLAT: f64 = 1e-4;
 /// The null space of `Sigma` at a root counts as two-dimensional (two
 /// solutions sharing joint 3) when its eleventh pivot is below this
 /// fraction of its first.
-pub const DOUBLE_NULL: f64 = 1e-6;
+pub(crate) const DOUBLE_NULL: f64 = 1e-6;
 /// How a back-substituted root is settled on the chain: kept within 1e-3
 /// (m and rad) and polished by up to 10 steps. A root of a nearly double
 /// root of `det Sigma` is found to about the square root of the
@@ -1210,7 +1210,7 @@ fn dip(
 }
 
 /// The zero of `f` between `a` and `b` where it changes sign: the
-/// Illinois regula falsi of the searches ([`illinois`]) to 1e-15 rad, the
+/// Illinois regula falsi ([`illinois`]) to 1e-15 rad, the
 /// end where `|f|` is smaller.
 fn regula_falsi(f: &dyn Fn(f64) -> f64, (a, fa): (f64, f64), (b, fb): (f64, f64)) -> f64 {
     let ends = illinois((a, fa, ()), (b, fb, ()), 1e-15, |t, _| Some((f(t), ())));
