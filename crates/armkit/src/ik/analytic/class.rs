@@ -312,8 +312,14 @@ fn one_pair(structure: &ArmStructure, reversed: &ArmStructure) -> Detected {
             return pair(first, PairKind::Parallel);
         }
     }
+    // Three consecutive parallel axes anywhere: no pair is lone, the arm
+    // is named by its other special pairs below.
+    let parallel_run = (0..4).any(|i| {
+        structure.relation(i, i + 1) == Relation::Parallel
+            && structure.relation(i + 1, i + 2) == Relation::Parallel
+    });
     for (first, chain) in [(1, structure), (5, reversed)] {
-        if lone_end_parallel_pair(chain) {
+        if !parallel_run && lone_end_parallel_pair(chain) {
             return pair(first, PairKind::Parallel);
         }
     }
