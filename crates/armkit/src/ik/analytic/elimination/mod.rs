@@ -101,11 +101,13 @@ mod system;
 mod tests;
 pub(super) mod trigonometric;
 
-use self::system::*;
-use self::trigonometric::*;
+use self::system::{
+    coefficients_along, half_angle_form, householder, monomials_in, normalize, tensor3, NullSpace,
+    System,
+};
+use self::trigonometric::Trigonometric;
 use super::chain::{Candidates, Chain};
 use super::polish::{chain_pose, settle_root_within, Settle};
-use super::roots::illinois;
 use super::subproblems::{rotation, subproblem1};
 use crate::math::{sin_cos, wrap_angle, Matrix3, Pose, Vector3};
 use std::f64::consts::{FRAC_PI_2, PI, TAU};

@@ -2,7 +2,8 @@
 //! determinant in joint 3 and the null vector giving joints 4-5
 //! (Manocha and Canny's 12 x 12 matrix `Sigma`).
 
-use super::*;
+use super::{Square, DOUBLE_NULL, FUNCTIONS, HALF_ANGLE};
+use crate::math::sin_cos;
 
 /// One target's eliminated equations and the QR's triangle.
 pub(super) struct System {

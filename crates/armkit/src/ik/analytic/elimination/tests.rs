@@ -1,10 +1,20 @@
 //! Unit tests of the elimination: the method's claims one by one.
 
-use super::*;
+use super::system::{dense_determinant, shifted_determinant, tensor3};
+use super::trigonometric::Trigonometric;
+use super::{harmonic_table, Cut, Elimination, DET_SAMPLES, HARMONICS};
+use crate::ik::analytic::chain::Candidates;
+use crate::ik::analytic::chain::Chain;
 use crate::ik::analytic::structure::{ArmStructure, Motion};
+use crate::ik::analytic::subproblems::rotation;
 use crate::ik::analytic::test_random::{point, unit};
+use crate::math::sin_cos;
+use crate::math::wrap_angle;
+use crate::math::Pose;
+use crate::math::Vector3;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+use std::f64::consts::TAU;
 
 /// Which consecutive pair (0-based first joint) is made special.
 #[derive(Clone, Copy, Debug)]

@@ -2,7 +2,12 @@
 //! roots: certified isolation by Hermite bounds, the quiet stretches scanned
 //! on the determinant itself, double roots split.
 
-use super::*;
+use super::{
+    DET_SAMPLES, HARMONICS, QUIET, QUIET_REFINEMENTS, QUIET_STEPS, ROOT_SAMPLES, ROUNDING, TANGENT,
+};
+use crate::ik::analytic::roots::illinois;
+use crate::math::sin_cos;
+use std::f64::consts::TAU;
 
 /// `a0 + sum_k (a_k cos k t + b_k sin k t)`, `k = 1..8`.
 pub(super) struct Trigonometric {
