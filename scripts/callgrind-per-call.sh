@@ -5,7 +5,7 @@
 #
 # BENCH_BINARY: a criterion bench binary (`cargo bench -p armkit --bench ik --no-run`
 # prints it, target/release/deps/ik-<hash>); BENCH_FILTER: a criterion filter
-# ('ik/analytic/one_pair_5_6_1d_search/distinct$'); FUNCTION_REGEX: the function
+# ('ik/analytic/one_pair_5_6_elimination/distinct$'); FUNCTION_REGEX: the function
 # whose inclusive instructions are summed over its calls (default
 # 'AnalyticSolver::solve$'). Prints the calls and instructions per call.
 # Used for the README's "instructions per solve" columns: unlike wall-clock time

@@ -5,7 +5,6 @@
 
 use armkit::ik::analytic::{
     self, AnalyticOptions, AnalyticRoute, Fit, JointNumbering, Redundancy, Representatives,
-    SearchPolicy,
 };
 use armkit::ik::closed_form::ClosedFormSolution;
 use armkit::math::Pose;
@@ -20,8 +19,6 @@ use crate::errors::OrRaise;
 /// Python argument).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SolutionsArguments {
-    /// `search=`: `"elimination"` or `"1d"` (`"2d"`, retired, is an error).
-    pub search: SearchPolicy,
     /// `fixed_joint=` (0-based) and `parameter=`.
     pub redundancy: Redundancy,
     /// `sweep=`: how many parameter values (None: one).
@@ -52,22 +49,21 @@ impl SolutionsArguments {
                 ))
             }
         };
-        let search = match search {
-            "elimination" => SearchPolicy::Elimination,
-            "1d" => SearchPolicy::UpToOneDimension,
-            "2d" => {
+        match search {
+            "elimination" => {}
+            "1d" | "2d" => {
                 return Err(Error::invalid_argument(
                     "search",
-                    "\"2d\" is retired (the 2-D search is gone: general 6R arms are solved by elimination, the default; arms elimination does not take need a numeric solver, e.g. robot.ik(T, solver=\"lm\")); expected \"elimination\" or \"1d\"",
+                    format!("\"{search}\" is retired (the searches are gone: every 6R arm without a closed form is solved by elimination, the default; arms elimination does not take need a numeric solver, e.g. robot.ik(T, solver=\"lm\")); expected \"elimination\""),
                 ))
             }
             other => {
                 return Err(Error::invalid_argument(
                     "search",
-                    format!("unknown value `{other}`; expected \"elimination\" or \"1d\""),
+                    format!("unknown value `{other}`; expected \"elimination\""),
                 ))
             }
-        };
+        }
         let fixed_joint = match fixed_joint {
             None => None,
             Some(joint) => Some(usize::try_from(joint).map_err(|_| {
@@ -88,7 +84,6 @@ impl SolutionsArguments {
             }
         };
         Ok(SolutionsArguments {
-            search,
             redundancy: Redundancy {
                 fixed_joint,
                 value: parameter,
@@ -192,7 +187,6 @@ pub fn ik_solutions(
     let (found, class, method) = py
         .detach(|| {
             let options = AnalyticOptions {
-                search: arguments.search,
                 representatives: arguments.representatives,
                 ..AnalyticOptions::default()
             };

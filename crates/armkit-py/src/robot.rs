@@ -575,9 +575,9 @@ impl Robot {
     /// (default: mid-range): the route of `armkit ik --solver analytic`.
     /// `representatives`: `"nearest"` (the default: each distinct solution
     /// once, its 2 pi multiple nearest `q0`) or `"every"` (every 2 pi
-    /// multiple within the joint limits), as `--representatives`. `search`: `"elimination"` (the default:
-    /// closed forms, every other 6R arm by algebraic elimination) or `"1d"`
-    /// (closed forms and 1-D searches); `"2d"` (retired) is an error. 7-joint
+    /// multiple within the joint limits), as `--representatives`. `search`: `"elimination"` (the default
+    /// and the only route: closed forms, every other 6R arm by algebraic
+    /// elimination); `"1d"` and `"2d"` (retired searches) are errors. 7-joint
     /// arms: the elbow angle of a spherical-shoulder-elbow-wrist arm, else a
     /// held joint; `fixed_joint` (0-based, like a numpy index) holds that
     /// joint; `parameter` is the elbow angle (rad) or the held joint's value

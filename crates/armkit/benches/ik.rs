@@ -11,7 +11,7 @@
 use std::hint::black_box;
 
 use armkit::ik::analytic::{
-    AnalyticOptions, AnalyticSolver, Parameter, Representatives, SearchPolicy, Verification,
+    AnalyticOptions, AnalyticSolver, Parameter, Representatives, Verification,
 };
 use armkit::ik::closed_form::{arm4_solutions, SphericalWristSolver};
 use armkit::ik::AutoSolver;
@@ -285,57 +285,25 @@ fn bench_analytic(c: &mut Criterion) {
             solver,
         );
     }
-    // The arms without a closed form, each by elimination (the default)
-    // and by its 1-D search (`SearchPolicy::UpToOneDimension`): one pair
-    // (axes 5-6 or 3-4 meet), parallel axes 2-3 or 1-2, the rest general;
-    // a general 6R arm by elimination only.
-    let searches = AnalyticOptions {
-        search: SearchPolicy::UpToOneDimension,
-        ..nearest
-    };
-    // (label, lines, class, the search's bench label, its options)
+    // The arms without a closed form, by elimination: one pair (axes 5-6
+    // or 3-4 meet), parallel axes 2-3 or 1-2, the rest general; a general
+    // 6R arm.
     let cases = [
-        (
-            "one_pair_5_6",
-            &ONE_PAIR,
-            "one_pair_intersecting_5_6_1d_search",
-            "one_pair_5_6_1d_search",
-            searches,
-        ),
-        (
-            "one_pair_3_4",
-            &PAIR_3_4,
-            "one_pair_intersecting_3_4_1d_search",
-            "one_pair_3_4_1d_search",
-            searches,
-        ),
-        (
-            "parallel_pair_2_3",
-            &PARALLEL_PAIR,
-            "one_pair_parallel_2_3_1d_search",
-            "parallel_pair_2_3_1d_search",
-            searches,
-        ),
+        ("one_pair_5_6", &ONE_PAIR, "one_pair_intersecting_5_6"),
+        ("one_pair_3_4", &PAIR_3_4, "one_pair_intersecting_3_4"),
+        ("parallel_pair_2_3", &PARALLEL_PAIR, "one_pair_parallel_2_3"),
         (
             "parallel_pair_1_2",
             &PARALLEL_PAIR_1_2,
-            "one_pair_parallel_1_2_1d_search",
-            "parallel_pair_1_2_1d_search",
-            searches,
+            "one_pair_parallel_1_2",
         ),
+        ("general_6r", &GENERAL, "general_6r"),
     ];
-    let model = lines_model("general_6r", &GENERAL);
-    let solver = AnalyticSolver::new(&model, nearest).unwrap();
-    assert_eq!(solver.class().as_str(), "general_6r");
-    bench_analytic_solver(c, "general_6r_elimination/distinct", &model, solver);
-    for (label, lines, class, search_label, search) in cases {
+    for (label, lines, class) in cases {
         let model = lines_model(label, lines);
-        let elimination = format!("{label}_elimination");
-        for (name, options) in [(elimination.as_str(), nearest), (search_label, search)] {
-            let solver = AnalyticSolver::new(&model, options).unwrap();
-            assert_eq!(solver.class().as_str(), class);
-            bench_analytic_solver(c, &format!("{name}/distinct"), &model, solver);
-        }
+        let solver = AnalyticSolver::new(&model, nearest).unwrap();
+        assert_eq!(solver.class().as_str(), class);
+        bench_analytic_solver(c, &format!("{label}_elimination/distinct"), &model, solver);
     }
     for name in ["ur5", "panda"] {
         let model = armkit::robots::by_name(name).unwrap();

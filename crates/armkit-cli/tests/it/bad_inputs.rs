@@ -529,7 +529,7 @@ const CASES: &[Case] = &[
     ),
     case(
         "ik",
-        "general 6R arm with --search 1d (the 1-D searches alone do not take it)",
+        "retired --search 1d (the value named)",
         &[
             "ik",
             "--robot-file",

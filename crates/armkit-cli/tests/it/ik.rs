@@ -254,18 +254,7 @@ fn explain_and_solve_a_three_parallel_arm_without_an_intersecting_pair() {
     let model = armkit::description::load(&file).unwrap();
     let q = [0.4, -1.1, 1.3, -0.6, 1.4, 0.2];
     let pose = fk_text(&model, &q);
-    let output = armkit(&[
-        "ik",
-        "--robot-file",
-        path,
-        "--pose",
-        &pose,
-        "--solver",
-        "analytic",
-        "--json",
-    ]);
-    assert!(output.status.success(), "{}", stderr(&output));
-    let json: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    let json = analytic_json(path, &pose, &[]);
     assert_eq!(json["class"], "three_parallel_2_3_4");
     let fits = json["solution_fits"].as_array().unwrap();
     assert!(fits.len() >= 4, "{fits:?}");
@@ -310,8 +299,27 @@ a = 0.0
 alpha = 0.0
 "#;
 
+/// `armkit ik --robot-file path --pose pose --solver analytic --json`
+/// with `extra` flags: the parsed output (the command must succeed).
+fn analytic_json(path: &str, pose: &str, extra: &[&str]) -> serde_json::Value {
+    let mut args = vec![
+        "ik",
+        "--robot-file",
+        path,
+        "--pose",
+        pose,
+        "--solver",
+        "analytic",
+        "--json",
+    ];
+    args.extend_from_slice(extra);
+    let output = armkit(&args);
+    assert!(output.status.success(), "{}", stderr(&output));
+    serde_json::from_slice(&output.stdout).unwrap()
+}
+
 /// A DH file of a made-up 6R arm whose only special pair is axes 1-2
-/// parallel (alpha1 = 0, a1 != 0): the end parallel-pair 1-D search.
+/// parallel (alpha1 = 0, a1 != 0): solved by elimination.
 const PARALLEL_PAIR_1_2_DH: &str = r#"
 name = "parallel-pair-1-2"
 convention = "standard"
@@ -348,28 +356,28 @@ alpha = 0.0
 "#;
 
 #[test]
-fn explain_and_solve_a_parallel_pair_arm_by_1d_search() {
-    explain_and_solve_by_parallel_pair_search(
+fn explain_and_solve_a_parallel_pair_arm_by_elimination() {
+    explain_and_solve_a_parallel_pair_arm(
         "parallel-pair",
         PARALLEL_PAIR_DH,
-        "one_pair_parallel_2_3_1d_search",
+        "one_pair_parallel_2_3",
     );
 }
 
 #[test]
-fn explain_and_solve_a_parallel_1_2_pair_arm_by_1d_search() {
-    explain_and_solve_by_parallel_pair_search(
+fn explain_and_solve_a_parallel_1_2_pair_arm_by_elimination() {
+    explain_and_solve_a_parallel_pair_arm(
         "parallel-pair-1-2",
         PARALLEL_PAIR_1_2_DH,
-        "one_pair_parallel_1_2_1d_search",
+        "one_pair_parallel_1_2",
     );
 }
 
-/// `armkit ik --explain` names `class` (a subproblem-6 search) for the DH
+/// `armkit ik --explain` names `class` (one parallel pair) for the DH
 /// file `dh` and the method, elimination; `--solver analytic` returns only
-/// exact solutions, the generating configuration nearest the start first,
-/// by elimination (the default) and by the search (`--search 1d`).
-fn explain_and_solve_by_parallel_pair_search(name: &str, dh: &str, class: &str) {
+/// exact solutions, the generating configuration nearest the start first
+/// (the retired `--search 1d` is a case of `bad_inputs`).
+fn explain_and_solve_a_parallel_pair_arm(name: &str, dh: &str, class: &str) {
     let dir = std::env::temp_dir().join(format!("armkit-ik-{name}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let file = dir.join(format!("{name}.toml"));
@@ -379,7 +387,10 @@ fn explain_and_solve_by_parallel_pair_search(name: &str, dh: &str, class: &str) 
     assert!(output.status.success(), "{}", stderr(&output));
     let text = stdout(&output);
     assert!(text.contains(&format!("class: {class}\n")), "{text}");
-    assert!(text.contains("subproblem 6"), "{text}");
+    assert!(
+        text.contains("one parallel pair of consecutive axes"),
+        "{text}"
+    );
     assert!(
         text.contains("method (--solver analytic, --search elimination): no closed-form class: algebraic elimination"),
         "{text}"
@@ -387,47 +398,36 @@ fn explain_and_solve_by_parallel_pair_search(name: &str, dh: &str, class: &str) 
     let model = armkit::description::load(&file).unwrap();
     let q = [0.4, -1.1, 1.3, -0.6, 1.4, 0.2];
     let pose = fk_text(&model, &q);
-    for search in ["elimination", "1d"] {
-        let output = armkit(&[
-            "ik",
-            "--robot-file",
-            path,
-            "--pose",
-            &pose,
-            "--solver",
-            "analytic",
+    let json = analytic_json(
+        path,
+        &pose,
+        &[
             "--search",
-            search,
+            "elimination",
             "--start",
             "0.4,-1.1,1.3,-0.6,1.4,0.2",
-            "--json",
-        ]);
-        assert!(output.status.success(), "{}", stderr(&output));
-        let json: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
-        assert_eq!(json["class"], class);
-        let fits = json["solution_fits"].as_array().unwrap();
-        assert!(!fits.is_empty());
-        assert!(
-            fits.iter().all(|f| f["fit"] == "exact"),
-            "{search}: {fits:?}"
-        );
-        // Nearest the start first: the generating configuration.
-        let first: Vec<f64> = json["solutions"][0]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|v| v.as_f64().unwrap())
-            .collect();
-        assert!(
-            first.iter().zip(&q).all(|(a, b)| (a - b).abs() < 1e-9),
-            "{search}: {first:?}"
-        );
-    }
+        ],
+    );
+    assert_eq!(json["class"], class);
+    let fits = json["solution_fits"].as_array().unwrap();
+    assert!(!fits.is_empty());
+    assert!(fits.iter().all(|f| f["fit"] == "exact"), "{fits:?}");
+    // Nearest the start first: the generating configuration.
+    let first: Vec<f64> = json["solutions"][0]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    assert!(
+        first.iter().zip(&q).all(|(a, b)| (a - b).abs() < 1e-9),
+        "{first:?}"
+    );
     std::fs::remove_dir_all(&dir).ok();
 }
 
 /// A DH file of a made-up 6R arm whose only special pair is axes 3-4
-/// meeting (a3 = 0): the one-pair 1-D search with the pair in the middle.
+/// meeting (a3 = 0): elimination with the pair in the middle.
 const PAIR_3_4_DH: &str = r#"
 name = "pair-3-4"
 convention = "standard"
@@ -481,26 +481,15 @@ fn explain_and_solve_an_arm_with_only_axes_3_4_meeting() {
     assert!(output.status.success(), "{}", stderr(&output));
     let text = stdout(&output);
     assert!(
-        text.contains("class: one_pair_intersecting_3_4_1d_search\n"),
+        text.contains("class: one_pair_intersecting_3_4\n"),
         "{text}"
     );
     assert!(text.contains("axes 3 and 4"), "{text}");
     let model = armkit::description::load(&file).unwrap();
     let q = [0.4, -1.1, 1.3, -0.6, 1.4, 0.2];
     let pose = fk_text(&model, &q);
-    let output = armkit(&[
-        "ik",
-        "--robot-file",
-        path,
-        "--pose",
-        &pose,
-        "--solver",
-        "analytic",
-        "--json",
-    ]);
-    assert!(output.status.success(), "{}", stderr(&output));
-    let json: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
-    assert_eq!(json["class"], "one_pair_intersecting_3_4_1d_search");
+    let json = analytic_json(path, &pose, &[]);
+    assert_eq!(json["class"], "one_pair_intersecting_3_4");
     let fits = json["solution_fits"].as_array().unwrap();
     assert!(fits.iter().all(|f| f["fit"] == "exact"), "{fits:?}");
     // The generating configuration is among the solutions.
@@ -806,8 +795,6 @@ fn bench_ik_prints_the_table() {
         "analytic",
         "--fixed-joint",
         "1",
-        "--search",
-        "1d",
     ]);
     assert!(output.status.success(), "{}", stderr(&output));
     assert!(
@@ -911,18 +898,7 @@ fn explain_json_is_solvable_where_elimination_solves() {
     let model = armkit::description::load(&file).unwrap();
     let q = [0.4, -1.1, 1.3, -0.6, 1.4, 0.2];
     let pose = fk_text(&model, &q);
-    let output = armkit(&[
-        "ik",
-        "--robot-file",
-        path,
-        "--pose",
-        &pose,
-        "--solver",
-        "analytic",
-        "--json",
-    ]);
-    assert!(output.status.success(), "{}", stderr(&output));
-    let json: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    let json = analytic_json(path, &pose, &[]);
     assert_eq!(json["status"], "converged");
 }
 

@@ -26,7 +26,7 @@ _ArrayLike = npt.ArrayLike
 _FloatArray = npt.NDArray[np.float64]
 _BoolArray = npt.NDArray[np.bool_]
 _StrPath = Union[str, "PathLike[str]"]
-_AnalyticSearch = Literal["elimination", "1d"]
+_AnalyticSearch = Literal["elimination"]
 _IkSolverName = Literal["auto", "analytic", "closed-form", "lm", "nr", "dls", "sri"]
 _Representatives = Literal["nearest", "every"]
 _JacobianFrameName = Literal["world", "end-effector"]
@@ -215,9 +215,9 @@ class Robot:
         ``representatives``: ``"nearest"`` (default: each distinct solution
         once) or ``"every"`` (every 2 pi multiple within the joint limits), as
         ``--representatives``. ``search``: ``"elimination"`` (the
-        default: closed forms, every other 6R arm by algebraic elimination,
-        tens of microseconds), ``"1d"`` (closed forms and the 1-D searches;
-        a general 6R arm refused); ``"2d"`` (retired) raises ValueError. 7-joint arms: the elbow angle of a
+        default and the only route: closed forms, every other 6R arm by
+        algebraic elimination, tens of microseconds); ``"1d"`` and ``"2d"``
+        (retired searches) raise ValueError. 7-joint arms: the elbow angle of a
         spherical-shoulder-elbow-wrist arm (iiwa), else a held joint (Panda);
         ``fixed_joint`` holds that joint (0-based, like a numpy index);
         ``parameter`` is the elbow angle (rad) or the held joint's value

@@ -2,8 +2,8 @@
 //! otherwise (or when it finds nothing within the limits) the numeric one.
 //!
 //! * 6-joint arms of an analytic class: every solution, the nearest exact
-//!   one within the limits is returned. Not the one-pair search class
-//!   (about 0.6 ms a solve, slower than the numeric solver): those arms,
+//!   one within the limits is returned. Not the one-pair and general
+//!   classes (elimination, slower than the numeric solver): those arms,
 //!   and 7-joint arms whose held joint leaves that class, go to the
 //!   numeric solver.
 //! * 7-joint arms: a spherical-shoulder-elbow-wrist arm by its elbow angle,
@@ -436,12 +436,12 @@ fn analytic_for(model: &Model) -> (Option<AnalyticSolver>, Spare) {
 }
 
 /// False for the 6R classes without a closed form (elimination, 30-60 us a
-/// solve, or the 1-D searches, about 0.4 ms; a numeric solve of such an arm
+/// solve; a numeric solve of such an arm
 /// takes about 15 us): the automatic route is for the fastest answer, and a
 /// caller who wants every solution of such an arm asks the analytic solver.
 fn faster_than_numeric(solver: &AnalyticSolver) -> bool {
     !matches!(
         solver.class(),
-        ArmClass::OnePair { .. } | ArmClass::General | ArmClass::UnsearchedPairs
+        ArmClass::OnePair { .. } | ArmClass::General | ArmClass::OtherPairs
     )
 }

@@ -62,7 +62,6 @@ impl PoseOracle {
                 representatives: Representatives::Nearest,
                 limits: RangeFilter::WithinLimits,
                 verification: Verification::ForwardKinematics,
-                ..AnalyticOptions::default()
             },
         )
         .ok()

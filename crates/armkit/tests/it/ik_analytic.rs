@@ -245,7 +245,7 @@ fn assert_search_recovered(name: &str, tally: &Tally) {
 }
 
 #[test]
-fn iiwa14_urdf_with_the_elbow_joint_held_by_1d_search() {
+fn iiwa14_urdf_with_the_elbow_joint_held_general_axes() {
     let model = urdf("urdf/iiwa14.urdf", "tool0");
     let parameter = Parameter::FixedJoint {
         joint: 2,
@@ -253,7 +253,7 @@ fn iiwa14_urdf_with_the_elbow_joint_held_by_1d_search() {
     };
     let mut s =
         AnalyticSolver::with_parameter(&model, AnalyticOptions::default(), parameter).unwrap();
-    assert_eq!(s.class().as_str(), "spherical_wrist_general_1d_search");
+    assert_eq!(s.class().as_str(), "spherical_wrist_general_axes");
     let tally = check(&model, &mut s, POSES, 8, &no_parameter);
     assert_search_recovered("iiwa14 urdf q3 held", &tally);
 }
@@ -499,8 +499,8 @@ fn random_general_position_spherical_wrist_arms() {
         lines
     };
     for (seed, reverse, class) in [
-        (60, false, "spherical_wrist_general_1d_search"),
-        (61, true, "spherical_base_general_1d_search"),
+        (60, false, "spherical_wrist_general_axes"),
+        (61, true, "spherical_base_general_axes"),
     ] {
         let mut rng = common::rng(seed);
         let mut tally = Tally {
@@ -918,11 +918,11 @@ fn random_search_arms(
 /// `options`; the recovery over all.
 fn one_pair_tally(seed: u64, arms: u64, poses: usize, options: AnalyticOptions) -> Tally {
     let cases = [
-        (4, false, "one_pair_intersecting_5_6_1d_search"),
-        (4, true, "one_pair_intersecting_1_2_1d_search"),
-        (3, false, "one_pair_intersecting_4_5_1d_search"),
-        (3, true, "one_pair_intersecting_2_3_1d_search"),
-        (2, false, "one_pair_intersecting_3_4_1d_search"),
+        (4, false, "one_pair_intersecting_5_6"),
+        (4, true, "one_pair_intersecting_1_2"),
+        (3, false, "one_pair_intersecting_4_5"),
+        (3, true, "one_pair_intersecting_2_3"),
+        (2, false, "one_pair_intersecting_3_4"),
     ];
     let mut total = Tally {
         poses: 0,
@@ -960,25 +960,11 @@ fn random_one_pair_arms_by_elimination() {
     assert_search_recovered("one-pair arms", &tally);
 }
 
-#[test]
-fn random_one_pair_arms_by_1d_search() {
-    let tally = one_pair_tally(70, 4, POSES / 10, one_dimension());
-    assert_search_recovered("one-pair arms", &tally);
-}
-
 /// 20 000 poses: 40 arms x 100 poses for each of the five layouts.
 #[test]
 #[ignore = "slow: cargo test --release -p armkit --test it -- --ignored ik_analytic:: --nocapture"]
 fn many_random_one_pair_arms_by_elimination() {
     let tally = one_pair_tally(410, 40, 100, AnalyticOptions::default());
-    assert_search_recovered("one-pair arms", &tally);
-}
-
-/// The same 20 000 poses by the 1-D searches.
-#[test]
-#[ignore = "slow: cargo test --release -p armkit --test it -- --ignored ik_analytic:: --nocapture"]
-fn many_random_one_pair_arms_by_1d_search() {
-    let tally = one_pair_tally(410, 40, 100, one_dimension());
     assert_search_recovered("one-pair arms", &tally);
 }
 
@@ -997,20 +983,20 @@ fn parallel_pair_lines(rng: &mut ChaCha8Rng, first: usize) -> Lines {
 /// the class. Pairs 2-3 and 4-5 are built both ways (4-5 is solved on the
 /// reversed chain).
 const PARALLEL_CASES: [(usize, bool, &str); 5] = [
-    (1, false, "one_pair_parallel_2_3_1d_search"),
-    (3, false, "one_pair_parallel_4_5_1d_search"),
-    (1, true, "one_pair_parallel_4_5_1d_search"),
-    (3, true, "one_pair_parallel_2_3_1d_search"),
-    (2, false, "one_pair_parallel_3_4_1d_search"),
+    (1, false, "one_pair_parallel_2_3"),
+    (3, false, "one_pair_parallel_4_5"),
+    (1, true, "one_pair_parallel_4_5"),
+    (3, true, "one_pair_parallel_2_3"),
+    (2, false, "one_pair_parallel_3_4"),
 ];
 
 /// The parallel pairs at an end of the chain (1-2 solved as built, 5-6 on
 /// the reversed chain), each built both ways.
 const END_PARALLEL_CASES: [(usize, bool, &str); 4] = [
-    (0, false, "one_pair_parallel_1_2_1d_search"),
-    (4, false, "one_pair_parallel_5_6_1d_search"),
-    (0, true, "one_pair_parallel_5_6_1d_search"),
-    (4, true, "one_pair_parallel_1_2_1d_search"),
+    (0, false, "one_pair_parallel_1_2"),
+    (4, false, "one_pair_parallel_5_6"),
+    (0, true, "one_pair_parallel_5_6"),
+    (4, true, "one_pair_parallel_1_2"),
 ];
 
 /// [`parallel_pair_tally`] recovers the generating configuration on
@@ -1069,16 +1055,6 @@ fn random_parallel_pair_arms_by_elimination() {
 }
 
 #[test]
-fn random_parallel_pair_arms_by_1d_search() {
-    parallel_pairs_recovered(
-        "parallel-pair arms",
-        &PARALLEL_CASES,
-        (300, 4, 20),
-        one_dimension(),
-    );
-}
-
-#[test]
 #[ignore = "slow: cargo test --release -p armkit --test it -- --ignored ik_analytic:: --nocapture"]
 fn many_random_parallel_pair_arms_by_elimination() {
     parallel_pairs_recovered(
@@ -1086,17 +1062,6 @@ fn many_random_parallel_pair_arms_by_elimination() {
         &PARALLEL_CASES,
         (310, 40, 100),
         AnalyticOptions::default(),
-    );
-}
-
-#[test]
-#[ignore = "slow: cargo test --release -p armkit --test it -- --ignored ik_analytic:: --nocapture"]
-fn many_random_parallel_pair_arms_by_1d_search() {
-    parallel_pairs_recovered(
-        "parallel-pair arms",
-        &PARALLEL_CASES,
-        (310, 40, 100),
-        one_dimension(),
     );
 }
 
@@ -1111,16 +1076,6 @@ fn random_end_parallel_pair_arms_by_elimination() {
 }
 
 #[test]
-fn random_end_parallel_pair_arms_by_1d_search() {
-    parallel_pairs_recovered(
-        "end parallel-pair arms",
-        &END_PARALLEL_CASES,
-        (340, 3, 20),
-        one_dimension(),
-    );
-}
-
-#[test]
 #[ignore = "slow: cargo test --release -p armkit --test it -- --ignored ik_analytic:: --nocapture"]
 fn many_random_end_parallel_pair_arms_by_elimination() {
     parallel_pairs_recovered(
@@ -1128,17 +1083,6 @@ fn many_random_end_parallel_pair_arms_by_elimination() {
         &END_PARALLEL_CASES,
         (350, 50, 100),
         AnalyticOptions::default(),
-    );
-}
-
-#[test]
-#[ignore = "slow: cargo test --release -p armkit --test it -- --ignored ik_analytic:: --nocapture"]
-fn many_random_end_parallel_pair_arms_by_1d_search() {
-    parallel_pairs_recovered(
-        "end parallel-pair arms",
-        &END_PARALLEL_CASES,
-        (350, 50, 100),
-        one_dimension(),
     );
 }
 
@@ -1155,11 +1099,11 @@ fn parallel_pair_detection_takes_only_its_class() {
     for _ in 0..5 {
         // Each position, built as such.
         for (first, class) in [
-            (0, "one_pair_parallel_1_2_1d_search"),
-            (1, "one_pair_parallel_2_3_1d_search"),
-            (2, "one_pair_parallel_3_4_1d_search"),
-            (3, "one_pair_parallel_4_5_1d_search"),
-            (4, "one_pair_parallel_5_6_1d_search"),
+            (0, "one_pair_parallel_1_2"),
+            (1, "one_pair_parallel_2_3"),
+            (2, "one_pair_parallel_3_4"),
+            (3, "one_pair_parallel_4_5"),
+            (4, "one_pair_parallel_5_6"),
         ] {
             let lines = parallel_pair_lines(&mut rng, first);
             assert_eq!(class_of(&lines, &mut rng), class);
@@ -1167,17 +1111,11 @@ fn parallel_pair_detection_takes_only_its_class() {
         // A pair in the middle wins over one at an end.
         let mut lines = parallel_pair_lines(&mut rng, 2);
         lines[1].1 = lines[0].1;
-        assert_eq!(
-            class_of(&lines, &mut rng),
-            "one_pair_parallel_3_4_1d_search"
-        );
+        assert_eq!(class_of(&lines, &mut rng), "one_pair_parallel_3_4");
         // An intersecting pair the one-pair search handles wins.
         let mut lines = parallel_pair_lines(&mut rng, 1);
         lines[5].0 = lines[4].0;
-        assert_eq!(
-            class_of(&lines, &mut rng),
-            "one_pair_intersecting_5_6_1d_search"
-        );
+        assert_eq!(class_of(&lines, &mut rng), "one_pair_intersecting_5_6");
         // Three parallel axes (2-3-4) are the closed-form class.
         let mut lines = parallel_pair_lines(&mut rng, 1);
         lines[3].1 = lines[2].1;
@@ -1188,23 +1126,20 @@ fn parallel_pair_detection_takes_only_its_class() {
         lines[0].1 = lines[1].1;
         let found = class_of(&lines, &mut rng);
         assert!(
-            found == "unsearched_pairs" || found.contains("class unsearched_pairs "),
+            found == "other_special_pairs" || found.contains("class other_special_pairs "),
             "{found}"
         );
         // Axes 1-2 and 5-6 parallel: the 1-2 search, over joint 6 only
         // (its search over joint 3 would turn axis 6 about itself).
         let mut lines = parallel_pair_lines(&mut rng, 0);
         lines[5].1 = lines[4].1;
-        assert_eq!(
-            class_of(&lines, &mut rng),
-            "one_pair_parallel_1_2_1d_search"
-        );
+        assert_eq!(class_of(&lines, &mut rng), "one_pair_parallel_1_2");
         // The pair on one line (a degenerate arm): no 1-D search takes it.
         let mut lines = parallel_pair_lines(&mut rng, 1);
         lines[2].0 = lines[1].0 + lines[1].1 * 0.3;
         let found = class_of(&lines, &mut rng);
         assert!(
-            found == "unsearched_pairs" || found.contains("class unsearched_pairs "),
+            found == "other_special_pairs" || found.contains("class other_special_pairs "),
             "{found}"
         );
         // A spherical wrist with parallel 2-3 stays closed form.
@@ -1216,10 +1151,7 @@ fn parallel_pair_detection_takes_only_its_class() {
 #[test]
 fn auto_takes_the_numeric_route_on_parallel_pair_arms() {
     let mut rng = common::rng(330);
-    for (first, class) in [
-        (1, "one_pair_parallel_2_3_1d_search"),
-        (0, "one_pair_parallel_1_2_1d_search"),
-    ] {
+    for (first, class) in [(1, "one_pair_parallel_2_3"), (0, "one_pair_parallel_1_2")] {
         let model = model_from_lines(
             "parallel",
             &parallel_pair_lines(&mut rng, first),
@@ -1231,52 +1163,40 @@ fn auto_takes_the_numeric_route_on_parallel_pair_arms() {
 }
 
 #[test]
-fn parallel_end_pairs_are_solved_and_pairs_no_search_takes_are_refused_by_name() {
+fn parallel_end_pairs_and_pairs_at_both_ends_are_solved_by_elimination() {
     let mut rng = common::rng(80);
-    // Parallel 1-2 only: elimination (the default) and the end-pair 1-D
-    // search.
+    // Parallel 1-2 only.
     let mut lines: Lines = (0..6)
         .map(|_| (point(&mut rng), unit(&mut rng), false))
         .collect();
     lines[1].1 = lines[0].1;
     let model = model_from_lines("parallel", &lines, random_home(&mut rng));
-    for options in [AnalyticOptions::default(), one_dimension()] {
-        let mut s = AnalyticSolver::new(&model, options).unwrap();
-        assert_eq!(s.class().as_str(), "one_pair_parallel_1_2_1d_search");
-        let tally = check(&model, &mut s, 20, 81, &no_parameter);
-        assert_all_recovered("parallel 1-2", &tally);
-    }
-    // Parallel 1-2 and 5-6: one search (over joint 6) only; still every
-    // generating configuration on these poses.
+    let mut s = solver(&model);
+    assert_eq!(s.class().as_str(), "one_pair_parallel_1_2");
+    let tally = check(&model, &mut s, 20, 81, &no_parameter);
+    assert_all_recovered("parallel 1-2", &tally);
+    // Parallel 1-2 and 5-6: every generating configuration on these poses.
     lines[5].1 = -lines[4].1;
     let model = model_from_lines("parallel_ends", &lines, random_home(&mut rng));
     let mut s = solver(&model);
-    assert_eq!(s.class().as_str(), "one_pair_parallel_1_2_1d_search");
+    assert_eq!(s.class().as_str(), "one_pair_parallel_1_2");
     assert!(s.method().contains("elimination"), "{}", s.method());
     let tally = check(&model, &mut s, 20, 82, &no_parameter);
     assert_all_recovered("parallel 1-2 and 5-6", &tally);
-    // Parallel 1-2-3: every pair has a parallel neighbour, no 1-D search
-    // takes it: elimination with the loop cut between joints 1 and 6
-    // (every generating configuration on these poses); the searches alone
-    // refuse it, naming the class.
+    // Parallel 1-2-3: every pair has a parallel neighbour: elimination with
+    // the loop cut between joints 1 and 6 (every generating configuration
+    // on these poses).
     lines[2].1 = lines[0].1;
     let model = model_from_lines("parallel123", &lines, random_home(&mut rng));
     let mut s = solver(&model);
-    assert_eq!(s.class().as_str(), "unsearched_pairs");
+    assert_eq!(s.class().as_str(), "other_special_pairs");
     assert!(s.method().contains("elimination"), "{}", s.method());
     let tally = check(&model, &mut s, 20, 83, &no_parameter);
     assert_all_recovered("parallel 1-2-3", &tally);
-    let error = AnalyticSolver::new(&model, one_dimension())
-        .unwrap_err()
-        .to_string();
-    assert!(
-        error.contains("has no analytic solver: class unsearched_pairs"),
-        "{error}"
-    );
 }
 
 #[test]
-fn a_general_6r_arm_is_solved_by_elimination_and_refused_by_the_searches() {
+fn a_general_6r_arm_is_solved_by_elimination() {
     let mut rng = common::rng(90);
     let lines: Lines = (0..6)
         .map(|_| (point(&mut rng), unit(&mut rng), false))
@@ -1287,26 +1207,12 @@ fn a_general_6r_arm_is_solved_by_elimination_and_refused_by_the_searches() {
     assert!(s.method().contains("elimination"), "{}", s.method());
     let tally = check(&model, &mut s, 50, 91, &no_parameter);
     assert_all_recovered("general 6R by elimination", &tally);
-    // The searches alone refuse it, naming elimination.
-    let error = AnalyticSolver::new(&model, one_dimension())
-        .unwrap_err()
-        .to_string();
-    assert!(error.contains("class general_6r "), "{error}");
-    assert!(error.contains("SearchPolicy::Elimination"), "{error}");
-    assert!(error.contains("--search elimination"), "{error}");
 }
 
 fn general_lines(rng: &mut ChaCha8Rng) -> Lines {
     (0..6)
         .map(|_| (point(rng) * 2.0, unit(rng), false))
         .collect()
-}
-
-fn one_dimension() -> AnalyticOptions {
-    AnalyticOptions {
-        search: armkit::ik::analytic::SearchPolicy::UpToOneDimension,
-        ..AnalyticOptions::default()
-    }
 }
 
 /// `arms` random general 6R arms x 100 poses by elimination: the
@@ -1363,14 +1269,43 @@ fn assert_auto_takes_the_numeric_route(model: &Model, class: &str) {
     assert_eq!(solved.route, IkRoute::Numeric, "{class}");
 }
 
-/// Elimination checked against the other algorithm: on random arms of every
-/// pair layout, the exact solutions of elimination and of the 1-D searches
-/// are the same sets (joint angles to 1e-6 rad, modulo 2 pi), to 0.1 % of
-/// either's solutions. Measured on these 1 000 poses: elimination finds all
-/// 3 974 of the searches' solutions; the searches miss 2 of elimination's
-/// 3 976.
+/// Random lines of every layout elimination takes: general, one
+/// intersecting or parallel pair at each place along the chain, and
+/// special pairs at both ends (each kind at each end).
+fn elimination_layouts(rng: &mut ChaCha8Rng) -> Vec<(String, Lines)> {
+    let mut layouts = vec![("general".to_string(), general_lines(rng))];
+    for first in 0..5 {
+        layouts.push((format!("meet {first}"), one_pair_lines(rng, first)));
+        layouts.push((format!("parallel {first}"), parallel_pair_lines(rng, first)));
+    }
+    for (first_parallel, last_parallel) in
+        [(true, true), (true, false), (false, true), (false, false)]
+    {
+        let mut lines = general_lines(rng);
+        match first_parallel {
+            true => lines[1].1 = lines[0].1 * sign(rng),
+            false => lines[1].0 = lines[0].0,
+        }
+        match last_parallel {
+            true => lines[5].1 = lines[4].1 * sign(rng),
+            false => lines[5].0 = lines[4].0,
+        }
+        layouts.push((format!("ends {first_parallel} {last_parallel}"), lines));
+    }
+    layouts
+}
+
+/// Elimination checked against an independent oracle, multi-start
+/// Levenberg-Marquardt converged to 1e-12 m and rad (so a configuration
+/// it reports is within about 1e-12 / sigma_min rad of an exact one, far
+/// inside the 1e-6 rad match even near a singular configuration): on a
+/// random arm of every layout elimination takes, every configuration LM
+/// reaches from 40 random starts per pose is among elimination's exact
+/// solutions (joint angles to 1e-6 rad, modulo 2 pi), and elimination
+/// finds the generating configuration of every pose.
 #[test]
-fn elimination_and_the_searches_find_the_same_solutions() {
+fn elimination_finds_every_solution_multi_start_lm_finds() {
+    use armkit::ik::{IkMethod, IkOptions, IkSolver};
     let mut rng = common::rng(500);
     let same = |a: &[f64], b: &[f64]| {
         a.iter().zip(b).all(|(x, y)| {
@@ -1378,54 +1313,61 @@ fn elimination_and_the_searches_find_the_same_solutions() {
             (d - std::f64::consts::TAU * (d / std::f64::consts::TAU).round()).abs() < 1e-6
         })
     };
-    // [found by elimination, by the searches]; [not found by the other].
-    let (mut total, mut unmatched) = ([0; 2], [0; 2]);
-    for first in 0..5 {
-        for parallel in [false, true] {
-            for _ in 0..2 {
-                let lines = match parallel {
-                    false => one_pair_lines(&mut rng, first),
-                    true => parallel_pair_lines(&mut rng, first),
-                };
-                let model = model_from_lines("pair", &lines, random_home(&mut rng));
-                let mut elimination = solver(&model);
-                let mut search = AnalyticSolver::new(&model, one_dimension()).unwrap();
-                let mut data = Data::new(&model);
-                for _ in 0..50 {
-                    let q = common::random_configuration(&model, &mut rng);
-                    let target = *forward_kinematics(&model, &mut data, &q).unwrap();
-                    let start = model.neutral_configuration();
-                    let exact = |s: &mut AnalyticSolver| -> Vec<Vec<f64>> {
-                        let found = s.solve(&target, &start).unwrap();
-                        found
-                            .iter()
-                            .filter(|s| s.fit == Fit::Exact)
-                            .map(|s| s.q().to_vec())
-                            .collect()
-                    };
-                    let (by_elimination, by_search) = (exact(&mut elimination), exact(&mut search));
-                    let pairs = [(&by_elimination, &by_search), (&by_search, &by_elimination)];
-                    for (k, (these, those)) in pairs.into_iter().enumerate() {
-                        total[k] += these.len();
-                        unmatched[k] += these
-                            .iter()
-                            .filter(|q| !those.iter().any(|p| same(q, p)))
-                            .count();
+    let lm = IkOptions {
+        method: IkMethod::from_short_name("lm").unwrap(),
+        position_tolerance: 1e-12,
+        orientation_tolerance: 1e-12,
+        max_iterations: 200,
+        time_budget: None,
+        max_restarts: 0,
+        ..IkOptions::default()
+    };
+    let (mut found, mut eliminated) = (0, 0);
+    let mut missed = Vec::new();
+    for (layout, lines) in elimination_layouts(&mut rng) {
+        let model = model_from_lines("layout", &lines, random_home(&mut rng));
+        let mut elimination = solver(&model);
+        assert!(
+            elimination.method().contains("elimination"),
+            "{layout}: {}",
+            elimination.method()
+        );
+        let mut oracle = IkSolver::new(&model, lm).unwrap();
+        let mut data = Data::new(&model);
+        for _ in 0..15 {
+            let q = common::random_configuration(&model, &mut rng);
+            let target = *forward_kinematics(&model, &mut data, &q).unwrap();
+            let exact: Vec<Vec<f64>> = elimination
+                .solve(&target, &q)
+                .unwrap()
+                .iter()
+                .filter(|s| s.fit == Fit::Exact)
+                .map(|s| s.q().to_vec())
+                .collect();
+            eliminated += exact.len();
+            assert!(exact.iter().any(|p| same(p, &q)), "{layout}: {q:?}");
+            for _ in 0..40 {
+                let start = common::random_configuration(&model, &mut rng);
+                let report = oracle.solve(&target, &start).unwrap();
+                if report.converged() {
+                    found += 1;
+                    if !exact.iter().any(|p| same(p, &report.q)) {
+                        missed.push(format!("{layout}: {:?}", report.q));
                     }
                 }
             }
         }
     }
     println!(
-        "of elimination's {} solutions the searches miss {}; of the searches' {} elimination misses {}",
-        total[0], unmatched[0], total[1], unmatched[1]
+        "of {found} LM solutions elimination misses {}; elimination: {eliminated} exact solutions",
+        missed.len()
     );
-    for k in 0..2 {
-        assert!(
-            unmatched[k] as f64 <= 0.001 * total[k] as f64,
-            "{unmatched:?} of {total:?} solutions unmatched"
-        );
-    }
+    assert!(found > 1000, "LM converged {found} times");
+    assert!(
+        missed.is_empty(),
+        "{} of {found} LM solutions not among elimination's: {missed:#?}",
+        missed.len()
+    );
 }
 
 /// The example robots (`examples/robots/`, the README's bench-ik rows):

@@ -817,16 +817,15 @@ fn dynamics_workspace_moving_between_models_does_not_allocate() {
 }
 
 #[test]
-fn analytic_ik_searches_and_elimination_do_not_allocate() {
-    use armkit::ik::analytic::{AnalyticOptions, SearchPolicy};
+fn analytic_ik_by_elimination_does_not_allocate() {
+    use armkit::ik::analytic::AnalyticOptions;
     use armkit::math::{Pose, Vector3};
     use armkit::model::{JointSpec, ModelBuilder};
     use std::f64::consts::PI;
-    // Axes 5-6 meet (the one-pair 1-D search); moved apart, a general 6R
-    // arm (elimination only); that with axis 3 along axis 2, the
-    // parallel-pair 1-D search; axes 3-4 meeting instead (the one-pair
-    // search with the pair in the middle); axis 2 along axis 1 (the end
-    // parallel-pair search).
+    // Axes 5-6 meet (one intersecting pair); moved apart, a general 6R
+    // arm; that with axis 3 along axis 2 (a parallel pair); axes 3-4
+    // meeting instead (the pair in the middle); axis 2 along axis 1 (a
+    // parallel pair at the base): all by elimination.
     let lines = |third: [f64; 3], fourth: [f64; 3], last: [f64; 3], second: [f64; 3]| {
         [
             ([0.0, 0.0, 0.0], [0.0, 0.0, 1.0]),
@@ -836,10 +835,6 @@ fn analytic_ik_searches_and_elimination_do_not_allocate() {
             ([1.0, 0.0, 0.5], [0.1, 0.95, 0.3]),
             (last, [0.85, -0.2, 0.5]),
         ]
-    };
-    let options = AnalyticOptions {
-        search: SearchPolicy::UpToOneDimension,
-        ..AnalyticOptions::default()
     };
     let skew = [-0.2, 0.8, 0.55];
     let fourth = [0.8, 0.1, 0.55];
@@ -872,12 +867,7 @@ fn analytic_ik_searches_and_elimination_do_not_allocate() {
             .fixed(Pose::from_translation(Vector3::new(0.15, 0.0, 0.0)))
             .build()
             .unwrap();
-        // The 1-D searches (not for the general arm) and elimination, the
-        // default.
-        let searched = (name != "general").then_some(options);
-        for options in searched.into_iter().chain([AnalyticOptions::default()]) {
-            solve_without_allocating(name, &model, options);
-        }
+        solve_without_allocating(name, &model, AnalyticOptions::default());
     }
 }
 
@@ -891,16 +881,13 @@ fn solve_without_allocating(
     use armkit::ik::analytic::AnalyticSolver;
     let mut solver = AnalyticSolver::new(model, options).unwrap();
     if name == "parallel_pair" {
-        assert_eq!(solver.class().as_str(), "one_pair_parallel_2_3_1d_search");
+        assert_eq!(solver.class().as_str(), "one_pair_parallel_2_3");
     }
     if name == "parallel_pair_1_2" {
-        assert_eq!(solver.class().as_str(), "one_pair_parallel_1_2_1d_search");
+        assert_eq!(solver.class().as_str(), "one_pair_parallel_1_2");
     }
     if name == "pair_3_4" {
-        assert_eq!(
-            solver.class().as_str(),
-            "one_pair_intersecting_3_4_1d_search"
-        );
+        assert_eq!(solver.class().as_str(), "one_pair_intersecting_3_4");
     }
     let targets = benchmark_targets(model, 5, 3).unwrap();
     let start = model.neutral_configuration();
@@ -909,7 +896,7 @@ fn solve_without_allocating(
         let before = allocations();
         solutions += solver.solve(target, &start).unwrap().len();
         let after = allocations();
-        let method = options.search;
+        let method = solver.method();
         assert_eq!(
             after - before,
             0,

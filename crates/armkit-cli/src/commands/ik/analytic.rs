@@ -21,8 +21,8 @@ pub(super) fn route(
     representatives: Representatives,
     start: &[f64],
 ) -> CliResult<AnalyticRoute> {
+    redundancy.search.check()?;
     let options = AnalyticOptions {
-        search: redundancy.search.policy()?,
         representatives,
         ..AnalyticOptions::default()
     };

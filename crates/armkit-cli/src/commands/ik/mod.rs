@@ -156,16 +156,14 @@ pub struct RedundancyArgs {
     #[arg(long, value_name = "N")]
     pub sweep: Option<usize>,
     /// How the analytic solver solves 6R arms without a closed form:
-    /// `elimination` (the default: algebraic elimination, tens of
-    /// microseconds, every 6R arm with at most one special pair) or `1d`
-    /// (closed forms and the 1-D searches, hundreds of microseconds; a
-    /// general 6R arm refused). `2d` (a retired 2-D search) is an error.
+    /// `elimination` (the only route: algebraic elimination, tens of
+    /// microseconds). `1d` and `2d` (retired searches) are errors.
     #[arg(long, value_enum, default_value_t = SearchArg::Elimination)]
     pub search: SearchArg,
 }
 
-/// The error of `--search 2d`.
-const RETIRED_2D: &str = "--search 2d: retired (the 2-D search is gone: general 6R arms are solved by elimination, the default; arms elimination does not take need a numeric solver, e.g. --solver lm); expected `elimination` or `1d`";
+/// Why a retired `--search` value is refused.
+const RETIRED: &str = "retired (the searches are gone: every 6R arm without a closed form is solved by elimination, the default; arms elimination does not take need a numeric solver, e.g. --solver lm); expected `elimination`";
 
 /// `--search` values.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
@@ -174,8 +172,9 @@ pub enum SearchArg {
     #[default]
     #[value(name = "elimination")]
     Elimination,
-    /// Closed forms and 1-D searches.
-    #[value(name = "1d")]
+    /// Retired (the 1-D searches; elimination solves those arms): an error
+    /// naming the value.
+    #[value(name = "1d", hide = true)]
     OneD,
     /// Retired (the 2-D search; elimination solves general 6R arms): an
     /// error naming the value.
@@ -193,12 +192,13 @@ impl SearchArg {
         }
     }
 
-    /// The library's policy. Errors: a retired value (named).
-    pub fn policy(self) -> CliResult<armkit::ik::analytic::SearchPolicy> {
+    /// Errors: a retired value (named).
+    pub fn check(self) -> CliResult<()> {
         match self {
-            SearchArg::Elimination => Ok(armkit::ik::analytic::SearchPolicy::Elimination),
-            SearchArg::OneD => Ok(armkit::ik::analytic::SearchPolicy::UpToOneDimension),
-            SearchArg::TwoD => Err(CliError(RETIRED_2D.into())),
+            SearchArg::Elimination => Ok(()),
+            SearchArg::OneD | SearchArg::TwoD => {
+                Err(CliError(format!("--search {}: {RETIRED}", self.name())))
+            }
         }
     }
 }

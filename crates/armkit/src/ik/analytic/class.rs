@@ -1,8 +1,5 @@
 //! The classes of arms, and their detection from an [`ArmStructure`].
 
-use super::end_parallel_pair;
-use super::pair_search::PairLayout;
-use super::parallel_pair::ParallelLayout;
 use super::structure::{ArmStructure, Motion, Relation, GEOMETRY_TOLERANCE};
 use crate::math::Vector3;
 
@@ -40,8 +37,8 @@ pub enum Positioning {
     /// Axes 1 and 2 intersect, joint 3 prismatic (Stanford arm): a
     /// quadratic for the slide, then subproblem 2.
     PrismaticThird,
-    /// No intersecting or parallel pair: a 1-D search over joint 1 (see
-    /// the `search` tolerances), then subproblems 4 and 1.
+    /// No intersecting or parallel pair: subproblem 5 in closed form (a
+    /// quartic; `three_axes`) places the wrist point.
     General,
 }
 
@@ -76,12 +73,10 @@ pub enum ArmClass {
     /// elbow (arm) angle.
     SphericalShoulderElbowWrist,
     /// 6 rotation joints whose special consecutive axes (intersecting or
-    /// parallel) fit no closed-form class. Solved by a 1-D search when
-    /// axes `first`, `first + 1` (1-based, model order) intersect (see
-    /// `pair_search`), or are parallel on two distinct lines with no
-    /// parallel neighbour (`first` 2, 3 or 4: see `parallel_pair`; 1 or 5:
-    /// see `end_parallel_pair`, which also needs a non-degenerate
-    /// subproblem 6 beyond the pair).
+    /// parallel) fit no closed-form class: axes `first`, `first + 1`
+    /// (1-based, model order) intersect, or are parallel on two distinct
+    /// lines with no parallel neighbour (axis 3 not parallel to a pair at
+    /// 1-2, axis 4 not to one at 5-6). Solved by elimination.
     OnePair {
         /// The pair's first joint, 1-based.
         first: u8,
@@ -91,13 +86,13 @@ pub enum ArmClass {
     /// 6 rotation joints without any intersecting or parallel consecutive
     /// axes: elimination (`SearchPolicy::Elimination`, the default).
     General,
-    /// 6 rotation joints with special consecutive axes that no closed-form
-    /// class and no 1-D search takes (e.g. axes 1-2-3 parallel outside the
-    /// UR family, where every parallel pair has a parallel neighbour, or a
+    /// 6 rotation joints with special consecutive axes that fit neither a
+    /// closed-form class nor [`ArmClass::OnePair`] (e.g. axes 1-2-3 parallel
+    /// outside the UR family, where every parallel pair has a parallel neighbour, or a
     /// parallel pair on one line): elimination where it applies (axes 1-2-3
     /// parallel with the loop cut between joints 1 and 6), else no analytic
     /// solver.
-    UnsearchedPairs,
+    OtherPairs,
     /// Another number of joints, or prismatic joints where no class allows
     /// them.
     Other,
@@ -115,13 +110,13 @@ impl ArmClass {
                 (Tip, IntersectingFirstSecond) => "spherical_wrist_intersecting_1_2",
                 (Tip, IntersectingSecondThird) => "spherical_wrist_intersecting_2_3",
                 (Tip, PrismaticThird) => "spherical_wrist_prismatic_3",
-                (Tip, General) => "spherical_wrist_general_1d_search",
+                (Tip, General) => "spherical_wrist_general_axes",
                 (Base, ParallelSecondThird) => "spherical_base_parallel_5_4",
                 (Base, ParallelFirstSecond) => "spherical_base_parallel_6_5",
                 (Base, IntersectingFirstSecond) => "spherical_base_intersecting_6_5",
                 (Base, IntersectingSecondThird) => "spherical_base_intersecting_5_4",
                 (Base, PrismaticThird) => "spherical_base_prismatic_4",
-                (Base, General) => "spherical_base_general_1d_search",
+                (Base, General) => "spherical_base_general_axes",
             },
             ArmClass::ThreeParallel { end: Tip } => "three_parallel_2_3_4_intersecting_5_6",
             ArmClass::ThreeParallel { end: Base } => "three_parallel_3_4_5_intersecting_1_2",
@@ -129,19 +124,19 @@ impl ArmClass {
             ArmClass::ThreeParallelOffset { end: Base } => "three_parallel_3_4_5",
             ArmClass::SphericalShoulderElbowWrist => "spherical_shoulder_elbow_wrist_7dof",
             ArmClass::OnePair { first, kind } => match (kind, first) {
-                (PairKind::Intersecting, 1) => "one_pair_intersecting_1_2_1d_search",
-                (PairKind::Intersecting, 2) => "one_pair_intersecting_2_3_1d_search",
-                (PairKind::Intersecting, 3) => "one_pair_intersecting_3_4_1d_search",
-                (PairKind::Intersecting, 4) => "one_pair_intersecting_4_5_1d_search",
-                (PairKind::Intersecting, _) => "one_pair_intersecting_5_6_1d_search",
-                (PairKind::Parallel, 1) => "one_pair_parallel_1_2_1d_search",
-                (PairKind::Parallel, 2) => "one_pair_parallel_2_3_1d_search",
-                (PairKind::Parallel, 3) => "one_pair_parallel_3_4_1d_search",
-                (PairKind::Parallel, 4) => "one_pair_parallel_4_5_1d_search",
-                (PairKind::Parallel, _) => "one_pair_parallel_5_6_1d_search",
+                (PairKind::Intersecting, 1) => "one_pair_intersecting_1_2",
+                (PairKind::Intersecting, 2) => "one_pair_intersecting_2_3",
+                (PairKind::Intersecting, 3) => "one_pair_intersecting_3_4",
+                (PairKind::Intersecting, 4) => "one_pair_intersecting_4_5",
+                (PairKind::Intersecting, _) => "one_pair_intersecting_5_6",
+                (PairKind::Parallel, 1) => "one_pair_parallel_1_2",
+                (PairKind::Parallel, 2) => "one_pair_parallel_2_3",
+                (PairKind::Parallel, 3) => "one_pair_parallel_3_4",
+                (PairKind::Parallel, 4) => "one_pair_parallel_4_5",
+                (PairKind::Parallel, _) => "one_pair_parallel_5_6",
             },
             ArmClass::General => "general_6r",
-            ArmClass::UnsearchedPairs => "unsearched_pairs",
+            ArmClass::OtherPairs => "other_special_pairs",
             ArmClass::Other => "other",
         }
     }
@@ -153,8 +148,8 @@ impl ArmClass {
                 end,
                 positioning: Positioning::General,
             } => match end {
-                ChainEnd::Tip => "spherical wrist at the tip, three general positioning axes: 1-D search over joint 1 (256 samples, roots to 1e-13 rad), up to 8 solutions",
-                ChainEnd::Base => "spherical joint group at the base, three general positioning axes: 1-D search on the reversed chain (256 samples, roots to 1e-13 rad)",
+                ChainEnd::Tip => "spherical wrist at the tip, three general positioning axes: closed form (subproblem 5, a quartic, places the wrist point), up to 8 solutions",
+                ChainEnd::Base => "spherical joint group at the base, three general positioning axes: closed form on the reversed chain (subproblem 5, a quartic), up to 8 solutions",
             },
             ArmClass::SphericalWrist { end: ChainEnd::Tip, .. } => {
                 "spherical wrist at the tip (axes 4-5-6 meet in one point): closed form, up to 8 solutions"
@@ -173,64 +168,30 @@ impl ArmClass {
             }
             ArmClass::OnePair {
                 kind: PairKind::Intersecting,
-                first: 1 | 5,
-            } => {
-                "one intersecting pair of consecutive axes at an end, no closed-form class: 1-D search over the joint at the other end and over a second joint (128 samples per turn, refined to 256 where a branch ends, changes or nears zero each, merged; the three joints between in closed form by a quartic, roots to 1e-13 rad), up to 16 solutions"
-            }
-            ArmClass::OnePair {
-                kind: PairKind::Intersecting,
-                first: 2 | 4,
-            } => {
-                "one intersecting pair of consecutive axes next to an end joint, no closed-form class: 1-D search over that end joint and over a second joint (128 samples per turn, refined to 256 where a branch ends, changes or nears zero each, merged; the other three joints in closed form by a quartic, roots to 1e-13 rad), up to 16 solutions"
-            }
-            ArmClass::OnePair {
-                kind: PairKind::Intersecting,
                 ..
             } => {
-                "one intersecting pair, axes 3 and 4, no closed-form class: 1-D search over joint 1 and over joint 6 (128 samples per turn, refined to 256 where a branch ends, changes or nears zero; joint 2 moved by the searched joint and joints 5, 6, or joint 5 moved and joints 1, 2, place the pair's point in closed form by a quartic; roots to 1e-13 rad), up to 16 solutions"
-            }
-            ArmClass::OnePair {
-                kind: PairKind::Parallel,
-                first: 2,
-            } => {
-                "parallel axes 2 and 3, no intersecting pair, no closed-form class: 1-D search over joint 5 and again over joint 4, merged (192 samples per turn each, with the residual's slope; joints 1 and 4, or 1 and 5, by subproblem 6, the pair and joint 6 by subproblem 1; roots to 1e-13 rad), up to 16 solutions"
-            }
-            ArmClass::OnePair {
-                kind: PairKind::Parallel,
-                first: 3,
-            } => {
-                "parallel axes 3 and 4, no intersecting pair, no closed-form class: 1-D search over joint 1 and again over joint 2, merged (192 samples per turn each, with the residual's slope; joints 2 and 5, or 1 and 5, by subproblem 6, the pair and joint 6 by subproblem 1; roots to 1e-13 rad), up to 16 solutions"
-            }
-            ArmClass::OnePair {
-                kind: PairKind::Parallel,
-                first: 4,
-            } => {
-                "parallel axes 4 and 5, no intersecting pair, no closed-form class: 1-D search on the reversed chain over joint 2 and again over joint 3, merged (192 samples per turn each, with the residual's slope; joints 6 and 3, or 6 and 2, by subproblem 6, the pair and joint 1 by subproblem 1; roots to 1e-13 rad), up to 16 solutions"
-            }
-            ArmClass::OnePair {
-                kind: PairKind::Parallel,
-                first: 1,
-            } => {
-                "parallel axes 1 and 2, no intersecting pair, no closed-form class: 1-D search over joint 6 and again over joint 3, merged (160 samples per turn each, with the residual's slope; joints 3 and 5, or 4 and 6, by subproblem 6, joint 4 or 5, the pair and its split by subproblem 1; roots to 1e-13 rad), up to 16 solutions"
+                "one intersecting pair of consecutive axes, no closed-form class: by elimination, up to 16 solutions"
             }
             ArmClass::OnePair {
                 kind: PairKind::Parallel,
                 ..
             } => {
-                "parallel axes 5 and 6, no intersecting pair, no closed-form class: 1-D search on the reversed chain over joint 1 and again over joint 4, merged (160 samples per turn each, with the residual's slope; joints 4 and 2, or 3 and 1, by subproblem 6, joint 3 or 2, the pair and its split by subproblem 1; roots to 1e-13 rad), up to 16 solutions"
+                "one parallel pair of consecutive axes, no intersecting pair, no closed-form class: by elimination, up to 16 solutions"
             }
             ArmClass::General => {
                 "no intersecting or parallel consecutive axes: general 6R, by elimination"
             }
-            ArmClass::UnsearchedPairs => {
-                "intersecting or parallel consecutive axes that fit no closed-form class and no 1-D search (a parallel pair with a parallel neighbour outside the UR family, or on one line): by elimination where it applies (axes 1-2-3 parallel with the loop cut between joints 1 and 6), else numeric solvers only"
+            ArmClass::OtherPairs => {
+                "intersecting or parallel consecutive axes that fit no closed-form class and no one-pair class (a parallel pair with a parallel neighbour outside the UR family, or on one line): by elimination where it applies (axes 1-2-3 parallel with the loop cut between joints 1 and 6), else numeric solvers only"
             }
             ArmClass::Other => "not a 6-joint arm of a known class: numeric solver only",
         }
     }
 
-    /// True when the 1-D searches handle this class (elimination may take
-    /// the others: see [`AnalyticSolver::method`](super::AnalyticSolver::method)).
+    /// True for the classes with a solver by construction (closed forms and
+    /// [`ArmClass::OnePair`]); [`ArmClass::General`] and
+    /// [`ArmClass::OtherPairs`] are solved by elimination where it
+    /// applies (see [`AnalyticSolver::method`](super::AnalyticSolver::method)).
     pub fn is_solvable(&self) -> bool {
         matches!(
             self,
@@ -282,26 +243,9 @@ pub(crate) enum Detected {
         elbow: Vector3<f64>,
         wrist: Vector3<f64>,
     },
-    /// One intersecting pair, solved by a 1-D search (`point` where the
-    /// pair meets, chain as solved).
-    OnePair {
-        class: ArmClass,
-        end: ChainEnd,
-        layout: PairLayout,
-        point: Vector3<f64>,
-    },
-    /// One parallel pair, solved by a 1-D search (chain as solved).
-    ParallelPair {
-        class: ArmClass,
-        end: ChainEnd,
-        layout: ParallelLayout,
-    },
-    /// One parallel pair at axes 1-2 of the chain as solved (5-6 of the
-    /// model for `end` = `Base`), solved by a 1-D search.
-    EndParallelPair {
-        class: ArmClass,
-        end: ChainEnd,
-    },
+    /// One intersecting or parallel pair ([`ArmClass::OnePair`]), solved by
+    /// elimination.
+    Pair(ArmClass),
     Unsolvable(ArmClass),
 }
 
@@ -314,10 +258,7 @@ impl Detected {
             Detected::ThreeParallel { end, .. } => ArmClass::ThreeParallel { end },
             Detected::ThreeParallelOffset { end } => ArmClass::ThreeParallelOffset { end },
             Detected::ShoulderElbowWrist { .. } => ArmClass::SphericalShoulderElbowWrist,
-            Detected::OnePair { class, .. }
-            | Detected::ParallelPair { class, .. }
-            | Detected::EndParallelPair { class, .. }
-            | Detected::Unsolvable(class) => class,
+            Detected::Pair(class) | Detected::Unsolvable(class) => class,
         }
     }
 }
@@ -347,68 +288,39 @@ pub(crate) fn detect(structure: &ArmStructure) -> Detected {
     one_pair(structure, &reversed)
 }
 
-/// A 6R arm of no closed-form class: an intersecting pair the 1-D search
-/// handles (preferring 5-6, 1-2, 4-5, 2-3, 3-4), else a parallel pair one
-/// handles (2-3, 4-5, 3-4, then 1-2, 5-6), else the first special pair
-/// (refused), else general.
+/// A 6R arm of no closed-form class: an intersecting pair (preferring
+/// 5-6, 1-2, 4-5, 2-3, 3-4), else a lone parallel pair (2-3, 4-5, 3-4,
+/// then 1-2, 5-6), else the first special pair (refused), else general.
 fn one_pair(structure: &ArmStructure, reversed: &ArmStructure) -> Detected {
-    use PairLayout::*;
+    let pair = |first, kind| Detected::Pair(ArmClass::OnePair { first, kind });
+    // (1-based first joint in model order, chain, its 0-based first joint)
     let cases = [
-        (5, ChainEnd::Tip, LastTwo, structure),
-        (1, ChainEnd::Base, LastTwo, reversed),
-        (4, ChainEnd::Tip, FourthFifth, structure),
-        (2, ChainEnd::Base, FourthFifth, reversed),
-        (3, ChainEnd::Tip, Middle, structure),
+        (5, structure, 4),
+        (1, reversed, 4),
+        (4, structure, 3),
+        (2, reversed, 3),
+        (3, structure, 2),
     ];
-    for (first, end, layout, chain) in cases {
-        let i = match layout {
-            LastTwo => 4,
-            FourthFifth => 3,
-            Middle => 2,
-        };
-        if let Relation::Intersecting(point) = chain.relation(i, i + 1) {
-            return Detected::OnePair {
-                class: ArmClass::OnePair {
-                    first,
-                    kind: PairKind::Intersecting,
-                },
-                end,
-                layout,
-                point,
-            };
+    for (first, chain, i) in cases {
+        if let Relation::Intersecting(_) = chain.relation(i, i + 1) {
+            return pair(first, PairKind::Intersecting);
         }
     }
-    let parallel_cases = [
-        (2, ChainEnd::Tip, ParallelLayout::SecondThird, structure),
-        (4, ChainEnd::Base, ParallelLayout::SecondThird, reversed),
-        (3, ChainEnd::Tip, ParallelLayout::ThirdFourth, structure),
-    ];
-    for (first, end, layout, chain) in parallel_cases {
-        let p = match layout {
-            ParallelLayout::SecondThird => 1,
-            ParallelLayout::ThirdFourth => 2,
-        };
+    let parallel_cases = [(2, structure, 1), (4, reversed, 1), (3, structure, 2)];
+    for (first, chain, p) in parallel_cases {
         if lone_parallel_pair(chain, p) {
-            return Detected::ParallelPair {
-                class: ArmClass::OnePair {
-                    first,
-                    kind: PairKind::Parallel,
-                },
-                end,
-                layout,
-            };
+            return pair(first, PairKind::Parallel);
         }
     }
-    let end_cases = [(1, ChainEnd::Tip, structure), (5, ChainEnd::Base, reversed)];
-    for (first, end, chain) in end_cases {
-        if lone_end_parallel_pair(chain) {
-            return Detected::EndParallelPair {
-                class: ArmClass::OnePair {
-                    first,
-                    kind: PairKind::Parallel,
-                },
-                end,
-            };
+    // Three consecutive parallel axes anywhere: no pair is lone, the arm
+    // is named by its other special pairs below.
+    let parallel_run = (0..4).any(|i| {
+        structure.relation(i, i + 1) == Relation::Parallel
+            && structure.relation(i + 1, i + 2) == Relation::Parallel
+    });
+    for (first, chain) in [(1, structure), (5, reversed)] {
+        if !parallel_run && lone_end_parallel_pair(chain) {
+            return pair(first, PairKind::Parallel);
         }
     }
     let special = (0..5).filter_map(|i| match structure.relation(i, i + 1) {
@@ -427,11 +339,10 @@ fn one_pair(structure: &ArmStructure, reversed: &ArmStructure) -> Detected {
             return Detected::Unsolvable(class);
         }
     }
-    // Special pairs only of solvable kinds that the searches refused (a
-    // parallel pair on one line, or with a parallel neighbour, or at an end
-    // with a degenerate subproblem 6 beyond it).
+    // Special pairs only of solvable kinds that fit no pair above (a
+    // parallel pair on one line, or with a parallel neighbour).
     Detected::Unsolvable(if any {
-        ArmClass::UnsearchedPairs
+        ArmClass::OtherPairs
     } else {
         ArmClass::General
     })
@@ -439,8 +350,7 @@ fn one_pair(structure: &ArmStructure, reversed: &ArmStructure) -> Detected {
 
 /// True when axes `p`, `p + 1` (0-based) of `chain` are parallel, on two
 /// distinct lines, and neither neighbour (`p - 1`, `p + 2`) is parallel to
-/// them: what the parallel-pair search needs (its subproblem 6 turns the
-/// neighbours, so a neighbour along the pair would leave it degenerate).
+/// them.
 fn lone_parallel_pair(chain: &ArmStructure, p: usize) -> bool {
     chain.relation(p, p + 1) == Relation::Parallel
         && chain.relation(p - 1, p) != Relation::Parallel
@@ -449,12 +359,11 @@ fn lone_parallel_pair(chain: &ArmStructure, p: usize) -> bool {
 }
 
 /// True when axes 1-2 of `chain` are parallel on two distinct lines and
-/// the end-pair search applies (`end_parallel_pair::searchable`: axis 3 not
-/// parallel to them, a non-degenerate subproblem 6 beyond).
+/// axis 3 is not parallel to them.
 fn lone_end_parallel_pair(chain: &ArmStructure) -> bool {
     chain.relation(0, 1) == Relation::Parallel
+        && chain.relation(1, 2) != Relation::Parallel
         && chain.distance_to_axis(1, &chain.points[0]) > GEOMETRY_TOLERANCE * chain.scale
-        && end_parallel_pair::searchable(&chain.axes)
 }
 
 fn rotational(chain: &ArmStructure, joints: std::ops::Range<usize>) -> bool {

@@ -19,23 +19,13 @@
 //! * 7-DOF spherical shoulder, elbow, spherical wrist (iiwa, LWR4) at an
 //!   elbow angle ([`Parameter::ElbowAngle`]); any other 7-DOF arm with one
 //!   joint held ([`Parameter::FixedJoint`]) if what is left has a class;
+//! * a spherical wrist behind three general axes: subproblem 5 in closed
+//!   form (a quartic), up to 8;
 //! * every other 6R arm of rotation joints (one intersecting or parallel
 //!   pair of consecutive axes anywhere, or none: a general 6R arm) by
-//!   algebraic elimination ([`elimination`], [`SearchPolicy::Elimination`],
-//!   the default: Raghavan and Roth's equations, the 16 roots of a
-//!   trigonometric polynomial of degree 8; tens of microseconds, up to 16
-//!   solutions);
-//! * 1-D searches: a spherical wrist behind three general axes ([`search`]);
-//!   and, with [`SearchPolicy::UpToOneDimension`] instead of elimination,
-//!   6R arms of no closed-form class with an intersecting pair of
-//!   consecutive axes at 1-2, 2-3, 3-4, 4-5 or 5-6 ([`pair_search`]: up to
-//!   16 solutions; the three joints that place the pair's point in closed
-//!   form by a quartic); 6R arms whose only special structure is two
-//!   parallel consecutive axes at 2-3, 3-4 or 4-5 ([`parallel_pair`]: up to
-//!   16 solutions; the pair's two neighbours by subproblem 6), or at 1-2 or
-//!   5-6 ([`end_parallel_pair`]: up to 16; two joints beyond the pair by
-//!   subproblem 6); under the default these take the pair arms elimination
-//!   does not (special pairs at both ends);
+//!   algebraic elimination (`elimination`: Raghavan and Roth's equations,
+//!   the 16 roots of a trigonometric polynomial of degree 8; tens of
+//!   microseconds, up to 16 solutions);
 //! * elimination cuts the loop where no special pair stops it: from the
 //!   tip, from the base, or between joints 1 and 6 (special pairs at both
 //!   ends, axes 1-2-3 parallel outside the UR family); an arm it cannot
@@ -56,11 +46,9 @@
 //! configuration. After [`AnalyticSolver::new`], a solve allocates nothing
 //! (unless the representatives outgrow the buffer sized at set-up for every
 //! joint's range, which only happens for [`Parameter::FixedJoint`] changes).
-//! The searches sample 128 (spherical wrist), 256 (one pair) or 192 and 160
-//! (parallel pairs) points per turn and refine roots to 1e-13 rad; a double
-//! root may be missed by them and, more rarely, by elimination (>= 99.9 %
-//! of random poses recover the generating configuration); a solution of a search or of elimination is exact only if
-//! forward kinematics confirms it to 1e-10.
+//! A double root may be missed by elimination (>= 99.9 % of random poses
+//! recover the generating configuration); a solution of elimination is
+//! exact only if forward kinematics confirms it to 1e-10.
 //!
 //! ```
 //! use armkit::ik::analytic::{AnalyticOptions, AnalyticSolver};
@@ -81,20 +69,17 @@
 
 mod chain;
 mod class;
-pub mod elimination;
-pub mod end_parallel_pair;
+mod elimination;
 mod finish;
 mod options;
-pub mod pair_search;
 mod parallel;
 mod parallel_offset;
-pub mod parallel_pair;
 mod polish;
 mod ranges;
 #[cfg(test)]
 mod root_isolation_tests;
+mod roots;
 mod route;
-pub mod search;
 mod srs;
 pub mod structure;
 pub mod subproblem6;
@@ -110,18 +95,15 @@ pub use finish::{
     AnalyticSolution, Representatives, Verification, LINE_CHECK_CONFIGURATIONS,
     LINE_CHECK_TOLERANCE,
 };
-pub use options::{AnalyticOptions, Parameter, SearchPolicy};
+pub use options::{AnalyticOptions, Parameter};
 pub use route::{route_class, solver_for, sweep_values, AnalyticRoute, JointNumbering, Redundancy};
 
 use self::chain::{Candidates, Chain};
 use self::class::{detect, Detected};
 use self::elimination::{Cut, Elimination};
-use self::end_parallel_pair::EndPairSearch;
 use self::finish::Finisher;
-use self::pair_search::PairSearch;
 use self::parallel::ThreeParallel;
 use self::parallel_offset::ThreeParallelOffset;
-use self::parallel_pair::ParallelPairSearch;
 use self::srs::SrsChain;
 use self::structure::ArmStructure;
 use self::wrist::SphericalWrist;
@@ -150,18 +132,6 @@ enum Plan {
         end: ChainEnd,
     },
     ShoulderElbowWrist(SrsChain),
-    OnePair {
-        solver: PairSearch,
-        end: ChainEnd,
-    },
-    ParallelPair {
-        solver: ParallelPairSearch,
-        end: ChainEnd,
-    },
-    EndParallelPair {
-        solver: EndPairSearch,
-        end: ChainEnd,
-    },
     Elimination {
         solver: Elimination,
         end: ChainEnd,
@@ -226,10 +196,10 @@ impl AnalyticSolver {
         let structure = ArmStructure::of_model(model)?;
         if let Some(Parameter::FixedJoint { .. }) = parameter {
             // The value is checked here: an end joint's plan is built at 0.
-            plan(model, &structure, parameter, options.search)?;
+            plan(model, &structure, parameter)?;
         }
         let reference = reference(&structure, parameter);
-        let (class, plan) = plan(model, &structure, reference, options.search)?;
+        let (class, plan) = plan(model, &structure, reference)?;
         Ok(AnalyticSolver {
             model: model.clone(),
             finisher: Finisher::new(model, options),
@@ -259,7 +229,7 @@ impl AnalyticSolver {
 
     /// How this solver solves its class: the class's
     /// [`description`](ArmClass::description), or the elimination's for an
-    /// arm solved by [`SearchPolicy::Elimination`].
+    /// arm solved by elimination.
     pub fn method(&self) -> &'static str {
         match self.plan {
             Plan::Elimination { .. } => elimination::METHOD,
@@ -294,12 +264,7 @@ impl AnalyticSolver {
             Some(Parameter::FixedJoint { joint, .. }) => {
                 let parameter = Parameter::FixedJoint { joint, value };
                 if !held_at_end(&self.structure, joint) {
-                    let (class, plan) = plan(
-                        &self.model,
-                        &self.structure,
-                        Some(parameter),
-                        self.options.search,
-                    )?;
+                    let (class, plan) = plan(&self.model, &self.structure, Some(parameter))?;
                     self.class = class;
                     self.plan = plan;
                 }
@@ -367,18 +332,6 @@ impl AnalyticSolver {
                 srs.solve(goal, psi, out);
                 None
             }
-            Plan::OnePair { solver, end } => {
-                solver.solve(&goal_of(goal, *end), out);
-                Some(*end)
-            }
-            Plan::ParallelPair { solver, end } => {
-                solver.solve(&goal_of(goal, *end), out);
-                Some(*end)
-            }
-            Plan::EndParallelPair { solver, end } => {
-                solver.solve(&goal_of(goal, *end), out);
-                Some(*end)
-            }
             Plan::Elimination { solver, end } => {
                 solver.solve(&goal_of(goal, *end), out);
                 Some(*end)
@@ -440,9 +393,9 @@ impl AnalyticSolver {
 
 /// The joint (0-based) of a 7-joint `model` to hold so that the other six
 /// form a class at any value of it (checked at 0, 0.7 and -1.9), with that
-/// class: the last such joint of a closed-form class, else the last of the
-/// spherical wrist's search class, else the last of a one-pair search
-/// class; `None` if none (or not 7 joints).
+/// class: the last such joint of a closed-form class, else the last of a
+/// one-pair class (solved by elimination); `None` if none (or not 7
+/// joints).
 pub fn joint_to_hold(model: &Model) -> Option<(usize, ArmClass)> {
     if model.dof() != 7 {
         return None;
@@ -451,9 +404,10 @@ pub fn joint_to_hold(model: &Model) -> Option<(usize, ArmClass)> {
     let class_at = |joint: usize| -> Option<ArmClass> {
         let mut class = None;
         for value in [0.0, 0.7, -1.9] {
-            let parameter = Some(Parameter::FixedJoint { joint, value });
-            let search = SearchPolicy::UpToOneDimension;
-            let (c, _) = plan(model, &structure, parameter, search).ok()?;
+            let c = match detect(&structure.with_fixed_joint(joint, value)) {
+                Detected::Unsolvable(_) => return None,
+                detected => detected.class(),
+            };
             if class.is_some_and(|k| k != c) {
                 return None;
             }
@@ -461,27 +415,23 @@ pub fn joint_to_hold(model: &Model) -> Option<(usize, ArmClass)> {
         }
         class
     };
-    // Closed forms first, then the spherical wrist's search (tens of
-    // microseconds), then the one-pair search (milliseconds).
+    // Closed forms first, then a one-pair class (elimination, tens of
+    // microseconds).
     let cost = |c: &ArmClass| match c {
-        ArmClass::SphericalWrist {
-            positioning: Positioning::General,
-            ..
-        } => 1,
-        ArmClass::OnePair { .. } => 2,
+        ArmClass::OnePair { .. } => 1,
         _ => 0,
     };
     let classes: Vec<(usize, ArmClass)> = (0..7)
         .rev()
         .filter_map(|j| class_at(j).map(|c| (j, c)))
         .collect();
-    (0..3).find_map(|rank| classes.iter().find(|(_, c)| cost(c) == rank).copied())
+    (0..2).find_map(|rank| classes.iter().find(|(_, c)| cost(c) == rank).copied())
 }
 
 /// The class of `model` and the lines it was read from (for `--explain`).
 pub fn explain(model: &Model, parameter: Option<Parameter>) -> Result<(ArmClass, ArmStructure)> {
     let structure = ArmStructure::of_model(model)?;
-    let class = match plan(model, &structure, parameter, SearchPolicy::Elimination) {
+    let class = match plan(model, &structure, parameter) {
         Ok((class, _)) => class,
         Err(_) => detect(&reduced(&structure, parameter)).class(),
     };
@@ -518,7 +468,6 @@ fn plan(
     model: &Model,
     structure: &ArmStructure,
     parameter: Option<Parameter>,
-    search: SearchPolicy,
 ) -> Result<(ArmClass, Plan)> {
     if let Some(Parameter::FixedJoint { joint, value }) = parameter {
         if joint >= structure.dof() || !value.is_finite() {
@@ -553,7 +502,7 @@ fn plan(
             ),
         )
     };
-    if search == SearchPolicy::Elimination && eliminable(&detected, parameter) {
+    if eliminable(&detected, parameter) {
         if let Some(plan) = elimination_plan(&arm) {
             return Ok((class, plan));
         }
@@ -577,9 +526,7 @@ fn plan(
             Detected::SphericalWrist { .. }
             | Detected::ThreeParallel { .. }
             | Detected::ThreeParallelOffset { .. }
-            | Detected::OnePair { .. }
-            | Detected::ParallelPair { .. }
-            | Detected::EndParallelPair { .. },
+            | Detected::Pair(_),
             Some(Parameter::ElbowAngle(_)),
         ) => Err(unsolvable(
             "; an elbow angle needs a spherical-shoulder-elbow-wrist 7-DOF arm",
@@ -612,35 +559,14 @@ fn plan(
             let solver = ThreeParallelOffset::new(&chain);
             Ok((class, Plan::ThreeParallelOffset { solver, end }))
         }
-        (Detected::OnePair { end, layout, point, .. }, _) => {
-            let chain = chain_of(&arm, end).ok_or_else(|| unsolvable(""))?;
-            let solver = PairSearch::new(&chain, layout, &point);
-            Ok((class, Plan::OnePair { solver, end }))
-        }
-        (Detected::ParallelPair { end, layout, .. }, _) => {
-            let chain = chain_of(&arm, end).ok_or_else(|| unsolvable(""))?;
-            let solver = ParallelPairSearch::new(&chain, layout);
-            Ok((class, Plan::ParallelPair { solver, end }))
-        }
-        (Detected::EndParallelPair { end, .. }, _) => {
-            let chain = chain_of(&arm, end).ok_or_else(|| unsolvable(""))?;
-            let solver = EndPairSearch::new(&chain);
-            Ok((class, Plan::EndParallelPair { solver, end }))
-        }
+        // Elimination was tried (and does not apply to this arm).
         (
-            Detected::Unsolvable(
-                ArmClass::General | ArmClass::UnsearchedPairs | ArmClass::OnePair { .. },
-            ),
-            None,
-        ) => Err(unsolvable(match search {
-            // Elimination was tried (and does not apply to this arm).
-            SearchPolicy::Elimination => {
-                "; elimination does not apply to it (its determinant vanishes identically); use a numeric solver (CLI: --solver lm)"
-            }
-            SearchPolicy::UpToOneDimension => {
-                "; it needs elimination (AnalyticOptions::search = SearchPolicy::Elimination, the default; CLI: --search elimination)"
-            }
-        })),
+            Detected::Pair(_)
+            | Detected::Unsolvable(ArmClass::General | ArmClass::OtherPairs | ArmClass::OnePair { .. }),
+            _,
+        ) => Err(unsolvable(
+            "; elimination does not apply to it (its determinant vanishes identically at every cut of the loop); use a numeric solver (CLI: --solver lm)",
+        )),
         (Detected::Unsolvable(_), Some(Parameter::ElbowAngle(_))) => Err(unsolvable(
             "; an elbow angle needs a spherical-shoulder-elbow-wrist 7-DOF arm",
         )),
@@ -655,11 +581,9 @@ fn plan(
 fn eliminable(detected: &Detected, parameter: Option<Parameter>) -> bool {
     let class_fits = matches!(
         detected,
-        Detected::OnePair { .. }
-            | Detected::ParallelPair { .. }
-            | Detected::EndParallelPair { .. }
+        Detected::Pair(_)
             | Detected::Unsolvable(
-                ArmClass::General | ArmClass::UnsearchedPairs | ArmClass::OnePair { .. }
+                ArmClass::General | ArmClass::OtherPairs | ArmClass::OnePair { .. }
             )
     );
     class_fits && !matches!(parameter, Some(Parameter::ElbowAngle(_)))

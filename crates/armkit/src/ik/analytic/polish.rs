@@ -1,4 +1,4 @@
-//! A root of a search or of elimination made a solution: the chain's pose
+//! A root of elimination made a solution: the chain's pose
 //! at a configuration, its error to the target, and a few damped
 //! Gauss-Newton (Levenberg-Marquardt) steps on the full 6-D pose error of
 //! the chain's product of exponentials (position error, m, and the rotation
@@ -20,31 +20,11 @@ pub(crate) struct Settle {
     pub iterations: usize,
 }
 
-impl Settle {
-    /// A 1-D search's roots: within 1e-6, three steps (near a fold the
-    /// closed-form steps lose digits).
-    pub(crate) const SEARCH: Settle = Settle {
-        keep: 1e-6,
-        iterations: 3,
-    };
-}
-
 /// Norm of the 6-D pose error (m and rad) at which a polish stops.
 pub(crate) const CONVERGED: f64 = 1e-13;
 
 /// Pose error (m and rad) above which a root is polished.
 pub(crate) const POLISHED: f64 = 1e-12;
-
-/// A 1-D search's root `q` (chain order) as a solution for `target`:
-/// [`settle_root_within`] [`Settle::SEARCH`].
-pub(crate) fn settle_root(
-    chain: &Chain,
-    home: &Pose,
-    q: [f64; 6],
-    target: &Pose,
-) -> Option<([f64; 6], bool)> {
-    settle_root_within(chain, home, q, target, Settle::SEARCH)
-}
 
 /// A root `q` (chain order) as a solution for `target`, per `settle`: the
 /// polished configuration kept only if it errs less; with whether it is

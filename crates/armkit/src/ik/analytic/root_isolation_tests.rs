@@ -5,9 +5,10 @@
 //! property test of the error bounds the isolation relies on
 //! ([`hermite_error_bounds`], [`derivative_bound`]).
 
-use super::elimination::{
-    derivative_bound, hermite_error_bounds, trigonometric_roots, ROOT_SAMPLES,
+use super::elimination::trigonometric::{
+    derivative_bound, hermite_error_bounds, trigonometric_roots,
 };
+use super::elimination::ROOT_SAMPLES;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::f64::consts::{PI, TAU};

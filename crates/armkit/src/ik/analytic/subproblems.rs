@@ -303,13 +303,6 @@ impl Turn {
         }
     }
 
-    /// `R(k, t) v` (Rodrigues, `k` a unit axis) without building the
-    /// matrix ([`rotate_by`]).
-    #[inline]
-    pub(crate) fn rotate(&self, k: &Vector3<f64>, v: &Vector3<f64>) -> Vector3<f64> {
-        rotate_by(k, v, self.sin, self.cos)
-    }
-
     /// `R(k, t)' v = R(k, -t) v` ([`rotate_by`] with the sine negated).
     #[inline]
     pub(crate) fn rotate_back(&self, k: &Vector3<f64>, v: &Vector3<f64>) -> Vector3<f64> {

@@ -70,7 +70,9 @@ pub(crate) struct Placements {
     pub count: usize,
 }
 
+#[cfg(test)]
 impl Placements {
+    /// The placements found (the first `count` of `items`).
     pub(crate) fn as_slice(&self) -> &[[f64; 3]] {
         &self.items[..self.count]
     }
@@ -133,6 +135,7 @@ impl ThreeAxes {
     /// placing polynomial's roots are `previous` (from its
     /// [`Placements::roots`]): the roots by Newton from those when the
     /// root count is certain (`Trig2::roots_near`), else from scratch.
+    #[cfg(test)]
     pub(crate) fn solve_near(
         &self,
         goal: &Vector3<f64>,
@@ -181,22 +184,6 @@ impl ThreeAxes {
         }
         out.roots = Some(found);
         out
-    }
-
-    /// The placing polynomial (see the module docs) for `goal`.
-    pub(crate) fn polynomial(&self, goal: &Vector3<f64>) -> Option<Trig2> {
-        self.polynomial_about(&self.c[0], &self.h[0], goal)
-    }
-
-    /// The placing polynomial (see the module docs) for the outermost line
-    /// `(c_a, h_a)` and `goal`; `None` for a degenerate pair of circles.
-    pub(crate) fn polynomial_about(
-        &self,
-        c_a: &Vector3<f64>,
-        h_a: &Vector3<f64>,
-        goal: &Vector3<f64>,
-    ) -> Option<Trig2> {
-        self.system(c_a, h_a, goal).map(|(k, ..)| k)
     }
 
     /// The polynomial `k(t) = |P x(t) + m|^2 - 1` in the angle of the

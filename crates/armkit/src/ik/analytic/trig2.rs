@@ -42,15 +42,7 @@ pub(crate) enum Precision {
     /// Until a step is below 1e-13 rad (the error after it is of its
     /// square): roots to the last bits.
     Full,
-    /// Until the error after a step, predicted from the last two steps
-    /// (Newton's error squares each step: `e_next ~ s^3 / s_previous^2`
-    /// for steps `s`), is below [`SAMPLING_ERROR`]: one or two steps
-    /// fewer, for a search's samples (signs and branch keys only).
-    Sampling,
 }
-
-/// Root error (rad) [`Precision::Sampling`] stops at.
-pub const SAMPLING_ERROR: f64 = 1e-10;
 
 /// Size (relative to the sum of its terms' magnitudes) below which the
 /// quartic at one of its critical points counts as zero: a double root.
@@ -282,6 +274,7 @@ impl Trig2 {
     /// negative with 2 real roots, positive with 0 or 4, zero at a double
     /// root (where two roots merge as the coefficients move, it changes
     /// sign).
+    #[cfg(test)]
     pub(crate) fn discriminant_about(&self, shift: f64) -> f64 {
         discriminant(&self.shifted(shift).quartic())
     }
@@ -351,7 +344,6 @@ impl Trig2 {
     fn newton_from(&self, start: &Turn, found: &[Turn], precision: Precision) -> Option<Turn> {
         let (mut s, mut c) = (start.sin, start.cos);
         let mut moved = 0.0_f64;
-        let mut previous_step = f64::NAN; // no step yet: not converging
         for _ in 0..10 {
             let (value, slope) = self.value_and_slope(s, c);
             // Maehly's deflation: Newton on f / prod sin((phi - r) / 2)
@@ -386,15 +378,7 @@ impl Trig2 {
             moved += step;
             let converged = match precision {
                 Precision::Full => step.abs() < CONVERGED,
-                // Converging (steps shrinking fast) and the next error
-                // predicted below the bound.
-                Precision::Sampling => {
-                    step.abs() < CONVERGED
-                        || (step.abs() < 0.1 * previous_step.abs()
-                            && step.abs().powi(3) < SAMPLING_ERROR * previous_step * previous_step)
-                }
             };
-            previous_step = step;
             if converged {
                 // A root of f itself (not a point the deflation stalls at
                 // beside a root found before: there the plain Newton step
@@ -402,7 +386,6 @@ impl Trig2 {
                 let plain = (value / slope).abs();
                 let bound = match precision {
                     Precision::Full => CONVERGED,
-                    Precision::Sampling => 2.0 * step.abs() + CONVERGED,
                 };
                 if plain.is_nan() || plain >= bound || moved.abs() > 1.0 {
                     return None;

@@ -38,8 +38,8 @@ pub(crate) struct SphericalWrist {
     /// Joints 4-6.
     orientation: WristOrientation,
     /// Three general rotation axes in front of the wrist: joints 1-3
-    /// carrying the wrist point in closed form (None for other positionings,
-    /// and for a general positioning with a prismatic joint, searched).
+    /// carrying the wrist point in closed form (None for other positionings;
+    /// detection gives a general positioning rotation joints only).
     three_axes: Option<ThreeAxes>,
 }
 
@@ -98,22 +98,6 @@ impl SphericalWrist {
                 }
                 let q = [t[0].angle, t[1].angle, t[2].angle];
                 self.orientation.solve_directions(&v6, &v5, &q, true, out);
-            }
-            return;
-        }
-        if self.positioning == Positioning::General {
-            let mut angles = [([0.0; 3], false); 16];
-            let count = super::search::position(&self.chain, &self.wrist, &goal, &mut angles);
-            for (q, exact) in &angles[..count] {
-                let (mut v6, mut v5) = (g6, g5);
-                for i in 0..3 {
-                    if !translation[i] {
-                        let turn = Turn::of_angle(q[i]);
-                        v6 = turn.rotate_back(&h[i], &v6);
-                        v5 = turn.rotate_back(&h[i], &v5);
-                    }
-                }
-                self.orientation.solve_directions(&v6, &v5, q, *exact, out);
             }
             return;
         }

@@ -54,10 +54,6 @@
 //! assert!(pairs.as_slice().iter().any(|(a, b)| (a - t1).abs() < 1e-9 && (b - t2).abs() < 1e-9));
 //! ```
 
-mod eliminated;
-
-pub(crate) use eliminated::Eliminated;
-
 use super::subproblems::{Turn, RELATIVE_TOLERANCE};
 use super::trig2::{Trig2, TrigRoots};
 use crate::math::Vector3;
@@ -301,20 +297,6 @@ impl Sinusoids {
             }
         }
         (out, Some(points))
-    }
-
-    /// `f` (see the module docs) of the system with right-hand side `d`:
-    /// its discriminant changes sign where two solutions merge (a fold as
-    /// `d` and the waves move). `None` without a circle (as
-    /// [`Sinusoids::exact_solutions_near`]).
-    pub(crate) fn difference_polynomial(&self, d: [f64; 2]) -> Option<Trig2> {
-        let (m, e) = self.linear(d);
-        let space = Solutions::of(&m, &e)?;
-        let rho2 = 2.0 - dot4(&space.x0, &space.x0);
-        if rho2 < -RELATIVE_TOLERANCE {
-            return None;
-        }
-        Some(space.difference(rho2.max(0.0).sqrt()))
     }
 
     /// Every solution, or the least-squares pair (see the module docs).
