@@ -268,6 +268,23 @@ pub struct MethodRun {
     pub summary: MethodSummary,
 }
 
+impl MethodRun {
+    /// Entry of the first planned singular region and exit of the last, s
+    /// (`None`: no region was planned).
+    pub fn region_span(&self) -> Option<(f64, f64)> {
+        Some((
+            self.regions.first()?.start_time,
+            self.regions.last()?.end_time,
+        ))
+    }
+
+    /// Total time inside the planned singular regions (the sum of their
+    /// spans), s.
+    pub fn region_time(&self) -> f64 {
+        self.regions.iter().map(|r| r.end_time - r.start_time).sum()
+    }
+}
+
 /// A [`MethodRun`] records its series column by column (sized once: a
 /// period allocates nothing).
 impl Recorder for MethodRun {

@@ -232,6 +232,66 @@ fn seed004_as_printed_line_and_open_loop_rows() {
     assert!(error.to_string().contains("as_printed_eps_dq"), "{error}");
 }
 
+/// Sec 2.3.1's eps_dq sweep on the as-printed line: one row per value of
+/// the study's sweep scaled to the line's 5 deg/s, the line's own value
+/// giving the line's own region, and the verdict following the lengths.
+#[test]
+fn seed004_as_printed_eps_dq_sweep_follows_its_region_lengths() {
+    use armkit::study::FindingStatus;
+    let study = AvoidanceStudy {
+        miss_sweep: vec![],
+        open_loop: false,
+        ..AvoidanceStudy::default()
+    };
+    let arm = armkit::robots::space6r().unwrap();
+    let outcome = study
+        .compare(armkit::singularity::Manipulator::FixedBase(&arm))
+        .unwrap();
+    let line = outcome.as_printed.as_ref().expect("the as-printed line");
+    assert_eq!(line.eps_sweep.len(), study.joint_step_sweep.len());
+    let dt = line.options.tracking.dt;
+    let per_second: Vec<f64> = line
+        .eps_sweep
+        .iter()
+        .map(|r| (r.joint_step_threshold / dt).to_degrees())
+        .collect();
+    for (row, eps) in per_second.iter().zip(&study.joint_step_sweep) {
+        let expected = 5.0 * eps / study.joint_step_threshold;
+        assert!((row - expected).abs() < 1e-9, "{per_second:?}");
+    }
+    // The row at the line's own eps_dq is the line's own run.
+    let own = line
+        .eps_sweep
+        .iter()
+        .find(|r| {
+            (r.joint_step_threshold - line.options.detection.joint_step_threshold).abs() < 1e-15
+        })
+        .expect("the line's own eps_dq in the sweep");
+    assert_eq!(own.region, line.k_sweep[0].region_span());
+    let lengths: Vec<f64> = line.eps_sweep.iter().map(|r| r.region_length).collect();
+    let finding = outcome
+        .findings()
+        .into_iter()
+        .find(|f| {
+            f.claim
+                .contains("as printed on a near-miss line: the larger eps_dq")
+        })
+        .expect("the as-printed eps_dq row");
+    let expected = if lengths.windows(2).all(|w| w[1] < w[0]) {
+        FindingStatus::Reproduced
+    } else if lengths.windows(2).all(|w| w[1] <= w[0] + 1e-9)
+        && lengths[lengths.len() - 1] < lengths[0]
+    {
+        FindingStatus::ReproducedWithDeviation
+    } else {
+        FindingStatus::NotReproduced
+    };
+    assert_eq!(finding.status, expected, "{finding}");
+    for deg in &per_second {
+        assert!(finding.measured.contains(&format!("{deg:.1}")), "{finding}");
+    }
+}
+
 #[test]
 fn seed000_studies_pass() {
     let table = BeamTableStudy::default().run().unwrap();

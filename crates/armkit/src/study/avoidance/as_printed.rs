@@ -5,6 +5,7 @@
 //! the error accumulated before it).
 
 use super::findings::{k_ordering, KOrdering};
+use super::rows::{eps_finding, EpsRegion};
 use super::{place, AvoidanceOutcome, AvoidanceStudy, ThresholdRule, FITTED_DETERMINANT_THRESHOLD};
 use crate::error::{check_positive, Error, Result};
 use crate::singularity::{
@@ -66,6 +67,11 @@ pub struct AsPrintedLine {
     /// [`SEED004_AS_PRINTED_REGION_MISSES`] and by `miss` (ascending miss;
     /// `None`: no region), each with its own threshold by the paper's rule.
     pub region_by_miss: Vec<(f64, Option<(f64, f64)>)>,
+    /// Sec 2.3.1's `eps_dq` sweep on this line: the study's
+    /// `joint_step_sweep` scaled by `eps_dq_deg_per_s` over its
+    /// `joint_step_threshold` (ascending), each run by the avoidance with
+    /// the study's first `k`, its threshold by the paper's rule.
+    pub eps_sweep: Vec<EpsRegion>,
 }
 
 /// One as-printed line set up: its tracker (threshold by the paper's rule),
@@ -106,7 +112,7 @@ impl AvoidanceStudy {
             .iter()
             .map(|&k| tracker.run(&Method::Avoidance { k }))
             .collect::<Result<Vec<_>>>()?;
-        let mut region_by_miss = vec![(miss, k_sweep.first().and_then(region_span))];
+        let mut region_by_miss = vec![(miss, k_sweep.first().and_then(MethodRun::region_span))];
         if let Some(&k) = self.ks.first() {
             for &other in SEED004_AS_PRINTED_REGION_MISSES
                 .iter()
@@ -116,10 +122,11 @@ impl AvoidanceStudy {
                     .printed_tracker(manipulator, other)?
                     .tracker
                     .run(&Method::Avoidance { k })?;
-                region_by_miss.push((other, region_span(&run)));
+                region_by_miss.push((other, run.region_span()));
             }
         }
         region_by_miss.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let eps_sweep = self.as_printed_eps_sweep(manipulator, miss)?;
         let summary = |method: Method| tracker.run(&method).map(|run| run.summary);
         Ok(Some(AsPrintedLine {
             miss,
@@ -132,7 +139,37 @@ impl AvoidanceStudy {
             singularity_robust: summary(Method::SingularityRobust(baselines.chiaverini))?,
             separation: summary(Method::SeparatedDampedReciprocal(baselines.reciprocal))?,
             region_by_miss,
+            eps_sweep,
         }))
+    }
+
+    /// Sec 2.3.1's sweep on the as-printed line missing the singular pose
+    /// by `miss` (see [`AsPrintedLine::eps_sweep`]).
+    fn as_printed_eps_sweep(
+        &self,
+        manipulator: Manipulator<'_>,
+        miss: f64,
+    ) -> Result<Vec<EpsRegion>> {
+        let Some(&k) = self.ks.first() else {
+            return Ok(Vec::new());
+        };
+        self.joint_step_sweep
+            .iter()
+            .map(|&eps| {
+                let study = AvoidanceStudy {
+                    as_printed_eps_dq: self.as_printed_eps_dq * eps / self.joint_step_threshold,
+                    ..self.clone()
+                };
+                let printed = study.printed_tracker(manipulator, miss)?;
+                let run = printed.tracker.run(&Method::Avoidance { k })?;
+                let detection = printed.options.detection;
+                Ok(EpsRegion::of_run(
+                    detection.joint_step_threshold,
+                    detection.determinant_threshold,
+                    &run,
+                ))
+            })
+            .collect()
     }
 
     /// The line missing the singular pose by `miss`, tracked as printed: the
@@ -192,14 +229,6 @@ impl AvoidanceStudy {
             .map(|&k| tracker.run(&Method::Avoidance { k }))
             .collect()
     }
-}
-
-/// `start to end` of a run's regions, s.
-fn region_span(run: &MethodRun) -> Option<(f64, f64)> {
-    Some((
-        run.regions.first()?.start_time,
-        run.regions.last()?.end_time,
-    ))
 }
 
 /// The first sample time at which some joint of `run` steps by more than
@@ -266,7 +295,7 @@ impl AsPrintedLine {
         let label = first.method.label();
         let conditions = self.conditions();
         // Sec 3 and Fig 5: the region and where the joints start to jump.
-        let span = region_span(first);
+        let span = first.region_span();
         let jump = first_jump(&self.plain, self.options.detection.joint_step_threshold);
         let near = |t: f64, paper: f64| (t - paper).abs() <= ABOUT;
         let region_holds = span
@@ -501,9 +530,29 @@ impl AsPrintedLine {
             FindingStatus::from_holds(failing.is_empty()),
         )
         .same_evidence_as("the as-printed rows above");
-        vec![
+        let mut findings = vec![
             region, jumps, fig6, entry, figs78, reference9, damped, together,
-        ]
+        ];
+        if self.eps_sweep.len() > 1 {
+            findings.push(eps_finding(
+                "seed 004, sec 2.3.1, the method as printed on a near-miss line: the larger \
+                 eps_dq, the smaller the singular region",
+                &self.eps_sweep,
+                &format!(
+                    "{label}, eps_dq of {} deg/s, each with its threshold by the paper's rule; {}",
+                    self.eps_sweep
+                        .iter()
+                        .map(|r| format!(
+                            "{:.1}",
+                            (r.joint_step_threshold / self.options.tracking.dt).to_degrees()
+                        ))
+                        .collect::<Vec<_>>()
+                        .join(", "),
+                    conditions
+                ),
+            ));
+        }
+        findings
     }
 }
 

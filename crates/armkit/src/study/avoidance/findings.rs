@@ -15,14 +15,6 @@ const FIG6_BAND: (f64, f64) = (-5.0, 3.0);
 /// at most this fraction of the largest k's.
 const CLEARLY: f64 = 0.5;
 
-/// `start to end s` of a run's regions, or `None`.
-fn region_span(run: &MethodRun) -> Option<(f64, f64)> {
-    Some((
-        run.regions.first()?.start_time,
-        run.regions.last()?.end_time,
-    ))
-}
-
 /// Largest `|q_dot_j|` over the joints at sample `i`.
 fn peak_at(run: &MethodRun, i: usize) -> f64 {
     run.joint_rates
@@ -218,12 +210,12 @@ impl AvoidanceOutcome {
     fn region_finding(&self) -> Finding {
         let avoidance = &self.comparison.avoidance;
         let threshold = self.options.detection.determinant_threshold;
-        let span = region_span(avoidance);
+        let span = avoidance.region_span();
         let measured = match span {
             Some((start, end)) => format!("{start:.2} s to {end:.2} s"),
             None => "no region".into(),
         };
-        let fitted = match self.fitted.as_ref().and_then(region_span) {
+        let fitted = match self.fitted.as_ref().and_then(MethodRun::region_span) {
             Some((start, end)) => format!(
                 "; comparison, not the paper's rule: the fitted {FITTED_DETERMINANT_THRESHOLD} \
                  m^3 gives {start:.2} s to {end:.2} s"

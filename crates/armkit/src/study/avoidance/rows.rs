@@ -38,6 +38,78 @@ pub struct EpsRegion {
     pub region_length: f64,
 }
 
+impl EpsRegion {
+    /// The regions of `run`, the avoidance with `eps_dq` =
+    /// `joint_step_threshold` (rad or m per period) and the `|det J|`
+    /// threshold `determinant_threshold`.
+    pub(super) fn of_run(
+        joint_step_threshold: f64,
+        determinant_threshold: f64,
+        run: &MethodRun,
+    ) -> EpsRegion {
+        EpsRegion {
+            joint_step_threshold,
+            determinant_threshold,
+            region: run.region_span(),
+            region_length: run.region_time(),
+        }
+    }
+}
+
+/// `eps_dq | threshold | region | length` per run of an `eps_dq` sweep.
+fn eps_table(sweep: &[EpsRegion]) -> String {
+    let rows = sweep
+        .iter()
+        .map(|r| {
+            let span = r
+                .region
+                .map_or("no region".into(), |(a, b)| format!("{a:.2} to {b:.2} s"));
+            format!(
+                "{:.4} | {:.3e} | {span} | {:.2} s",
+                r.joint_step_threshold, r.determinant_threshold, r.region_length
+            )
+        })
+        .collect::<Vec<_>>()
+        .join("; ");
+    format!("eps_dq (rad per period) | |det J| threshold (m^3) | region | length: {rows}")
+}
+
+/// Seed 004, sec 2.3.1, "the larger eps_dq, the smaller the singular
+/// region", judged on `sweep` (ascending `eps_dq`): reproduced when the
+/// region shrinks at every step, with a deviation when it shrinks overall
+/// and never grows. `claim` names the claim and where it ran, `conditions`
+/// the runs' settings.
+pub(super) fn eps_finding(claim: &str, sweep: &[EpsRegion], conditions: &str) -> Finding {
+    let lengths: Vec<f64> = sweep.iter().map(|r| r.region_length).collect();
+    let strictly = lengths.windows(2).all(|w| w[1] < w[0]);
+    let never_grows = lengths.windows(2).all(|w| w[1] <= w[0] + 1e-9);
+    let shrinks = lengths
+        .first()
+        .zip(lengths.last())
+        .is_some_and(|(a, b)| b < a);
+    let (status, verdict) = if strictly {
+        (
+            FindingStatus::Reproduced,
+            "the region shrinks at every step",
+        )
+    } else if never_grows && shrinks {
+        (
+            FindingStatus::ReproducedWithDeviation,
+            "it shrinks overall but not at every step",
+        )
+    } else {
+        (
+            FindingStatus::NotReproduced,
+            "it does not shrink as eps_dq grows",
+        )
+    };
+    Finding::new(
+        claim,
+        format!("{} ({conditions}): {verdict}", eps_table(sweep)),
+        status,
+    )
+}
+
 impl AvoidanceStudy {
     /// The avoidance with the first `k` on the study's line for each
     /// `eps_dq` of `joint_step_sweep`, the `|det J|` threshold set by the
@@ -64,15 +136,7 @@ impl AvoidanceStudy {
             let (threshold, _) = study.determinant_threshold(manipulator)?;
             let tracker = PathTracker::new(placed, task.clone(), study.options(threshold))?;
             let run = tracker.run(&Method::Avoidance { k })?;
-            rows.push(EpsRegion {
-                joint_step_threshold: eps,
-                determinant_threshold: threshold,
-                region: match (run.regions.first(), run.regions.last()) {
-                    (Some(first), Some(last)) => Some((first.start_time, last.end_time)),
-                    _ => None,
-                },
-                region_length: run.regions.iter().map(|r| r.end_time - r.start_time).sum(),
-            });
+            rows.push(EpsRegion::of_run(eps, threshold, &run));
         }
         Ok(rows)
     }
@@ -168,55 +232,15 @@ impl AvoidanceOutcome {
         findings
     }
 
-    fn eps_table(&self) -> String {
-        let rows = self
-            .eps_sweep
-            .iter()
-            .map(|r| {
-                let span = r
-                    .region
-                    .map_or("no region".into(), |(a, b)| format!("{a:.2} to {b:.2} s"));
-                format!(
-                    "{:.4} | {:.3e} | {span} | {:.2} s",
-                    r.joint_step_threshold, r.determinant_threshold, r.region_length
-                )
-            })
-            .collect::<Vec<_>>()
-            .join("; ");
-        format!("eps_dq (rad per period) | |det J| threshold (m^3) | region | length: {rows}")
-    }
-
     fn eps_finding(&self) -> Finding {
-        let lengths: Vec<f64> = self.eps_sweep.iter().map(|r| r.region_length).collect();
-        let strictly = lengths.windows(2).all(|w| w[1] < w[0]);
-        let never_grows = lengths.windows(2).all(|w| w[1] <= w[0] + 1e-9);
-        let shrinks = lengths
-            .first()
-            .zip(lengths.last())
-            .is_some_and(|(a, b)| b < a);
-        let status = if strictly {
-            FindingStatus::Reproduced
-        } else if never_grows && shrinks {
-            FindingStatus::ReproducedWithDeviation
-        } else {
-            FindingStatus::NotReproduced
-        };
-        Finding::new(
+        eps_finding(
             "seed 004, sec 2.3.1: the larger eps_dq, the smaller the singular region",
-            format!(
-                "{} ({}, {}; the threshold by the study's rule for each eps_dq): {}",
-                self.eps_table(),
+            &self.eps_sweep,
+            &format!(
+                "{}, {}; the threshold by the study's rule for each eps_dq",
                 self.comparison.avoidance.method.label(),
-                self.threshold,
-                if strictly {
-                    "the region shrinks at every step"
-                } else if never_grows && shrinks {
-                    "it shrinks overall but not at every step"
-                } else {
-                    "it does not shrink as eps_dq grows"
-                }
+                self.threshold
             ),
-            status,
         )
     }
 
