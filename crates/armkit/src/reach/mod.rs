@@ -147,6 +147,21 @@ pub enum Boundary {
     },
 }
 
+impl Boundary {
+    /// The constructors' choice for `builder`: [`DEFAULT_BISECTION_STEPS`]
+    /// steps for the IK builder; the cells' boundary for the sampling
+    /// builder, whose unhit bins inside the workspace would send the
+    /// refinement after boundaries that are not there.
+    pub fn default_for(builder: Builder) -> Boundary {
+        match builder {
+            Builder::InverseKinematics => Boundary::Bisection {
+                steps: DEFAULT_BISECTION_STEPS,
+            },
+            Builder::ForwardSampling { .. } => Boundary::Cells,
+        }
+    }
+}
+
 /// Bisection steps of the default spec: 6, the crossing to 1/64 of a cell
 /// edge (the stored distance's unit).
 pub const DEFAULT_BISECTION_STEPS: u8 = 6;
@@ -173,8 +188,8 @@ pub struct MapSpec {
 
 impl MapSpec {
     /// A position-only spec ([`MapTarget::Position`]): one nominal
-    /// orientation (one direction, one roll), the boundary refined by
-    /// [`DEFAULT_BISECTION_STEPS`] bisection steps.
+    /// orientation (one direction, one roll), the boundary of
+    /// [`Boundary::default_for`] the builder.
     pub fn position_only(resolution: f64, builder: Builder) -> MapSpec {
         MapSpec {
             resolution,
@@ -182,9 +197,7 @@ impl MapSpec {
             rolls: 1,
             builder,
             target: MapTarget::Position,
-            boundary: Boundary::Bisection {
-                steps: DEFAULT_BISECTION_STEPS,
-            },
+            boundary: Boundary::default_for(builder),
         }
     }
 
@@ -194,7 +207,7 @@ impl MapSpec {
     /// (`N = D R`); `R` the divisor of `N` nearest `round((pi N)^(1/3))`
     /// (within 2, else that value itself), `D = round(N / R)`, both >= 1.
     /// 200 orientations give 25 directions x 8 rolls. The boundary is
-    /// refined by [`DEFAULT_BISECTION_STEPS`] bisection steps.
+    /// [`Boundary::default_for`] the builder.
     pub fn with_orientations(resolution: f64, orientations: usize, builder: Builder) -> MapSpec {
         let n = orientations.max(1);
         let ideal = (std::f64::consts::PI * n as f64).cbrt().round() as usize;
@@ -211,9 +224,7 @@ impl MapSpec {
             rolls,
             builder,
             target: MapTarget::Pose,
-            boundary: Boundary::Bisection {
-                steps: DEFAULT_BISECTION_STEPS,
-            },
+            boundary: Boundary::default_for(builder),
         }
     }
 
