@@ -1,6 +1,7 @@
 //! The local build on threads, and the partition into chunks.
 
 use super::parallel::on_threads;
+use super::refine::refine_work;
 use super::{build_chunk, refine, Boundary, Builder, Chunk, MapLayout, MapSpec, ReachMap};
 use crate::error::Result;
 use crate::model::Model;
@@ -42,7 +43,7 @@ pub fn chunks(layout: &MapLayout, spec: &MapSpec, target_work: usize) -> Vec<Chu
 /// least one), chunks of [`LOCAL_CHUNK_WORK`], merged as they finish, then
 /// (spec's [`Boundary::Bisection`]) refined by [`refine`] on the same
 /// threads; `progress(chunks_done, chunks_total)` is called from the
-/// calling thread, once for the build's chunks and once for the
+/// calling thread, the total counting the build's chunks (first) and the
 /// refinement's.
 /// The result does not depend on `threads` (each chunk is deterministic
 /// and the merge order-independent).
@@ -57,12 +58,21 @@ pub fn build(
 ) -> Result<ReachMap> {
     let layout = MapLayout::new(model, spec)?;
     let work = chunks(&layout, spec, LOCAL_CHUNK_WORK);
+    let first = work.len();
+    let total = first
+        + match spec.boundary {
+            Boundary::Cells => 0,
+            Boundary::Bisection { .. } => refine_work(&layout).len(),
+        };
     let run = |chunk: &Chunk| build_chunk(model, &layout, chunk);
-    let map = on_threads(&work, threads, &run, progress, |results| {
-        ReachMap::from_results(layout.clone(), results)
-    })?;
-    match spec.boundary {
-        Boundary::Cells => Ok(map),
-        Boundary::Bisection { .. } => refine(model, map, threads, progress),
-    }
+    let map = on_threads(
+        &work,
+        threads,
+        &run,
+        &mut |done, _| progress(done, total),
+        |results| ReachMap::from_results(layout.clone(), results),
+    )?;
+    refine(model, map, threads, &mut |done, _| {
+        progress(first + done, total)
+    })
 }

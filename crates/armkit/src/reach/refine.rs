@@ -13,7 +13,7 @@ use std::ops::Range;
 
 use super::oracle::PoseOracle;
 use super::parallel::on_threads;
-use super::{Boundary, ReachMap, BOUNDARY_UNITS};
+use super::{Boundary, MapLayout, ReachMap, BOUNDARY_UNITS};
 use crate::error::{Error, Result};
 use crate::math::{Pose, Vector3};
 use crate::model::Model;
@@ -189,6 +189,17 @@ pub fn apply_refinement(
     Ok(refined)
 }
 
+/// The cell ranges of the local refinement's chunks (about 20 000 bins
+/// each), in order, covering every cell once.
+pub(crate) fn refine_work(layout: &MapLayout) -> Vec<Range<usize>> {
+    let per = (CHUNK_BINS / layout.orientation_count().max(1)).max(1);
+    let n = layout.cell_count();
+    (0..n)
+        .step_by(per)
+        .map(|start| start..(start + per).min(n))
+        .collect()
+}
+
 /// The refined `map` of `model` (its spec's [`Boundary::Bisection`]
 /// steps; a map of [`Boundary::Cells`] is returned as it is): every
 /// disagreeing edge located by [`refine_chunk`] on `threads` threads,
@@ -206,13 +217,7 @@ pub fn refine(
     if steps_of(&map).is_none() {
         return Ok(map);
     }
-    let layout = map.layout();
-    let per = (CHUNK_BINS / layout.orientation_count().max(1)).max(1);
-    let n = layout.cell_count();
-    let work: Vec<Range<usize>> = (0..n)
-        .step_by(per)
-        .map(|start| start..(start + per).min(n))
-        .collect();
+    let work = refine_work(map.layout());
     let run = |cells: &Range<usize>| refine_chunk(model, &map, cells.clone());
     let parts = on_threads(&work, threads, &run, progress, |results| {
         results.collect::<Result<Vec<_>>>()
