@@ -172,6 +172,12 @@ fn gantry9s_box_holds_every_tool_position_and_is_the_rails_plus_the_arm() {
     // The rails' travel (9 m, 5 m, 5 m) plus at most twice the arm's reach
     // per axis; the sampled extent reaches within the arm's reach of each face.
     let side = upper - lower;
+    eprintln!(
+        "gantry9 box {:.3} x {:.3} x {:.3} m (arm reach {:.3} m), sampled extent {:.3} x {:.3} x {:.3} m, reach ball radius {:.3} m",
+        side.x, side.y, side.z, bound.radius(),
+        high.x - low.x, high.y - low.y, high.z - low.z,
+        armkit::ik::ReachBound::of_model(&model).radius()
+    );
     let mut sides: Vec<f64> = side.iter().copied().collect();
     sides.sort_by(f64::total_cmp);
     let arm = bound.radius();
