@@ -64,14 +64,13 @@ pub fn spec_json(
             .or_raise()
         }
         Some(rolls) => MapSpec {
-            resolution,
             approach_directions: if orientations == 0 {
                 0
             } else {
                 ((orientations as f64 / rolls as f64).round() as usize).max(1)
             },
             rolls,
-            builder,
+            ..MapSpec::with_orientations(resolution, orientations, builder)
         },
     };
     spec.validate().or_raise()?;
@@ -315,6 +314,51 @@ pub fn from_chunks(
     Ok(Map { map })
 }
 
+/// Calls `progress(done, total)` (a Python callable, if any) from Rust with
+/// the GIL taken; the first error it raises is kept and the later calls
+/// are skipped.
+fn python_progress<'a>(
+    progress: &'a Option<Py<PyAny>>,
+    error: &'a mut Option<PyErr>,
+) -> impl FnMut(usize, usize) + 'a {
+    move |done: usize, total: usize| {
+        if let (Some(callback), None) = (progress, &error) {
+            Python::attach(|py| {
+                if let Err(e) = callback.call1(py, (done, total)) {
+                    *error = Some(e);
+                }
+            });
+        }
+    }
+}
+
+/// The map `map` of `robot` with its boundary refined (the spec's
+/// bisection steps; a map of the cells' boundary as it is) on `threads`
+/// threads (None: every core), GIL released: the step after a distributed
+/// build's merge. `progress(done, total)` as chunks finish.
+#[pyfunction]
+#[pyo3(signature = (robot, map, threads=None, progress=None))]
+pub fn refine(
+    py: Python<'_>,
+    robot: &Robot,
+    map: &Map,
+    threads: Option<i64>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Map> {
+    let threads = thread_count(threads)?;
+    let mut callback_error: Option<PyErr> = None;
+    let refined = py.detach(|| {
+        let mut report = python_progress(&progress, &mut callback_error);
+        reach::refine(&robot.model, map.map.clone(), threads, &mut report)
+    });
+    if let Some(error) = callback_error {
+        return Err(error);
+    }
+    Ok(Map {
+        map: refined.or_raise()?,
+    })
+}
+
 /// Builds the whole map locally on `threads` threads (None: every core),
 /// GIL released; `progress(done, total)` is called as chunks finish.
 #[pyfunction]
@@ -330,15 +374,7 @@ pub fn build(
     let threads = thread_count(threads)?;
     let mut callback_error: Option<PyErr> = None;
     let map = py.detach(|| {
-        let mut report = |done: usize, total: usize| {
-            if let (Some(callback), None) = (&progress, &callback_error) {
-                Python::attach(|py| {
-                    if let Err(e) = callback.call1(py, (done, total)) {
-                        callback_error = Some(e);
-                    }
-                });
-            }
-        };
+        let mut report = python_progress(&progress, &mut callback_error);
         reach::build(&robot.model, &spec, threads, &mut report)
     });
     if let Some(error) = callback_error {
@@ -371,6 +407,23 @@ impl Map {
         PyArray1::from_slice(py, self.map.solutions())
     }
 
+    /// Per bin: the signed distance to the boundary in 1/64 of a cell,
+    /// positive where reachable (int8; +-64 away from it or unrefined).
+    #[getter]
+    fn boundary<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<i8>> {
+        PyArray1::from_slice(py, self.map.boundary())
+    }
+
+    /// The map with `boundary` (int8 per bin, as `boundary` returns it: a
+    /// refined map read back). Raises ValueError naming the first bin that
+    /// does not fit.
+    fn with_boundary(&self, boundary: &Bound<'_, PyArray1<i8>>) -> PyResult<Map> {
+        let values = boundary.to_vec()?;
+        Ok(Map {
+            map: self.map.clone().with_boundary(values).or_raise()?,
+        })
+    }
+
     /// Per cell: the capability index in [0, 1].
     #[getter]
     fn capability<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
@@ -389,10 +442,11 @@ impl Map {
         self.map.calls()
     }
 
-    /// Whether the pose `T` (4, 4) is reachable by the map (the trilinear
-    /// interpolation of the 8 surrounding cell centres' bits for the
-    /// orientation nearest its rotation is at least 1/2); for `T` of shape
-    /// (N, 4, 4) a bool array of shape (N,).
+    /// Whether the pose `T` (4, 4) is reachable by the map (the library's
+    /// `ReachMap::query`: the interpolation of the signed boundary distances
+    /// of the 8 surrounding cell centres and the orientations around its
+    /// rotation is at least 0); for `T` of shape (N, 4, 4) a bool array of
+    /// shape (N,).
     #[allow(non_snake_case)]
     fn query<'py>(&self, py: Python<'py>, T: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
         self.each_pose(py, T, ReachMap::query)
@@ -521,6 +575,7 @@ pub fn add_module(parent: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(build_chunk, &m)?)?;
     m.add_function(wrap_pyfunction!(from_chunks, &m)?)?;
     m.add_function(wrap_pyfunction!(build, &m)?)?;
+    m.add_function(wrap_pyfunction!(refine, &m)?)?;
     m.add_class::<Layout>()?;
     m.add_class::<Map>()?;
     parent.add_submodule(&m)

@@ -132,7 +132,7 @@ def pose(R, p):
 def assert_same_map(a, b):
     assert a.dims == b.dims and a.spec == b.spec
     np.testing.assert_array_equal(a.origin, b.origin)
-    for name in ("reachable", "solutions", "capability", "manipulability"):
+    for name in ("reachable", "solutions", "capability", "manipulability", "boundary"):
         np.testing.assert_array_equal(getattr(a, name), getattr(b, name), err_msg=name)
     assert a.calls == b.calls
 
@@ -176,6 +176,37 @@ def test_local_map_arrays_agree_with_each_other_and_with_queries(ur5_map):
     np.testing.assert_array_equal(answers, np.repeat([True] * len(solid) + [False] * len(empty), K))
     assert m.query(Ts[0]) is True
     assert m.query(pose(np.eye(3), [50.0, 0, 0])) is False
+
+
+def test_the_boundary_is_refined_and_signed_as_the_bins(ur5, ur5_map):
+    m = ur5_map
+    assert m.boundary.dtype == np.int8 and m.boundary.shape == m.reachable.shape
+    np.testing.assert_array_equal(m.boundary > 0, m.reachable)
+    assert np.all(np.abs(m.boundary.astype(int)) <= 64) and np.any(np.abs(m.boundary.astype(int)) < 64)
+    assert m.spec["boundary"] == {"bisection": {"steps": 6}}
+    # A bin with no disagreeing neighbour keeps one cell.
+    padded = np.pad(m.reachable, ((1, 1), (1, 1), (1, 1), (0, 0)), mode="edge")
+    same = np.ones(m.reachable.shape, bool)
+    for axis in range(3):
+        for shift in (-1, 1):
+            same &= np.roll(padded, shift, axis=axis)[1:-1, 1:-1, 1:-1] == m.reachable
+    assert np.all(np.abs(m.boundary[same].astype(int)) == 64)
+    # The refinement alone, on the map with the cells' boundary, gives it.
+    bits = np.where(m.reachable, 64, -64).astype(np.int8).reshape(-1)
+    cells = m._inner.with_boundary(bits)
+    np.testing.assert_array_equal(armkit._armkit._reach.refine(ur5, cells).boundary, m.boundary.reshape(-1))
+    with pytest.raises(ValueError, match="holds -64 for a bin that is reachable"):
+        m._inner.with_boundary(-np.abs(bits))
+
+
+def test_arm4_map_is_position_only():
+    arm4 = armkit.Robot.builtin("arm4")
+    m = armkit.reach.build(arm4, resolution=0.1, progress=False)
+    assert m.spec["target"] == "position" and m.layout.orientation_count == 1
+    assert m.reachable_cells > 20 and np.all(m.capability[m.capability > 0] == 1.0)
+    c = m.cell_center(tuple(np.argwhere(m.capability > 0)[0]))
+    turned = np.array([[0, -1, 0], [1, 0, 0], [0, 0, 1.0]])
+    assert m.query(pose(np.eye(3), c)) == m.query(pose(turned, c))
 
 
 def test_nearest_reachable_cell_and_capability_at(ur5_map):
@@ -241,6 +272,13 @@ def test_load_reads_the_cli_npz(tmp_path, ur5, ur5_map):
     for name in ("reachable", "solutions", "capability", "manipulability"):
         np.testing.assert_array_equal(getattr(m, name), getattr(ur5_map, name))
     np.testing.assert_array_equal(m.orientations, ur5_map.orientations)
+    # Files before the refinement: the cells' boundary.
+    np.testing.assert_array_equal(m.boundary, np.where(ur5_map.reachable, 64, -64))
+    # Today's CLI also writes the refined boundary and the spec.
+    np.savez(tmp_path / "cli2.npz", **cli, boundary=arrays["boundary"], spec=arrays["spec"])
+    m = armkit.reach.load(tmp_path / "cli2.npz", robot=ur5)
+    np.testing.assert_array_equal(m.boundary, ur5_map.boundary)
+    assert m.spec == ur5_map.spec
 
 
 def test_out_writes_the_map(tmp_path, ur5, ur5_map):

@@ -98,9 +98,56 @@ fn a_coarse_ur5_map_is_summarized_and_written_as_npz_and_svg() {
         .map(|c| f64::from_le_bytes(c.try_into().unwrap()))
         .collect();
     assert_eq!(capability.iter().filter(|&&c| c > 0.0).count(), reachable);
+    // The refined boundary: a signed distance per bin, positive exactly
+    // on the reachable bins, some nearer the boundary than one cell.
+    let (header, boundary) = npy(&entries.iter().find(|e| e.0 == "boundary.npy").unwrap().1);
+    assert!(
+        header.contains("'descr': '|i1'") && header.contains(&shape),
+        "{header}"
+    );
+    let reachable_bits = &npy(&entries.iter().find(|e| e.0 == "reachable.npy").unwrap().1).1;
+    assert!(boundary
+        .iter()
+        .zip(reachable_bits)
+        .all(|(&d, &r)| ((d as i8) > 0) == (r == 1) && (d as i8).unsigned_abs() <= 64));
+    assert!(boundary.iter().any(|&d| (d as i8).unsigned_abs() < 64));
+    assert_eq!(v["boundary"]["bisection"]["steps"], 6);
+    let (header, spec) = npy(&entries.iter().find(|e| e.0 == "spec.npy").unwrap().1);
+    let text: String = spec
+        .chunks_exact(4)
+        .map(|c| char::from_u32(u32::from_le_bytes(c.try_into().unwrap())).unwrap())
+        .collect();
+    assert!(
+        header.contains(&format!("'descr': '<U{}'", text.len())),
+        "{header}"
+    );
+    let spec: serde_json::Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(spec["target"], "pose");
+    assert_eq!(spec["approach_directions"], 20);
     let text = std::fs::read_to_string(&svg).unwrap();
     assert!(text.starts_with("<svg") && text.contains("capability index"));
     std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn arm4s_map_is_position_only_and_orientations_are_refused_saying_why() {
+    let run = armkit(&["reach", "--robot", "arm4", "--resolution", "0.1", "--json"]);
+    assert!(run.status.success(), "{}", stderr(&run));
+    let v = json(&run);
+    assert_eq!(v["target"], "position");
+    assert_eq!(v["orientations"], 1);
+    let reachable = v["reachable_cells"].as_u64().unwrap();
+    assert!(reachable > 20, "{v}");
+    assert_eq!(v["reachable_bins"], reachable);
+    assert_eq!(v["mean_capability"], 1.0);
+    let run = armkit(&["reach", "--robot", "arm4", "--orientations", "50"]);
+    assert!(!run.status.success());
+    let e = stderr(&run);
+    assert!(
+        e.contains("--orientations 50: `arm4` has 4 joints, fewer than the six a tool pose needs")
+            && e.contains("position-only"),
+        "{e}"
+    );
 }
 
 #[test]

@@ -231,7 +231,8 @@ def _build_on_dask(
         for done, _ in enumerate(as_completed(futures), start=1):
             report(done, len(futures))
     merged = level[0].result()
-    return _reach.from_chunks(layout, [merged])
+    # The boundary's refinement needs the merged bits: here, after the merge.
+    return _reach.refine(robot, _reach.from_chunks(layout, [merged]))
 
 
 def _zarr_chunk_task(description: str, spec_json: str, slices: Tuple[int, int], path: str) -> int:
@@ -299,8 +300,16 @@ def _build_into_zarr(
         calls += future.result()
         if report is not None:
             report(done, len(futures))
-    _zarr().open_group(str(path), mode="r+").attrs["calls"] = calls
-    return ReachMap.load(path, robot)
+    group = _zarr().open_group(str(path), mode="r+")
+    group.attrs["calls"] = calls
+    # The boundary's refinement, after the slices are all in, written as
+    # one more array of the store.
+    refined = ReachMap(_reach.refine(robot, ReachMap.load(path, robot)._inner), description)
+    create = getattr(group, "create_array", None) or group.create_dataset
+    create("boundary", shape=(nx, ny, nz, k), chunks=(per, ny, nz, k), dtype=np.int8, fill_value=0)
+    group["boundary"][...] = refined.boundary
+    group.attrs["calls"] = refined.calls
+    return refined
 
 
 # ------------------------------------------------------------------ the map
@@ -325,6 +334,10 @@ class ReachMap:
         self.reachable: np.ndarray = inner.reachable.reshape(*dims, k).astype(bool)
         #: Per cell and orientation: distinct IK solutions within the limits (uint8; 0 for sampling).
         self.solutions: np.ndarray = inner.solutions.reshape(*dims, k)
+        #: Per cell and orientation: the signed distance from the cell centre to
+        #: the boundary in 1/64 of a cell (int8), positive where reachable;
+        #: +-64 away from the boundary or where the map was not refined.
+        self.boundary: np.ndarray = inner.boundary.reshape(*dims, k)
         #: Per cell: the capability index in [0, 1], shape (nx, ny, nz).
         self.capability: np.ndarray = inner.capability.reshape(dims)
         #: Per cell: the best manipulability (Yoshikawa) of a reaching configuration, 0 where none.
@@ -397,11 +410,14 @@ class ReachMap:
         return self.origin + (np.asarray(ijk, dtype=float) + 0.5) * self.resolution
 
     def query(self, T: Any) -> Any:
-        """Whether pose ``T`` (4, 4) is reachable by the map: for the
-        orientation nearest its rotation, the trilinear interpolation of the
-        reachable bits at the 8 cell centres around its position is at least
-        1/2 (a boundary between the centres, not the cells' staircase). For
-        ``T`` of shape (N, 4, 4) a bool array (N,). False outside the box."""
+        """Whether pose ``T`` (4, 4) is reachable by the map: over the three
+        orientations around its rotation (the one of a position-only map),
+        the trilinear interpolation of the signed boundary distances
+        (``boundary``) at the 8 cell centres around its position is at least
+        0: near the boundary, where the refinement's bisection put it;
+        unrefined, the interpolated reachable bits at least 1/2 (a boundary
+        between the centres, not the cells' staircase). For ``T`` of shape
+        (N, 4, 4) a bool array (N,). False outside the box."""
         return self._inner.query(T)
 
     def bin_reachable(self, T: Any) -> Any:
@@ -476,6 +492,7 @@ class ReachMap:
             "orientations": self.orientations,
             "directions": np.asarray(self._layout.directions()),
             "rolls": np.int64(self.spec["rolls"]),
+            "boundary": self.boundary,
             "calls": np.uint64(self.calls),
             "spec": np.str_(self._layout.spec_json),
             "robot": np.str_(self.robot_description),
@@ -485,8 +502,9 @@ class ReachMap:
         """Writes the map as NumPy ``.npz`` (``reachable`` (nx, ny, nz, K)
         uint8, ``solutions``, ``capability``, ``manipulability``, ``origin``,
         ``resolution``, ``orientations`` (K, 3, 3), ``directions`` (D, 3),
-        ``rolls``: the arrays of ``armkit reach --out``; and ``calls``,
-        ``spec`` JSON, ``robot`` description), or
+        ``rolls``, ``boundary`` (nx, ny, nz, K) int8, ``spec`` JSON: the
+        arrays of ``armkit reach --out``; and ``calls``, ``robot``
+        description), or
         as a Zarr store (the same arrays, chunked by x slices) when the path
         ends in ``.zarr``. Returns the path."""
         path = Path(path)
@@ -543,7 +561,11 @@ class ReachMap:
             "hit_manipulability": np.zeros(0, np.float64),
             "calls": int(arrays.get("calls", 0)),
         }
-        return cls(_reach.from_chunks(layout, [whole]), robot.description())
+        inner = _reach.from_chunks(layout, [whole])
+        if "boundary" in arrays:
+            boundary = np.ascontiguousarray(np.asarray(arrays["boundary"]).reshape(-1), dtype=np.int8)
+            inner = inner.with_boundary(boundary)
+        return cls(inner, robot.description())
 
 
 def _task_transforms(task: Any) -> np.ndarray:
@@ -618,7 +640,7 @@ def _load_zarr(path: Path) -> Dict[str, Any]:
     except Exception as error:  # zarr's errors differ between versions
         raise ValueError(f"{path}: not a Zarr store ({error})") from error
     arrays: Dict[str, Any] = dict(group.attrs)
-    for name in ("reachable", "solutions", "capability", "manipulability"):
+    for name in ("reachable", "solutions", "capability", "manipulability", "boundary"):
         if name in group:
             arrays[name] = group[name][...]
     return arrays

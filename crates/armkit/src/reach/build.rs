@@ -1,9 +1,8 @@
 //! The local build on threads, and the partition into chunks.
 
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
-use std::sync::mpsc;
-
-use super::{build_chunk, Builder, Chunk, MapLayout, MapSpec, ReachMap};
+use super::parallel::on_threads;
+use super::refine::refine_work;
+use super::{build_chunk, refine, Boundary, Builder, Chunk, MapLayout, MapSpec, ReachMap};
 use crate::error::Result;
 use crate::model::Model;
 
@@ -41,8 +40,11 @@ pub fn chunks(layout: &MapLayout, spec: &MapSpec, target_work: usize) -> Vec<Chu
 }
 
 /// Builds the whole map of `spec` for `model` on `threads` threads (at
-/// least one), chunks of [`LOCAL_CHUNK_WORK`], merged as they finish;
-/// `progress(chunks_done, chunks_total)` is called from the calling thread.
+/// least one), chunks of [`LOCAL_CHUNK_WORK`], merged as they finish, then
+/// (spec's [`Boundary::Bisection`]) refined by [`refine`] on the same
+/// threads; `progress(chunks_done, chunks_total)` is called from the
+/// calling thread, the total counting the build's chunks (first) and the
+/// refinement's.
 /// The result does not depend on `threads` (each chunk is deterministic
 /// and the merge order-independent).
 ///
@@ -56,37 +58,21 @@ pub fn build(
 ) -> Result<ReachMap> {
     let layout = MapLayout::new(model, spec)?;
     let work = chunks(&layout, spec, LOCAL_CHUNK_WORK);
-    let total = work.len();
-    let next = AtomicUsize::new(0);
-    let stop = AtomicBool::new(false);
-    let (send, receive) = mpsc::channel();
-    std::thread::scope(|scope| {
-        for _ in 0..threads.max(1).min(total.max(1)) {
-            let send = send.clone();
-            let (next, stop, work, layout) = (&next, &stop, &work, &layout);
-            scope.spawn(move || loop {
-                let i = next.fetch_add(1, Ordering::Relaxed);
-                if i >= work.len() || stop.load(Ordering::Relaxed) {
-                    break;
-                }
-                let result = build_chunk(model, layout, &work[i]);
-                if result.is_err() {
-                    stop.store(true, Ordering::Relaxed);
-                }
-                if send.send(result).is_err() {
-                    break;
-                }
-            });
-        }
-        drop(send);
-        let mut done = 0;
-        progress(0, total);
-        let results = receive.iter().inspect(|_| {
-            done += 1;
-            progress(done, total);
-        });
-        let map = ReachMap::from_results(layout.clone(), results);
-        stop.store(true, Ordering::Relaxed);
-        map
+    let first = work.len();
+    let total = first
+        + match spec.boundary {
+            Boundary::Cells => 0,
+            Boundary::Bisection { .. } => refine_work(&layout).len(),
+        };
+    let run = |chunk: &Chunk| build_chunk(model, &layout, chunk);
+    let map = on_threads(
+        &work,
+        threads,
+        &run,
+        &mut |done, _| progress(done, total),
+        |results| ReachMap::from_results(layout.clone(), results),
+    )?;
+    refine(model, map, threads, &mut |done, _| {
+        progress(first + done, total)
     })
 }

@@ -87,15 +87,7 @@ fn by_inverse_kinematics(
     layout: &MapLayout,
     cells: Range<usize>,
 ) -> Result<ChunkResult> {
-    if cells.end > layout.cell_count() || cells.start > cells.end {
-        return Err(Error::invalid_argument(
-            "chunk",
-            format!(
-                "cells {cells:?} are not within the layout's 0..{}",
-                layout.cell_count()
-            ),
-        ));
-    }
+    layout.check_cells("chunk", &cells)?;
     let orientations = layout.orientation_count();
     let bins = cells.len() * orientations;
     let mut result = ChunkResult {
@@ -109,7 +101,7 @@ fn by_inverse_kinematics(
     let rotations: Vec<_> = (0..orientations)
         .map(|k| layout.orientation(k).into_inner())
         .collect();
-    let mut oracle = PoseOracle::new(model)?;
+    let mut oracle = PoseOracle::new(model, layout.spec().target)?;
     for (local, cell) in cells.enumerate() {
         let centre = Vector3::from(layout.cell_center(cell));
         // A cell whose centre is beyond the reach bound (by more than the

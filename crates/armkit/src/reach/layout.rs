@@ -8,10 +8,12 @@
 //! reshapes to NumPy's `(nx, ny, nz)`; a per-(cell, orientation) array is
 //! `(nx, ny, nz, orientations)`. Orientation `k = direction * rolls + roll`.
 
+use std::ops::Range;
+
+use super::bound::ReachBox;
 use super::directions::DirectionIndex;
-use super::MapSpec;
+use super::{MapSpec, MapTarget};
 use crate::error::{Error, Result};
-use crate::ik::ReachBound;
 use crate::math::{Matrix3, Rotation3, Vector3};
 use crate::model::Model;
 
@@ -67,45 +69,42 @@ fn reference_x_axis(z: &Vector3<f64>) -> Vector3<f64> {
 }
 
 impl MapLayout {
-    /// The layout of `spec` for `model`: a cube around the reach bound's ball
-    /// ([`ReachBound`]), `ceil(2 radius / resolution)` cells along each axis.
+    /// The layout of `spec` for `model`: the box of [`ReachBox`] (the
+    /// reach ball's cube for an arm on a fixed base, the rails' travel
+    /// grown by the arm's reach for an arm on prismatic axes),
+    /// `ceil(side / resolution)` cells along each axis, centred on it.
     ///
     /// Errors: a resolution that is not finite and > 0, zero directions or
     /// rolls, a model without a finite reach bound, or a grid of more than
     /// [`MAX_BINS`] (cell, orientation) bins (the message names the size).
     pub fn new(model: &Model, spec: &MapSpec) -> Result<MapLayout> {
         spec.validate()?;
-        let bound = ReachBound::of_model(model);
-        let radius = bound.radius();
-        if !radius.is_finite() {
+        let bound = ReachBox::of_model(model)?;
+        let (lower, upper) = (bound.lower(), bound.upper());
+        let sides: [f64; 3] =
+            std::array::from_fn(|a| ((upper[a] - lower[a]) / spec.resolution).ceil().max(1.0));
+        let cells = sides[0] * sides[1] * sides[2];
+        if !cells.is_finite() || cells * spec.orientation_count() as f64 > MAX_BINS as f64 {
             return Err(Error::invalid_argument(
-                "robot",
+                "resolution",
                 format!(
-                    "`{}` has no finite reach bound (a coupled model or a prismatic joint without limits): a map needs a bounded box",
-                    model.name()
+                    "a grid of {} x {} x {} = {cells:e} cells times {} orientations exceeds the limit of {MAX_BINS} bins (box {:.3} x {:.3} x {:.3} m at {} m resolution): choose a coarser resolution or fewer orientations",
+                    sides[0],
+                    sides[1],
+                    sides[2],
+                    spec.orientation_count(),
+                    upper[0] - lower[0],
+                    upper[1] - lower[1],
+                    upper[2] - lower[2],
+                    spec.resolution
                 ),
             ));
         }
-        let centre = bound.centre();
-        let side = (2.0 * radius / spec.resolution).ceil().max(1.0);
-        let too_large = |cells: f64| {
-            Error::invalid_argument(
-                "resolution",
-                format!(
-                    "a grid of {side} x {side} x {side} = {cells:e} cells times {} orientations exceeds the limit of {MAX_BINS} bins (reach radius {radius:.3} m at {} m resolution): choose a coarser resolution or fewer orientations",
-                    spec.orientation_count(),
-                    spec.resolution
-                ),
-            )
-        };
-        let cells = side * side * side;
-        if cells * spec.orientation_count() as f64 > MAX_BINS as f64 {
-            return Err(too_large(cells));
-        }
-        let n = side as usize;
-        // Centred on the ball: the cube overhangs it by at most one cell.
-        let half = 0.5 * n as f64 * spec.resolution;
-        let origin = [centre.x - half, centre.y - half, centre.z - half];
+        let dims = sides.map(|s| s as usize);
+        // Centred on the box: the grid overhangs it by at most one cell.
+        let origin: [f64; 3] = std::array::from_fn(|a| {
+            0.5 * (lower[a] + upper[a]) - 0.5 * dims[a] as f64 * spec.resolution
+        });
         let directions = fibonacci_directions(spec.approach_directions);
         let reference_x = directions
             .iter()
@@ -117,7 +116,7 @@ impl MapLayout {
         Ok(MapLayout {
             spec: spec.clone(),
             origin,
-            dims: [n, n, n],
+            dims,
             index: DirectionIndex::new(&directions),
             directions,
             reference_x,
@@ -167,6 +166,27 @@ impl MapLayout {
     /// The unit approach directions (tool z axes), world frame.
     pub fn directions(&self) -> &[[f64; 3]] {
         &self.directions
+    }
+
+    /// Checks that `cells` is a range within the layout's cells; the error
+    /// names `what` (the argument) and the range.
+    pub fn check_cells(&self, what: &str, cells: &Range<usize>) -> Result<()> {
+        if cells.end > self.cell_count() || cells.start > cells.end {
+            return Err(Error::invalid_argument(
+                what,
+                format!(
+                    "cells {cells:?} are not within the layout's 0..{}",
+                    self.cell_count()
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    /// True for a position-only map ([`MapTarget::Position`]).
+    #[inline]
+    pub fn position_only(&self) -> bool {
+        self.spec.target == MapTarget::Position
     }
 
     /// `(ix, iy, iz)` of cell `i` (`i < cell_count()`).

@@ -5,9 +5,14 @@ use super::{ChunkResult, MapLayout};
 use crate::error::{Error, Result};
 use crate::math::Pose;
 
-/// A reachability map: per (cell, orientation) bin reachable or not and its
-/// IK solution count, per cell the capability index and best
-/// manipulability (see the module docs for frames and units).
+/// Units of the stored boundary distance per cell edge: 64, the crossing
+/// of 6 bisection steps ([`ReachMap::boundary`]).
+pub const BOUNDARY_UNITS: i8 = 64;
+
+/// A reachability map: per (cell, orientation) bin reachable or not, its
+/// IK solution count and its signed distance to the boundary, per cell the
+/// capability index and best manipulability (see the module docs for
+/// frames and units).
 ///
 /// Arrays are flat in the layout's C order: per cell `(nx, ny, nz)`, per bin
 /// `(nx, ny, nz, orientations)`.
@@ -18,6 +23,8 @@ pub struct ReachMap {
     solutions: Vec<u8>,
     capability: Vec<f64>,
     manipulability: Vec<f64>,
+    /// Per bin, the signed distance to the boundary (see `boundary()`).
+    boundary: Vec<i8>,
     /// Per cell, the nearest cell with capability > 0 (`u32::MAX`: none).
     nearest: Vec<u32>,
     calls: u64,
@@ -56,6 +63,7 @@ impl ReachMap {
             solutions: zeroed("solutions", bins)?,
             capability: Vec::new(),
             manipulability: zeroed("manipulability", cells)?,
+            boundary: Vec::new(),
             nearest: Vec::new(),
             calls: 0,
             layout,
@@ -68,15 +76,7 @@ impl ReachMap {
     fn merge(&mut self, chunk: &ChunkResult) -> Result<()> {
         let orientations = self.layout.orientation_count();
         let cells = chunk.cells.clone();
-        if cells.end > self.layout.cell_count() || cells.start > cells.end {
-            return Err(Error::invalid_argument(
-                "chunks",
-                format!(
-                    "a chunk's cells {cells:?} are not within the layout's 0..{}",
-                    self.layout.cell_count()
-                ),
-            ));
-        }
+        self.layout.check_cells("chunks", &cells)?;
         let bins = cells.len() * orientations;
         if chunk.reachable.len() != bins {
             return Err(mismatch("reachable", bins, chunk.reachable.len()));
@@ -141,7 +141,54 @@ impl ReachMap {
         }
         self.nearest = nearest_sites(self.layout.dims(), &capability)?;
         self.capability = capability;
+        let mut boundary = zeroed::<i8>("boundary", self.reachable.len())?;
+        for (d, &b) in boundary.iter_mut().zip(&self.reachable) {
+            *d = if b != 0 {
+                BOUNDARY_UNITS
+            } else {
+                -BOUNDARY_UNITS
+            };
+        }
+        self.boundary = boundary;
         Ok(self)
+    }
+
+    /// The map with `boundary` (as [`ReachMap::boundary`] returns it: one
+    /// value per bin, positive exactly where the bin is reachable, at most
+    /// [`BOUNDARY_UNITS`] in magnitude) in place of its own: a refined map
+    /// read back, or [`super::refine`]'s result. Errors name the first bin
+    /// that does not fit.
+    pub fn with_boundary(mut self, boundary: Vec<i8>) -> Result<ReachMap> {
+        if boundary.len() != self.reachable.len() {
+            return Err(Error::invalid_argument(
+                "boundary",
+                format!(
+                    "holds {} values where the map has {} bins",
+                    boundary.len(),
+                    self.reachable.len()
+                ),
+            ));
+        }
+        let bad = boundary.iter().zip(&self.reachable).position(|(&d, &b)| {
+            (d > 0) != (b != 0) || d == 0 || d.unsigned_abs() > BOUNDARY_UNITS as u8
+        });
+        if let Some(bin) = bad {
+            return Err(Error::invalid_argument(
+                "boundary",
+                format!(
+                    "bin {bin} holds {} for a bin that is {}: a value is 1 to {BOUNDARY_UNITS} where the bin is reachable, -1 to -{BOUNDARY_UNITS} where not",
+                    boundary[bin],
+                    if self.reachable[bin] != 0 { "reachable" } else { "unreachable" }
+                ),
+            ));
+        }
+        self.boundary = boundary;
+        Ok(self)
+    }
+
+    /// Adds `calls` IK solves (the refinement's) to the build's count.
+    pub(crate) fn add_calls(&mut self, calls: u64) {
+        self.calls += calls;
     }
 
     /// Merges chunk results (in any order) into a map; bins no chunk covers
@@ -197,7 +244,20 @@ impl ReachMap {
         &self.manipulability
     }
 
-    /// IK solves (or samples) the build took.
+    /// Per bin: the signed distance from the bin's cell centre to the
+    /// boundary of the bin's orientation, in units of 1/[`BOUNDARY_UNITS`]
+    /// of the resolution, positive where the bin is reachable: along each
+    /// axis the nearer crossing `d_a` on the edges to the two neighbours
+    /// (found by [`super::refine`]; none: no term), combined as the
+    /// distance to the plane through them, `1 / sqrt(sum 1 / d_a^2)`, at
+    /// most one cell. A map without refinement holds +-[`BOUNDARY_UNITS`]
+    /// (one cell: the boundary halfway between disagreeing centres, as the
+    /// interpolation of the bits puts it).
+    pub fn boundary(&self) -> &[i8] {
+        &self.boundary
+    }
+
+    /// IK solves (or samples) the build took, the refinement's included.
     pub fn calls(&self) -> u64 {
         self.calls
     }
@@ -242,13 +302,16 @@ impl ReachMap {
     }
 
     /// True when `pose` (world frame, m) is reachable by the map: the
-    /// interpolation of the reachable bits over the three orientations
-    /// around its rotation ([`MapLayout::orientations_around`]) and,
-    /// trilinearly, the 8 cell centres around its position (cells beyond
-    /// the box count as unreachable) is at least 1/2. The boundary so found is piecewise
-    /// linear between the centres, not the cells' staircase: its error is
-    /// second order in the resolution where the reachable set's boundary is
-    /// smooth. Allocates nothing.
+    /// interpolation of the bins' signed boundary distances
+    /// ([`ReachMap::boundary`]) over the three orientations around its
+    /// rotation ([`MapLayout::orientations_around`]; a position-only map's
+    /// one) and, trilinearly, the 8 cell centres around its position (cells
+    /// beyond the box count as one cell outside) is at least 0. Without
+    /// refinement this is the interpolation of the reachable bits at least
+    /// 1/2: a boundary piecewise linear between the centres, not the
+    /// cells' staircase. With it, near the boundary the interpolated
+    /// distance is zero where the bisection put the crossing (exactly for
+    /// a locally planar boundary). Allocates nothing.
     #[inline]
     pub fn query(&self, pose: &Pose) -> bool {
         let p = pose.translation;
@@ -270,7 +333,11 @@ impl ReachMap {
             *fr = t - f;
         }
         let orientations = self.layout.orientation_count();
-        let around = self.layout.orientations_around(&pose.rotation);
+        let around = if self.layout.position_only() {
+            [(0, 1.0), (0, 0.0), (0, 0.0)]
+        } else {
+            self.layout.orientations_around(&pose.rotation)
+        };
         let mut sum = 0.0;
         for corner in 0..8 {
             let mut weight = 1.0;
@@ -284,15 +351,15 @@ impl ReachMap {
                 cell = cell * dims[axis] + i.max(0) as usize;
             }
             if inside {
-                let bins = &self.reachable[cell * orientations..(cell + 1) * orientations];
+                let bins = &self.boundary[cell * orientations..(cell + 1) * orientations];
                 for &(k, w) in &around {
-                    if bins[k] != 0 {
-                        sum += weight * w;
-                    }
+                    sum += weight * w * f64::from(bins[k]);
                 }
+            } else {
+                sum -= weight * f64::from(BOUNDARY_UNITS);
             }
         }
-        sum >= 0.5
+        sum >= 0.0
     }
 
     /// True when the bin of `pose` (its position's cell, the orientation

@@ -19,6 +19,16 @@
 //!   queries.
 //! * [`build`]: the whole map on local threads; [`chunks`] partitions it for
 //!   a distributed build whose merged result is the same.
+//! * [`refine`]: the boundary between reachable and unreachable bins located
+//!   within each disagreeing grid edge by bisection (after the merge), kept
+//!   as a signed distance per bin ([`ReachMap::boundary`]) that the point
+//!   query interpolates.
+//! * [`MapTarget::Position`]: position-only maps (a cell is reachable when
+//!   some configuration within the limits puts the tool point in it), for
+//!   arms with fewer than six joints such as `arm4`.
+//! * [`ReachBox`]: the box the map covers, the rails' travel plus the arm's
+//!   reach for arms on prismatic axes (`gantry9`), else the reach ball's
+//!   cube.
 //! * [`base_placements`]: inverse reachability, the base positions on a
 //!   floor grid ([`FloorGrid`]) from which every task pose is reachable,
 //!   scored by the capability index.
@@ -28,6 +38,7 @@
 //! world frame; manipulability is Yoshikawa's `sqrt(det(J J'))` of the
 //! world-frame geometric Jacobian (units mix m and rad).
 
+mod bound;
 mod build;
 mod chunk;
 mod directions;
@@ -35,13 +46,17 @@ mod layout;
 mod map;
 mod nearest;
 mod oracle;
+mod parallel;
 mod placement;
+mod refine;
 
+pub use bound::ReachBox;
 pub use build::{build, chunks, LOCAL_CHUNK_WORK};
 pub use chunk::{build_chunk, Chunk, ChunkResult};
 pub use layout::{fibonacci_directions, MapLayout, MAX_BINS};
-pub use map::ReachMap;
+pub use map::{ReachMap, BOUNDARY_UNITS};
 pub use placement::{base_placements, BasePlacement, FloorGrid};
+pub use refine::{apply_refinement, refine, refine_chunk, Crossing, Refinement};
 
 use crate::error::{check_positive, Error, Result};
 use crate::kinematics::{forward_kinematics, Data};
@@ -97,6 +112,60 @@ pub enum Builder {
     },
 }
 
+/// What a bin asks of the tool.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "io", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "io", serde(rename_all = "snake_case"))]
+pub enum MapTarget {
+    /// The tool frame at the cell centre with each of the spec's
+    /// orientations.
+    #[default]
+    Pose,
+    /// The tool point at the cell centre, any orientation: one orientation
+    /// per cell (the layout's orientation 0 is nominal, the query ignores
+    /// the pose's rotation). The map of an arm with fewer than six joints,
+    /// which cannot hold an arbitrary orientation anywhere.
+    Position,
+}
+
+/// How the boundary between reachable and unreachable bins is kept.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "io", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "io", serde(rename_all = "snake_case"))]
+pub enum Boundary {
+    /// Halfway between the centres of neighbouring cells that disagree
+    /// (the bits alone; maps saved before refinement existed read as this).
+    #[default]
+    Cells,
+    /// Located by `steps` bisection steps (IK solves) along every grid
+    /// edge whose two cells disagree, after the merge ([`refine`]): the
+    /// crossing is known to `1 / 2^steps` of the edge (1 to 6 steps; the
+    /// stored distance has [`BOUNDARY_UNITS`] units per cell).
+    Bisection {
+        /// IK solves per disagreeing edge (1..=6).
+        steps: u8,
+    },
+}
+
+impl Boundary {
+    /// The constructors' choice for `builder`: [`DEFAULT_BISECTION_STEPS`]
+    /// steps for the IK builder; the cells' boundary for the sampling
+    /// builder, whose unhit bins inside the workspace would send the
+    /// refinement after boundaries that are not there.
+    pub fn default_for(builder: Builder) -> Boundary {
+        match builder {
+            Builder::InverseKinematics => Boundary::Bisection {
+                steps: DEFAULT_BISECTION_STEPS,
+            },
+            Builder::ForwardSampling { .. } => Boundary::Cells,
+        }
+    }
+}
+
+/// Bisection steps of the default spec: 6, the crossing to 1/64 of a cell
+/// edge (the stored distance's unit).
+pub const DEFAULT_BISECTION_STEPS: u8 = 6;
+
 /// What a map is: its resolution, orientation set and builder.
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "io", derive(serde::Serialize, serde::Deserialize))]
@@ -109,15 +178,36 @@ pub struct MapSpec {
     pub rolls: usize,
     /// How the bins are decided.
     pub builder: Builder,
+    /// Tool poses or tool positions (absent in older files: poses).
+    #[cfg_attr(feature = "io", serde(default))]
+    pub target: MapTarget,
+    /// How the boundary is kept (absent in older files: the cells' bits).
+    #[cfg_attr(feature = "io", serde(default))]
+    pub boundary: Boundary,
 }
 
 impl MapSpec {
+    /// A position-only spec ([`MapTarget::Position`]): one nominal
+    /// orientation (one direction, one roll), the boundary of
+    /// [`Boundary::default_for`] the builder.
+    pub fn position_only(resolution: f64, builder: Builder) -> MapSpec {
+        MapSpec {
+            resolution,
+            approach_directions: 1,
+            rolls: 1,
+            builder,
+            target: MapTarget::Position,
+            boundary: Boundary::default_for(builder),
+        }
+    }
+
     /// A spec of `orientations` orientations split into directions and rolls
     /// with about equal angular spacing: the direction lattice's spacing
     /// `sqrt(4 pi / D)` equals the roll step `2 pi / R` when `R^3 = pi N`
     /// (`N = D R`); `R` the divisor of `N` nearest `round((pi N)^(1/3))`
     /// (within 2, else that value itself), `D = round(N / R)`, both >= 1.
-    /// 200 orientations give 25 directions x 8 rolls.
+    /// 200 orientations give 25 directions x 8 rolls. The boundary is
+    /// [`Boundary::default_for`] the builder.
     pub fn with_orientations(resolution: f64, orientations: usize, builder: Builder) -> MapSpec {
         let n = orientations.max(1);
         let ideal = (std::f64::consts::PI * n as f64).cbrt().round() as usize;
@@ -133,27 +223,33 @@ impl MapSpec {
             approach_directions: if orientations == 0 { 0 } else { directions },
             rolls,
             builder,
+            target: MapTarget::Pose,
+            boundary: Boundary::default_for(builder),
         }
     }
 
-    /// The spec for `model`: when a roll of the tool about its z axis is a
-    /// motion of the last joint alone ([`roll_free`]), the orientations
-    /// are `orientations` approach directions with one roll each (RM4D's
-    /// reduction, Sundaralingam et al. ICRA 2025: such a roll changes
-    /// neither reachability nor the solutions' count or manipulability);
-    /// otherwise [`MapSpec::with_orientations`].
+    /// The spec for `model`: position-only ([`MapSpec::position_only`],
+    /// `orientations` unused) when the model has fewer than six joints (it
+    /// cannot hold an arbitrary tool orientation anywhere, so per
+    /// orientation the map would be nearly empty); when a roll of the tool
+    /// about its z axis is a motion of the last joint alone ([`roll_free`]),
+    /// the orientations are `orientations` approach directions with one
+    /// roll each (RM4D's reduction, Sundaralingam et al. ICRA 2025: such a
+    /// roll changes neither reachability nor the solutions' count or
+    /// manipulability); otherwise [`MapSpec::with_orientations`].
     pub fn for_model(
         model: &Model,
         resolution: f64,
         orientations: usize,
         builder: Builder,
     ) -> MapSpec {
-        if roll_free(model) {
+        if model.dof() < 6 {
+            MapSpec::position_only(resolution, builder)
+        } else if roll_free(model) {
             MapSpec {
-                resolution,
                 approach_directions: orientations,
                 rolls: 1,
-                builder,
+                ..MapSpec::with_orientations(resolution, orientations, builder)
             }
         } else {
             MapSpec::with_orientations(resolution, orientations, builder)
@@ -166,9 +262,27 @@ impl MapSpec {
     }
 
     /// Checks the spec: a finite resolution > 0, at least one direction, one
-    /// roll and (sampling builder) one sample; errors name the field.
+    /// roll, exactly one of each for a position-only map, (sampling
+    /// builder) one sample, 1 to 6 bisection steps; errors name the field.
     pub fn validate(&self) -> Result<()> {
         check_positive("resolution", self.resolution)?;
+        if self.target == MapTarget::Position && (self.approach_directions, self.rolls) != (1, 1) {
+            return Err(Error::invalid_argument(
+                "approach_directions",
+                format!(
+                    "a position-only map has one nominal orientation (1 direction x 1 roll), got {} x {}: the tool's orientation is free",
+                    self.approach_directions, self.rolls
+                ),
+            ));
+        }
+        if let Boundary::Bisection { steps } = self.boundary {
+            if !(1..=DEFAULT_BISECTION_STEPS).contains(&steps) {
+                return Err(Error::invalid_argument(
+                    "steps",
+                    format!("bisection steps must be 1 to {DEFAULT_BISECTION_STEPS} (the boundary is stored to 1/{BOUNDARY_UNITS} of a cell), got {steps}"),
+                ));
+            }
+        }
         if self.approach_directions == 0 {
             return Err(Error::invalid_argument(
                 "approach_directions",

@@ -4,11 +4,12 @@
 
 use rand::RngCore;
 
+use super::bound::ReachBox;
 use crate::error::Result;
 use crate::ik::analytic::{
     AnalyticOptions, AnalyticSolver, ArmClass, RangeFilter, Representatives, Verification,
 };
-use crate::ik::{AutoSolver, IkOptions, ReachBound};
+use crate::ik::{AutoSolver, IkOptions, IkSolver};
 use crate::kinematics::{jacobian, Data, JacobianFrame};
 use crate::math::{Pose, Vector3};
 use crate::model::Model;
@@ -37,6 +38,10 @@ enum Route {
     /// parameter and its sweep where the class allows, numeric with seeded
     /// restarts otherwise); one solution counted.
     Auto(Box<AutoSolver>),
+    /// A position-only map: the numeric solver with the orientation masked
+    /// (`task_weights = [1, 1, 1, 0, 0, 0]`), seeded restarts; one solution
+    /// counted.
+    Position(Box<IkSolver>),
 }
 
 /// The per-pose decision of the IK builder, set up once per chunk.
@@ -45,17 +50,33 @@ pub(crate) struct PoseOracle {
     route: Route,
     data: Data,
     start: Vec<f64>,
-    reach: ReachBound,
+    reach: ReachBox,
     options: IkOptions,
 }
 
 impl PoseOracle {
-    pub(crate) fn new(model: &Model) -> Result<PoseOracle> {
+    /// The oracle of `target` poses (the layout's [`super::MapTarget`]).
+    pub(crate) fn new(model: &Model, target: super::MapTarget) -> Result<PoseOracle> {
         let options = IkOptions {
             max_restarts: NUMERIC_RESTARTS,
             time_budget: None,
             ..IkOptions::default()
         };
+        let reach = ReachBox::of_model(model)?;
+        if target == super::MapTarget::Position {
+            let options = IkOptions {
+                task_weights: [1.0, 1.0, 1.0, 0.0, 0.0, 0.0],
+                ..options
+            };
+            return Ok(PoseOracle {
+                model: model.clone(),
+                route: Route::Position(Box::new(IkSolver::new(model, options)?)),
+                data: Data::new(model),
+                start: model.neutral_configuration(),
+                reach,
+                options,
+            });
+        }
         let analytic = AnalyticSolver::new(
             model,
             AnalyticOptions {
@@ -82,23 +103,24 @@ impl PoseOracle {
             route,
             data: Data::new(model),
             start: model.neutral_configuration(),
-            reach: ReachBound::of_model(model),
+            reach,
             options,
         })
     }
 
     /// True when `position` (world frame, m) is beyond the reach bound.
     pub(crate) fn beyond_reach(&self, position: &Vector3<f64>) -> bool {
-        self.reach.excludes(&Pose::from_translation(*position))
+        self.reach.excludes(position)
     }
 
-    /// Decides `target` (world frame), from the neutral configuration.
+    /// Decides `target` (world frame; its rotation unused by a
+    /// position-only oracle), from the neutral configuration.
     pub(crate) fn decide(&mut self, target: &Pose) -> Result<Decision> {
         let mut decision = Decision {
             solutions: 0,
             manipulability: 0.0,
         };
-        match &mut self.route {
+        let single = match &mut self.route {
             Route::Analytic(solver) => {
                 let (tp, to) = (
                     self.options.position_tolerance,
@@ -131,22 +153,32 @@ impl PoseOracle {
                         .max(crate::linalg::manipulability(j));
                 }
                 decision.solutions = count;
+                None
             }
             Route::Auto(solver) => {
                 let answer = solver.solve(target, &self.start)?;
-                if answer.report.converged() {
-                    decision.solutions = 1;
-                    let j = jacobian(
-                        &self.model,
-                        &mut self.data,
-                        &answer.report.q,
-                        JacobianFrame::World,
-                    )?;
-                    decision.manipulability = crate::linalg::manipulability(j);
-                }
+                answer.report.converged().then_some(answer.report.q)
             }
+            Route::Position(solver) => {
+                let report = solver.solve(target, &self.start)?;
+                report.converged().then_some(report.q)
+            }
+        };
+        if let Some(q) = single {
+            decision = self.one_solution(&q)?;
         }
         Ok(decision)
+    }
+}
+
+impl PoseOracle {
+    /// One solution `q` and its manipulability.
+    fn one_solution(&mut self, q: &[f64]) -> Result<Decision> {
+        let j = jacobian(&self.model, &mut self.data, q, JacobianFrame::World)?;
+        Ok(Decision {
+            solutions: 1,
+            manipulability: crate::linalg::manipulability(j),
+        })
     }
 }
 

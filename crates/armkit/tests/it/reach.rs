@@ -52,36 +52,44 @@ fn truth_solver(model: &Model) -> AutoSolver {
     AutoSolver::new(model, options).unwrap()
 }
 
-/// Random poses in the map's box: (agreement, false positives) as
-/// fractions, of the interpolated query and (the last two) of the raw bins.
-fn accuracy(model: &Model, map: &ReachMap, poses: usize, seed: u64) -> (f64, f64, f64, f64) {
+/// Random poses in the box of `maps[0]` (the maps share a layout's box):
+/// per map (agreement, false positives) as fractions of the interpolated
+/// query, and (the last pair) of `maps[0]`'s raw bins; one ground truth.
+fn accuracy_of(model: &Model, maps: &[&ReachMap], poses: usize, seed: u64) -> Vec<(f64, f64)> {
     let mut solver = truth_solver(model);
     let start = model.neutral_configuration();
-    let layout = map.layout();
+    let layout = maps[0].layout();
     let (origin, dims, r) = (layout.origin(), layout.dims(), layout.resolution());
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let (mut agree, mut false_positive) = (0usize, 0usize);
-    let (mut raw_agree, mut raw_false_positive) = (0usize, 0usize);
+    let mut counts = vec![(0usize, 0usize); maps.len() + 1];
     for _ in 0..poses {
         let p = Vector3::from_fn(|i, _| origin[i] + rng.gen_range(0.0..dims[i] as f64 * r));
         let pose = Pose {
             rotation: random_rotation(&mut rng),
             translation: p,
         };
-        let (said, is) = (map.query(&pose), truth(&mut solver, &start, &pose));
-        agree += (said == is) as usize;
-        false_positive += (said && !is) as usize;
-        let raw = map.bin_reachable(&pose);
-        raw_agree += (raw == is) as usize;
-        raw_false_positive += (raw && !is) as usize;
+        let is = truth(&mut solver, &start, &pose);
+        let said = maps
+            .iter()
+            .map(|m| m.query(&pose))
+            .chain([maps[0].bin_reachable(&pose)]);
+        for (count, said) in counts.iter_mut().zip(said) {
+            count.0 += (said == is) as usize;
+            count.1 += (said && !is) as usize;
+        }
     }
     let n = poses as f64;
-    (
-        agree as f64 / n,
-        false_positive as f64 / n,
-        raw_agree as f64 / n,
-        raw_false_positive as f64 / n,
-    )
+    counts
+        .iter()
+        .map(|&(a, f)| (a as f64 / n, f as f64 / n))
+        .collect()
+}
+
+/// [`accuracy_of`] one map: (agreement, false positives, raw agreement,
+/// raw false positives).
+fn accuracy(model: &Model, map: &ReachMap, poses: usize, seed: u64) -> (f64, f64, f64, f64) {
+    let a = accuracy_of(model, &[map], poses, seed);
+    (a[0].0, a[0].1, a[1].0, a[1].1)
 }
 
 fn ik_spec(resolution: f64, orientations: usize) -> MapSpec {
@@ -104,22 +112,48 @@ fn requested(variable: &str) -> Option<(String, Model, MapSpec, usize)> {
 }
 
 /// The full accuracy figure: `ARMKIT_REACH_FULL="robot resolution
-/// orientations poses"` (e.g. `ur5 0.05 200 100000`) runs it and prints it.
+/// orientations poses"` (e.g. `ur5 0.05 200 100000`) builds the map with
+/// the cells' boundary, times it, refines it, times that, and prints both
+/// maps' agreement with IK and false positives on the same random poses.
 #[test]
 fn full_accuracy_figure_on_request() {
     let Some((request, model, spec, poses)) = requested("ARMKIT_REACH_FULL") else {
         return;
     };
+    // The build's chunks come first in its progress, the refinement's next.
+    let layout = MapLayout::new(&model, &spec).unwrap();
+    let first = reach::chunks(&layout, &spec, reach::LOCAL_CHUNK_WORK).len();
     let began = std::time::Instant::now();
-    let map = reach::build(&model, &spec, 2, &mut |_, _| {}).unwrap();
-    let seconds = began.elapsed().as_secs_f64();
-    let (agreement, false_positives, raw, raw_false) = accuracy(&model, &map, poses, 2026);
+    let mut merged = None;
+    let refined = reach::build(&model, &spec, 2, &mut |done, _| {
+        if done == first && merged.is_none() {
+            merged = Some(began.elapsed().as_secs_f64());
+        }
+    })
+    .unwrap();
+    let total = began.elapsed().as_secs_f64();
+    let seconds = merged.unwrap_or(total);
+    let refine_seconds = total - seconds;
+    let cells_boundary = refined
+        .reachable()
+        .iter()
+        .map(|&b| if b != 0 { 64 } else { -64 })
+        .collect();
+    let map = refined.clone().with_boundary(cells_boundary).unwrap();
+    let a = accuracy_of(&model, &[&map, &refined], poses, 2026);
     eprintln!(
-        "{request}: {} x {} orientations, build {seconds:.1} s, {:.0} IK/s, {} reachable cells; agreement {agreement:.5}, false positives {false_positives:.5}; raw bins: agreement {raw:.5}, false positives {raw_false:.5}",
+        "{request}: {} x {} orientations, build {seconds:.1} s, refinement {refine_seconds:.1} s ({:.0} IK/s overall), {} reachable cells, {} IK calls in all; before refinement: agreement {:.5}, false positives {:.5}; after: agreement {:.5}, false positives {:.5}; raw bins: agreement {:.5}, false positives {:.5}",
         spec.approach_directions,
         spec.rolls,
-        map.calls() as f64 / seconds,
-        map.reachable_cells()
+        refined.calls() as f64 / total,
+        map.reachable_cells(),
+        refined.calls(),
+        a[0].0,
+        a[0].1,
+        a[1].0,
+        a[1].1,
+        a[2].0,
+        a[2].1
     );
 }
 
@@ -161,8 +195,12 @@ fn chunked_build_equals_whole_build() {
     parts.reverse();
     let chunked = ReachMap::from_chunks(layout, parts).unwrap();
     assert_eq!(whole, chunked);
+    // The merge keeps the cells' boundary; the local build refines after it.
+    let refined = reach::refine(&model, whole.clone(), 1, &mut |_, _| {}).unwrap();
     let threaded = reach::build(&model, &spec, 2, &mut |_, _| {}).unwrap();
-    assert_eq!(whole, threaded);
+    assert_eq!(refined, threaded);
+    assert_ne!(whole.boundary(), refined.boundary());
+    assert_eq!(refined.reachable(), whole.reachable());
     assert!(whole.reachable_cells() > 0 && whole.reachable_cells() < whole.layout().cell_count());
     assert!(whole.capability().iter().all(|c| (0.0..=1.0).contains(c)));
 }

@@ -10,12 +10,15 @@ mod slices;
 
 use std::time::Instant;
 
-use armkit::reach::{self, Builder, FloorGrid, MapSpec, ReachMap};
+use armkit::reach::{self, Boundary, Builder, FloorGrid, MapSpec, MapTarget, ReachMap};
 use clap::{Args, ValueEnum};
 use indicatif::{ProgressBar, ProgressStyle};
 
 use crate::common::{print_json, CliError, CliResult, Outcome, RobotArgs};
 use npz::Array;
+
+/// Orientations per cell when `--orientations` is not given.
+const DEFAULT_ORIENTATIONS: usize = 200;
 
 /// Which builder decides the bins.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -35,9 +38,11 @@ pub struct ReachArgs {
     #[arg(long, default_value_t = 0.05)]
     pub resolution: f64,
     /// Tool orientations per cell (approach directions x rolls; directions
-    /// only when the last joint turns the tool fully about its z axis).
-    #[arg(long, default_value_t = 200)]
-    pub orientations: usize,
+    /// only when the last joint turns the tool fully about its z axis);
+    /// default 200. Not for arms with fewer than six joints, whose maps
+    /// are position-only.
+    #[arg(long)]
+    pub orientations: Option<usize>,
     /// How the bins are decided.
     #[arg(long, value_enum, default_value_t = BuilderArg::Ik)]
     pub builder: BuilderArg,
@@ -130,7 +135,19 @@ pub fn run(args: &ReachArgs) -> CliResult<Outcome> {
     let threads = args
         .threads
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
-    let spec = MapSpec::for_model(&model, args.resolution, args.orientations, builder);
+    let spec = MapSpec::for_model(
+        &model,
+        args.resolution,
+        args.orientations.unwrap_or(DEFAULT_ORIENTATIONS),
+        builder,
+    );
+    if let (MapTarget::Position, Some(n)) = (spec.target, args.orientations) {
+        return Err(CliError(format!(
+            "--orientations {n}: `{}` has {} joints, fewer than the six a tool pose needs, so it cannot hold an arbitrary tool orientation and its map is position-only (a cell is reachable when some configuration puts the tool point in it); drop --orientations",
+            model.name(),
+            model.dof()
+        )));
+    }
     let (map, seconds) = timed_build(&model, &spec, threads, !args.json)?;
     let coverage = if args.coverage && args.builder == BuilderArg::FkSamples {
         let ik_spec = MapSpec {
@@ -180,6 +197,8 @@ pub fn run(args: &ReachArgs) -> CliResult<Outcome> {
             "approach_directions": spec.approach_directions,
             "rolls": spec.rolls,
             "orientations": layout.orientation_count(),
+            "target": spec.target,
+            "boundary": spec.boundary,
             "reachable_cells": map.reachable_cells(),
             "reachable_bins": map.reachable_bins(),
             "reachable_volume": map.reachable_volume(),
@@ -192,13 +211,23 @@ pub fn run(args: &ReachArgs) -> CliResult<Outcome> {
             "base_placements": placements.as_deref().map(placement::json),
         }))?;
     } else {
+        let orientations = match spec.target {
+            MapTarget::Position => "position only".to_string(),
+            MapTarget::Pose => format!(
+                "{} orientations ({} directions x {} rolls)",
+                layout.orientation_count(),
+                spec.approach_directions,
+                spec.rolls
+            ),
+        };
+        let boundary = match spec.boundary {
+            Boundary::Cells => "the cells' boundary".to_string(),
+            Boundary::Bisection { steps } => format!("boundary refined by {steps} bisection steps"),
+        };
         println!(
-            "{}: {nx} x {ny} x {nz} cells of {} m, {} orientations ({} directions x {} rolls), builder {}",
+            "{}: {nx} x {ny} x {nz} cells of {} m, {orientations}, builder {}, {boundary}",
             model.name(),
             spec.resolution,
-            layout.orientation_count(),
-            spec.approach_directions,
-            spec.rolls,
             match args.builder {
                 BuilderArg::Ik => "ik",
                 BuilderArg::FkSamples => "fk-samples",
@@ -241,9 +270,11 @@ fn mean_capability(map: &ReachMap) -> f64 {
     }
 }
 
-/// The map's arrays for the `.npz`: per bin `(nx, ny, nz, orientations)`,
-/// per cell `(nx, ny, nz)`, and the layout (origin of the grid's lower
-/// corner, m; resolution, m; orientations as rotation matrices).
+/// The map's arrays for the `.npz`: per bin `(nx, ny, nz, orientations)`
+/// (`boundary`: the signed distance to the boundary in 1/64 of a cell),
+/// per cell `(nx, ny, nz)`, the layout (origin of the grid's lower
+/// corner, m; resolution, m; orientations as rotation matrices) and the
+/// spec as JSON (`spec`, a string).
 fn arrays(map: &ReachMap) -> Vec<Array> {
     let layout = map.layout();
     let [nx, ny, nz] = layout.dims();
@@ -256,6 +287,7 @@ fn arrays(map: &ReachMap) -> Vec<Array> {
         })
         .collect();
     let directions: Vec<f64> = layout.directions().iter().flatten().copied().collect();
+    let spec = serde_json::to_string(layout.spec()).unwrap_or_default();
     vec![
         Array::u8("reachable", vec![nx, ny, nz, o], map.reachable()),
         Array::u8("solutions", vec![nx, ny, nz, o], map.solutions()),
@@ -270,5 +302,7 @@ fn arrays(map: &ReachMap) -> Vec<Array> {
             &directions,
         ),
         Array::i64("rolls", vec![], &[layout.spec().rolls as i64]),
+        Array::i8("boundary", vec![nx, ny, nz, o], map.boundary()),
+        Array::text("spec", &spec),
     ]
 }

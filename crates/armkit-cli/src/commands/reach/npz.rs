@@ -6,13 +6,13 @@
 
 use crate::common::{CliError, CliResult};
 
-/// One array: its `.npy` dtype (`<f8`, `|u1`, `<i8`), shape and
+/// One array: its `.npy` dtype (`<f8`, `|u1`, `|i1`, `<i8`, `<U..`), shape and
 /// little-endian bytes.
 pub struct Array {
     /// Entry name without `.npy`.
     pub name: String,
     /// NumPy dtype string.
-    pub descr: &'static str,
+    pub descr: String,
     /// Shape (empty for a scalar).
     pub shape: Vec<usize>,
     /// The data, C order, little-endian.
@@ -24,7 +24,7 @@ impl Array {
     pub fn f64(name: &str, shape: Vec<usize>, values: &[f64]) -> Array {
         Array {
             name: name.into(),
-            descr: "<f8",
+            descr: "<f8".into(),
             shape,
             bytes: values.iter().flat_map(|v| v.to_le_bytes()).collect(),
         }
@@ -34,9 +34,35 @@ impl Array {
     pub fn u8(name: &str, shape: Vec<usize>, values: &[u8]) -> Array {
         Array {
             name: name.into(),
-            descr: "|u1",
+            descr: "|u1".into(),
             shape,
             bytes: values.to_vec(),
+        }
+    }
+
+    /// An int8 array.
+    pub fn i8(name: &str, shape: Vec<usize>, values: &[i8]) -> Array {
+        Array {
+            name: name.into(),
+            descr: "|i1".into(),
+            shape,
+            bytes: values.iter().map(|&v| v as u8).collect(),
+        }
+    }
+
+    /// A scalar string (NumPy's `<U` dtype: UTF-32 code points).
+    pub fn text(name: &str, value: &str) -> Array {
+        let chars = value.chars().count().max(1);
+        let mut bytes: Vec<u8> = value
+            .chars()
+            .flat_map(|c| (c as u32).to_le_bytes())
+            .collect();
+        bytes.resize(4 * chars, 0);
+        Array {
+            name: name.into(),
+            descr: format!("<U{chars}"),
+            shape: vec![],
+            bytes,
         }
     }
 
@@ -44,7 +70,7 @@ impl Array {
     pub fn i64(name: &str, shape: Vec<usize>, values: &[i64]) -> Array {
         Array {
             name: name.into(),
-            descr: "<i8",
+            descr: "<i8".into(),
             shape,
             bytes: values.iter().flat_map(|v| v.to_le_bytes()).collect(),
         }
