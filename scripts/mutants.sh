@@ -13,6 +13,9 @@
 #                                        library's unit tests and the
 #                                        integration crate use the module's
 #                                        name), for speed
+#   scripts/mutants.sh --lib ...         the library's unit tests only (no
+#                                        integration crate: one link step
+#                                        less per mutant)
 #   scripts/mutants.sh --list ...        list the mutants, build nothing
 #
 # Any other argument goes to cargo mutants (e.g. --in-place, --timeout 600).
@@ -24,12 +27,14 @@ cd "$(dirname "$0")/.."
 base=main
 file=""
 tests=""
+lib_only=""
 extra=()
 while (($#)); do
     case "$1" in
         --base) base="$2"; shift 2 ;;
         --file) file="$2"; shift 2 ;;
         --tests) tests="$2"; shift 2 ;;
+        --lib) lib_only=1; shift ;;
         *) extra+=("$1"); shift ;;
     esac
 done
@@ -56,6 +61,13 @@ if [[ -n "$file" ]]; then
         echo "examine_globs = [\"$file\"]"
         sed '/^examine_globs = \[/,/^\]/d' .cargo/mutants.toml
     } >"$scoped"
+fi
+if [[ -n "$lib_only" ]]; then
+    sed -i 's|^additional_cargo_test_args = \["--lib", "--test", "it"|additional_cargo_test_args = ["--lib"|' "$scoped"
+    grep -q '^additional_cargo_test_args = \["--lib"\]' "$scoped" || {
+        echo "--lib: .cargo/mutants.toml's test arguments are not [\"--lib\", \"--test\", \"it\"]" >&2
+        exit 2
+    }
 fi
 if [[ -n "$tests" ]]; then
     sed -i "s|^additional_cargo_test_args = \[\(.*\)\]|additional_cargo_test_args = [\1, \"--\", \"$tests\"]|" "$scoped"

@@ -279,6 +279,61 @@ mod tests {
         assert!(error.to_string().contains("candidate_step"), "{error}");
     }
 
+    /// Each test is strict: a determinant exactly at the threshold and a
+    /// joint step exactly at the threshold, of either sign, are regular; one
+    /// ulp beyond either triggers it.
+    #[test]
+    fn the_thresholds_are_strict_on_both_tests() {
+        let jacobian = jacobian_with_determinant(0.3);
+        let determinant = jacobian_determinant(&jacobian);
+        let at = DetectionOptions {
+            determinant_threshold: determinant,
+            joint_step_threshold: 0.005,
+        };
+        for sign in [1.0, -1.0] {
+            let detection = detect(&jacobian, &step(3, sign * 0.005), &at).unwrap();
+            assert_eq!(detection.trigger, None, "sign {sign}: {detection:?}");
+            assert_eq!(detection.joint_step, 0.005);
+            assert_eq!(detection.determinant, determinant);
+            let beyond = sign * 0.005_f64.next_up();
+            let detection = detect(&jacobian, &step(3, beyond), &at).unwrap();
+            assert_eq!(detection.trigger, Some(Trigger::JointStep), "{beyond}");
+        }
+        let above = DetectionOptions {
+            determinant_threshold: determinant.next_up(),
+            ..at
+        };
+        let detection = detect(&jacobian, &step(0, -0.005), &above).unwrap();
+        assert_eq!(detection.trigger, Some(Trigger::Determinant));
+        let detection = detect(&jacobian, &step(0, -0.0051), &above).unwrap();
+        assert_eq!(detection.trigger, Some(Trigger::Both));
+        // The same through the threshold test the other callers use.
+        assert!(!below_threshold(determinant, determinant));
+        assert!(below_threshold(determinant, determinant.next_up()));
+        assert!(!below_threshold(determinant.next_up(), determinant));
+        assert!(below_threshold(f64::NAN, determinant));
+    }
+
+    /// Both thresholds must be finite and > 0; the message names the field.
+    #[test]
+    fn validate_rejects_a_threshold_that_is_not_positive_and_finite() {
+        assert!(OPTIONS.validate().is_ok());
+        for bad in [0.0, -0.004, f64::NAN, f64::INFINITY] {
+            let options = DetectionOptions {
+                determinant_threshold: bad,
+                ..OPTIONS
+            };
+            let error = options.validate().unwrap_err().to_string();
+            assert!(error.contains("determinant_threshold"), "{bad}: {error}");
+            let options = DetectionOptions {
+                joint_step_threshold: bad,
+                ..OPTIONS
+            };
+            let error = options.validate().unwrap_err().to_string();
+            assert!(error.contains("joint_step_threshold"), "{bad}: {error}");
+        }
+    }
+
     /// The determinant measure is the product of the singular values for
     /// fewer, six and more than six columns.
     #[test]
