@@ -78,7 +78,6 @@ mod polish;
 mod ranges;
 #[cfg(test)]
 mod root_isolation_tests;
-mod roots;
 mod route;
 mod srs;
 pub mod structure;

@@ -26,6 +26,7 @@
 //! `double_roots_are_found_once`).
 
 use super::subproblems::Turn;
+use crate::math::roots::{safeguarded_newton, Newton, Tolerance};
 use crate::math::{sin_cos, wrap_angle};
 
 /// Angle (rad) below which two polished roots are one.
@@ -550,12 +551,11 @@ fn roots_to(p: &[f64], precision: f64, terms: f64) -> ([f64; MAX_ROOTS], usize) 
         if fa == 0.0 {
             push(a, &mut count);
             changed[i] = true;
-        } else if fb == 0.0 || (fa < 0.0) != (fb < 0.0) {
-            let start = 0.5 * (a + b);
-            push(
-                bracketed_root(p, a, b, fa, fb, start, precision),
-                &mut count,
-            );
+        } else if fb == 0.0 {
+            push(b, &mut count);
+            changed[i] = true;
+        } else if (fa < 0.0) != (fb < 0.0) {
+            push(bracketed_root(p, a, b, fa, precision), &mut count);
             changed[i] = true;
         }
     }
@@ -635,52 +635,23 @@ fn size(p: &[f64], u: f64) -> f64 {
     p.iter().rev().fold(0.0, |acc, c| acc * u.abs() + c.abs())
 }
 
-/// The root of `p` in `[a, b]` (monotone there, `fa`, `fb` of opposite
-/// signs or `fb = 0`): Newton from `start`, falling back to bisection whenever a step
-/// leaves the bracket, until the bracket or the step is `precision` wide
-/// (relative to `max(1, |u|)`: `u = tan(psi / 2)`, so that is the
-/// precision of `psi` near 0 too).
-fn bracketed_root(
-    p: &[f64],
-    mut a: f64,
-    mut b: f64,
-    fa: f64,
-    fb: f64,
-    start: f64,
-    precision: f64,
-) -> f64 {
-    if fb == 0.0 {
-        return b;
-    }
-    let rising = fa < 0.0;
-    let mut u = start;
-    for _ in 0..200 {
-        let value = evaluate(p, u);
-        if value == 0.0 {
-            return u;
-        }
-        if (value < 0.0) == rising {
-            a = u;
-        } else {
-            b = u;
-        }
-        let slope = evaluate_slope(p, u);
-        let newton = u - value / slope;
-        let size = u.abs().max(1.0);
-        if slope != 0.0 && (newton - u).abs() <= precision * size {
-            // Converged: the last step is within the precision.
-            return newton.max(a).min(b);
-        }
-        u = if slope != 0.0 && newton > a && newton < b {
-            newton
-        } else {
-            0.5 * (a + b)
-        };
-        if b - a <= precision * size {
-            break;
-        }
-    }
-    u
+/// The root of `p` in `[a, b]` (monotone there, `fa` and `p(b)` of
+/// opposite signs): Newton from the midpoint, falling back to bisection
+/// whenever a step leaves the bracket ([`safeguarded_newton`]), until the
+/// bracket or the step is `precision` wide relative to `max(1, |u|)`
+/// (`u = tan(psi / 2)`, so that is the precision of `psi` near 0 too); at
+/// most 200 evaluations.
+fn bracketed_root(p: &[f64], a: f64, b: f64, fa: f64, precision: f64) -> f64 {
+    let newton = Newton {
+        tolerance: Tolerance {
+            absolute: precision,
+            relative: precision,
+        },
+        steps: 200,
+        stall: 0.0,
+    };
+    let f = |u: f64| (evaluate(p, u), evaluate_slope(p, u));
+    safeguarded_newton(f, (a, b), fa, 0.5 * (a + b), &newton)
 }
 
 #[cfg(test)]
