@@ -48,11 +48,11 @@ use std::time::Instant;
 use super::analytic::{
     AnalyticOptions, AnalyticSolution, AnalyticSolver, ArmClass, Fit, Parameter,
 };
-use super::closed_form::golden_section;
 use super::pose_error::pose_error;
 use super::{IkOptions, IkReport, IkSolver, IkStatus};
 use crate::error::Result;
 use crate::kinematics::{forward_kinematics, Data};
+use crate::math::roots::golden_section;
 use crate::math::Pose;
 use crate::model::{JointLimits, Model};
 

@@ -23,6 +23,7 @@ pub use nalgebra::{
 mod lanes;
 #[cfg(target_arch = "x86_64")]
 mod lanes_avx;
+pub(crate) mod roots;
 mod trig;
 pub use lanes::{F64x4, Lane, Lanes4, LANES};
 #[cfg(target_arch = "x86_64")]

@@ -12,6 +12,8 @@
 //! is derived from its boundary conditions, stated on each function, and the
 //! tests check those conditions to 1e-12.
 
+use crate::math::roots::bisect;
+
 /// Six polynomial coefficients, ascending powers of `phi`.
 pub(crate) type Coefficients = [f64; 6];
 
@@ -162,33 +164,12 @@ pub(crate) fn roots_in_unit_interval(c: &[f64]) -> Roots {
         if f_left == 0.0 && left > 0.0 {
             roots.push(left);
         } else if f_left * f_right < 0.0 {
-            roots.push(bisect(c, left, right, f_left));
+            roots.push(bisect(|x| value(c, x), left, right, f_left));
         }
         left = right;
         f_left = f_right;
     }
     roots
-}
-
-/// Bisection on a bracket `[a, b]` with a sign change (`fa = p(a)`).
-fn bisect(c: &[f64], mut a: f64, mut b: f64, mut fa: f64) -> f64 {
-    for _ in 0..200 {
-        let m = 0.5 * (a + b);
-        if m <= a || m >= b {
-            break;
-        }
-        let fm = value(c, m);
-        if fm == 0.0 {
-            return m;
-        }
-        if (fm < 0.0) == (fa < 0.0) {
-            a = m;
-            fa = fm;
-        } else {
-            b = m;
-        }
-    }
-    0.5 * (a + b)
 }
 
 #[cfg(test)]

@@ -458,15 +458,6 @@ fn workspace_source_dirs() -> Vec<PathBuf> {
     dirs
 }
 
-/// Files of the library over the house limit, with the line count each may
-/// not exceed: `ik::analytic`'s, which its consolidation splits. A file
-/// leaves this list when it is split, and the list only shrinks.
-const OVERSIZE_FILES: &[(&str, usize)] = &[
-    ("armkit/src/ik/analytic/trig2.rs", 962),
-    ("armkit/src/ik/analytic/subproblems.rs", 884),
-    ("armkit/src/ik/analytic/subproblem6/mod.rs", 842),
-];
-
 /// The line limit of a source file (docs/DEVELOPING.md, "Layout"): 400 for
 /// a command of the CLI, 700 for the rest.
 fn line_limit(relative: &str) -> usize {
@@ -478,8 +469,7 @@ fn line_limit(relative: &str) -> usize {
 }
 
 /// Files a reader can hold: every source file of the workspace within its
-/// line limit, except the listed oversize files, each within its ceiling
-/// (and each still over the limit, so that the list stays true).
+/// line limit.
 #[test]
 fn files_a_reader_can_hold() {
     let crates = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
@@ -493,24 +483,9 @@ fn files_a_reader_can_hold() {
                 .replace('\\', "/");
             let lines = fs::read_to_string(&file).unwrap().lines().count();
             let limit = line_limit(&relative);
-            match OVERSIZE_FILES.iter().find(|(path, _)| *path == relative) {
-                Some((_, ceiling)) if lines > *ceiling => problems.push(format!(
-                    "{relative}: {lines} lines, over its ceiling {ceiling}"
-                )),
-                Some(_) if lines <= limit => problems.push(format!(
-                    "{relative}: {lines} lines, within {limit}: take it off OVERSIZE_FILES"
-                )),
-                Some(_) => {}
-                None if lines > limit => {
-                    problems.push(format!("{relative}: {lines} lines, over {limit}"))
-                }
-                None => {}
+            if lines > limit {
+                problems.push(format!("{relative}: {lines} lines, over {limit}"));
             }
-        }
-    }
-    for (path, _) in OVERSIZE_FILES {
-        if !crates.join(path).exists() {
-            problems.push(format!("{path}: gone, take it off OVERSIZE_FILES"));
         }
     }
     assert!(problems.is_empty(), "{}", problems.join("\n"));

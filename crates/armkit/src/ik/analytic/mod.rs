@@ -71,6 +71,7 @@ mod chain;
 mod class;
 mod elimination;
 mod finish;
+mod geometry;
 mod options;
 mod parallel;
 mod parallel_offset;
@@ -78,16 +79,11 @@ mod polish;
 mod ranges;
 #[cfg(test)]
 mod root_isolation_tests;
-mod roots;
 mod route;
 mod srs;
-pub mod structure;
-pub mod subproblem6;
-pub mod subproblems;
 #[cfg(test)]
 mod test_random;
 mod three_axes;
-mod trig2;
 mod wrist;
 
 pub use class::{ArmClass, ChainEnd, PairKind, Positioning};
@@ -95,6 +91,7 @@ pub use finish::{
     AnalyticSolution, Representatives, Verification, LINE_CHECK_CONFIGURATIONS,
     LINE_CHECK_TOLERANCE,
 };
+pub use geometry::{structure, subproblem6, subproblems};
 pub use options::{AnalyticOptions, Parameter};
 pub use route::{route_class, solver_for, sweep_values, AnalyticRoute, JointNumbering, Redundancy};
 

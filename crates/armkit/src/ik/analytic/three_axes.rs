@@ -19,8 +19,8 @@
 //! in `tan(t / 2)` (module `trig2`), up to 4 solutions. Joint `b` follows
 //! by subproblem 1.
 
+use super::geometry::trig2::{Precision, Trig2, TrigRoots};
 use super::subproblems::{subproblem1_turn, Spoke, Turn};
-use super::trig2::{Precision, Trig2, TrigRoots};
 use crate::math::Vector3;
 use nalgebra::{Matrix2, Vector2};
 

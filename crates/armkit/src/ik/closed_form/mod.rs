@@ -37,7 +37,6 @@
 mod arm4;
 mod pieper;
 
-pub(crate) use arm4::golden_section;
 pub use arm4::{arm4_solutions, Arm4Solver};
 pub use pieper::SphericalWristSolver;
 

@@ -5,9 +5,12 @@
 use super::{
     DET_SAMPLES, HARMONICS, QUIET, QUIET_REFINEMENTS, QUIET_STEPS, ROOT_SAMPLES, ROUNDING, TANGENT,
 };
-use crate::ik::analytic::roots::illinois;
+use crate::math::roots::{regula_falsi, safeguarded_newton, Newton, Tolerance};
 use crate::math::sin_cos;
 use std::f64::consts::TAU;
+
+/// Width (rad) to which the bracket of a root is closed.
+const ROOT_WIDTH: f64 = 1e-15;
 
 /// `a0 + sum_k (a_k cos k t + b_k sin k t)`, `k = 1..8`.
 pub(super) struct Trigonometric {
@@ -193,44 +196,26 @@ impl Trigonometric {
     }
 
     /// The zero in `[t0, t1]`, where the value changes sign: Newton kept
-    /// inside the bracket, bisection when a step leaves it; until a step is
-    /// below 1e-15 rad or a Newton step below 1e-9 rad no longer shrinks
-    /// (the rounding of the samples reached).
-    pub(super) fn bracketed(&self, mut t0: f64, mut t1: f64) -> f64 {
-        let sign0 = self.at(t0)[0].signum();
-        let mut t = 0.5 * (t0 + t1);
-        let mut last_newton = f64::INFINITY;
-        for _ in 0..60 {
+    /// inside the bracket, bisection when a step leaves it
+    /// ([`safeguarded_newton`]); until a step is within [`ROOT_WIDTH`] or a
+    /// Newton step below 1e-9 rad no longer shrinks (the rounding of the
+    /// samples reached). A root on an end of the bracket (an end of the
+    /// isolation's halving can fall on it within the rounding) is reached by
+    /// Newton: only a step beyond an end is replaced by bisection.
+    pub(super) fn bracketed(&self, t0: f64, t1: f64) -> f64 {
+        let newton = Newton {
+            tolerance: Tolerance {
+                absolute: ROOT_WIDTH,
+                relative: 0.0,
+            },
+            steps: 60,
+            stall: 1e-9,
+        };
+        let f = |t: f64| {
             let [value, slope, _] = self.at(t);
-            if value == 0.0 {
-                return t;
-            }
-            if value.signum() == sign0 {
-                t0 = t;
-            } else {
-                t1 = t;
-            }
-            let newton = t - value / slope;
-            // A root on an end of the bracket (an end of the isolation's
-            // halving can fall on it within the rounding) is reached by
-            // Newton: only a step beyond an end is replaced by bisection.
-            let (next, step) = if newton >= t0 && newton <= t1 {
-                let step = (newton - t).abs();
-                if step < 1e-9 && step >= last_newton {
-                    return t;
-                }
-                last_newton = step;
-                (newton, step)
-            } else {
-                let middle = 0.5 * (t0 + t1);
-                (middle, (middle - t).abs())
-            };
-            if step < 1e-15 || t1 - t0 < 1e-15 {
-                return next;
-            }
-            t = next;
-        }
-        t
+            (value, slope)
+        };
+        safeguarded_newton(f, (t0, t1), self.at(t0)[0], 0.5 * (t0 + t1), &newton)
     }
 }
 
@@ -271,7 +256,7 @@ pub(super) fn scan_directly(
         if fa == 0.0 {
             found.push(a);
         } else if fa * fb < 0.0 {
-            found.push(regula_falsi(f, (a, fa), (b, fb)));
+            found.push(regula_falsi(f, (a, fa), (b, fb), ROOT_WIDTH));
         }
         i += 1;
     }
@@ -302,8 +287,8 @@ pub(super) fn dip(
         }
         let bottom = (t, f(t));
         if bottom.1 * m.1 <= 0.0 {
-            found.push(regula_falsi(f, a, bottom));
-            found.push(regula_falsi(f, bottom, b));
+            found.push(regula_falsi(f, a, bottom, ROOT_WIDTH));
+            found.push(regula_falsi(f, bottom, b, ROOT_WIDTH));
             return;
         }
         if bottom.1.abs() >= m.1.abs() {
@@ -317,28 +302,6 @@ pub(super) fn dip(
         let slope = |(t0, f0): (f64, f64), (t1, f1): (f64, f64)| (f1 - f0) / (t1 - t0);
         let curvature = 2.0 * (slope(m, b) - slope(a, m)) / (b.0 - a.0);
         found.push_double(m.0, m.1.abs(), curvature);
-    }
-}
-
-/// The zero of `f` between `a` and `b` where it changes sign: the
-/// Illinois regula falsi ([`illinois`]) to 1e-15 rad, the
-/// end where `|f|` is smaller.
-pub(super) fn regula_falsi(
-    f: &dyn Fn(f64) -> f64,
-    (a, fa): (f64, f64),
-    (b, fb): (f64, f64),
-) -> f64 {
-    let ends = illinois((a, fa, ()), (b, fb, ()), 1e-15, |t, _| Some((f(t), ())));
-    match ends {
-        Some(((ta, fa, ()), (tb, fb, ()))) => {
-            if fa.abs() <= fb.abs() {
-                ta
-            } else {
-                tb
-            }
-        }
-        // (Never: `f` is defined everywhere.)
-        None => 0.5 * (a + b),
     }
 }
 

@@ -43,6 +43,7 @@ use super::{
 use crate::error::{Error, Result};
 use crate::ik::pose_error::orientation_error;
 use crate::kinematics::{forward_kinematics, Data};
+use crate::math::roots::golden_section;
 use crate::math::Pose;
 use crate::model::{DhLink, Model};
 
@@ -319,35 +320,4 @@ impl Arm4Solver {
             .map(|(t, link)| joint_value(link, *t))
             .collect()
     }
-}
-
-/// Golden-section search for a minimum of `f` on `[a, b]` (`iterations`
-/// shrinks of the bracket by 0.618 each; the bracket's midpoint returned).
-pub(crate) fn golden_section(
-    f: &mut impl FnMut(f64) -> Result<f64>,
-    mut a: f64,
-    mut b: f64,
-    iterations: usize,
-) -> Result<f64> {
-    let ratio = 0.5 * (5f64.sqrt() - 1.0);
-    let mut c = b - ratio * (b - a);
-    let mut d = a + ratio * (b - a);
-    let mut fc = f(c)?;
-    let mut fd = f(d)?;
-    for _ in 0..iterations {
-        if fc < fd {
-            b = d;
-            d = c;
-            fd = fc;
-            c = b - ratio * (b - a);
-            fc = f(c)?;
-        } else {
-            a = c;
-            c = d;
-            fc = fd;
-            d = a + ratio * (b - a);
-            fd = f(d)?;
-        }
-    }
-    Ok(0.5 * (a + b))
 }
