@@ -191,6 +191,22 @@ fn gantry9s_box_holds_every_tool_position_and_is_the_rails_plus_the_arm() {
             "{a}: {low:?} {high:?}"
         );
     }
+    // Beyond the radius from the core box is excluded, within it not: along
+    // each axis from the middle of a face, and past a corner.
+    let middle = (lower + upper) * 0.5;
+    for a in 0..3 {
+        for (face, out) in [(upper[a], 1.0), (lower[a], -1.0)] {
+            let mut p = middle;
+            p[a] = face + out * 0.01;
+            assert!(bound.excludes(&p), "{p:?}");
+            p[a] = face - out * 0.01;
+            assert!(!bound.excludes(&p), "{p:?}");
+        }
+    }
+    assert!(bound.excludes(&upper));
+    assert!(bound.excludes(&lower));
+    let corner = upper - Vector3::repeat(arm * (1.0 - 1.0 / 3f64.sqrt()) + 0.01);
+    assert!(!bound.excludes(&corner), "{corner:?}");
     // Far smaller than the cube around the reach ball it replaces.
     let ball = armkit::ik::ReachBound::of_model(&model).radius();
     assert!(side.x * side.y * side.z < 0.1 * (2.0 * ball).powi(3));
