@@ -27,7 +27,6 @@
 
 mod quartic;
 
-pub use self::quartic::TANGENT_TOLERANCE;
 use self::quartic::{discriminant, discriminant_size, real_roots, roots_to, FULL_PRECISION};
 use super::subproblems::Turn;
 use crate::math::{sin_cos, wrap_angle};

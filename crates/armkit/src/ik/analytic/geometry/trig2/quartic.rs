@@ -12,7 +12,7 @@ use crate::math::roots::{safeguarded_newton, Newton, Tolerance};
 /// Near-double roots whose quartic value is above it but which have no
 /// sign change are not solutions; their answers are at most this far from
 /// the equations (forward kinematics then decides).
-pub const TANGENT_TOLERANCE: f64 = 1e-13;
+pub(crate) const TANGENT_TOLERANCE: f64 = 1e-13;
 
 /// The discriminant of the quartic `q[4] u^4 + ... + q[0]`.
 pub(super) fn discriminant(q: &[f64; 5]) -> f64 {
