@@ -69,7 +69,7 @@ const CRITICAL_PRECISION: f64 = 1e-10;
 
 /// [`real_roots`] with the brackets closed to `precision` (relative);
 /// `terms` is the size of the terms `p` was formed from (a trigonometric
-/// polynomial's [`Trig2::terms`], 0 for a plain polynomial): `p`'s
+/// polynomial's [`super::Trig2::terms`], 0 for a plain polynomial): `p`'s
 /// coefficients carry round-off of that size times `(1 + u^2)^2`, which
 /// the tangent test allows for besides `p`'s own terms.
 pub(super) fn roots_to(p: &[f64], precision: f64, terms: f64) -> ([f64; MAX_ROOTS], usize) {
