@@ -36,8 +36,8 @@ pub enum Verification {
     /// pose is the product of exponentials of the model's joint lines (read
     /// at set-up from the model's forward kinematics at zero, prepared in
     /// joint-local frames, and compared at set-up with the model's forward
-    /// kinematics on [`LINE_CHECK_CONFIGURATIONS`] configurations, to
-    /// [`LINE_CHECK_TOLERANCE`]); where they disagree, the model's own
+    /// kinematics on 6 configurations, to 1e-12 m per metre of the arm's
+    /// length scale and 1e-12 rad); where they disagree, the model's own
     /// forward kinematics. Position error `|p - p_target|` (m); orientation
     /// error the angle of `R R_target'` (rad, from the Frobenius norm of
     /// `R - R_target`, accurate near 0). The default.
@@ -59,17 +59,17 @@ fn fit_of(exact: bool) -> Fit {
 /// Largest joint-space gap (rad or m, every joint, angles modulo 2 pi)
 /// between two candidates merged as duplicates (tangent cases of the
 /// subproblems give the same solution twice).
-pub const DUPLICATE_TOLERANCE: f64 = 1e-9;
+pub(crate) const DUPLICATE_TOLERANCE: f64 = 1e-9;
 
 /// How many configurations the joint lines' forward kinematics is compared
 /// on with the model's at set-up (see [`Verification::ForwardKinematics`]).
-pub const LINE_CHECK_CONFIGURATIONS: usize = 6;
+pub(crate) const LINE_CHECK_CONFIGURATIONS: usize = 6;
 
 /// Largest disagreement (m per metre of the arm's length scale, and rad)
 /// between the joint lines' and the model's forward kinematics at set-up
 /// for the lines to be used in the check (two orders below
 /// [`EXACT_TOLERANCE`]).
-pub const LINE_CHECK_TOLERANCE: f64 = 1e-12;
+pub(crate) const LINE_CHECK_TOLERANCE: f64 = 1e-12;
 
 /// One analytic solution.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -87,10 +87,7 @@ mod three_axes;
 mod wrist;
 
 pub use class::{ArmClass, ChainEnd, PairKind, Positioning};
-pub use finish::{
-    AnalyticSolution, Representatives, Verification, LINE_CHECK_CONFIGURATIONS,
-    LINE_CHECK_TOLERANCE,
-};
+pub use finish::{AnalyticSolution, Representatives, Verification};
 pub use geometry::{structure, subproblem6, subproblems};
 pub use options::{AnalyticOptions, Parameter};
 pub use route::{route_class, solver_for, sweep_values, AnalyticRoute, JointNumbering, Redundancy};

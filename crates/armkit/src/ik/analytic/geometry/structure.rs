@@ -10,7 +10,7 @@
 //! Every model armkit builds (DH, modified DH, URDF, built-in) reduces to
 //! this form; the lines are read from forward kinematics at `q = 0`.
 //!
-//! Tolerances ([`GEOMETRY_TOLERANCE`]): two axes are parallel when the sine
+//! Tolerances: two axes are parallel when the sine
 //! of their angle is below 1e-9, they intersect when they are not parallel
 //! and the distance between the lines is below 1e-9 m times
 //! `max(1, reach)`; three axes meet in one point when each pair intersects
@@ -32,7 +32,7 @@ use crate::model::{JointKind, Model};
 /// Sine below which two axes count as parallel, and relative distance
 /// (1e-9 m per metre of reach, at least 1e-9 m) below which two lines count
 /// as intersecting.
-pub const GEOMETRY_TOLERANCE: f64 = 1e-9;
+pub(crate) const GEOMETRY_TOLERANCE: f64 = 1e-9;
 
 /// How a joint moves, for the analytic solvers.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

@@ -37,7 +37,7 @@
 //! local minima. A rank-deficient `M` (one equation a multiple of the
 //! other: a continuum of solutions or none) takes the same path and returns
 //! one pair. Every pair's `exact` flag says whether its residual is within
-//! [`super::subproblems::RELATIVE_TOLERANCE`] of the equations' size.
+//! the subproblems' relative tolerance (1e-9) of the equations' size.
 //!
 //! ```
 //! use armkit::ik::analytic::subproblem6::subproblem6;
@@ -57,8 +57,6 @@
 use super::subproblems::{Turn, RELATIVE_TOLERANCE};
 use super::trig2::{Trig2, TrigRoots};
 use crate::math::Vector3;
-
-pub use super::trig2::TANGENT_TOLERANCE;
 
 /// The term `h . R(k, t) p` as `cos t * cos_part + sin t * sin_part +
 /// constant` (Rodrigues: `cos_part = h . p - (h . k)(k . p)`,

@@ -35,7 +35,7 @@ use crate::math::{sin_cos, Matrix3, Vector3};
 /// lengths involved. (The analytic solvers decide a solution's fit by
 /// forward kinematics in the end; this flag is only the subproblem's own
 /// view.)
-pub const RELATIVE_TOLERANCE: f64 = 1e-9;
+pub(crate) const RELATIVE_TOLERANCE: f64 = 1e-9;
 
 /// Up to two angles (rad) with a flag: exact solutions, or the least-squares
 /// answer of an instance without exact solution.
@@ -98,7 +98,7 @@ fn rotation_sc(k: &Vector3<f64>, s: f64, c: f64) -> Matrix3<f64> {
 /// onto `p2`, `R(k, t) p1 = p2`; when no angle does (different heights along
 /// `k` or different distances from it), the one minimizing `|R(k, t) p1 - p2|`
 /// (the projections onto the plane normal to `k` aligned). Returns the angle
-/// and whether it is exact (to [`RELATIVE_TOLERANCE`]). If either projection
+/// and whether it is exact (to 1e-9 of the lengths involved). If either projection
 /// is zero every angle is as good and 0 is returned.
 pub fn subproblem1(k: &Vector3<f64>, p1: &Vector3<f64>, p2: &Vector3<f64>) -> (f64, bool) {
     let (y, x, exact) = subproblem1_direction(k, p1, p2);

@@ -11,7 +11,7 @@
 //! by the real roots of its derivative (recursively, down to a line): on
 //! each monotone interval with a sign change a safeguarded
 //! Newton-bisection converges to the last bit; a critical point where the
-//! quartic is within [`TANGENT_TOLERANCE`] of zero (of the size of its
+//! quartic is within [`quartic::TANGENT_TOLERANCE`] of zero (of the size of its
 //! terms, or of `f`'s terms times `(1 + u^2)^2`: the round-off of forming
 //! the quartic from `f`) without a sign change beside it counts as a (double) root. Each
 //! `phi` is then polished by Newton on `f` itself (kept while it lowers
@@ -27,7 +27,6 @@
 
 mod quartic;
 
-pub use self::quartic::TANGENT_TOLERANCE;
 use self::quartic::{discriminant, discriminant_size, real_roots, roots_to, FULL_PRECISION};
 use super::subproblems::Turn;
 use crate::math::{sin_cos, wrap_angle};

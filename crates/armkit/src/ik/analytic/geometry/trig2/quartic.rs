@@ -12,7 +12,7 @@ use crate::math::roots::{safeguarded_newton, Newton, Tolerance};
 /// Near-double roots whose quartic value is above it but which have no
 /// sign change are not solutions; their answers are at most this far from
 /// the equations (forward kinematics then decides).
-pub const TANGENT_TOLERANCE: f64 = 1e-13;
+pub(crate) const TANGENT_TOLERANCE: f64 = 1e-13;
 
 /// The discriminant of the quartic `q[4] u^4 + ... + q[0]`.
 pub(super) fn discriminant(q: &[f64; 5]) -> f64 {
@@ -69,7 +69,7 @@ const CRITICAL_PRECISION: f64 = 1e-10;
 
 /// [`real_roots`] with the brackets closed to `precision` (relative);
 /// `terms` is the size of the terms `p` was formed from (a trigonometric
-/// polynomial's [`Trig2::terms`], 0 for a plain polynomial): `p`'s
+/// polynomial's [`super::Trig2::terms`], 0 for a plain polynomial): `p`'s
 /// coefficients carry round-off of that size times `(1 + u^2)^2`, which
 /// the tangent test allows for besides `p`'s own terms.
 pub(super) fn roots_to(p: &[f64], precision: f64, terms: f64) -> ([f64; MAX_ROOTS], usize) {
