@@ -652,7 +652,8 @@ fn the_step_interval_is_the_speed_limit_cut_by_the_distance_to_each_limit() {
 /// otherwise shrinks it by the rounding error only: on a grid of
 /// positions and sample times the input `(limit - q) / T` of the clamp
 /// overshoots the limit in floating point many times, and the guarded
-/// input never does, within 1e-12 of it.
+/// input never does, within 1e-12 of it; one landing on the limit exactly
+/// is left as it is.
 #[test]
 fn the_guard_stops_the_clamps_rounding_overshoot_and_nothing_else() {
     let (lower, upper) = (-0.4, 0.9);
@@ -669,11 +670,12 @@ fn the_guard_stops_the_clamps_rounding_overshoot_and_nothing_else() {
     for (q, u) in unchanged {
         assert_eq!(guard_position(q, u, T, lower, upper), u, "q {q}, u {u}");
     }
-    let (mut over_upper, mut under_lower) = (0, 0);
+    let (mut over_upper, mut under_lower, mut on_limit) = (0, 0, 0);
     for t in [0.05, 0.01, 0.003, 0.1, 0.2, 0.7] {
         for step in 0..2000 {
             let q = lower + (upper - lower) * (step as f64 + 0.5) / 2000.0;
             for (limit, count) in [(upper, &mut over_upper), (lower, &mut under_lower)] {
+                let exact = &mut on_limit;
                 let u = (limit - q) / t;
                 let past = |x: f64| {
                     if limit == upper {
@@ -686,6 +688,11 @@ fn the_guard_stops_the_clamps_rounding_overshoot_and_nothing_else() {
                     *count += 1;
                 }
                 let guarded = guard_position(q, u, t, lower, upper);
+                if q + t * u == limit {
+                    // On the limit exactly is within: left alone.
+                    *exact += 1;
+                    assert_eq!(guarded, u, "q {q}, T {t}");
+                }
                 assert!(!past(q + t * guarded), "q {q}, T {t}: {u} -> {guarded}");
                 assert!(
                     (guarded - u).abs() <= 1e-12 * (1.0 + u.abs()),
