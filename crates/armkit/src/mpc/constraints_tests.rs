@@ -5,8 +5,7 @@
 //! its floating-point guard.
 
 use super::{
-    constrained_steps, constraint_matrix, guard_position, CscMatrix, JointBounds, JointLimits,
-    Model, MpcOptions,
+    constrained_steps, guard_position, CscMatrix, JointBounds, JointLimits, Model, MpcOptions,
 };
 use crate::model::{DhConvention, DhLink};
 
@@ -340,9 +339,9 @@ fn dense(a: &CscMatrix) -> Vec<Vec<f64>> {
     assert_eq!(a.col_ptr[a.cols], a.values.len());
     assert_eq!(a.row_indices.len(), a.values.len());
     let mut out = vec![vec![0.0; a.cols]; a.rows];
-    for c in 0..a.cols {
-        assert!(a.col_ptr[c] <= a.col_ptr[c + 1]);
-        for k in a.col_ptr[c]..a.col_ptr[c + 1] {
+    for (c, span) in a.col_ptr.windows(2).enumerate() {
+        assert!(span[0] <= span[1]);
+        for k in span[0]..span[1] {
             let r = a.row_indices[k];
             assert!(r < a.rows, "row {r} of {} in column {c}", a.rows);
             assert_ne!(a.values[k], 0.0, "a stored zero at row {r}, column {c}");
