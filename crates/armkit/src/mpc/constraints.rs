@@ -236,16 +236,16 @@ pub(crate) fn constraint_matrix(
 
 /// Shrinks `u` so that `q + T u` stays within `[lower, upper]` in floating
 /// point when `q` is (a clamp to `(upper - q) / T` can overshoot by an ulp).
-/// Each pass takes the overshoot over `T` off `u`, and at least one ulp of
-/// `u`: recomputing `(upper - q) / T` minus the overshoot can round back to
-/// the same `u` and never get within.
+/// Each pass takes the overshoot over `T` off `u`, and one or two ulps of
+/// `u` more (`|u| eps`): recomputing `(upper - q) / T` minus the overshoot
+/// can round back to the same `u` and never get within.
 fn guard_position(q: f64, mut u: f64, t: f64, lower: f64, upper: f64) -> f64 {
     for _ in 0..4 {
         let next = q + t * u;
         if q <= upper && next > upper {
-            u = (u - (next - upper) / t).min(u.next_down());
+            u = u - (next - upper) / t - u.abs() * f64::EPSILON;
         } else if q >= lower && next < lower {
-            u = (u + (lower - next) / t).max(u.next_up());
+            u = u + (lower - next) / t + u.abs() * f64::EPSILON;
         } else {
             break;
         }

@@ -5,8 +5,7 @@
 //! its floating-point guard.
 
 use super::{
-    constrained_steps, constraint_matrix, guard_position, CscMatrix, JointBounds, JointLimits,
-    Model, MpcOptions,
+    constrained_steps, guard_position, CscMatrix, JointBounds, JointLimits, Model, MpcOptions,
 };
 use crate::model::{DhConvention, DhLink};
 
@@ -340,9 +339,9 @@ fn dense(a: &CscMatrix) -> Vec<Vec<f64>> {
     assert_eq!(a.col_ptr[a.cols], a.values.len());
     assert_eq!(a.row_indices.len(), a.values.len());
     let mut out = vec![vec![0.0; a.cols]; a.rows];
-    for c in 0..a.cols {
-        assert!(a.col_ptr[c] <= a.col_ptr[c + 1]);
-        for k in a.col_ptr[c]..a.col_ptr[c + 1] {
+    for (c, span) in a.col_ptr.windows(2).enumerate() {
+        assert!(span[0] <= span[1]);
+        for k in span[0]..span[1] {
             let r = a.row_indices[k];
             assert!(r < a.rows, "row {r} of {} in column {c}", a.rows);
             assert_ne!(a.values[k], 0.0, "a stored zero at row {r}, column {c}");
@@ -652,7 +651,8 @@ fn the_step_interval_is_the_speed_limit_cut_by_the_distance_to_each_limit() {
 /// otherwise shrinks it by the rounding error only: on a grid of
 /// positions and sample times the input `(limit - q) / T` of the clamp
 /// overshoots the limit in floating point many times, and the guarded
-/// input never does, within 1e-12 of it.
+/// input never does, within 1e-12 of it; one landing on the limit exactly
+/// is left as it is.
 #[test]
 fn the_guard_stops_the_clamps_rounding_overshoot_and_nothing_else() {
     let (lower, upper) = (-0.4, 0.9);
@@ -669,11 +669,12 @@ fn the_guard_stops_the_clamps_rounding_overshoot_and_nothing_else() {
     for (q, u) in unchanged {
         assert_eq!(guard_position(q, u, T, lower, upper), u, "q {q}, u {u}");
     }
-    let (mut over_upper, mut under_lower) = (0, 0);
+    let (mut over_upper, mut under_lower, mut on_limit) = (0, 0, 0);
     for t in [0.05, 0.01, 0.003, 0.1, 0.2, 0.7] {
         for step in 0..2000 {
             let q = lower + (upper - lower) * (step as f64 + 0.5) / 2000.0;
             for (limit, count) in [(upper, &mut over_upper), (lower, &mut under_lower)] {
+                let exact = &mut on_limit;
                 let u = (limit - q) / t;
                 let past = |x: f64| {
                     if limit == upper {
@@ -686,6 +687,11 @@ fn the_guard_stops_the_clamps_rounding_overshoot_and_nothing_else() {
                     *count += 1;
                 }
                 let guarded = guard_position(q, u, t, lower, upper);
+                if q + t * u == limit {
+                    // On the limit exactly is within: left alone.
+                    *exact += 1;
+                    assert_eq!(guarded, u, "q {q}, T {t}");
+                }
                 assert!(!past(q + t * guarded), "q {q}, T {t}: {u} -> {guarded}");
                 assert!(
                     (guarded - u).abs() <= 1e-12 * (1.0 + u.abs()),

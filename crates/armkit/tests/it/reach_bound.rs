@@ -207,6 +207,35 @@ fn gantry9s_box_holds_every_tool_position_and_is_the_rails_plus_the_arm() {
     assert!(bound.excludes(&lower));
     let corner = upper - Vector3::repeat(arm * (1.0 - 1.0 / 3f64.sqrt()) + 0.01);
     assert!(!bound.excludes(&corner), "{corner:?}");
+    // A rail without limits has no box; a limited one has the rail's
+    // travel plus the arm's reach.
+    use armkit::model::DhLink;
+    let links2 = [
+        DhLink::revolute(0.3, 0.4, 0.0).with_limits(-3.0, 3.0),
+        DhLink::revolute(0.0, 0.3, 0.0).with_limits(-3.0, 3.0),
+    ];
+    let rail = |limits: Option<(f64, f64)>| {
+        let mut links = vec![match limits {
+            Some((lo, hi)) => DhLink::prismatic(0.0, 0.0, 0.0).with_limits(lo, hi),
+            None => DhLink::prismatic(0.0, 0.0, 0.0),
+        }];
+        links.extend(links2);
+        Model::from_dh("rail", armkit::model::DhConvention::Standard, &links).unwrap()
+    };
+    let e = ReachBox::of_model(&rail(None)).unwrap_err().to_string();
+    assert!(e.contains("`rail` has no finite reach bound"), "{e}");
+    let railed = ReachBox::of_model(&rail(Some((-0.5, 2.0)))).unwrap();
+    assert!((railed.radius() - 0.7).abs() < 1e-12, "{}", railed.radius());
+    let extent = railed.upper() - railed.lower();
+    assert!(
+        (extent.z - 2.5 - 1.4).abs() < 1e-12 && (extent.x - 1.4).abs() < 1e-12,
+        "{extent:?}"
+    );
+    assert!(
+        (railed.upper().z - 2.0 - 0.3 - 0.7).abs() < 1e-12,
+        "{:?}",
+        railed.upper()
+    );
     // Far smaller than the cube around the reach ball it replaces.
     let ball = armkit::ik::ReachBound::of_model(&model).radius();
     assert!(side.x * side.y * side.z < 0.1 * (2.0 * ball).powi(3));
