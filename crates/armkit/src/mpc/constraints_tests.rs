@@ -1,8 +1,5 @@
-//! Unit tests of the QP's constraints (`mpc::constraints`), in a file of
-//! their own beside it: the constraint matrix and its bounds at every
-//! predicted sample checked against the plan simulated directly, the
-//! recovery of a joint outside its limits, the applied input's interval and
-//! its floating-point guard.
+//! Unit tests of `mpc::constraints`: the matrix and its bounds at every
+//! predicted sample against the plan simulated directly, and the rest.
 
 use super::{
     constrained_steps, guard_position, CscMatrix, JointBounds, JointLimits, Model, MpcOptions,
@@ -315,8 +312,7 @@ fn arm4() -> Model {
     Model::from_dh("planar4", DhConvention::Standard, &links).unwrap()
 }
 
-/// Horizon pairs `(N, M)`: equal, `N = M + 1`, and `N > M` with `M` from 1
-/// to 5.
+/// Horizon pairs `(N, M)`: equal, `N = M + 1`, `N > M` with `M` 1 to 5.
 const HORIZONS: [(usize, usize); 6] = [(6, 6), (9, 3), (5, 1), (7, 2), (4, 3), (12, 5)];
 
 /// `|actual - expected|` within `1e-10` relative to `expected` (or both
@@ -656,18 +652,15 @@ fn the_step_interval_is_the_speed_limit_cut_by_the_distance_to_each_limit() {
 #[test]
 fn the_guard_stops_the_clamps_rounding_overshoot_and_nothing_else() {
     let (lower, upper) = (-0.4, 0.9);
-    let unchanged = [
-        (0.1, 0.37),
-        (0.1, -0.37),
-        (0.9, 0.0),
-        (-0.4, 0.0),
-        (1.2, 1.0),
-        (1.2, -3.0),
-        (-0.5, -1.0),
-        (-0.5, 3.0),
-    ];
-    for (q, u) in unchanged {
+    let inside = [(0.1, 0.37), (0.1, -0.37), (0.9, 0.0), (-0.4, 0.0)];
+    let outside = [(1.2, 1.0), (1.2, -3.0), (-0.5, -1.0), (-0.5, 3.0)];
+    for (q, u) in inside.into_iter().chain(outside) {
         assert_eq!(guard_position(q, u, T, lower, upper), u, "q {q}, u {u}");
+    }
+    // An input past a limit by more than rounding is brought onto it.
+    for (q, u, limit) in [(0.0, 40.0, upper), (0.3, -20.0, lower)] {
+        let next = q + T * guard_position(q, u, T, lower, upper);
+        assert!((lower..=upper).contains(&next) && (next - limit).abs() < 1e-12);
     }
     let (mut over_upper, mut under_lower, mut on_limit) = (0, 0, 0);
     for t in [0.05, 0.01, 0.003, 0.1, 0.2, 0.7] {
