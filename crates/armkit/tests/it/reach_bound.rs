@@ -203,6 +203,15 @@ fn gantry9s_box_holds_every_tool_position_and_is_the_rails_plus_the_arm() {
             assert!(!bound.excludes(&p), "{p:?}");
         }
     }
+    // The margin: REACH_MARGIN relative plus as much in metres (about
+    // 2.6e-9 m for this arm) is kept, not less.
+    for a in 0..3 {
+        let mut p = middle;
+        p[a] = upper[a] + 1.5e-9;
+        assert!(!bound.excludes(&p), "{p:?}");
+        p[a] = upper[a] + 4e-9;
+        assert!(bound.excludes(&p), "{p:?}");
+    }
     assert!(bound.excludes(&upper));
     assert!(bound.excludes(&lower));
     let corner = upper - Vector3::repeat(arm * (1.0 - 1.0 / 3f64.sqrt()) + 0.01);
@@ -223,6 +232,10 @@ fn gantry9s_box_holds_every_tool_position_and_is_the_rails_plus_the_arm() {
         Model::from_dh("rail", armkit::model::DhConvention::Standard, &links).unwrap()
     };
     let e = ReachBox::of_model(&rail(None)).unwrap_err().to_string();
+    assert!(e.contains("`rail` has no finite reach bound"), "{e}");
+    let e = ReachBox::of_model(&rail(Some((0.0, f64::INFINITY))))
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("`rail` has no finite reach bound"), "{e}");
     let railed = ReachBox::of_model(&rail(Some((-0.5, 2.0)))).unwrap();
     assert!((railed.radius() - 0.7).abs() < 1e-12, "{}", railed.radius());
