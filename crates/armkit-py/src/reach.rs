@@ -63,6 +63,16 @@ pub fn spec_json(
             ))
             .or_raise()
         }
+        Some(_) if robot.model.dof() < 6 => {
+            return Err(Error::invalid_argument(
+                "rolls",
+                format!(
+                    "the robot has {} joints, fewer than the six a tool pose needs, so its map is position-only (a cell is reachable when some configuration puts the tool point in it); leave rolls=None",
+                    robot.model.dof()
+                ),
+            ))
+            .or_raise()
+        }
         Some(rolls) => MapSpec {
             approach_directions: if orientations == 0 {
                 0

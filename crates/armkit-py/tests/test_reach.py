@@ -207,6 +207,8 @@ def test_arm4_map_is_position_only():
     c = m.cell_center(tuple(np.argwhere(m.capability > 0)[0]))
     turned = np.array([[0, -1, 0], [1, 0, 0], [0, 0, 1.0]])
     assert m.query(pose(np.eye(3), c)) == m.query(pose(turned, c))
+    with pytest.raises(ValueError, match="rolls.*4 joints.*position-only"):
+        armkit.reach.build(arm4, resolution=0.1, rolls=2, progress=False)
 
 
 def test_nearest_reachable_cell_and_capability_at(ur5_map):

@@ -71,7 +71,9 @@ def build(
     ``rolls`` roll samples (``rolls=None``: the library's choice: one roll
     per direction where the last joint rolls the tool freely, as on the UR5
     and the Panda (RM4D's reduction), else about equal angular spacing, 200
-    giving 25 x 8). ``builder``: ``"ik"`` (every (cell centre, orientation)
+    giving 25 x 8). An arm with fewer than six joints gets a position-only
+    map (one nominal orientation; ``orientations`` unused, ``rolls`` an
+    error), as ``armkit reach`` does. ``builder``: ``"ik"`` (every (cell centre, orientation)
     pose solved: analytic IK where the arm allows, numeric IK with restarts
     otherwise) or ``"fk-samples"`` (``samples`` configurations drawn within
     the joint limits from ``seed``, each pose binned: faster, misses bins no

@@ -43,13 +43,23 @@ fn truth(solver: &mut AutoSolver, start: &[f64], pose: &Pose) -> bool {
 }
 
 /// The ground truth's solver: 50 seeded restarts, no time budget.
-fn truth_solver(model: &Model) -> AutoSolver {
+pub(super) fn truth_solver(model: &Model) -> AutoSolver {
     let options = IkOptions {
         max_restarts: 50,
         time_budget: None,
         ..IkOptions::default()
     };
     AutoSolver::new(model, options).unwrap()
+}
+
+/// The map of `layout` built as one chunk of every cell.
+pub(super) fn whole_map(model: &Model, layout: &MapLayout) -> ReachMap {
+    let everything = reach::Chunk {
+        cells: 0..layout.cell_count(),
+        samples: 0..0,
+    };
+    let chunk = build_chunk(model, layout, &everything).unwrap();
+    ReachMap::from_chunks(layout.clone(), [chunk]).unwrap()
 }
 
 /// Random poses in the box of `maps[0]` (the maps share a layout's box):
@@ -174,19 +184,7 @@ fn chunked_build_equals_whole_build() {
     let model = robot("ur5");
     let spec = ik_spec(0.2, 12);
     let layout = MapLayout::new(&model, &spec).unwrap();
-    let whole = ReachMap::from_chunks(
-        layout.clone(),
-        [build_chunk(
-            &model,
-            &layout,
-            &reach::Chunk {
-                cells: 0..layout.cell_count(),
-                samples: 0..0,
-            },
-        )
-        .unwrap()],
-    )
-    .unwrap();
+    let whole = whole_map(&model, &layout);
     let mut parts: Vec<_> = reach::chunks(&layout, &spec, 100)
         .iter()
         .map(|c| build_chunk(&model, &layout, c).unwrap())

@@ -2,7 +2,7 @@
 //! distributed refinement gives the local one's map, the refined query
 //! agrees with IK more often, and bad boundaries are errors.
 
-use armkit::ik::{AutoSolver, IkOptions};
+use super::reach::{truth_solver, whole_map};
 use armkit::math::{Pose, Vector3};
 use armkit::reach::{
     self, apply_refinement, refine_chunk, Boundary, Builder, Crossing, MapSpec, ReachMap,
@@ -46,32 +46,12 @@ fn crossings_lie_where_ik_changes_its_answer() {
     let cells = reach::build(&model, &cells_spec(0.2, 12), 2, &mut |_, _| {}).unwrap();
     // The cells' map under the refining spec: rebuild its layout's spec.
     let layout = armkit::reach::MapLayout::new(&model, &spec).unwrap();
-    let map = ReachMap::from_chunks(
-        layout.clone(),
-        [reach::build_chunk(
-            &model,
-            &layout,
-            &reach::Chunk {
-                cells: 0..layout.cell_count(),
-                samples: 0..0,
-            },
-        )
-        .unwrap()],
-    )
-    .unwrap();
+    let map = whole_map(&model, &layout);
     assert_eq!(map.reachable(), cells.reachable());
     let part = refine_chunk(&model, &map, 0..layout.cell_count()).unwrap();
     assert!(part.crossings.len() > 100, "{}", part.crossings.len());
     assert_eq!(part.calls, 6 * part.crossings.len() as u64);
-    let mut solver = AutoSolver::new(
-        &model,
-        IkOptions {
-            max_restarts: 50,
-            time_budget: None,
-            ..IkOptions::default()
-        },
-    )
-    .unwrap();
+    let mut solver = truth_solver(&model);
     let start = model.neutral_configuration();
     let o = layout.orientation_count();
     let (mut right, mut total) = (0, 0);
@@ -138,15 +118,7 @@ fn the_refined_query_agrees_with_ik_more_often() {
     let spec = MapSpec::for_model(&model, 0.1, 50, Builder::InverseKinematics);
     let refined = reach::build(&model, &spec, 2, &mut |_, _| {}).unwrap();
     let cells = unrefined(&refined);
-    let mut solver = AutoSolver::new(
-        &model,
-        IkOptions {
-            max_restarts: 50,
-            time_budget: None,
-            ..IkOptions::default()
-        },
-    )
-    .unwrap();
+    let mut solver = truth_solver(&model);
     let start = model.neutral_configuration();
     let layout = refined.layout();
     let mut rng = ChaCha8Rng::seed_from_u64(77);
