@@ -324,21 +324,30 @@ pub fn from_chunks(
     Ok(Map { map })
 }
 
-/// Calls `progress(done, total)` (a Python callable, if any) from Rust with
-/// the GIL taken; the first error it raises is kept and the later calls
-/// are skipped.
-fn python_progress<'a>(
-    progress: &'a Option<Py<PyAny>>,
-    error: &'a mut Option<PyErr>,
-) -> impl FnMut(usize, usize) + 'a {
-    move |done: usize, total: usize| {
-        if let (Some(callback), None) = (progress, &error) {
-            Python::attach(|py| {
-                if let Err(e) = callback.call1(py, (done, total)) {
-                    *error = Some(e);
-                }
-            });
-        }
+/// Runs `work` with the GIL released, handing it a progress reporter that
+/// calls Python's `progress(done, total)` (with the GIL) until the callback
+/// first raises; that error, if any, is returned instead of the result.
+fn with_progress<T: Send>(
+    py: Python<'_>,
+    progress: &Option<Py<PyAny>>,
+    work: impl FnOnce(&mut dyn FnMut(usize, usize)) -> armkit::Result<T> + Send,
+) -> PyResult<T> {
+    let mut callback_error: Option<PyErr> = None;
+    let result = py.detach(|| {
+        let mut report = |done: usize, total: usize| {
+            if let (Some(callback), None) = (progress, &callback_error) {
+                Python::attach(|py| {
+                    if let Err(e) = callback.call1(py, (done, total)) {
+                        callback_error = Some(e);
+                    }
+                });
+            }
+        };
+        work(&mut report)
+    });
+    match callback_error {
+        Some(error) => Err(error),
+        None => result.or_raise(),
     }
 }
 
@@ -356,17 +365,10 @@ pub fn refine(
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Map> {
     let threads = thread_count(threads)?;
-    let mut callback_error: Option<PyErr> = None;
-    let refined = py.detach(|| {
-        let mut report = python_progress(&progress, &mut callback_error);
-        reach::refine(&robot.model, map.map.clone(), threads, &mut report)
-    });
-    if let Some(error) = callback_error {
-        return Err(error);
-    }
-    Ok(Map {
-        map: refined.or_raise()?,
-    })
+    let map = with_progress(py, &progress, |report| {
+        reach::refine(&robot.model, map.map.clone(), threads, report)
+    })?;
+    Ok(Map { map })
 }
 
 /// Builds the whole map locally on `threads` threads (None: every core),
@@ -382,17 +384,10 @@ pub fn build(
 ) -> PyResult<Map> {
     let spec = parse_spec(spec_json)?;
     let threads = thread_count(threads)?;
-    let mut callback_error: Option<PyErr> = None;
-    let map = py.detach(|| {
-        let mut report = python_progress(&progress, &mut callback_error);
-        reach::build(&robot.model, &spec, threads, &mut report)
-    });
-    if let Some(error) = callback_error {
-        return Err(error);
-    }
-    Ok(Map {
-        map: map.or_raise()?,
-    })
+    let map = with_progress(py, &progress, |report| {
+        reach::build(&robot.model, &spec, threads, report)
+    })?;
+    Ok(Map { map })
 }
 
 #[pymethods]
