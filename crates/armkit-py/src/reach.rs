@@ -28,8 +28,9 @@ type ChunkTuple = (usize, usize, u64, u64);
 
 /// The spec of a map of `robot` as canonical JSON. `rolls=None`: the
 /// library's choice for the robot (`MapSpec::for_model`: one roll per
-/// direction where the last joint rolls the tool freely, else directions
-/// and rolls of about equal angular spacing); else `round(orientations /
+/// direction where a roll of the tool changes no answer or, on an arm
+/// with more than six joints, almost none (`reach::one_roll_suffices`),
+/// else directions and rolls of about equal angular spacing); else `round(orientations /
 /// rolls)` directions (at least 1) times `rolls`. `builder`: `"ik"` or
 /// `"fk-samples"`.
 #[pyfunction]

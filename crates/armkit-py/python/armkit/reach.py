@@ -69,9 +69,10 @@ def build(
     ``resolution``: edge of a cubic cell, m. ``orientations``: tool
     orientations per cell, split into near-uniform approach directions times
     ``rolls`` roll samples (``rolls=None``: the library's choice: one roll
-    per direction where the last joint rolls the tool freely, as on the UR5
-    and the Panda (RM4D's reduction), else about equal angular spacing, 200
-    giving 25 x 8). An arm with fewer than six joints gets a position-only
+    per direction where the last joint rolls the tool freely (the UR5) or,
+    on an arm with more than six joints, over at least 300 degrees (the
+    Panda; RM4D's reduction), else about equal angular spacing, 200 giving
+    25 x 8). An arm with fewer than six joints gets a position-only
     map (one nominal orientation; ``orientations`` unused, ``rolls`` an
     error), as ``armkit reach`` does. ``builder``: ``"ik"`` (every (cell centre, orientation)
     pose solved: analytic IK where the arm allows, numeric IK with restarts

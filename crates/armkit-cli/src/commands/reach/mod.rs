@@ -38,7 +38,8 @@ pub struct ReachArgs {
     #[arg(long, default_value_t = 0.05)]
     pub resolution: f64,
     /// Tool orientations per cell (approach directions x rolls; directions
-    /// only when the last joint turns the tool fully about its z axis);
+    /// only when the last joint turns the tool fully about its z axis, or
+    /// at least 300 degrees on an arm with more than six joints);
     /// default 200. Not for arms with fewer than six joints, whose maps
     /// are position-only.
     #[arg(long)]
