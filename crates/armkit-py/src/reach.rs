@@ -9,7 +9,10 @@
 //! Frames and units (the library's): positions in the world frame, m; cell
 //! `i = (ix * ny + iy) * nz + iz`; bin `cell * orientations + k`.
 
-use armkit::reach::{self, Builder, Chunk, ChunkResult, FloorGrid, MapLayout, MapSpec, ReachMap};
+use armkit::reach::{
+    self, Builder, Chunk, ChunkResult, Crossing, FloorGrid, MapLayout, MapSpec, ReachMap,
+    Refinement,
+};
 use armkit::Error;
 use numpy::ndarray::Ix2;
 use numpy::{PyArray1, PyArray2, PyArrayMethods, PyUntypedArrayMethods};
@@ -255,16 +258,21 @@ fn chunk_dict(py: Python<'_>, result: ChunkResult) -> PyResult<Bound<'_, PyDict>
     Ok(dict)
 }
 
-/// An item of a chunk dict as a Vec (the array's dtype must be `T`).
-fn item_vec<T: numpy::Element + Copy>(dict: &Bound<'_, PyDict>, key: &str) -> PyResult<Vec<T>> {
+/// Item `key` of a dict in argument `argument` (chunk or refinement
+/// results) as a Vec (the array's dtype must be `T`).
+fn item_vec<T: numpy::Element + Copy>(
+    dict: &Bound<'_, PyDict>,
+    argument: &str,
+    key: &str,
+) -> PyResult<Vec<T>> {
     let value = dict.get_item(key)?.ok_or_else(|| {
-        Error::invalid_argument("chunks", format!("a chunk result has no `{key}`")).into_py()
+        Error::invalid_argument(argument, format!("a result has no `{key}`")).into_py()
     })?;
     let array = value.cast::<PyArray1<T>>().map_err(|_| {
         Error::invalid_argument(
-            "chunks",
+            argument,
             format!(
-                "a chunk result's `{key}` is not a 1-D array of {}",
+                "a result's `{key}` is not a 1-D array of {}",
                 std::any::type_name::<T>()
             ),
         )
@@ -292,11 +300,11 @@ fn chunk_from_dict(dict: &Bound<'_, PyDict>) -> PyResult<ChunkResult> {
     Ok(ChunkResult {
         cells: cells.0 as usize..cells.1 as usize,
         samples: samples.0..samples.1,
-        reachable: item_vec(dict, "reachable")?,
-        solutions: item_vec(dict, "solutions")?,
-        manipulability: item_vec(dict, "manipulability")?,
-        hits: item_vec(dict, "hits")?,
-        hit_manipulability: item_vec(dict, "hit_manipulability")?,
+        reachable: item_vec(dict, "chunks", "reachable")?,
+        solutions: item_vec(dict, "chunks", "solutions")?,
+        manipulability: item_vec(dict, "chunks", "manipulability")?,
+        hits: item_vec(dict, "chunks", "hits")?,
+        hit_manipulability: item_vec(dict, "chunks", "hit_manipulability")?,
         calls,
     })
 }
@@ -321,6 +329,86 @@ pub fn from_chunks(
     let layout = layout.layout.clone();
     let map = py
         .detach(|| ReachMap::from_chunks(layout, parts))
+        .or_raise()?;
+    Ok(Map { map })
+}
+
+/// Locates the boundary on the disagreeing edges leaving cells `cells`
+/// (start, end) of `map` of `robot` (GIL released; `reach::refine_chunk`):
+/// a dict of `bin` (uint64, the bin an edge starts from), `axis` (uint8),
+/// `at` (float32, where on the edge, a fraction from the bin's centre),
+/// `cells` (start, end) and `calls`. A step of a distributed refinement.
+#[pyfunction]
+pub fn refine_chunk<'py>(
+    py: Python<'py>,
+    robot: &Robot,
+    map: &Map,
+    cells: (usize, usize),
+) -> PyResult<Bound<'py, PyDict>> {
+    let found = py
+        .detach(|| reach::refine_chunk(&robot.model, &map.map, cells.0..cells.1))
+        .or_raise()?;
+    let dict = PyDict::new(py);
+    dict.set_item("cells", (found.cells.start, found.cells.end))?;
+    let crossings = &found.crossings;
+    let bins: Vec<u64> = crossings.iter().map(|c| c.bin).collect();
+    let axes: Vec<u8> = crossings.iter().map(|c| c.axis).collect();
+    let at: Vec<f32> = crossings.iter().map(|c| c.at).collect();
+    dict.set_item("bin", PyArray1::from_vec(py, bins))?;
+    dict.set_item("axis", PyArray1::from_vec(py, axes))?;
+    dict.set_item("at", PyArray1::from_vec(py, at))?;
+    dict.set_item("calls", found.calls)?;
+    Ok(dict)
+}
+
+/// `map` with the crossings of `parts` (dicts as `refine_chunk` returns,
+/// any order and partition of the cells) applied
+/// (`reach::apply_refinement`): the distributed refinement's merge.
+#[pyfunction]
+pub fn apply_refinement(py: Python<'_>, map: &Map, parts: Vec<Bound<'_, PyDict>>) -> PyResult<Map> {
+    let parts = parts
+        .iter()
+        .map(|dict| {
+            let (bins, axes, at) = (
+                item_vec::<u64>(dict, "parts", "bin")?,
+                item_vec::<u8>(dict, "parts", "axis")?,
+                item_vec::<f32>(dict, "parts", "at")?,
+            );
+            if bins.len() != axes.len() || bins.len() != at.len() {
+                return Err(Error::invalid_argument(
+                    "parts",
+                    format!(
+                        "a refinement part's `bin`, `axis` and `at` differ in length ({}, {}, {})",
+                        bins.len(),
+                        axes.len(),
+                        at.len()
+                    ),
+                )
+                .into_py());
+            }
+            let cells: (usize, usize) = dict
+                .get_item("cells")?
+                .map(|c| c.extract())
+                .transpose()?
+                .unwrap_or((0, 0));
+            let calls: u64 = dict
+                .get_item("calls")?
+                .map(|c| c.extract())
+                .transpose()?
+                .unwrap_or(0);
+            let crossings = (bins.into_iter().zip(axes).zip(at))
+                .map(|((bin, axis), at)| Crossing { bin, axis, at })
+                .collect();
+            Ok(Refinement {
+                cells: cells.0..cells.1,
+                crossings,
+                calls,
+            })
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    let map = map.map.clone();
+    let map = py
+        .detach(|| reach::apply_refinement(map, parts))
         .or_raise()?;
     Ok(Map { map })
 }
@@ -582,6 +670,8 @@ pub fn add_module(parent: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(from_chunks, &m)?)?;
     m.add_function(wrap_pyfunction!(build, &m)?)?;
     m.add_function(wrap_pyfunction!(refine, &m)?)?;
+    m.add_function(wrap_pyfunction!(refine_chunk, &m)?)?;
+    m.add_function(wrap_pyfunction!(apply_refinement, &m)?)?;
     m.add_class::<Layout>()?;
     m.add_class::<Map>()?;
     parent.add_submodule(&m)

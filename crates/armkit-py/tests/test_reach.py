@@ -199,6 +199,28 @@ def test_the_boundary_is_refined_and_signed_as_the_bins(ur5, ur5_map):
         m._inner.with_boundary(-np.abs(bits))
 
 
+def test_the_refinement_in_parts_of_any_size_equals_the_whole(ur5, ur5_map):
+    # The distributed refinement's steps: crossings per range of cells, in
+    # any partition and order, applied to the merged map.
+    r = armkit._armkit._reach
+    m = ur5_map
+    bits = np.where(m.reachable, 64, -64).astype(np.int8).reshape(-1)
+    cells = m._inner.with_boundary(bits)
+    n = m.dims[0] * m.dims[1] * m.dims[2]
+    edges = [0, 1, 7, n // 3, n // 3 + 1, n]
+    parts = [r.refine_chunk(ur5, cells, (a, b)) for a, b in zip(edges, edges[1:])]
+    assert sum(len(p["bin"]) for p in parts) > 0
+    assert all(p["bin"].dtype == np.uint64 and p["at"].dtype == np.float32 for p in parts)
+    refined = r.apply_refinement(cells, parts[::-1])
+    np.testing.assert_array_equal(refined.boundary, m.boundary.reshape(-1))
+    assert refined.calls == cells.calls + sum(p["calls"] for p in parts)
+    torn = dict(parts[-1], axis=parts[-1]["axis"][:-1])
+    with pytest.raises(ValueError, match="differ in length"):
+        r.apply_refinement(cells, [torn])
+    with pytest.raises(ValueError, match="a result has no `at`"):
+        r.apply_refinement(cells, [{k: v for k, v in parts[0].items() if k != "at"}])
+
+
 def test_arm4_map_is_position_only():
     arm4 = armkit.Robot.builtin("arm4")
     m = armkit.reach.build(arm4, resolution=0.1, progress=False)
@@ -335,6 +357,16 @@ def client():
 
 def test_dask_build_equals_local_build(client, ur5, ur5_map):
     m = armkit.reach.build(ur5, client=client, chunk_seconds=0.01, **SMALL)
+    assert_same_map(m, ur5_map)
+
+
+def test_dask_refinement_runs_as_tasks_on_the_workers(client, ur5, ur5_map):
+    from distributed import get_task_stream
+
+    with get_task_stream(client) as stream:
+        m = armkit.reach.build(ur5, client=client, chunk_seconds=0.01, **SMALL)
+    keys = [str(task["key"]) for task in stream.data]
+    assert sum("armkit-reach-refine-" in k for k in keys) >= 2
     assert_same_map(m, ur5_map)
 
 

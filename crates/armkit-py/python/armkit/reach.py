@@ -230,12 +230,58 @@ def _build_on_dask(
             client.submit(_merge, *level[i : i + MERGE_FAN_IN], key=f"armkit-reach-merge-{depth}-{i}-{token}")
             for i in range(0, len(level), MERGE_FAN_IN)
         ]
+    # The boundary's refinement needs the merged bits: tasks on the workers,
+    # each given the merged map (Dask moves it to each worker once) and a
+    # range of cells; their crossings are applied here.
+    refinements = []
+    if _refines(spec_json):
+        spans = _cell_spans(layout.cell_count, CHUNKS_PER_WORKER * workers)
+        refinements = [
+            client.submit(
+                _refine_task, description, spec_json, token, level[0], span, key=f"armkit-reach-refine-{i}-{token}"
+            )
+            for i, span in enumerate(spans)
+        ]
     if report is not None:
-        for done, _ in enumerate(as_completed(futures), start=1):
-            report(done, len(futures))
-    merged = level[0].result()
-    # The boundary's refinement needs the merged bits: here, after the merge.
-    return _reach.refine(robot, _reach.from_chunks(layout, [merged]))
+        tasks = futures + refinements
+        for done, _ in enumerate(as_completed(tasks), start=1):
+            report(done, len(tasks))
+    merged = _reach.from_chunks(layout, [level[0].result()])
+    if not refinements:
+        return merged
+    # Arrays from the wire may sit misaligned in their frames: copied.
+    parts = [
+        {k: np.require(v, requirements="CA") if isinstance(v, np.ndarray) else v for k, v in part.items()}
+        for part in client.gather(refinements)
+    ]
+    return _reach.apply_refinement(merged, parts)
+
+
+def _refines(spec_json: str) -> bool:
+    """True when the spec's boundary is located by bisection."""
+    boundary = json.loads(spec_json).get("boundary", "cells")
+    return isinstance(boundary, dict) and "bisection" in boundary
+
+
+def _cell_spans(cells: int, pieces: int) -> List[Tuple[int, int]]:
+    """``cells`` split into at most ``pieces`` consecutive ranges of nearly
+    equal length, in order."""
+    pieces = max(1, min(cells, pieces))
+    edges = [cells * i // pieces for i in range(pieces + 1)]
+    return [(a, b) for a, b in zip(edges, edges[1:]) if b > a]
+
+
+_WORKER_MAPS: Dict[str, Any] = {}
+
+
+def _refine_task(description: str, spec_json: str, token: str, merged: _Part, span: Tuple[int, int]) -> Dict[str, Any]:
+    """A Dask task: the boundary crossings on the edges leaving cells
+    ``span`` of the merged map (made once per worker and build)."""
+    robot, layout = _worker_layout(description, spec_json)
+    if token not in _WORKER_MAPS:
+        _WORKER_MAPS.clear()
+        _WORKER_MAPS[token] = _reach.from_chunks(layout, [merged])
+    return _reach.refine_chunk(robot, _WORKER_MAPS[token], span)
 
 
 def _zarr_chunk_task(description: str, spec_json: str, slices: Tuple[int, int], path: str) -> int:
