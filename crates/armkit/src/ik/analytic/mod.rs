@@ -186,7 +186,6 @@ impl AnalyticSolver {
         options: AnalyticOptions,
         parameter: Option<Parameter>,
     ) -> Result<AnalyticSolver> {
-        options.validate()?;
         let structure = ArmStructure::of_model(model)?;
         if let Some(Parameter::FixedJoint { .. }) = parameter {
             // The value is checked here: an end joint's plan is built at 0.
