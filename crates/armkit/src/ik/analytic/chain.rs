@@ -34,18 +34,12 @@ impl Chain {
         if structure.dof() != 6 {
             return None;
         }
-        let mut chain = Chain {
-            c: [Vector3::zeros(); 6],
-            h: [Vector3::zeros(); 6],
-            translation: [false; 6],
+        Some(Chain {
+            c: std::array::from_fn(|i| structure.points[i]),
+            h: std::array::from_fn(|i| structure.axes[i]),
+            translation: std::array::from_fn(|i| structure.motions[i] == Motion::Translation),
             home_inverse: structure.home.inverse(),
-        };
-        for i in 0..6 {
-            chain.c[i] = structure.points[i];
-            chain.h[i] = structure.axes[i];
-            chain.translation[i] = structure.motions[i] == Motion::Translation;
-        }
-        Some(chain)
+        })
     }
 }
 

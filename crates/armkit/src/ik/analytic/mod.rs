@@ -515,13 +515,7 @@ fn plan(
             class,
             Plan::ShoulderElbowWrist(SrsChain::new(&arm, shoulder, elbow, wrist)),
         )),
-        (
-            Detected::SphericalWrist { .. }
-            | Detected::ThreeParallel { .. }
-            | Detected::ThreeParallelOffset { .. }
-            | Detected::Pair(_),
-            Some(Parameter::ElbowAngle(_)),
-        ) => Err(unsolvable(
+        (_, Some(Parameter::ElbowAngle(_))) => Err(unsolvable(
             "; an elbow angle needs a spherical-shoulder-elbow-wrist 7-DOF arm",
         )),
         (
@@ -559,9 +553,6 @@ fn plan(
             _,
         ) => Err(unsolvable(
             "; elimination does not apply to it (its determinant vanishes identically at every cut of the loop); use a numeric solver (CLI: --solver lm)",
-        )),
-        (Detected::Unsolvable(_), Some(Parameter::ElbowAngle(_))) => Err(unsolvable(
-            "; an elbow angle needs a spherical-shoulder-elbow-wrist 7-DOF arm",
         )),
         (Detected::Unsolvable(_), _) => Err(unsolvable("")),
     }

@@ -7,8 +7,8 @@
 use super::chain::{Candidates, Chain, MAX_JOINTS};
 use super::class::Positioning;
 use super::subproblems::{
-    atan2, subproblem1_turn, subproblem2_turns, Distance, Sinusoid, SinusoidFamily, Spoke, Turn,
-    RELATIVE_TOLERANCE,
+    atan2, same_circle, subproblem1_turn, subproblem2_turns, Distance, Sinusoid, SinusoidFamily,
+    Spoke, Turn, RELATIVE_TOLERANCE,
 };
 use super::three_axes::ThreeAxes;
 use crate::math::{Pose, Vector3};
@@ -316,15 +316,6 @@ enum WristForm {
 /// angle (rad), two orders below [`super::EXACT_TOLERANCE`]. Axes read from
 /// DH tables or URDF files with right angles meet it to round-off (1e-16).
 pub(crate) const EULER_TOLERANCE: f64 = 1e-12;
-
-/// Subproblem 1's exactness test (see [`super::subproblems::subproblem1`]):
-/// equal heights along the axis and equal distances from it, to the
-/// relative tolerance of the larger length (`scale2` its square).
-#[inline]
-fn same_circle(height1: f64, radius1: f64, height2: f64, radius2: f64, scale2: f64) -> bool {
-    let tolerance = RELATIVE_TOLERANCE * scale2.sqrt().max(f64::MIN_POSITIVE);
-    (height1 - height2).abs() <= tolerance && (radius1 - radius2).abs() <= tolerance
-}
 
 impl WristOrientation {
     pub(crate) fn new(h4: &Vector3<f64>, h5: &Vector3<f64>, h6: &Vector3<f64>) -> WristOrientation {

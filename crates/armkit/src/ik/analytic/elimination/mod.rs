@@ -105,7 +105,7 @@ use self::system::{
     coefficients_along, half_angle_form, householder, monomials_in, normalize, tensor3, NullSpace,
     System,
 };
-use self::trigonometric::Trigonometric;
+use self::trigonometric::{root_table, Trigonometric};
 use super::chain::{Candidates, Chain};
 use super::polish::{chain_pose, settle_root_within, Settle};
 use super::subproblems::{any_normal, rotation, subproblem1};
@@ -236,12 +236,6 @@ impl Elimination {
                 *turn = rotation(&chain.h[joint], -t);
             }
         }
-        let det_table = harmonic_table();
-        let mut root_table = [(1.0, 0.0); ROOT_SAMPLES];
-        for (j, entry) in root_table.iter_mut().enumerate() {
-            let (s, c) = sin_cos(TAU * j as f64 / ROOT_SAMPLES as f64);
-            *entry = (c, s);
-        }
         let mut elimination = Elimination {
             chain: *chain,
             cut,
@@ -249,8 +243,8 @@ impl Elimination {
             scale,
             left: [[0.0; 27]; FUNCTIONS],
             turned_back,
-            det_table,
-            root_table,
+            det_table: harmonic_table(),
+            root_table: root_table(),
         };
         elimination.left = elimination.fit_left();
         elimination.solves_probes().then_some(elimination)

@@ -129,10 +129,22 @@ fn subproblem1_direction(
     let (length1, length2) = (p1.norm_squared(), p2.norm_squared());
     let n1 = (length1 - kp1 * kp1).max(0.0).sqrt();
     let n2 = (length2 - kp2 * kp2).max(0.0).sqrt();
-    let scale = length1.max(length2).sqrt().max(f64::MIN_POSITIVE);
-    let exact = (kp1 - kp2).abs() <= RELATIVE_TOLERANCE * scale
-        && (n1 - n2).abs() <= RELATIVE_TOLERANCE * scale;
-    (y, x, exact)
+    (y, x, same_circle(kp1, n1, kp2, n2, length1.max(length2)))
+}
+
+/// Subproblem 1's exactness test: equal heights along the axis and equal
+/// distances from it, to the relative tolerance of the larger length
+/// (`scale2` its square).
+#[inline]
+pub(crate) fn same_circle(
+    height1: f64,
+    radius1: f64,
+    height2: f64,
+    radius2: f64,
+    scale2: f64,
+) -> bool {
+    let tolerance = RELATIVE_TOLERANCE * scale2.sqrt().max(f64::MIN_POSITIVE);
+    (height1 - height2).abs() <= tolerance && (radius1 - radius2).abs() <= tolerance
 }
 
 /// Subproblem 4: the angles `t` (rad) with `h . R(k, t) p = d` (`k` a unit

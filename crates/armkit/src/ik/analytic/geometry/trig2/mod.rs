@@ -151,11 +151,7 @@ impl Trig2 {
     /// vanishes at all 8 samples (`f = 0`, or degenerate to round-off).
     pub(crate) fn roots(&self) -> TrigRoots {
         let mut out = TrigRoots {
-            items: [Turn {
-                angle: 0.0,
-                sin: 0.0,
-                cos: 1.0,
-            }; 4],
+            items: [Turn::ZERO; 4],
             count: 0,
         };
         let shifted = self.about_largest_sample();
