@@ -491,6 +491,77 @@ fn files_a_reader_can_hold() {
     assert!(problems.is_empty(), "{}", problems.join("\n"));
 }
 
+/// Most production lines `ik::analytic` may hold (docs/DEVELOPING.md,
+/// "Module rules"): code, doc comments and blanks, without its tests.
+const ANALYTIC_IK_LINE_BUDGET: usize = 7_000;
+
+/// The production lines of one source file: every line except those of a
+/// test file (`*tests.rs`, `test_random.rs`) and of its `#[cfg(test)] mod`
+/// items (inline blocks, up to the closing brace at their indentation, and
+/// declarations). The file is rustfmt-formatted, so a block's brace closes
+/// at the indentation it opened.
+fn production_lines(path: &Path, source: &str) -> usize {
+    let name = path.file_name().unwrap().to_string_lossy();
+    if name.ends_with("tests.rs") || name == "test_random.rs" {
+        return 0;
+    }
+    let lines: Vec<&str> = source.lines().collect();
+    let mut count = 0;
+    let mut i = 0;
+    while i < lines.len() {
+        if lines[i].trim() == "#[cfg(test)]" {
+            let mut j = i + 1;
+            while j < lines.len() && lines[j].trim_start().starts_with("#[") {
+                j += 1;
+            }
+            let item = lines.get(j).map_or("", |l| l.trim());
+            let module = ["mod ", "pub mod ", "pub(crate) mod ", "pub(super) mod "]
+                .iter()
+                .any(|p| item.starts_with(p));
+            if module {
+                if !item.ends_with(';') {
+                    let indent = &lines[j][..lines[j].len() - lines[j].trim_start().len()];
+                    let close = format!("{indent}}}");
+                    while j < lines.len() && lines[j] != close {
+                        j += 1;
+                    }
+                }
+                i = j + 1;
+                continue;
+            }
+        }
+        count += 1;
+        i += 1;
+    }
+    count
+}
+
+/// The analytic IK stays within its line budget (production lines, see
+/// [`production_lines`]).
+#[test]
+fn analytic_ik_stays_within_its_line_budget() {
+    let dir = source_dir().join("ik").join("analytic");
+    let mut per_file: Vec<(usize, String)> = rust_files(&dir)
+        .iter()
+        .map(|file| {
+            let source = fs::read_to_string(file).unwrap();
+            let relative = file.strip_prefix(&dir).unwrap().display().to_string();
+            (production_lines(file, &source), relative)
+        })
+        .collect();
+    let total: usize = per_file.iter().map(|(n, _)| n).sum();
+    per_file.sort();
+    assert!(
+        total < ANALYTIC_IK_LINE_BUDGET,
+        "ik/analytic: {total} production lines, budget {ANALYTIC_IK_LINE_BUDGET}: {per_file:?}"
+    );
+    // The counter skips what it should: an inline test module and a
+    // declared one.
+    let sample = "fn a() {}\n#[cfg(test)]\nmod tests {\n    fn b() {\n    }\n}\n#[cfg(test)]\nmod more;\nfn c() {}\n";
+    assert_eq!(production_lines(Path::new("x.rs"), sample), 2);
+    assert_eq!(production_lines(Path::new("x_tests.rs"), sample), 0);
+}
+
 /// Two house rules of docs/DEVELOPING.md ("Layout") that keep a module
 /// readable on its own: a module with files of its own is `foo/mod.rs`
 /// (never `foo.rs` beside `foo/`), and code names what it imports (no

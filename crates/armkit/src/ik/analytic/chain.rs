@@ -8,8 +8,8 @@ use crate::math::{sin_cos_slice, wrap_angle, Matrix3, Pose, Vector3};
 /// Most candidate solutions one solve produces (8 for every class here;
 /// room for tangent duplicates).
 pub(crate) const MAX_CANDIDATES: usize = 32;
-/// Largest difference (rad, every joint, modulo 2 pi) of two roots of one
-/// solve found by different searches that are the same solution.
+/// Largest difference (rad, every joint, modulo 2 pi) of two candidates of
+/// one solve that are the same solution.
 pub(crate) const SAME_SOLUTION: f64 = 1e-9;
 /// Most joints of an arm the analytic solvers handle (7-DOF arms).
 pub(crate) const MAX_JOINTS: usize = 7;
@@ -34,18 +34,12 @@ impl Chain {
         if structure.dof() != 6 {
             return None;
         }
-        let mut chain = Chain {
-            c: [Vector3::zeros(); 6],
-            h: [Vector3::zeros(); 6],
-            translation: [false; 6],
+        Some(Chain {
+            c: std::array::from_fn(|i| structure.points[i]),
+            h: std::array::from_fn(|i| structure.axes[i]),
+            translation: std::array::from_fn(|i| structure.motions[i] == Motion::Translation),
             home_inverse: structure.home.inverse(),
-        };
-        for i in 0..6 {
-            chain.c[i] = structure.points[i];
-            chain.h[i] = structure.axes[i];
-            chain.translation[i] = structure.motions[i] == Motion::Translation;
-        }
-        Some(chain)
+        })
     }
 }
 
@@ -91,7 +85,7 @@ impl Candidates {
 
     /// [`Candidates::push`] unless a candidate held already has each of
     /// the first `values.len()` joints within [`SAME_SOLUTION`] of it
-    /// (modulo 2 pi): how the roots of several searches of one solve are
+    /// (modulo 2 pi): how elimination's candidates from nearby roots are
     /// merged.
     #[inline]
     pub(crate) fn push_distinct(&mut self, values: &[f64], exact: bool) {

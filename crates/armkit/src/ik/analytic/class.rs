@@ -84,7 +84,7 @@ pub enum ArmClass {
         kind: PairKind,
     },
     /// 6 rotation joints without any intersecting or parallel consecutive
-    /// axes: elimination (`SearchPolicy::Elimination`, the default).
+    /// axes: elimination.
     General,
     /// 6 rotation joints with special consecutive axes that fit neither a
     /// closed-form class nor [`ArmClass::OnePair`] (e.g. axes 1-2-3 parallel
@@ -199,14 +199,7 @@ impl ArmClass {
                 | ArmClass::ThreeParallel { .. }
                 | ArmClass::ThreeParallelOffset { .. }
                 | ArmClass::SphericalShoulderElbowWrist
-                | ArmClass::OnePair {
-                    kind: PairKind::Intersecting,
-                    ..
-                }
-                | ArmClass::OnePair {
-                    kind: PairKind::Parallel,
-                    ..
-                }
+                | ArmClass::OnePair { .. }
         )
     }
 }

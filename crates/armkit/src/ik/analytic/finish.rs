@@ -112,14 +112,12 @@ enum PoseCheck {
 
 impl PoseCheck {
     fn of(model: &Model) -> PoseCheck {
-        match ArmStructure::of_model(model) {
-            Ok(structure) => match LineKinematics::new(&structure) {
-                Some(lines) if lines_agree(model, &structure, &lines) => {
-                    PoseCheck::Lines(LineForwardKinematics::new(lines))
-                }
-                _ => PoseCheck::Model(Data::new(model)),
-            },
-            Err(_) => PoseCheck::Model(Data::new(model)),
+        let lines = ArmStructure::of_model(model).ok().and_then(|structure| {
+            LineKinematics::new(&structure).filter(|l| lines_agree(model, &structure, l))
+        });
+        match lines {
+            Some(lines) => PoseCheck::Lines(LineForwardKinematics::new(lines)),
+            None => PoseCheck::Model(Data::new(model)),
         }
     }
 
@@ -506,11 +504,6 @@ pub(crate) fn sort_nearest(solutions: &mut [AnalyticSolution], current: &[f64]) 
             .map(|(a, b)| (a - b) * (a - b))
             .sum::<f64>();
     }
-    sort_by_distance(solutions);
-}
-
-/// Sorts exact first, each group by the stored distances (see [`sort_key`]).
-fn sort_by_distance(solutions: &mut [AnalyticSolution]) {
     solutions.sort_unstable_by_key(sort_key);
 }
 

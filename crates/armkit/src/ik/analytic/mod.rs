@@ -186,7 +186,6 @@ impl AnalyticSolver {
         options: AnalyticOptions,
         parameter: Option<Parameter>,
     ) -> Result<AnalyticSolver> {
-        options.validate()?;
         let structure = ArmStructure::of_model(model)?;
         if let Some(Parameter::FixedJoint { .. }) = parameter {
             // The value is checked here: an end joint's plan is built at 0.
@@ -516,13 +515,7 @@ fn plan(
             class,
             Plan::ShoulderElbowWrist(SrsChain::new(&arm, shoulder, elbow, wrist)),
         )),
-        (
-            Detected::SphericalWrist { .. }
-            | Detected::ThreeParallel { .. }
-            | Detected::ThreeParallelOffset { .. }
-            | Detected::Pair(_),
-            Some(Parameter::ElbowAngle(_)),
-        ) => Err(unsolvable(
+        (_, Some(Parameter::ElbowAngle(_))) => Err(unsolvable(
             "; an elbow angle needs a spherical-shoulder-elbow-wrist 7-DOF arm",
         )),
         (
@@ -560,9 +553,6 @@ fn plan(
             _,
         ) => Err(unsolvable(
             "; elimination does not apply to it (its determinant vanishes identically at every cut of the loop); use a numeric solver (CLI: --solver lm)",
-        )),
-        (Detected::Unsolvable(_), Some(Parameter::ElbowAngle(_))) => Err(unsolvable(
-            "; an elbow angle needs a spherical-shoulder-elbow-wrist 7-DOF arm",
         )),
         (Detected::Unsolvable(_), _) => Err(unsolvable("")),
     }

@@ -3,7 +3,6 @@
 
 use super::RangeFilter;
 use super::{Representatives, Verification};
-use crate::error::Result;
 
 /// Options of an [`AnalyticSolver`](super::AnalyticSolver). Defaults: every representative within
 /// the limits, solutions outside the limits dropped, each solution checked
@@ -25,13 +24,6 @@ impl Default for AnalyticOptions {
             limits: RangeFilter::WithinLimits,
             verification: Verification::ForwardKinematics,
         }
-    }
-}
-
-impl AnalyticOptions {
-    /// Nothing to check (every combination is valid); kept for uniformity.
-    pub fn validate(&self) -> Result<()> {
-        Ok(())
     }
 }
 

@@ -10,7 +10,9 @@
 //! the rest by subproblem 1.
 
 use super::chain::{Candidates, Chain};
-use super::subproblems::{rotation_of, subproblem1_turn, Distance, Sinusoid, Spoke, Turn};
+use super::subproblems::{
+    any_normal, rotation_of, subproblem1_turn, Distance, Sinusoid, Spoke, Turn,
+};
 use crate::math::{Matrix3, Pose, Vector3};
 
 /// The arm-fixed quantities of a three-parallel chain (chain order).
@@ -189,14 +191,4 @@ impl ParallelGroup {
             );
         }
     }
-}
-
-/// A unit vector normal to the unit vector `k`.
-fn any_normal(k: &Vector3<f64>) -> Vector3<f64> {
-    let seed = if k.x.abs() < 0.9 {
-        Vector3::x()
-    } else {
-        Vector3::y()
-    };
-    k.cross(&seed).normalize()
 }

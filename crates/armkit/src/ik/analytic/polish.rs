@@ -41,7 +41,7 @@ pub(crate) fn settle_root_within(
         return None;
     }
     if error > POLISHED {
-        if let Some((p, _)) = polish(chain, home, q, target, settle.iterations) {
+        if let Some(p) = polish(chain, home, q, target, settle.iterations) {
             if pose_gap(chain, home, &p, target) < error {
                 q = p.map(wrap_angle);
             }
@@ -72,15 +72,15 @@ fn pose_gap(chain: &Chain, home: &Pose, q: &[f64; 6], target: &Pose) -> f64 {
 
 /// Levenberg-Marquardt on the chain's 6-D pose error from `q` to
 /// `target` (at most `iterations` steps, stopping below [`CONVERGED`]); the
-/// configuration and its error norm if it ends within 1e-8 (a candidate;
-/// exact only within 1e-10).
-pub(crate) fn polish(
+/// configuration if it ends within 1e-8 (a candidate; exact only within
+/// 1e-10).
+fn polish(
     chain: &Chain,
     home: &Pose,
     mut q: [f64; 6],
     target: &Pose,
     iterations: usize,
-) -> Option<([f64; 6], f64)> {
+) -> Option<[f64; 6]> {
     let (mut error, mut jacobian) = error_and_jacobian(chain, home, &q, target);
     let mut norm = error.norm();
     let mut damping = 1e-6;
@@ -106,7 +106,7 @@ pub(crate) fn polish(
             }
         }
     }
-    (norm <= 1e-8).then_some((q, norm))
+    (norm <= 1e-8).then_some(q)
 }
 
 /// The 6-D error `[p_T - p; w]` at `q` (`w` the vector of the skew part of
@@ -119,41 +119,33 @@ fn error_and_jacobian(
     q: &[f64; 6],
     target: &Pose,
 ) -> (Vector6<f64>, Matrix6<f64>) {
-    {
-        let (c, h) = (&chain.c, &chain.h);
-        let mut pose = Pose::identity();
-        let mut axes = [Vector3::zeros(); 6];
-        let mut points = [Vector3::zeros(); 6];
-        for k in 0..6 {
-            axes[k] = pose.rotation * h[k];
-            points[k] = pose.transform_point(&c[k]);
-            let r = rotation(&h[k], q[k]);
-            pose = pose * Pose::new(r, c[k] - r * c[k]);
-        }
-        let pose = pose * *home;
-        let r = target.rotation * pose.rotation.transpose();
-        let rotation_error = Vector3::new(
-            0.5 * (r[(2, 1)] - r[(1, 2)]),
-            0.5 * (r[(0, 2)] - r[(2, 0)]),
-            0.5 * (r[(1, 0)] - r[(0, 1)]),
-        );
-        let position_error = target.translation - pose.translation;
-        let error = Vector6::new(
-            position_error.x,
-            position_error.y,
-            position_error.z,
-            rotation_error.x,
-            rotation_error.y,
-            rotation_error.z,
-        );
-        let mut jacobian = Matrix6::zeros();
-        for k in 0..6 {
-            let linear = axes[k].cross(&(pose.translation - points[k]));
-            for r in 0..3 {
-                jacobian[(r, k)] = linear[r];
-                jacobian[(r + 3, k)] = axes[k][r];
-            }
-        }
-        (error, jacobian)
+    let (c, h) = (&chain.c, &chain.h);
+    let mut pose = Pose::identity();
+    let mut axes = [Vector3::zeros(); 6];
+    let mut points = [Vector3::zeros(); 6];
+    for k in 0..6 {
+        axes[k] = pose.rotation * h[k];
+        points[k] = pose.transform_point(&c[k]);
+        let r = rotation(&h[k], q[k]);
+        pose = pose * Pose::new(r, c[k] - r * c[k]);
     }
+    let pose = pose * *home;
+    let r = target.rotation * pose.rotation.transpose();
+    let rotation_error = Vector3::new(
+        0.5 * (r[(2, 1)] - r[(1, 2)]),
+        0.5 * (r[(0, 2)] - r[(2, 0)]),
+        0.5 * (r[(1, 0)] - r[(0, 1)]),
+    );
+    let mut error = Vector6::zeros();
+    error
+        .fixed_rows_mut::<3>(0)
+        .copy_from(&(target.translation - pose.translation));
+    error.fixed_rows_mut::<3>(3).copy_from(&rotation_error);
+    let mut jacobian = Matrix6::zeros();
+    for k in 0..6 {
+        let linear = axes[k].cross(&(pose.translation - points[k]));
+        jacobian.fixed_view_mut::<3, 1>(0, k).copy_from(&linear);
+        jacobian.fixed_view_mut::<3, 1>(3, k).copy_from(&axes[k]);
+    }
+    (error, jacobian)
 }

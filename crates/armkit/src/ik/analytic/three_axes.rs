@@ -1,7 +1,7 @@
 //! Three rotation axes (general lines) carrying a point onto a goal, in
 //! closed form: `E_a(t_a) E_b(t_b) E_c(t_c) w = X` (the positioning step of
-//! the one-pair search classes; IK-Geo calls a problem of this kind its
-//! subproblem 5; derived here from the circles, not ported).
+//! a spherical wrist behind three general axes; IK-Geo calls a problem of
+//! this kind its subproblem 5; derived here from the circles, not ported).
 //!
 //! Joint `b` carries `u = E_c w` onto `v = E_a^-1 X` only if both lie at
 //! the same height along `h_b` and at the same distance from `c_b`:
@@ -19,7 +19,7 @@
 //! in `tan(t / 2)` (module `trig2`), up to 4 solutions. Joint `b` follows
 //! by subproblem 1.
 
-use super::geometry::trig2::{Precision, Trig2, TrigRoots};
+use super::geometry::trig2::Trig2;
 use super::subproblems::{subproblem1_turn, Spoke, Turn};
 use crate::math::Vector3;
 use nalgebra::{Matrix2, Vector2};
@@ -46,35 +46,24 @@ pub(crate) struct ThreeAxes {
     /// `A^-1` (when it exists).
     a_inverse: Option<Matrix2<f64>>,
     a0: Vector2<f64>,
-    /// Which side is inverted, fixed at set-up so that the polynomial's
-    /// variable (and the sign of `f'`) is the same for every goal: `A`
-    /// (the polynomial in `t_a`) unless it is poorly conditioned (axes `b`
-    /// and `c` nearly parallel), then `B` (in `t_c`).
+    /// Which side is inverted, fixed at set-up: `A` (the polynomial in
+    /// `t_a`) unless it is poorly conditioned (axes `b` and `c` nearly
+    /// parallel), then `B` (in `t_c`).
     invert_a: bool,
 }
 
-/// Up to four solutions `[t_a, t_b, t_c]`, rad, each with the sign of
-/// `f'` at its root (two solutions that merge as the goal moves have
-/// opposite signs; along a continuous family of solutions it stays: what
-/// keeps the one-pair search on one branch near such a merge).
+/// Up to four solutions `[t_a, t_b, t_c]` as turns (angle, rad, with its
+/// sine and cosine).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Placements {
-    pub items: [[f64; 3]; 4],
-    /// The same angles as turns (sine and cosine).
-    pub turns: [[Turn; 3]; 4],
-    /// The roots of the placing polynomial (a start for the next, nearby
-    /// goal's: [`ThreeAxes::solve_near`]).
-    pub roots: Option<TrigRoots>,
-    /// `f'` at each root (its square vanishes linearly where two merge).
-    pub slope: [f64; 4],
-    pub count: usize,
+    turns: [[Turn; 3]; 4],
+    count: usize,
 }
 
-#[cfg(test)]
 impl Placements {
-    /// The placements found (the first `count` of `items`).
-    pub(crate) fn as_slice(&self) -> &[[f64; 3]] {
-        &self.items[..self.count]
+    /// The placements found (0 to 4).
+    pub(crate) fn as_slice(&self) -> &[[Turn; 3]] {
+        &self.turns[..self.count]
     }
 }
 
@@ -128,61 +117,24 @@ impl ThreeAxes {
     /// Every `[t_a, t_b, t_c]` carrying `w` onto `goal` exactly (none when
     /// out of reach, or for a degenerate pair of circles).
     pub(crate) fn solve(&self, goal: &Vector3<f64>) -> Placements {
-        self.solve_about(&self.c[0], &self.h[0], goal, None, Precision::Full)
-    }
-
-    /// [`ThreeAxes::solve`] for a goal near one solved before, whose
-    /// placing polynomial's roots are `previous` (from its
-    /// [`Placements::roots`]): the roots by Newton from those when the
-    /// root count is certain (`Trig2::roots_near`), else from scratch.
-    #[cfg(test)]
-    pub(crate) fn solve_near(
-        &self,
-        goal: &Vector3<f64>,
-        previous: Option<&TrigRoots>,
-        precision: Precision,
-    ) -> Placements {
-        self.solve_about(&self.c[0], &self.h[0], goal, previous, precision)
-    }
-
-    /// [`ThreeAxes::solve`] with the outermost axis `a` on the line
-    /// `(c_a, h_a)` instead of the one given at set-up (the one-pair search
-    /// with the pair at 3-4 moves that line with the searched joint; lines
-    /// `b`, `c` and the point stay, so does `A`), and the polynomial's
-    /// roots tracked from `previous` as in [`ThreeAxes::solve_near`].
-    pub(crate) fn solve_about(
-        &self,
-        c_a: &Vector3<f64>,
-        h_a: &Vector3<f64>,
-        goal: &Vector3<f64>,
-        previous: Option<&TrigRoots>,
-        precision: Precision,
-    ) -> Placements {
         let mut out = Placements {
-            items: [[0.0; 3]; 4],
-            turns: [[Turn::of_angle(0.0); 3]; 4],
-            roots: None,
-            slope: [0.0; 4],
+            turns: [[Turn::ZERO; 3]; 4],
             count: 0,
         };
-        let Some((k, p, m, v)) = self.system(c_a, h_a, goal) else {
+        let Some((k, p, m, v)) = self.system(goal) else {
             return out;
         };
-        let found = previous
-            .and_then(|previous| k.roots_near_to(previous, precision))
-            .unwrap_or_else(|| k.roots());
-        for root in found.as_slice() {
+        for root in k.roots().as_slice() {
             // The other angle of `|P x + m| = 1`.
             let x = p * Vector2::new(root.cos, root.sin) + m;
             let other = Turn::of_direction(x.y, x.x);
-            let slope = k.value_and_slope(root.sin, root.cos).1;
-            if self.invert_a {
-                self.push(*root, other, slope, &v, &mut out);
+            let (ta, tc) = if self.invert_a {
+                (*root, other)
             } else {
-                self.push(other, *root, slope, &v, &mut out);
-            }
+                (other, *root)
+            };
+            self.push(ta, tc, &v, &mut out);
         }
-        out.roots = Some(found);
         out
     }
 
@@ -192,11 +144,10 @@ impl ThreeAxes {
     #[allow(clippy::type_complexity)]
     fn system(
         &self,
-        c_a: &Vector3<f64>,
-        h_a: &Vector3<f64>,
         goal: &Vector3<f64>,
     ) -> Option<(Trig2, Matrix2<f64>, Vector2<f64>, [Vector3<f64>; 3])> {
         // v(t_a) = c_a + R(h_a, -t_a)(X - c_a) = v0 + v1 cos t_a + v2 sin t_a.
+        let (c_a, h_a) = (&self.c[0], &self.h[0]);
         let to_goal = goal - c_a;
         let par = h_a * h_a.dot(&to_goal);
         let v = [c_a + par, to_goal - par, -h_a.cross(&to_goal)];
@@ -216,15 +167,13 @@ impl ThreeAxes {
     }
 
     /// Completes a solution with joint `b` (subproblem 1).
-    fn push(&self, ta: Turn, tc: Turn, slope: f64, v: &[Vector3<f64>; 3], out: &mut Placements) {
+    fn push(&self, ta: Turn, tc: Turn, v: &[Vector3<f64>; 3], out: &mut Placements) {
         let (c, h) = (&self.c, &self.h);
         let u = c[2] + self.arm_c.turned(&tc);
         let va = v[0] + v[1] * ta.cos + v[2] * ta.sin;
         let (tb, _) = subproblem1_turn(&h[1], &(u - c[1]), &(va - c[1]));
         if out.count < 4 {
-            out.items[out.count] = [ta.angle, tb.angle, tc.angle];
             out.turns[out.count] = [ta, tb, tc];
-            out.slope[out.count] = slope;
             out.count += 1;
         }
     }
@@ -272,46 +221,21 @@ mod tests {
             };
             let goal = apply(&t);
             let solver = ThreeAxes::new(c, h, &w);
-            let found = solver.solve(&goal);
-            // The outermost line given per call: the same answer.
-            let moved = ThreeAxes::new(
-                [point(&mut rng), c[1], c[2]],
-                [unit(&mut rng), h[1], h[2]],
-                &w,
-            );
-            assert_eq!(
-                moved.solve_about(&c[0], &h[0], &goal, None, Precision::Full),
-                found
-            );
-            // Tracked from a nearby goal's roots: the same placements.
-            let nearby = solver.solve(&(goal + point(&mut rng) * 0.01));
-            let tracked = solver.solve_near(&goal, nearby.roots.as_ref(), Precision::Full);
-            // (Near a fold, where two solutions nearly merge, both are
-            // ill-conditioned: the same to the tolerance of the
-            // generating angles below, and both carry `w` onto the goal.)
-            assert_eq!(tracked.count, found.count);
-            for s in found.as_slice() {
-                assert!(
-                    tracked.as_slice().iter().any(|r| r
-                        .iter()
-                        .zip(s)
-                        .all(|(a, b)| crate::math::wrap_angle(a - b).abs() < 1e-7)),
-                    "{found:?} vs {tracked:?}"
-                );
-            }
-            for s in tracked.as_slice() {
-                assert!((apply(s) - goal).norm() < 1e-9, "{s:?}");
-            }
-            for s in found.as_slice() {
+            let found: Vec<[f64; 3]> = solver
+                .solve(&goal)
+                .as_slice()
+                .iter()
+                .map(|t| [t[0].angle, t[1].angle, t[2].angle])
+                .collect();
+            for s in &found {
                 assert!((apply(s) - goal).norm() < 1e-9, "{s:?}");
             }
             assert!(
-                found.as_slice().iter().any(|s| s
+                found.iter().any(|s| s
                     .iter()
                     .zip(&t)
                     .all(|(a, b)| crate::math::wrap_angle(a - b).abs() < 1e-7)),
-                "{t:?} not in {:?}",
-                found.as_slice()
+                "{t:?} not in {found:?}"
             );
         }
     }

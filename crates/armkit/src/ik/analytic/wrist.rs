@@ -7,8 +7,8 @@
 use super::chain::{Candidates, Chain, MAX_JOINTS};
 use super::class::Positioning;
 use super::subproblems::{
-    atan2, subproblem1_turn, subproblem2_turns, Distance, Sinusoid, SinusoidFamily, Spoke, Turn,
-    RELATIVE_TOLERANCE,
+    atan2, same_circle, subproblem1_turn, subproblem2_turns, Distance, Sinusoid, SinusoidFamily,
+    Spoke, Turn, RELATIVE_TOLERANCE,
 };
 use super::three_axes::ThreeAxes;
 use crate::math::{Pose, Vector3};
@@ -86,18 +86,22 @@ impl SphericalWrist {
             return;
         }
         let (h, translation) = (&self.chain.h, &self.chain.translation);
+        // Joints 4-6 behind joints 1-3 at `t`: the wrist's directions
+        // turned back by the rotation joints among them.
+        let orient = |t: &[Turn; 3], exact: bool, out: &mut Candidates| {
+            let (mut v6, mut v5) = (g6, g5);
+            for i in (0..3).filter(|&i| !translation[i]) {
+                v6 = t[i].rotate_back(&h[i], &v6);
+                v5 = t[i].rotate_back(&h[i], &v5);
+            }
+            let q = [t[0].angle, t[1].angle, t[2].angle];
+            self.orientation.solve_directions(&v6, &v5, &q, exact, out);
+        };
         if let Some(three) = &self.three_axes {
             // Three general rotation axes: subproblem 5 in closed form
             // (`three_axes`: a quartic, up to 4 placements).
-            let placed = three.solve(&goal);
-            for t in &placed.turns[..placed.count] {
-                let (mut v6, mut v5) = (g6, g5);
-                for i in 0..3 {
-                    v6 = t[i].rotate_back(&h[i], &v6);
-                    v5 = t[i].rotate_back(&h[i], &v5);
-                }
-                let q = [t[0].angle, t[1].angle, t[2].angle];
-                self.orientation.solve_directions(&v6, &v5, &q, true, out);
+            for t in three.solve(&goal).as_slice() {
+                orient(t, true, out);
             }
             return;
         }
@@ -111,15 +115,7 @@ impl SphericalWrist {
             &mut turns,
         );
         for (t, exact) in &turns[..count] {
-            let (mut v6, mut v5) = (g6, g5);
-            for i in 0..3 {
-                if !translation[i] {
-                    v6 = t[i].rotate_back(&h[i], &v6);
-                    v5 = t[i].rotate_back(&h[i], &v5);
-                }
-            }
-            let q = [t[0].angle, t[1].angle, t[2].angle];
-            self.orientation.solve_directions(&v6, &v5, &q, *exact, out);
+            orient(t, *exact, out);
         }
     }
 
@@ -164,7 +160,8 @@ const MAX_POSITIONS: usize = 4;
 
 /// Joints 1-3 putting the wrist point `w` at `goal` in closed form (every
 /// positioning but `ParallelSecondThird`, solved in
-/// [`SphericalWrist::parallel_second_third`], and `General`, searched), as
+/// [`SphericalWrist::parallel_second_third`], and `General`, in
+/// `three_axes`), as
 /// turns (a sliding joint's `angle` is its slide, m, with the zero turn's
 /// sine and cosine); returns how many.
 fn position(
@@ -223,7 +220,7 @@ fn position(
                 }
             }
         }
-        // Solved by `SphericalWrist::parallel_second_third` and the search.
+        // Solved by `SphericalWrist::parallel_second_third` and `three_axes`.
         Positioning::ParallelSecondThird | Positioning::General => {}
         Positioning::PrismaticThird => {
             // |w + d h3 - o|^2 = |W - o|^2: d^2 + 2 b d + (|w - o|^2 - |W - o|^2) = 0.
@@ -319,15 +316,6 @@ enum WristForm {
 /// angle (rad), two orders below [`super::EXACT_TOLERANCE`]. Axes read from
 /// DH tables or URDF files with right angles meet it to round-off (1e-16).
 pub(crate) const EULER_TOLERANCE: f64 = 1e-12;
-
-/// Subproblem 1's exactness test (see [`super::subproblems::subproblem1`]):
-/// equal heights along the axis and equal distances from it, to the
-/// relative tolerance of the larger length (`scale2` its square).
-#[inline]
-fn same_circle(height1: f64, radius1: f64, height2: f64, radius2: f64, scale2: f64) -> bool {
-    let tolerance = RELATIVE_TOLERANCE * scale2.sqrt().max(f64::MIN_POSITIVE);
-    (height1 - height2).abs() <= tolerance && (radius1 - radius2).abs() <= tolerance
-}
 
 impl WristOrientation {
     pub(crate) fn new(h4: &Vector3<f64>, h5: &Vector3<f64>, h6: &Vector3<f64>) -> WristOrientation {

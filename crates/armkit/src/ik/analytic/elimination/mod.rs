@@ -2,9 +2,9 @@
 //! fourteen equations (1993) in Manocha and Canny's matrix form (1994),
 //! derived here for the product-of-exponentials chain of [`super::structure`]
 //! (the papers write Denavit-Hartenberg frames). One method for every 6R
-//! arm the closed forms do not take: a general arm, one intersecting or one
-//! parallel pair of consecutive axes anywhere, the pairs no 1-D search
-//! handles. No sampling of the pose equations: the solutions' third joint
+//! arm the closed forms do not take: a general arm, or one intersecting or
+//! one parallel pair of consecutive axes anywhere. No sampling of the pose
+//! equations: the solutions' third joint
 //! angles are the real roots of a trigonometric polynomial of degree 8 in
 //! that joint (16 roots, the most a 6R arm has).
 //!
@@ -70,10 +70,10 @@
 //! or intersecting axes), or a spherical wrist, `det Sigma` vanishes
 //! identically. Set-up then tries the reversed chain, then the loop cut
 //! elsewhere ([`Cut::Split`]: joints 1 and 6 on the right side, on either
-//! side of `G`, joint 5 eliminated; special pairs at both ends), and it accepts a
-//! chain only when two of three probe poses (forward kinematics of fixed
-//! generic configurations) give back their configurations; otherwise the arm keeps its
-//! 1-D search.
+//! side of `G`, joint 5 eliminated; special pairs at both ends), and it
+//! accepts a chain only when two of three probe poses (forward kinematics
+//! of fixed generic configurations) give back their configurations;
+//! otherwise the arm has no analytic solver.
 //!
 //! ```
 //! use armkit::ik::analytic::{AnalyticOptions, AnalyticSolver};
@@ -105,10 +105,10 @@ use self::system::{
     coefficients_along, half_angle_form, householder, monomials_in, normalize, tensor3, NullSpace,
     System,
 };
-use self::trigonometric::Trigonometric;
+use self::trigonometric::{root_table, Trigonometric};
 use super::chain::{Candidates, Chain};
 use super::polish::{chain_pose, settle_root_within, Settle};
-use super::subproblems::{rotation, subproblem1};
+use super::subproblems::{any_normal, rotation, subproblem1};
 use crate::math::{sin_cos, wrap_angle, Matrix3, Pose, Vector3};
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
@@ -236,12 +236,6 @@ impl Elimination {
                 *turn = rotation(&chain.h[joint], -t);
             }
         }
-        let det_table = harmonic_table();
-        let mut root_table = [(1.0, 0.0); ROOT_SAMPLES];
-        for (j, entry) in root_table.iter_mut().enumerate() {
-            let (s, c) = sin_cos(TAU * j as f64 / ROOT_SAMPLES as f64);
-            *entry = (c, s);
-        }
         let mut elimination = Elimination {
             chain: *chain,
             cut,
@@ -249,8 +243,8 @@ impl Elimination {
             scale,
             left: [[0.0; 27]; FUNCTIONS],
             turned_back,
-            det_table,
-            root_table,
+            det_table: harmonic_table(),
+            root_table: root_table(),
         };
         elimination.left = elimination.fit_left();
         elimination.solves_probes().then_some(elimination)
@@ -498,11 +492,7 @@ impl Elimination {
             joints.fold(Matrix3::<f64>::identity(), |m, k| m * rotation(&h[k], q[k]))
         };
         let (before, after) = (product(0..e), product(e + 1..6));
-        let normal = h[e].cross(&if h[e].x.abs() < 0.9 {
-            Vector3::x()
-        } else {
-            Vector3::y()
-        });
+        let normal = any_normal(&h[e]);
         let turned = before.transpose() * goal.rotation * after.transpose() * normal;
         subproblem1(&h[e], &normal, &turned).0
     }

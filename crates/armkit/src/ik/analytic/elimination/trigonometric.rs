@@ -319,14 +319,17 @@ pub(crate) fn trigonometric_roots(
     function: &dyn Fn(f64) -> f64,
     roots: &mut [f64],
 ) -> usize {
-    let mut table = [(1.0, 0.0); ROOT_SAMPLES];
-    for (j, entry) in table.iter_mut().enumerate() {
-        let (s, c) = sin_cos(TAU * j as f64 / ROOT_SAMPLES as f64);
-        *entry = (c, s);
-    }
     let mut sines = sines;
     sines[0] = 0.0;
-    Trigonometric { cosines, sines }.roots(&table, function, roots)
+    Trigonometric { cosines, sines }.roots(&root_table(), function, roots)
+}
+
+/// `(cos, sin)(2 pi j / ROOT_SAMPLES)`, `j < ROOT_SAMPLES`.
+pub(super) fn root_table() -> [(f64, f64); ROOT_SAMPLES] {
+    std::array::from_fn(|j| {
+        let (s, c) = sin_cos(TAU * j as f64 / ROOT_SAMPLES as f64);
+        (c, s)
+    })
 }
 
 /// A bound on the `order`-th derivative of `a0 + sum_k (a_k cos k t + b_k

@@ -54,8 +54,8 @@
 //! assert!(pairs.as_slice().iter().any(|(a, b)| (a - t1).abs() < 1e-9 && (b - t2).abs() < 1e-9));
 //! ```
 
-use super::subproblems::{Turn, RELATIVE_TOLERANCE};
-use super::trig2::{Trig2, TrigRoots};
+use super::subproblems::{Solutions, Turn, RELATIVE_TOLERANCE};
+use super::trig2::Trig2;
 use crate::math::Vector3;
 
 /// The term `h . R(k, t) p` as `cos t * cos_part + sin t * sin_part +
@@ -85,21 +85,9 @@ impl Wave {
     }
 }
 
-/// Up to 4 angle pairs `(t1, t2)` (rad), with a flag, from [`subproblem6`].
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct PairsOfFour {
-    values: [(f64, f64); 4],
-    count: usize,
-    /// True when every pair solves the equations (to round-off).
-    pub exact: bool,
-}
-
-impl PairsOfFour {
-    /// The pairs, rad (one to four).
-    pub fn as_slice(&self) -> &[(f64, f64)] {
-        &self.values[..self.count]
-    }
-}
+/// Up to 4 angle pairs `(t1, t2)` (rad) from [`subproblem6`], exact when
+/// every pair solves the equations (to round-off).
+pub type PairsOfFour = Solutions<(f64, f64), 4>;
 
 /// Subproblem 6 (see the module docs): `h[0] . R(k1, t1) p[0] + h[1] .
 /// R(k2, t2) p[1] = d[0]`, `h[2] . R(k1, t1) p[2] + h[3] . R(k2, t2) p[3] =
@@ -116,15 +104,9 @@ pub fn subproblem6(
         second: [Wave::new(&h[1], k2, &p[1]), Wave::new(&h[3], k2, &p[3])],
     };
     let turns = system.solve(d);
-    let mut values = [(0.0, 0.0); 4];
-    for (value, pair) in values.iter_mut().zip(turns.as_slice()) {
-        *value = (pair.first.angle, pair.second.angle);
-    }
-    PairsOfFour {
-        values,
-        count: turns.count,
-        exact: turns.as_slice().iter().all(|p| p.exact),
-    }
+    let exact = turns.as_slice().iter().all(|p| p.exact);
+    let values = turns.items.map(|p| (p.first.angle, p.second.angle));
+    PairsOfFour::new(values, turns.count, exact)
 }
 
 /// One solution of subproblem 6 as [`Turn`]s, with its own flag.
@@ -178,33 +160,6 @@ pub(crate) struct Sinusoids {
 
 type Vector4 = [f64; 4];
 
-/// The points `x = (cos t1, sin t1, cos t2, sin t2)` of every root of `f`
-/// found by [`Sinusoids::exact_solutions_near`] (up to 4): starts for the
-/// next, nearby system's roots.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct CirclePoints {
-    points: [Vector4; 4],
-    count: usize,
-}
-
-impl CirclePoints {
-    /// The points as angles on `space`'s circle (of the component of
-    /// `x - x0` in its null space); `None` when one projects onto the
-    /// centre.
-    fn on(&self, space: &Solutions) -> Option<TrigRoots> {
-        let mut turns = [Turn::of_direction(0.0, 1.0); 4];
-        for (turn, x) in turns.iter_mut().zip(&self.points[..self.count]) {
-            let r = axpy(-1.0, &space.x0, x);
-            let (c, s) = (dot4(&space.null[0], &r), dot4(&space.null[1], &r));
-            if c == 0.0 && s == 0.0 {
-                return None;
-            }
-            *turn = Turn::of_direction(s, c);
-        }
-        Some(TrigRoots::of_turns(&turns[..self.count]))
-    }
-}
-
 fn dot4(a: &Vector4, b: &Vector4) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3]
 }
@@ -242,68 +197,13 @@ impl Sinusoids {
         ([row(0), row(1)], [e(0), e(1)])
     }
 
-    /// The exact solutions only (none when the system has no solution or
-    /// is rank-deficient: no least-squares pair), for callers that discard
-    /// inexact pairs anyway (the parallel-pair search samples it hundreds
-    /// of times per solve: [`Sinusoids::exact_solutions_near`] there).
-    #[cfg_attr(not(test), allow(dead_code))]
-    pub(crate) fn exact_solutions(&self, d: [f64; 2]) -> TurnPairs {
-        self.exact_solutions_near(d, None).0
-    }
-
-    /// [`Sinusoids::exact_solutions`] for a system near one solved before
-    /// (the one before it in a search), whose circle points are `previous`:
-    /// each is projected onto this system's circle (the angle of its
-    /// component across `x0`, whatever the null-space basis) and `f`'s
-    /// roots are tracked from there by `Trig2::roots_near` (accepted only
-    /// when the real-root count is certified and Newton finds that many
-    /// distinct roots), else isolated from scratch as
-    /// [`Sinusoids::exact_solutions`] does. Also returns this system's circle
-    /// points (every root of `f`, exact or not) for the next call; `None`
-    /// when there is no circle (rank-deficient, or `|x0|^2 > 2`).
-    pub(crate) fn exact_solutions_near(
-        &self,
-        d: [f64; 2],
-        previous: Option<&CirclePoints>,
-    ) -> (TurnPairs, Option<CirclePoints>) {
-        let (m, e) = self.linear(d);
-        let scale = equations_scale(&m, &e);
-        let mut out = TurnPairs::EMPTY;
-        let Some(space) = Solutions::of(&m, &e) else {
-            return (out, None);
-        };
-        let rho2 = 2.0 - dot4(&space.x0, &space.x0);
-        if rho2 < -RELATIVE_TOLERANCE {
-            return (out, None);
-        }
-        let rho = rho2.max(0.0).sqrt();
-        let f = space.difference(rho);
-        let roots = previous
-            .and_then(|p| f.roots_near(&p.on(&space)?))
-            .unwrap_or_else(|| f.roots());
-        let mut points = CirclePoints {
-            points: [[0.0; 4]; 4],
-            count: 0,
-        };
-        for root in roots.as_slice() {
-            let x = space.point(rho, root.sin, root.cos);
-            points.points[points.count] = x;
-            points.count += 1;
-            let pair = self.pair_at(&x, &m, &e, scale);
-            if pair.exact {
-                out.push(pair);
-            }
-        }
-        (out, Some(points))
-    }
-
     /// Every solution, or the least-squares pair (see the module docs).
     pub(crate) fn solve(&self, d: [f64; 2]) -> TurnPairs {
         let (m, e) = self.linear(d);
         let scale = equations_scale(&m, &e);
         let mut out = TurnPairs::EMPTY;
-        let Some(space) = Solutions::of(&m, &e) else {
-            let x0 = Solutions::rank_one(&m, &e);
+        let Some(space) = Affine::of(&m, &e) else {
+            let x0 = Affine::rank_one(&m, &e);
             out.push(least_squares(&m, &e, scale, &with_axis_starts(&[x0])));
             return out;
         };
@@ -497,14 +397,14 @@ fn minimize(m: &[Vector4; 2], e: &[f64; 2], mut t1: f64, mut t2: f64) -> (f64, f
 }
 
 /// The solutions of `M x = e`: `x0 + N z`.
-struct Solutions {
+struct Affine {
     x0: Vector4,
     null: [Vector4; 2],
 }
 
-impl Solutions {
+impl Affine {
     /// `None` when `M` is rank-deficient (relative to its larger row).
-    fn of(m: &[Vector4; 2], e: &[f64; 2]) -> Option<Solutions> {
+    fn of(m: &[Vector4; 2], e: &[f64; 2]) -> Option<Affine> {
         let (n0, n1) = (dot4(&m[0], &m[0]).sqrt(), dot4(&m[1], &m[1]).sqrt());
         let (i, j) = if n0 >= n1 { (0, 1) } else { (1, 0) };
         let big = n0.max(n1);
@@ -545,7 +445,7 @@ impl Solutions {
             null[slot] = unit;
             basis[2] = unit;
         }
-        Some(Solutions { x0, null })
+        Some(Affine { x0, null })
     }
 
     /// The least-norm solution of a rank-deficient `M x = e` (its larger

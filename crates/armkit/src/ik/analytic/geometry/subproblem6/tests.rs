@@ -1,7 +1,7 @@
 //! Unit tests of subproblem 6: every root found, tracked roots equal to
 //! the ones from scratch, the least-squares pair of unsolvable instances.
 
-use super::{subproblem6, PairsOfFour, Sinusoids, Wave};
+use super::{subproblem6, PairsOfFour};
 use crate::ik::analytic::geometry::subproblems::rotation;
 use crate::ik::analytic::test_random::{unit, vector};
 use crate::math::Vector3;
@@ -154,63 +154,6 @@ fn every_root_is_found_on_random_instances() {
     }
     // Instances with 2 and with 4 solutions both occur.
     assert!(counts[2] > 0 && counts[4] > 0, "{counts:?}");
-}
-
-/// Along a path of systems (one vector and both right-hand sides
-/// moving in small steps, folds crossed on the way), the solutions
-/// tracked from the previous step's circle points are those found
-/// from scratch, in number and value.
-#[test]
-fn tracked_solutions_are_the_solutions_from_scratch() {
-    let mut rng = ChaCha8Rng::seed_from_u64(63);
-    let mut counts = [0; 5];
-    for _ in 0..20 {
-        let instance = Instance::random(&mut rng);
-        let (t1, t2) = (rng.gen_range(-PI..PI), rng.gen_range(-PI..PI));
-        let d0 = instance.sides(t1, t2);
-        let drift = vector(&mut rng) * 0.02;
-        let move_d = [rng.gen_range(-0.02..0.02), rng.gen_range(-0.02..0.02)];
-        let mut previous = None;
-        for step in 0..100 {
-            let s = step as f64;
-            let h0 = instance.h[0] + drift * s;
-            let system = Sinusoids {
-                first: [
-                    Wave::new(&h0, &instance.k1, &instance.p[0]),
-                    Wave::new(&instance.h[2], &instance.k1, &instance.p[2]),
-                ],
-                second: [
-                    Wave::new(&instance.h[1], &instance.k2, &instance.p[1]),
-                    Wave::new(&instance.h[3], &instance.k2, &instance.p[3]),
-                ],
-            };
-            let d = [d0[0] + move_d[0] * s, d0[1] + move_d[1] * s];
-            let (tracked, points) = system.exact_solutions_near(d, previous.as_ref());
-            let scratch = system.exact_solutions(d);
-            assert_eq!(
-                tracked.as_slice().len(),
-                scratch.as_slice().len(),
-                "step {step}"
-            );
-            for a in tracked.as_slice() {
-                assert!(
-                    scratch.as_slice().iter().any(|b| {
-                        (a.first.angle - b.first.angle).abs() < 1e-9
-                            && (a.second.angle - b.second.angle).abs() < 1e-9
-                    }),
-                    "step {step}: {a:?} not in {:?}",
-                    scratch.as_slice()
-                );
-            }
-            counts[tracked.as_slice().len()] += 1;
-            previous = points;
-        }
-    }
-    // The paths pass through 0, 2 and 4 solutions.
-    assert!(
-        counts[0] > 0 && counts[2] > 0 && counts[4] > 0,
-        "{counts:?}"
-    );
 }
 
 #[test]

@@ -37,38 +37,47 @@ use crate::math::{sin_cos, Matrix3, Vector3};
 /// view.)
 pub(crate) const RELATIVE_TOLERANCE: f64 = 1e-9;
 
-/// Up to two angles (rad) with a flag: exact solutions, or the least-squares
-/// answer of an instance without exact solution.
+/// Up to `N` solutions of a subproblem with a flag: exact solutions, or
+/// the least-squares answer of an instance without exact solution.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Angles {
-    values: [f64; 2],
+pub struct Solutions<T, const N: usize> {
+    items: [T; N],
     count: usize,
-    /// True when the angles solve the equation exactly (to round-off).
+    /// True when the solutions solve the equations exactly (to round-off).
     pub exact: bool,
 }
 
-impl Angles {
-    /// The angles, rad (one or two).
-    pub fn as_slice(&self) -> &[f64] {
-        &self.values[..self.count]
+impl<T: Copy, const N: usize> Solutions<T, N> {
+    pub(crate) fn new(items: [T; N], count: usize, exact: bool) -> Self {
+        Solutions {
+            items,
+            count,
+            exact,
+        }
+    }
+
+    /// The solutions (at most `N`).
+    pub fn as_slice(&self) -> &[T] {
+        &self.items[..self.count]
+    }
+
+    /// Each solution mapped by `f`, with the same flag.
+    pub(crate) fn map<U: Copy>(&self, f: impl FnMut(T) -> U) -> Solutions<U, N> {
+        Solutions::new(self.items.map(f), self.count, self.exact)
     }
 }
 
-/// Up to two angle pairs `(t1, t2)` (rad) with a flag, for subproblem 2.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct AnglePairs {
-    values: [(f64, f64); 2],
-    count: usize,
-    /// True when the pairs solve the equation exactly (to round-off).
-    pub exact: bool,
-}
+/// Up to two angles (rad), for subproblems 3 and 4.
+pub type Angles = Solutions<f64, 2>;
 
-impl AnglePairs {
-    /// The pairs, rad (one or two).
-    pub fn as_slice(&self) -> &[(f64, f64)] {
-        &self.values[..self.count]
-    }
-}
+/// Up to two angle pairs `(t1, t2)` (rad), for subproblem 2.
+pub type AnglePairs = Solutions<(f64, f64), 2>;
+
+/// Up to two [`Turn`]s, as [`Angles`].
+pub(crate) type Turns = Solutions<Turn, 2>;
+
+/// Up to two pairs of [`Turn`]s, as [`AnglePairs`].
+pub(crate) type TurnPairs = Solutions<(Turn, Turn), 2>;
 
 /// The rotation matrix `R(k, t)` about the unit axis `k` by `t` rad (Rodrigues).
 pub fn rotation(k: &Vector3<f64>, t: f64) -> Matrix3<f64> {
@@ -120,10 +129,22 @@ fn subproblem1_direction(
     let (length1, length2) = (p1.norm_squared(), p2.norm_squared());
     let n1 = (length1 - kp1 * kp1).max(0.0).sqrt();
     let n2 = (length2 - kp2 * kp2).max(0.0).sqrt();
-    let scale = length1.max(length2).sqrt().max(f64::MIN_POSITIVE);
-    let exact = (kp1 - kp2).abs() <= RELATIVE_TOLERANCE * scale
-        && (n1 - n2).abs() <= RELATIVE_TOLERANCE * scale;
-    (y, x, exact)
+    (y, x, same_circle(kp1, n1, kp2, n2, length1.max(length2)))
+}
+
+/// Subproblem 1's exactness test: equal heights along the axis and equal
+/// distances from it, to the relative tolerance of the larger length
+/// (`scale2` its square).
+#[inline]
+pub(crate) fn same_circle(
+    height1: f64,
+    radius1: f64,
+    height2: f64,
+    radius2: f64,
+    scale2: f64,
+) -> bool {
+    let tolerance = RELATIVE_TOLERANCE * scale2.sqrt().max(f64::MIN_POSITIVE);
+    (height1 - height2).abs() <= tolerance && (radius1 - radius2).abs() <= tolerance
 }
 
 /// Subproblem 4: the angles `t` (rad) with `h . R(k, t) p = d` (`k` a unit
@@ -134,7 +155,7 @@ fn subproblem1_direction(
 /// (least squares). Degenerate `r = 0` (the left side does not depend on
 /// `t`): angle 0, exact only if `c = 0`.
 pub fn subproblem4(h: &Vector3<f64>, k: &Vector3<f64>, p: &Vector3<f64>, d: f64) -> Angles {
-    Sinusoid::new(h, k, p).solve(d).angles()
+    Sinusoid::new(h, k, p).solve(d).map(|t| t.angle)
 }
 
 /// Subproblem 3: the angles `t` (rad) with `|R(k, t) p1 - p2| = d` (`k` a
@@ -142,7 +163,7 @@ pub fn subproblem4(h: &Vector3<f64>, k: &Vector3<f64>, p: &Vector3<f64>, d: f64)
 /// / 2`, a subproblem 4. When no angle reaches `d` the least-squares answer
 /// is the angle whose distance comes nearest.
 pub fn subproblem3(k: &Vector3<f64>, p1: &Vector3<f64>, p2: &Vector3<f64>, d: f64) -> Angles {
-    Distance::new(k, p1, p2).solve(d).angles()
+    Distance::new(k, p1, p2).solve(d).map(|t| t.angle)
 }
 
 /// `atan2(y, x)` (rad, in `[-pi, pi]`) to about one unit in the last place,
@@ -279,9 +300,7 @@ impl Turn {
             Turn::ZERO
         }
     }
-}
 
-impl Turn {
     /// The turn by `self.angle + other.angle` (sine and cosine by the
     /// addition formulas, no trigonometry).
     #[inline]
@@ -315,30 +334,6 @@ impl Turn {
 #[inline]
 pub(crate) fn rotate_by(k: &Vector3<f64>, v: &Vector3<f64>, s: f64, c: f64) -> Vector3<f64> {
     v * c + k.cross(v) * s + k * ((1.0 - c) * k.dot(v))
-}
-
-/// Up to two [`Turn`]s with a flag, as [`Angles`].
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Turns {
-    items: [Turn; 2],
-    count: usize,
-    /// True when the turns solve the equation exactly (to round-off).
-    pub exact: bool,
-}
-
-impl Turns {
-    /// The turns (one or two).
-    pub(crate) fn as_slice(&self) -> &[Turn] {
-        &self.items[..self.count]
-    }
-
-    fn angles(&self) -> Angles {
-        Angles {
-            values: [self.items[0].angle, self.items[1].angle],
-            count: self.count,
-            exact: self.exact,
-        }
-    }
 }
 
 /// Subproblem 4 with `h`, `k`, `p` fixed (read once, at set-up), for many
@@ -395,11 +390,7 @@ impl Sinusoid {
     pub(crate) fn solve(&self, d: f64) -> Turns {
         let c = d - self.offset;
         let scale = self.size.max(d.abs()).max(f64::MIN_POSITIVE);
-        let one = |turn: Turn, exact: bool| Turns {
-            items: [turn, turn],
-            count: 1,
-            exact,
-        };
+        let one = |turn: Turn, exact: bool| Turns::new([turn, turn], 1, exact);
         if self.r <= RELATIVE_TOLERANCE * scale * 1e-3 {
             return one(Turn::ZERO, c.abs() <= RELATIVE_TOLERANCE * scale);
         }
@@ -429,11 +420,7 @@ impl Sinusoid {
             sin: phi.sin * ratio + sign * phi.cos * sine,
             cos: phi.cos * ratio - sign * phi.sin * sine,
         };
-        Turns {
-            items: [turn(1.0), turn(-1.0)],
-            count: 2,
-            exact: true,
-        }
+        Turns::new([turn(1.0), turn(-1.0)], 2, true)
     }
 }
 
@@ -497,6 +484,16 @@ impl Distance {
     pub(crate) fn solve(&self, d: f64) -> Turns {
         self.sinusoid.solve(self.half_sum - 0.5 * d * d)
     }
+}
+
+/// A unit vector normal to the unit vector `k`.
+pub(crate) fn any_normal(k: &Vector3<f64>) -> Vector3<f64> {
+    let seed = if k.x.abs() < 0.9 {
+        Vector3::x()
+    } else {
+        Vector3::y()
+    };
+    k.cross(&seed).normalize()
 }
 
 /// A fixed vector `p` ready to be turned about a fixed unit axis `k`
@@ -571,29 +568,7 @@ pub fn subproblem2(
     k2: &Vector3<f64>,
     p2: &Vector3<f64>,
 ) -> AnglePairs {
-    let pairs = subproblem2_turns(k1, p1, k2, p2);
-    let angles = |i: usize| (pairs.items[i].0.angle, pairs.items[i].1.angle);
-    AnglePairs {
-        values: [angles(0), angles(1)],
-        count: pairs.count,
-        exact: pairs.exact,
-    }
-}
-
-/// Up to two pairs of [`Turn`]s with a flag, as [`AnglePairs`].
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct TurnPairs {
-    items: [(Turn, Turn); 2],
-    count: usize,
-    /// True when the pairs solve the equation exactly (to round-off).
-    pub exact: bool,
-}
-
-impl TurnPairs {
-    /// The pairs (none, one or two).
-    pub(crate) fn as_slice(&self) -> &[(Turn, Turn)] {
-        &self.items[..self.count]
-    }
+    subproblem2_turns(k1, p1, k2, p2).map(|(t1, t2)| (t1.angle, t2.angle))
 }
 
 /// Subproblem 2 as [`Turn`]s (see [`subproblem2`]).
@@ -607,11 +582,7 @@ pub(crate) fn subproblem2_turns(
     let normal = k1.cross(k2);
     let sine2 = normal.norm_squared();
     if sine2 <= 1e-24 {
-        return TurnPairs {
-            items: [(Turn::ZERO, Turn::ZERO); 2],
-            count: 0,
-            exact: false,
-        };
+        return TurnPairs::new([(Turn::ZERO, Turn::ZERO); 2], 0, false);
     }
     let h1 = k1.dot(p1);
     let h2 = k2.dot(p2);
@@ -637,20 +608,13 @@ pub(crate) fn subproblem2_turns(
             base
         };
         let (values, _) = pair(&x);
-        return TurnPairs {
-            items: [values, values],
-            count: 1,
-            exact: false,
-        };
+        return TurnPairs::new([values, values], 1, false);
     }
     let c = c2.max(0.0).sqrt();
     let (first, e1) = pair(&(base + normal * c));
     let (second, e2) = pair(&(base - normal * c));
-    TurnPairs {
-        items: [first, second],
-        count: if c == 0.0 { 1 } else { 2 },
-        exact: same_radius && e1 && e2,
-    }
+    let count = if c == 0.0 { 1 } else { 2 };
+    TurnPairs::new([first, second], count, same_radius && e1 && e2)
 }
 
 #[cfg(test)]

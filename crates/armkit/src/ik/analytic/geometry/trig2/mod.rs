@@ -27,25 +27,12 @@
 
 mod quartic;
 
-use self::quartic::{discriminant, discriminant_size, real_roots, roots_to, FULL_PRECISION};
+use self::quartic::{real_roots, roots_to, FULL_PRECISION};
 use super::subproblems::Turn;
 use crate::math::{sin_cos, wrap_angle};
 
 /// Angle (rad) below which two polished roots are one.
 const SAME_ROOT: f64 = 1e-12;
-
-/// Angle (rad) two roots tracked by [`Trig2::roots_near`] must be apart.
-const DISTINCT: f64 = 1e-9;
-/// Newton step (rad) after which a tracked root counts as converged.
-const CONVERGED: f64 = 1e-13;
-
-/// How far [`Trig2::roots_near`]'s Newton iterations go.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Precision {
-    /// Until a step is below 1e-13 rad (the error after it is of its
-    /// square): roots to the last bits.
-    Full,
-}
 
 /// A trigonometric polynomial of degree 2 in an angle `phi` (rad):
 /// `c2 cos 2phi + s2 sin 2phi + c1 cos phi + s1 sin phi + c0`.
@@ -70,18 +57,6 @@ impl TrigRoots {
     /// The roots found (0 to 4).
     pub(crate) fn as_slice(&self) -> &[Turn] {
         &self.items[..self.count]
-    }
-
-    /// Up to 4 given turns (the rest dropped) as a set of roots: starts
-    /// for [`Trig2::roots_near`] read from elsewhere (e.g. the previous
-    /// solutions projected onto the current variable).
-    pub(crate) fn of_turns(turns: &[Turn]) -> TrigRoots {
-        let mut out = TrigRoots {
-            items: [Turn::of_angle(0.0); 4],
-            count: turns.len().min(4),
-        };
-        out.items[..out.count].copy_from_slice(&turns[..out.count]);
-        out
     }
 }
 
@@ -176,11 +151,7 @@ impl Trig2 {
     /// vanishes at all 8 samples (`f = 0`, or degenerate to round-off).
     pub(crate) fn roots(&self) -> TrigRoots {
         let mut out = TrigRoots {
-            items: [Turn {
-                angle: 0.0,
-                sin: 0.0,
-                cos: 1.0,
-            }; 4],
+            items: [Turn::ZERO; 4],
             count: 0,
         };
         let shifted = self.about_largest_sample();
@@ -203,204 +174,6 @@ impl Trig2 {
             out.count += 1;
         }
         out
-    }
-
-    /// Every real root, given the roots of a nearby polynomial (the one
-    /// before it in a search: same variable, coefficients moved a little):
-    /// Newton on `f` from each of them. Accepted only when certain: the
-    /// number of real roots, read from the quartic's discriminant and its
-    /// two companions `P`, `D` (shift 0), each clear of zero by 4 times a
-    /// bound on its round-off, equals the number given, and Newton
-    /// from them converges to that many distinct roots (a complete set, in
-    /// whatever order). `None` otherwise (a fold between the two: roots
-    /// appear or merge), where [`Trig2::roots`] is the answer.
-    pub(crate) fn roots_near(&self, previous: &TrigRoots) -> Option<TrigRoots> {
-        self.roots_near_to(previous, Precision::Full)
-    }
-
-    /// [`Trig2::roots_near`] with Newton stopped at `precision`.
-    pub(crate) fn roots_near_to(
-        &self,
-        previous: &TrigRoots,
-        precision: Precision,
-    ) -> Option<TrigRoots> {
-        if self.real_root_count()? != previous.count {
-            return None;
-        }
-        let mut out = TrigRoots {
-            items: [Turn::of_angle(0.0); 4],
-            count: 0,
-        };
-        for start in previous.as_slice() {
-            let root = self.newton_from(start, out.as_slice(), precision)?;
-            // The chord between two unit directions, about their angle.
-            if out
-                .as_slice()
-                .iter()
-                .any(|r| (r.sin - root.sin).abs() + (r.cos - root.cos).abs() < DISTINCT)
-            {
-                return None;
-            }
-            out.items[out.count] = root;
-            out.count += 1;
-        }
-        Some(out)
-    }
-
-    /// A shift putting `u = infinity` at the quarter turn of largest `|f|`
-    /// (the quartic's leading coefficient): a quartic about as well scaled
-    /// as [`Trig2::roots`]' at a fraction of the cost.
-    pub(crate) fn quarter_shift(&self) -> f64 {
-        let values = [
-            self.c0 + self.c1 + self.c2,
-            self.c0 + self.s1 - self.c2,
-            self.c0 - self.c1 + self.c2,
-            self.c0 - self.s1 - self.c2,
-        ];
-        let mut far = 0;
-        for (i, v) in values.iter().enumerate() {
-            if v.abs() > values[far].abs() {
-                far = i;
-            }
-        }
-        far as f64 * std::f64::consts::FRAC_PI_2 - std::f64::consts::PI
-    }
-
-    /// The discriminant of the quartic in `u = tan((phi - shift) / 2)`:
-    /// negative with 2 real roots, positive with 0 or 4, zero at a double
-    /// root (where two roots merge as the coefficients move, it changes
-    /// sign).
-    #[cfg(test)]
-    pub(crate) fn discriminant_about(&self, shift: f64) -> f64 {
-        discriminant(&self.shifted(shift).quartic())
-    }
-
-    /// The number of real roots (0, 2 or 4) when the quartic in
-    /// `tan(phi / 2)` has a clear leading coefficient, discriminant and
-    /// (for a positive discriminant) `P` and `D`; `None` near a multiple
-    /// root or a root near `phi = pi`.
-    fn real_root_count(&self) -> Option<usize> {
-        let q = self.shifted(self.quarter_shift()).quartic();
-        // Each coefficient is off by up to a few ulps of `f`'s terms (the
-        // sums forming it): `delta`. A polynomial in the coefficients is
-        // then off by at most its value at `|coefficients| + delta` minus
-        // its value at `|coefficients|` (first order), plus its own
-        // round-off: the margin each quantity must clear.
-        let delta = 8.0 * f64::EPSILON * self.terms();
-        let [e, d, c, b, a] = q;
-        if a.abs() <= 2.0 * delta {
-            return None;
-        }
-        let clear = |value: f64, exact: f64, widened: f64| {
-            let error = (widened - exact) + 32.0 * f64::EPSILON * exact;
-            value.abs() > 4.0 * error
-        };
-        let abs = q.map(f64::abs);
-        let wide = abs.map(|x| x + delta);
-        let discriminant = discriminant(&q);
-        if !clear(
-            discriminant,
-            discriminant_size(&abs),
-            discriminant_size(&wide),
-        ) {
-            return None;
-        }
-        if discriminant < 0.0 {
-            return Some(2);
-        }
-        let p = 8.0 * a * c - 3.0 * b * b;
-        let p_size = |[_, _, c, b, a]: [f64; 5]| 8.0 * a * c + 3.0 * b * b;
-        let dd = 64.0 * a * a * a * e - 16.0 * a * a * c * c + 16.0 * a * b * b * c
-            - 16.0 * a * a * b * d
-            - 3.0 * b * b * b * b;
-        let d_size = |[e, d, c, b, a]: [f64; 5]| {
-            64.0 * a * a * a * e
-                + 16.0 * a * a * c * c
-                + 16.0 * a * b * b * c
-                + 16.0 * a * a * b * d
-                + 3.0 * b * b * b * b
-        };
-        let p_clear = clear(p, p_size(abs), p_size(wide));
-        let d_clear = clear(dd, d_size(abs), d_size(wide));
-        if p_clear && d_clear && p < 0.0 && dd < 0.0 {
-            Some(4)
-        } else if (p_clear && p > 0.0) || (d_clear && dd > 0.0) {
-            Some(0)
-        } else {
-            None
-        }
-    }
-
-    /// Newton on `f`, deflated by the roots `found` already (so that it
-    /// does not converge to one of them again), from `start` to a root (until a step is below
-    /// [`CONVERGED`]: the error after it is of its square), the sine and cosine
-    /// carried along (a small step's by its Taylor series); `None` when it
-    /// does not converge within 10 steps or wanders off by more than 1
-    /// rad.
-    fn newton_from(&self, start: &Turn, found: &[Turn], precision: Precision) -> Option<Turn> {
-        let (mut s, mut c) = (start.sin, start.cos);
-        let mut moved = 0.0_f64;
-        for _ in 0..10 {
-            let (value, slope) = self.value_and_slope(s, c);
-            // Maehly's deflation: Newton on f / prod sin((phi - r) / 2)
-            // over the roots `r` found, whose log-derivative is
-            // f' / f - sum cot((phi - r) / 2) / 2.
-            let mut correction = 0.0;
-            for r in found {
-                let (sin_x, cos_x) = (s * r.cos - c * r.sin, c * r.cos + s * r.sin);
-                if sin_x == 0.0 {
-                    return None;
-                }
-                correction += 0.5 * (1.0 + cos_x) / sin_x;
-            }
-            let deflated = slope - value * correction;
-            if deflated == 0.0 {
-                return None;
-            }
-            let step = -value / deflated;
-            if step.is_nan() || step.abs() >= 1.0 {
-                return None;
-            }
-            let (ds, dc) = if step.abs() < 1e-3 {
-                let q = step * step;
-                (
-                    step * (1.0 - q / 6.0 * (1.0 - q / 20.0)),
-                    1.0 - q / 2.0 * (1.0 - q / 12.0 * (1.0 - q / 30.0)),
-                )
-            } else {
-                sin_cos(step)
-            };
-            (s, c) = (s * dc + c * ds, c * dc - s * ds);
-            moved += step;
-            let converged = match precision {
-                Precision::Full => step.abs() < CONVERGED,
-            };
-            if converged {
-                // A root of f itself (not a point the deflation stalls at
-                // beside a root found before: there the plain Newton step
-                // differs from the deflated one), not far from the start.
-                let plain = (value / slope).abs();
-                let bound = match precision {
-                    Precision::Full => CONVERGED,
-                };
-                if plain.is_nan() || plain >= bound || moved.abs() > 1.0 {
-                    return None;
-                }
-                // `start.angle` is in [-pi, pi] and `|moved| <= 1`.
-                let mut angle = start.angle + moved;
-                if angle > std::f64::consts::PI {
-                    angle -= std::f64::consts::TAU;
-                } else if angle <= -std::f64::consts::PI {
-                    angle += std::f64::consts::TAU;
-                }
-                return Some(Turn {
-                    angle,
-                    sin: s,
-                    cos: c,
-                });
-            }
-        }
-        None
     }
 
     /// The angles (rad, up to 3) of the critical points of the quartic in

@@ -2,8 +2,7 @@
 //! becomes in `u = tan(psi / 2)`): their real roots, isolated by the real
 //! roots of the derivative (recursively, down to a line) and closed by
 //! Newton safeguarded by bisection ([`safeguarded_newton`]); tangent points
-//! within [`TANGENT_TOLERANCE`] counted as double roots; the quartic's
-//! discriminant and the size of its terms.
+//! within [`TANGENT_TOLERANCE`] counted as double roots.
 
 use crate::math::roots::{safeguarded_newton, Newton, Tolerance};
 
@@ -13,42 +12,6 @@ use crate::math::roots::{safeguarded_newton, Newton, Tolerance};
 /// sign change are not solutions; their answers are at most this far from
 /// the equations (forward kinematics then decides).
 pub(crate) const TANGENT_TOLERANCE: f64 = 1e-13;
-
-/// The discriminant of the quartic `q[4] u^4 + ... + q[0]`.
-pub(super) fn discriminant(q: &[f64; 5]) -> f64 {
-    discriminant_terms(q, 1.0)
-}
-
-/// The sum of the magnitudes of the discriminant's terms for nonnegative
-/// coefficients `q`.
-pub(super) fn discriminant_size(q: &[f64; 5]) -> f64 {
-    discriminant_terms(q, -1.0)
-}
-
-/// The discriminant's 16 terms summed, the negative ones multiplied by
-/// `negative` (1: the discriminant; -1 with `q >= 0`: its terms' size).
-#[inline]
-fn discriminant_terms(q: &[f64; 5], negative: f64) -> f64 {
-    let [e, d, c, b, a] = *q;
-    let (aa, bb, cc, dd, ee) = (a * a, b * b, c * c, d * d, e * e);
-    let positive = 256.0 * aa * a * ee * e
-        + 144.0 * aa * c * dd * e
-        + 144.0 * a * bb * c * ee
-        + 18.0 * a * b * c * dd * d
-        + 16.0 * a * cc * cc * e
-        + 18.0 * bb * b * c * d * e
-        + bb * cc * dd;
-    let negatives = 192.0 * aa * b * d * ee
-        + 128.0 * aa * cc * ee
-        + 27.0 * aa * dd * dd
-        + 6.0 * a * bb * dd * e
-        + 80.0 * a * b * cc * d * e
-        + 4.0 * a * cc * c * dd
-        + 27.0 * bb * bb * ee
-        + 4.0 * bb * b * dd * d
-        + 4.0 * bb * cc * c * e;
-    positive - negative * negatives
-}
 
 /// Most real roots [`real_roots`] returns (a quartic's 4, with room for
 /// tangent points beside them).
