@@ -8,6 +8,7 @@
 #                                        against main (cargo mutants --in-diff)
 #   scripts/mutants.sh --base BRANCH     ... against BRANCH
 #   scripts/mutants.sh --file PATH       every mutant of one core file
+#                                        (repeat --file for several files)
 #   scripts/mutants.sh --tests FILTER    run only the tests whose names
 #                                        contain FILTER (e.g. `mpc::`; the
 #                                        library's unit tests and the
@@ -25,14 +26,14 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 base=main
-file=""
+files=()
 tests=""
 lib_only=""
 extra=()
 while (($#)); do
     case "$1" in
         --base) base="$2"; shift 2 ;;
-        --file) file="$2"; shift 2 ;;
+        --file) files+=("$2"); shift 2 ;;
         --tests) tests="$2"; shift 2 ;;
         --lib) lib_only=1; shift ;;
         *) extra+=("$1"); shift ;;
@@ -52,13 +53,17 @@ fi
 mkdir -p target
 scoped=target/mutants-scoped.toml
 cp .cargo/mutants.toml "$scoped"
-if [[ -n "$file" ]]; then
-    if [[ ! -f "$file" ]]; then
-        echo "--file: no such file: $file" >&2
-        exit 2
-    fi
+if ((${#files[@]})); then
+    globs=""
+    for file in "${files[@]}"; do
+        if [[ ! -f "$file" ]]; then
+            echo "--file: no such file: $file" >&2
+            exit 2
+        fi
+        globs+="${globs:+, }\"$file\""
+    done
     {
-        echo "examine_globs = [\"$file\"]"
+        echo "examine_globs = [$globs]"
         sed '/^examine_globs = \[/,/^\]/d' .cargo/mutants.toml
     } >"$scoped"
 fi
@@ -76,7 +81,7 @@ fi
 # multiple of the baseline's build time is no bound (the baseline may find
 # the build fresh).
 args=(--config "$scoped" --build-timeout 1200)
-if [[ -z "$file" ]]; then
+if ((${#files[@]} == 0)); then
     if ! git rev-parse --verify --quiet "$base" >/dev/null; then
         echo "--base: no such branch or commit: $base" >&2
         exit 2

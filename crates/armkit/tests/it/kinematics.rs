@@ -136,6 +136,48 @@ fn wrong_size_non_finite_and_foreign_data_are_errors() {
     assert!(err.to_string().contains("another model"), "{err}");
 }
 
+/// A workspace is tied to its model's independent joints and to its chain:
+/// one made for a model that shares only one of the two counts is still
+/// foreign. The mimic finger has 7 independent joints on a chain of 9; the
+/// Panda has 7 on 7; the finger with its mimic tags removed has 9 on 9.
+#[test]
+fn data_sharing_only_the_dof_or_only_the_chain_length_is_foreign() {
+    use armkit::urdf::{load, parse_str, ChainSelection};
+    let finger_chain = ChainSelection::between("base", "fingertip");
+    let finger = load(data_path("urdf/mimicbot.urdf"), &finger_chain).unwrap();
+    let text = std::fs::read_to_string(data_path("urdf/mimicbot.urdf")).unwrap();
+    let stripped: String = text
+        .lines()
+        .filter(|line| !line.trim_start().starts_with("<mimic"))
+        .map(|line| format!("{line}\n"))
+        .collect();
+    let independent = parse_str(&stripped, "stripped", &finger_chain).unwrap();
+    let panda = armkit::robots::panda().unwrap();
+    assert_eq!((finger.dof(), finger.chain_joints().len()), (7, 9));
+    assert_eq!((panda.dof(), panda.chain_joints().len()), (7, 7));
+    assert_eq!(
+        (independent.dof(), independent.chain_joints().len()),
+        (9, 9)
+    );
+    let foreign = |model: &Model, data: &mut Data, q: &[f64]| {
+        let fk = forward_kinematics(model, data, q).unwrap_err();
+        assert!(fk.to_string().contains("another model"), "{fk}");
+        let j = jacobian(model, data, q, JacobianFrame::World).unwrap_err();
+        assert!(j.to_string().contains("another model"), "{j}");
+    };
+    // Same dof, another chain length, either way round.
+    foreign(&finger, &mut Data::new(&panda), &[0.0; 7]);
+    foreign(&panda, &mut Data::new(&finger), &[0.0; 7]);
+    // Same chain length, another dof, either way round.
+    foreign(&finger, &mut Data::new(&independent), &[0.0; 7]);
+    foreign(&independent, &mut Data::new(&finger), &[0.0; 9]);
+    // Each with its own workspace evaluates.
+    for (model, q) in [(&finger, vec![0.0; 7]), (&panda, vec![0.0; 7])] {
+        assert!(forward_kinematics(model, &mut Data::new(model), &q).is_ok());
+    }
+    assert!(forward_kinematics(&independent, &mut Data::new(&independent), &[0.0; 9]).is_ok());
+}
+
 #[test]
 fn limits_check_names_the_joint() {
     let model = armkit::robots::panda().unwrap();
