@@ -21,7 +21,7 @@
 use super::frame::Frame;
 use super::JacobianFrame;
 use crate::error::{Error, Result};
-use crate::math::{sin_cos_x4, F64x4, Lane, Lanes4, LANES};
+use crate::math::{sin_cos_x4_fused, F64x4, Lane, Lanes4, LANES};
 use crate::model::Model;
 
 /// Which instructions the kinematics kernels use (the single calls' chain,
@@ -134,7 +134,7 @@ enum Output<'a> {
     Jacobians(&'a mut [f64], JacobianFrame),
 }
 
-/// Sizes and finiteness; returns the number of configurations.
+/// Sizes (the kernels check finiteness); returns the number of configurations.
 fn check_batch(
     model: &Model,
     data: &BatchData,
@@ -167,17 +167,6 @@ fn check_batch(
             expected: count * width,
             got: output,
         });
-    }
-    if let Some(at) = q.iter().position(|v| !v.is_finite()) {
-        return Err(Error::invalid_argument(
-            "q",
-            format!(
-                "configuration {} (0-based), joint {}: must be finite, got {}",
-                at / dof,
-                at % dof,
-                q[at]
-            ),
-        ));
     }
     Ok(count)
 }
@@ -227,7 +216,10 @@ fn store<L: Lanes4, const N: usize>(values: &[L; N]) -> [F64x4; N] {
 /// The blocks of four configurations, base to tip on each, computed on
 /// lanes `L` (the workspace keeps them as [`F64x4`]); the last block
 /// repeats its last configuration in the lanes beyond `count` (computed,
-/// not written).
+/// not written). Each block reads its rows of `q` once (four rows side by
+/// side, a joint's four values one lane load), takes every joint's
+/// sine-cosine ([`sin_cos_x4_fused`]), runs the chain with the frame in
+/// registers and writes each pose row as one 4 x 4 transpose.
 #[inline(always)]
 fn kernel<L: Lanes4>(
     model: &Model,
@@ -237,33 +229,45 @@ fn kernel<L: Lanes4>(
     mut output: Output,
 ) -> Result<()> {
     let dof = data.dof;
+    if !all_finite::<L>(q) {
+        return Err(non_finite_error(q, dof));
+    }
     let map = model.joint_map();
     let identity = map.is_identity() && map.additive().is_empty();
     let forms = model.placement_forms();
     let kinds = model.chain_kinds();
+    let keep_joints = matches!(output, Output::Jacobians(..));
     let mut start = 0;
     while start < count {
         let lanes = LANES.min(count - start);
-        let row = |l: usize| start + l.min(lanes - 1);
-        // Gather: lane l of chain joint j is configuration row(l)'s position.
-        for l in 0..LANES {
-            let q_row = &q[row(l) * dof..(row(l) + 1) * dof];
-            if identity {
-                for (position, &value) in data.positions.iter_mut().zip(q_row) {
-                    position.0[l] = value;
-                }
-            } else {
-                map.expand(q_row, &mut data.expanded);
+        let rows: [&[f64]; LANES] = std::array::from_fn(|l| {
+            let row = start + l.min(lanes - 1);
+            &q[row * dof..(row + 1) * dof]
+        });
+        if identity {
+            let joints = data
+                .positions
+                .iter_mut()
+                .zip(data.sin_cos.iter_mut())
+                .zip(rows[0].iter().zip(rows[1]).zip(rows[2].iter().zip(rows[3])));
+            for ((position, sc), ((&a, &b), (&c, &d))) in joints {
+                let angle = L::from_array([a, b, c, d]);
+                *position = F64x4(angle.to_array());
+                let (s, c) = sin_cos_x4_fused(angle);
+                *sc = (F64x4(s.to_array()), F64x4(c.to_array()));
+            }
+        } else {
+            for (l, row) in rows.iter().enumerate() {
+                map.expand(row, &mut data.expanded);
                 for (position, &value) in data.positions.iter_mut().zip(&data.expanded) {
                     position.0[l] = value;
                 }
             }
+            for (sc, position) in data.sin_cos.iter_mut().zip(&data.positions) {
+                let (s, c) = sin_cos_x4_fused(L::from_array(position.0));
+                *sc = (F64x4(s.to_array()), F64x4(c.to_array()));
+            }
         }
-        for (sc, &angle) in data.sin_cos.iter_mut().zip(&data.positions) {
-            let (s, c) = sin_cos_x4(L::from_array(angle.0));
-            *sc = (F64x4(s.to_array()), F64x4(c.to_array()));
-        }
-        let keep_joints = matches!(output, Output::Jacobians(..));
         let mut frame = Frame::<L>::identity();
         let joints = forms
             .iter()
@@ -283,23 +287,15 @@ fn kernel<L: Lanes4>(
             }
         }
         frame.place(model.end_effector_form());
-        let stored = Frame {
-            x: store(&frame.x),
-            y: store(&frame.y),
-            z: store(&frame.z),
-            t: store(&frame.t),
-        };
-        check_finite_lanes(&stored, start, lanes)?;
+        check_finite_lanes(&frame.t, start, lanes)?;
         match &mut output {
-            Output::Poses(poses) => write_poses(&stored, &mut poses[start * POSE_VALUES..], lanes),
+            Output::Poses(poses) => write_poses(&frame, &mut poses[start * POSE_VALUES..], lanes),
             Output::Jacobians(jacobians, jacobian_frame) => {
                 chain_columns::<L>(data, kinds, &frame.t);
                 // Uncoupled: the chain's columns are the result.
                 let columns = if identity {
                     &mut data.chain_columns
                 } else {
-                    let rows: [&[f64]; LANES] =
-                        std::array::from_fn(|l| &q[row(l) * dof..(row(l) + 1) * dof]);
                     map.fold_lane_columns(&rows, &data.chain_columns, &mut data.columns);
                     &mut data.columns
                 };
@@ -308,12 +304,43 @@ fn kernel<L: Lanes4>(
                         *column = store(&to_end_effector_axes(&frame, &load(column)));
                     }
                 }
-                write_jacobians(columns, &mut jacobians[start * 6 * dof..], lanes);
+                write_jacobians::<L>(columns, &mut jacobians[start * 6 * dof..], lanes);
             }
         }
         start += lanes;
     }
     Ok(())
+}
+
+/// Whether every value of `q` is finite: `v * 0` is zero for a finite `v`
+/// and NaN otherwise, summed four lanes at a time in two chains (one fused
+/// multiply-add per four values on the AVX lanes).
+#[inline(always)]
+fn all_finite<L: Lanes4>(q: &[f64]) -> bool {
+    let zero = L::splat(0.0);
+    let (mut even, mut odd) = (zero, zero);
+    let mut pairs = q.chunks_exact(2 * LANES);
+    for pair in &mut pairs {
+        let (a, b) = pair.split_at(LANES);
+        even = L::from_array([a[0], a[1], a[2], a[3]]).mul_add(zero, even);
+        odd = L::from_array([b[0], b[1], b[2], b[3]]).mul_add(zero, odd);
+    }
+    (even + odd).all_below(f64::INFINITY) && pairs.remainder().iter().all(|v| v.is_finite())
+}
+
+/// The error naming `q`'s first value that is not finite.
+#[cold]
+fn non_finite_error(q: &[f64], dof: usize) -> Error {
+    let at = q.iter().position(|v| !v.is_finite()).unwrap_or(0);
+    Error::invalid_argument(
+        "q",
+        format!(
+            "configuration {} (0-based), joint {}: must be finite, got {}",
+            at / dof,
+            at % dof,
+            q[at]
+        ),
+    )
 }
 
 /// The chain's Jacobian columns from the stored axes and origins:
@@ -364,42 +391,67 @@ fn to_end_effector_axes<L: Lane>(frame: &Frame<L>, column: &[L; 6]) -> [L; 6] {
     ]
 }
 
-/// As the single call's check: only the translation can overflow.
+/// As the single call's check: only the translation can overflow. The
+/// lanes beyond the batch repeat its last configuration, so all four are
+/// checked; the error names the first lane that overflowed.
 #[inline(always)]
-fn check_finite_lanes(frame: &Frame<F64x4>, start: usize, lanes: usize) -> Result<()> {
-    for l in 0..lanes {
-        if !frame.t.iter().all(|v| v.0[l].is_finite()) {
-            return Err(Error::Numerical {
-                context: format!("forward kinematics of configuration {}", start + l),
-                reason: "the end-effector pose overflowed to a non-finite value (link lengths or joint positions too large)".into(),
-            });
-        }
+fn check_finite_lanes<L: Lanes4>(t: &[L; 3], start: usize, lanes: usize) -> Result<()> {
+    if t.iter().all(|v| v.all_below(f64::INFINITY)) {
+        return Ok(());
     }
-    Ok(())
+    let t: [[f64; 4]; 3] = std::array::from_fn(|i| t[i].to_array());
+    let lane = (0..lanes)
+        .find(|&l| !t.iter().all(|v| v[l].is_finite()))
+        .unwrap_or(0);
+    Err(Error::Numerical {
+        context: format!("forward kinematics of configuration {}", start + lane),
+        reason: "the end-effector pose overflowed to a non-finite value (link lengths or joint positions too large)".into(),
+    })
 }
 
 /// Scatter: lane l's pose into `out[16 l..16 l + 16]`, row-major 4 x 4.
+/// Row i of every lane's pose is `(x_i, y_i, z_i, t_i)`: one transpose of
+/// those four values gives the four lanes' rows, each one store.
 #[inline(always)]
-fn write_poses(frame: &Frame<F64x4>, out: &mut [f64], lanes: usize) {
-    for (l, pose) in out.chunks_exact_mut(POSE_VALUES).take(lanes).enumerate() {
-        for i in 0..3 {
-            pose[4 * i] = frame.x[i].0[l];
-            pose[4 * i + 1] = frame.y[i].0[l];
-            pose[4 * i + 2] = frame.z[i].0[l];
-            pose[4 * i + 3] = frame.t[i].0[l];
+fn write_poses<L: Lanes4>(frame: &Frame<L>, out: &mut [f64], lanes: usize) {
+    let rows: [[L; LANES]; 3] =
+        std::array::from_fn(|i| L::transpose([frame.x[i], frame.y[i], frame.z[i], frame.t[i]]));
+    for (pose, l) in out.chunks_exact_mut(POSE_VALUES).zip(0..LANES).take(lanes) {
+        for (i, row) in rows.iter().enumerate() {
+            pose[4 * i..4 * i + 4].copy_from_slice(&row[l].to_array());
         }
         pose[12..].copy_from_slice(&[0.0, 0.0, 0.0, 1.0]);
     }
 }
 
-/// Scatter: lane l's 6 x dof Jacobian, row-major, into `out`.
+/// Scatter: lane l's 6 x dof Jacobian, row-major, into `out`. Row r of a
+/// lane's Jacobian is its columns' r-th values: four columns at a time, one
+/// transpose gives four consecutive values of the row for each lane.
 #[inline(always)]
-fn write_jacobians(columns: &[[F64x4; 6]], out: &mut [f64], lanes: usize) {
+fn write_jacobians<L: Lanes4>(columns: &[[F64x4; 6]], out: &mut [f64], lanes: usize) {
     let dof = columns.len();
-    for (l, jacobian) in out.chunks_exact_mut(6 * dof).take(lanes).enumerate() {
-        for (c, column) in columns.iter().enumerate() {
-            for (r, value) in column.iter().enumerate() {
-                jacobian[r * dof + c] = value.0[l];
+    for (g, group) in columns.chunks(LANES).enumerate() {
+        let first = g * LANES;
+        for r in 0..6 {
+            let values: [L; LANES] = std::array::from_fn(|k| {
+                group
+                    .get(k)
+                    .map_or(L::splat(0.0), |column| L::from_array(column[r].0))
+            });
+            let lane_values = L::transpose(values);
+            let at = r * dof + first;
+            for (jacobian, l) in out.chunks_exact_mut(6 * dof).zip(0..LANES).take(lanes) {
+                let values = lane_values[l].to_array();
+                if let Some(slot) = jacobian
+                    .get_mut(at..at + LANES)
+                    .filter(|_| group.len() == LANES)
+                {
+                    slot.copy_from_slice(&values);
+                } else {
+                    for (slot, &value) in jacobian[at..at + group.len()].iter_mut().zip(&values) {
+                        *slot = value;
+                    }
+                }
             }
         }
     }

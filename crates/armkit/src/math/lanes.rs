@@ -21,6 +21,9 @@ pub trait Lane:
     + Mul<f64, Output = Self>
     + Neg<Output = Self>
 {
+    /// Whether [`Lane::mul_add`] rounds once (a fused multiply-add): false
+    /// for `f64` and [`F64x4`], whose results are the reference's bits.
+    const FUSED: bool = false;
     /// Every lane `value`.
     fn splat(value: f64) -> Self;
     /// `self * a + b`, lane-wise: two roundings for `f64` and [`F64x4`]
@@ -54,6 +57,19 @@ pub trait Lanes4: Lane {
     fn from_array(values: [f64; 4]) -> Self;
     /// The four lanes.
     fn to_array(self) -> [f64; 4];
+    /// Whether every lane's magnitude is below `bound` (false for a NaN lane).
+    #[inline(always)]
+    fn all_below(self, bound: f64) -> bool {
+        self.to_array().iter().all(|v| v.abs() < bound)
+    }
+    /// The 4 x 4 transpose: lane `l` of `rows[k]` becomes lane `k` of the
+    /// result's `l`-th value (four lanes of four quantities to four
+    /// consecutive quantities of each lane, for row-major output).
+    #[inline(always)]
+    fn transpose(rows: [Self; 4]) -> [Self; 4] {
+        let values: [[f64; 4]; 4] = std::array::from_fn(|k| rows[k].to_array());
+        std::array::from_fn(|l| Self::from_array(std::array::from_fn(|k| values[k][l])))
+    }
 }
 
 impl Lanes4 for F64x4 {

@@ -19,10 +19,11 @@
 //! nothing else (no memory is read or written but the arguments' own).
 
 use std::arch::x86_64::{
-    __m256d, _mm256_add_epi64, _mm256_add_pd, _mm256_and_si256, _mm256_blendv_pd,
-    _mm256_castpd_si256, _mm256_castsi256_pd, _mm256_fmadd_pd, _mm256_loadu_pd, _mm256_mul_pd,
-    _mm256_set1_epi64x, _mm256_set1_pd, _mm256_slli_epi64, _mm256_storeu_pd, _mm256_sub_pd,
-    _mm256_xor_pd, _mm256_xor_si256,
+    __m256d, _mm256_add_epi64, _mm256_add_pd, _mm256_and_si256, _mm256_andnot_pd, _mm256_blendv_pd,
+    _mm256_castpd_si256, _mm256_castsi256_pd, _mm256_cmp_pd, _mm256_fmadd_pd, _mm256_loadu_pd,
+    _mm256_movemask_pd, _mm256_mul_pd, _mm256_permute2f128_pd, _mm256_set1_epi64x, _mm256_set1_pd,
+    _mm256_slli_epi64, _mm256_storeu_pd, _mm256_sub_pd, _mm256_unpackhi_pd, _mm256_unpacklo_pd,
+    _mm256_xor_pd, _mm256_xor_si256, _CMP_LT_OQ,
 };
 use std::ops::{Add, Mul, Neg, Sub};
 
@@ -79,6 +80,8 @@ impl Neg for Avx4 {
 }
 
 impl Lane for Avx4 {
+    const FUSED: bool = true;
+
     #[inline(always)]
     fn splat(value: f64) -> Self {
         // SAFETY: called only inside the AVX2 + FMA kernels (module note).
@@ -132,5 +135,36 @@ impl Lanes4 for Avx4 {
         // SAFETY: writes the four values of `out` only; AVX as above.
         unsafe { _mm256_storeu_pd(out.as_mut_ptr(), self.0) };
         out
+    }
+
+    /// One compare of the magnitudes (sign bit cleared) and its mask.
+    #[inline(always)]
+    fn all_below(self, bound: f64) -> bool {
+        // SAFETY: AVX is present wherever an `Avx4` exists (module note).
+        unsafe {
+            let magnitude = _mm256_andnot_pd(_mm256_set1_pd(-0.0), self.0);
+            let below = _mm256_cmp_pd::<_CMP_LT_OQ>(magnitude, _mm256_set1_pd(bound));
+            _mm256_movemask_pd(below) == 0b1111
+        }
+    }
+
+    /// Pairs interleaved within 128-bit halves, then the halves exchanged:
+    /// eight shuffles instead of sixteen lane moves.
+    #[inline(always)]
+    fn transpose(rows: [Avx4; 4]) -> [Avx4; 4] {
+        let [a, b, c, d] = rows;
+        // SAFETY: AVX is present wherever an `Avx4` exists (module note).
+        unsafe {
+            let ab_even = _mm256_unpacklo_pd(a.0, b.0); // a0 b0 a2 b2
+            let ab_odd = _mm256_unpackhi_pd(a.0, b.0); // a1 b1 a3 b3
+            let cd_even = _mm256_unpacklo_pd(c.0, d.0);
+            let cd_odd = _mm256_unpackhi_pd(c.0, d.0);
+            [
+                Avx4(_mm256_permute2f128_pd::<0x20>(ab_even, cd_even)),
+                Avx4(_mm256_permute2f128_pd::<0x20>(ab_odd, cd_odd)),
+                Avx4(_mm256_permute2f128_pd::<0x31>(ab_even, cd_even)),
+                Avx4(_mm256_permute2f128_pd::<0x31>(ab_odd, cd_odd)),
+            ]
+        }
     }
 }

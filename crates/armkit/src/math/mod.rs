@@ -28,7 +28,7 @@ mod trig;
 pub use lanes::{F64x4, Lane, Lanes4, LANES};
 #[cfg(target_arch = "x86_64")]
 pub(crate) use lanes_avx::Avx4;
-pub use trig::{sin_cos, sin_cos_slice, sin_cos_slice_x4, sin_cos_x4};
+pub use trig::{sin_cos, sin_cos_slice, sin_cos_slice_x4, sin_cos_x4, sin_cos_x4_fused};
 
 /// A rigid transform `T = [R p; 0 1]`: rotation `R` (orthonormal 3 x 3) and
 /// translation `p` (metres).

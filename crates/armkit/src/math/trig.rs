@@ -38,6 +38,14 @@ const PIO2_2T: f64 = 2.022_266_248_795_950_631_54e-21;
 const TO_INT: f64 = 1.5 / f64::EPSILON;
 const REDUCTION_LIMIT: f64 = 1e5;
 
+// pi/2 in three parts of 53 bits each, for the fused reduction: with one
+// rounding, x - n PIO2_A is exact for |x| < REDUCTION_LIMIT (the difference
+// is below 2 and lies on the grid of n PIO2_A's last bit), so three fused
+// steps give r to about half an ulp without the double-double tail.
+const PIO2_A: f64 = std::f64::consts::FRAC_PI_2;
+const PIO2_B: f64 = 6.123_233_995_736_766e-17;
+const PIO2_C: f64 = -1.497_384_904_859_169_8e-33;
+
 /// `(sin x, cos x)` for an angle in radians, to about one ulp.
 #[inline]
 pub fn sin_cos(x: f64) -> (f64, f64) {
@@ -73,16 +81,80 @@ pub fn sin_cos_slice(angles: &[f64], out: &mut [(f64, f64)]) {
 /// (or NaN) sends the four to the checked scalar path.
 #[inline(always)]
 pub fn sin_cos_x4<L: Lanes4>(x: L) -> (L, L) {
-    let values = x.to_array();
-    if values.iter().all(|v| v.abs() < REDUCTION_LIMIT) {
+    if x.all_below(REDUCTION_LIMIT) {
         reduced_sin_cos(x)
     } else {
-        let pairs = values.map(sin_cos);
-        (
-            L::from_array(pairs.map(|p| p.0)),
-            L::from_array(pairs.map(|p| p.1)),
-        )
+        checked_lanes(x)
     }
+}
+
+/// `(sin, cos)` of four angles at once for the batched kinematics, which
+/// may differ from [`sin_cos`] in the last bit: on lanes whose
+/// [`Lane::mul_add`] is fused ([`Lane::FUSED`], the AVX register lanes) a
+/// single three-step Cody-Waite reduction and Horner polynomials of fused
+/// multiply-adds, about 1 ulp from libm (the tests bound it over the joint
+/// ranges); on the other lanes [`sin_cos_x4`] (the fused reduction needs
+/// the single rounding). A lane with `|x| >= 1e5` or not finite sends the
+/// four to the checked scalar path, as [`sin_cos_x4`] does.
+#[inline(always)]
+pub fn sin_cos_x4_fused<L: Lanes4>(x: L) -> (L, L) {
+    if !L::FUSED {
+        sin_cos_x4(x)
+    } else if x.all_below(REDUCTION_LIMIT) {
+        fused_reduced_sin_cos(x)
+    } else {
+        checked_lanes(x)
+    }
+}
+
+/// [`sin_cos`] lane by lane (out of range or not finite lanes).
+#[inline(always)]
+fn checked_lanes<L: Lanes4>(x: L) -> (L, L) {
+    let (s, c) = checked_values(x.to_array());
+    (L::from_array(s), L::from_array(c))
+}
+
+/// Out of line (rare, and the batched kernels' loops stay small); plain
+/// arrays, so that no vector register crosses into a function compiled
+/// without the caller's features.
+#[inline(never)]
+fn checked_values(x: [f64; 4]) -> ([f64; 4], [f64; 4]) {
+    let pairs = x.map(sin_cos);
+    (pairs.map(|p| p.0), pairs.map(|p| p.1))
+}
+
+/// [`sin_cos_x4_fused`]'s kernel for finite `|x| < REDUCTION_LIMIT` on fused
+/// lanes: n the nearest integer to x / (pi/2) (the add-and-subtract trick,
+/// its low bits the quadrant), r = x - n pi/2 in three fused steps, then
+/// fdlibm's polynomials in Horner form, cos keeping the rounding error of
+/// `1 - r^2/2` as fdlibm does.
+#[inline(always)]
+fn fused_reduced_sin_cos<L: Lane>(x: L) -> (L, L) {
+    let to_int = L::splat(TO_INT);
+    let shifted = x.mul_add(L::splat(INV_PIO2), to_int);
+    let n = shifted - to_int;
+    let r = n.mul_add(L::splat(-PIO2_A), x);
+    let r = n.mul_add(L::splat(-PIO2_B), r);
+    let r = n.mul_add(L::splat(-PIO2_C), r);
+    let z = r * r;
+    let s = (r * z).mul_add(horner(z, [S1, S2, S3, S4, S5, S6]), r);
+    let one = L::splat(1.0);
+    let hz = z * 0.5;
+    let w = one - hz;
+    let lost = (one - w) - hz;
+    let c = w + (z * z).mul_add(horner(z, [C1, C2, C3, C4, C5, C6]), lost);
+    L::by_quadrant(s, c, shifted)
+}
+
+/// `k[0] + z k[1] + ... + z^5 k[5]` in fused Horner steps (a function, not
+/// a closure: a closure is not inlined into the caller's target features).
+#[inline(always)]
+fn horner<L: Lane>(z: L, k: [f64; 6]) -> L {
+    let p = z.mul_add(L::splat(k[5]), L::splat(k[4]));
+    let p = z.mul_add(p, L::splat(k[3]));
+    let p = z.mul_add(p, L::splat(k[2]));
+    let p = z.mul_add(p, L::splat(k[1]));
+    z.mul_add(p, L::splat(k[0]))
 }
 
 /// [`sin_cos_slice`] four angles per [`sin_cos_x4`] on lanes `L` (the
@@ -247,6 +319,83 @@ mod tests {
             assert!(s.0[1].is_nan() && c.0[1].is_nan(), "{name}");
             assert_eq!((s.0[2], c.0[2]), 1e6f64.sin_cos(), "{name}");
             assert_eq!((s.0[3], c.0[3]), sin_cos(-1.0), "{name}");
+        }
+    }
+
+    /// [`sin_cos_x4_fused`] on the AVX register lanes (its fused build).
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn sin_cos_fused_avx(x: F64x4) -> (F64x4, F64x4) {
+        let (s, c) = sin_cos_x4_fused(crate::math::Avx4::from_array(x.0));
+        (F64x4(s.to_array()), F64x4(c.to_array()))
+    }
+
+    /// `|value - reference|` in units in the last place of `reference`
+    /// (the spacing of doubles at its magnitude).
+    fn ulps(value: f64, reference: f64) -> f64 {
+        let magnitude = reference.abs();
+        let spacing = f64::from_bits(magnitude.to_bits() + 1) - magnitude;
+        (value - reference).abs() / spacing
+    }
+
+    #[test]
+    fn fused_lanes_are_within_about_one_ulp_of_libm() {
+        // The portable lanes do not fuse: there the fused form is the
+        // reference's, bit for bit.
+        let v = F64x4([0.3, -2.0, 7.5, 1e6]);
+        assert_eq!(sin_cos_x4_fused(v), sin_cos_x4(v));
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma")
+        {
+            let pi = std::f64::consts::PI;
+            // Joint ranges, densely (every quadrant in every lane); the
+            // multiples of pi/2 up to +-4 pi and far out, a few ulps either
+            // side, where the reduction cancels most; a coarse sweep up to
+            // the reduction's limit.
+            let mut angles = Vec::new();
+            let mut x = -4.0 * pi;
+            while x < 4.0 * pi {
+                angles.push(x);
+                x += 1.3e-5;
+            }
+            for k in (-8..=8).chain([101, -2047, 40_000, 63_661]) {
+                let m = k as f64 * std::f64::consts::FRAC_PI_2;
+                let mut y = m;
+                for _ in 0..8 {
+                    angles.extend([y, -y]);
+                    y = f64::from_bits(y.to_bits() + 1);
+                }
+            }
+            let mut x = 4.0 * pi;
+            while x < 1e5 {
+                angles.extend([x, -x]);
+                x += 0.37;
+            }
+            angles.extend([1e-300, -5e-324, 1e-8, 99_999.99]);
+            let mut worst: f64 = 0.0;
+            for group in angles.chunks(4) {
+                let mut v = [0.25; 4];
+                v[..group.len()].copy_from_slice(group);
+                // SAFETY: both features detected.
+                let (s, c) = unsafe { sin_cos_fused_avx(F64x4(v)) };
+                for l in 0..4 {
+                    let (s0, c0) = v[l].sin_cos();
+                    worst = worst.max(ulps(s.0[l], s0)).max(ulps(c.0[l], c0));
+                }
+            }
+            assert!(worst <= 1.0, "worst {worst} ulp");
+            // Zeros, then out of range and non-finite lanes: the checked path.
+            let (s, c) = unsafe { sin_cos_fused_avx(F64x4([0.0, -0.0, 1e5, 1e300])) };
+            assert_eq!((s.0[0], s.0[1], c.0[0], c.0[1]), (0.0, 0.0, 1.0, 1.0));
+            assert_eq!((s.0[2], c.0[2]), sin_cos(1e5));
+            assert_eq!((s.0[3], c.0[3]), 1e300f64.sin_cos());
+            let (s, c) = unsafe { sin_cos_fused_avx(F64x4([f64::NAN, f64::INFINITY, 1.0, 2.0])) };
+            assert!(s.0[0].is_nan() && c.0[0].is_nan() && s.0[1].is_nan() && c.0[1].is_nan());
+            assert!(ulps(s.0[3], 2f64.sin()) <= 1.0 && ulps(c.0[2], 1f64.cos()) <= 1.0);
+            eprintln!(
+                "fused sin_cos: worst {worst} ulp over {} angles",
+                angles.len()
+            );
         }
     }
 
