@@ -351,11 +351,11 @@ impl WristOrientation {
     /// `goal h5` alone (the rest of the goal matrix adds nothing), appended
     /// to the joint values `prefix`.
     #[inline]
-    pub(crate) fn solve_directions(
+    pub(crate) fn solve_directions<const N: usize>(
         &self,
         goal_h6: &Vector3<f64>,
         goal_h5: &Vector3<f64>,
-        prefix: &[f64],
+        prefix: &[f64; N],
         exact: bool,
         out: &mut Candidates,
     ) {
@@ -384,7 +384,7 @@ impl WristOrientation {
         let h4_dot_g5 = h4.dot(g5);
         let g5_length2 = g5.norm_squared();
         let scale6 = h5.norm_squared().max(g5_length2);
-        let n = prefix.len();
+        let n = N;
         let mut q = [0.0; MAX_JOINTS];
         q[..n].copy_from_slice(prefix);
         let combine = |parts: &[f64; 3], t: &Turn| parts[0] + t.cos * parts[1] + t.sin * parts[2];
@@ -424,13 +424,13 @@ impl WristOrientation {
     /// [`RELATIVE_TOLERANCE`], as the subproblems' tests would find.
     #[allow(clippy::too_many_arguments)]
     #[inline]
-    fn solve_euler(
+    fn solve_euler<const N: usize>(
         &self,
         first_axis: &Vector3<f64>,
         sign: f64,
         g6: &Vector3<f64>,
         g5: &Vector3<f64>,
-        prefix: &[f64],
+        prefix: &[f64; N],
         exact: bool,
         out: &mut Candidates,
     ) {
@@ -451,7 +451,7 @@ impl WristOrientation {
         let v1 = t4.cos * m12 + t4.sin * m22;
         let v2 = t4.cos * m22 - t4.sin * m12;
         let t6 = atan2(s5 * m32 - c5 * v1, v2);
-        let n = prefix.len();
+        let n = N;
         let mut q = [0.0; MAX_JOINTS];
         q[..n].copy_from_slice(prefix);
         q[n] = sign * t4.angle;

@@ -48,7 +48,11 @@ pub(super) fn roots_to(p: &[f64], precision: f64, terms: f64) -> ([f64; MAX_ROOT
     if n == 2 {
         return quadratic_roots(p);
     }
-    let mut derivative = [0.0; 4];
+    // Fixed-size copies (zero above the degree): the evaluations in the
+    // Newton loop are then unrolled, with the same roundings.
+    let mut padded = [0.0; 5];
+    padded[..=n].copy_from_slice(p);
+    let mut derivative = [0.0; 5];
     for i in 0..n {
         derivative[i] = (i + 1) as f64 * p[i + 1];
     }
@@ -71,7 +75,7 @@ pub(super) fn roots_to(p: &[f64], precision: f64, terms: f64) -> ([f64; MAX_ROOT
     let mut changed = [false; MAX_ROOTS + 1];
     for i in 0..m + 1 {
         let (a, b) = (points[i], points[i + 1]);
-        let (fa, fb) = (evaluate(p, a), evaluate(p, b));
+        let (fa, fb) = (evaluate(&padded, a), evaluate(&padded, b));
         if fa == 0.0 && i > 0 {
             continue; // pushed as the previous interval's end
         }
@@ -82,7 +86,8 @@ pub(super) fn roots_to(p: &[f64], precision: f64, terms: f64) -> ([f64; MAX_ROOT
             push(b, &mut count);
             changed[i] = true;
         } else if (fa < 0.0) != (fb < 0.0) {
-            push(bracketed_root(p, a, b, fa, precision), &mut count);
+            let root = bracketed_root(&padded, &derivative, (a, b), fa, precision);
+            push(root, &mut count);
             changed[i] = true;
         }
     }
@@ -90,8 +95,11 @@ pub(super) fn roots_to(p: &[f64], precision: f64, terms: f64) -> ([f64; MAX_ROOT
     // without a sign change beside it.
     for j in 0..m {
         let c = points[j + 1];
-        let round_off = size(p, c).max(terms * (1.0 + c * c) * (1.0 + c * c));
-        if !changed[j] && !changed[j + 1] && evaluate(p, c).abs() <= TANGENT_TOLERANCE * round_off {
+        let round_off = size(&padded, c).max(terms * (1.0 + c * c) * (1.0 + c * c));
+        if !changed[j]
+            && !changed[j + 1]
+            && evaluate(&padded, c).abs() <= TANGENT_TOLERANCE * round_off
+        {
             push(c, &mut count);
         }
     }
@@ -145,30 +153,30 @@ fn root_bound(p: &[f64]) -> f64 {
     2.0 * bound * (1.0 + 1e-12) + f64::MIN_POSITIVE
 }
 
-fn evaluate(p: &[f64], u: f64) -> f64 {
+/// `sum p[i] u^i` by Horner's rule (`p` zero above its degree).
+#[inline]
+fn evaluate(p: &[f64; 5], u: f64) -> f64 {
     p.iter().rev().fold(0.0, |acc, c| acc * u + c)
 }
 
-fn evaluate_slope(p: &[f64], u: f64) -> f64 {
-    let mut acc = 0.0;
-    for i in (1..p.len()).rev() {
-        acc = acc * u + i as f64 * p[i];
-    }
-    acc
-}
-
 /// The sum of the terms' magnitudes at `u`.
-fn size(p: &[f64], u: f64) -> f64 {
+fn size(p: &[f64; 5], u: f64) -> f64 {
     p.iter().rev().fold(0.0, |acc, c| acc * u.abs() + c.abs())
 }
 
-/// The root of `p` in `[a, b]` (monotone there, `fa` and `p(b)` of
-/// opposite signs): Newton from the midpoint, falling back to bisection
-/// whenever a step leaves the bracket ([`safeguarded_newton`]), until the
-/// bracket or the step is `precision` wide relative to `max(1, |u|)`
-/// (`u = tan(psi / 2)`, so that is the precision of `psi` near 0 too); at
-/// most 200 evaluations.
-fn bracketed_root(p: &[f64], a: f64, b: f64, fa: f64, precision: f64) -> f64 {
+/// The root of `p` (derivative `slope`) in `[a, b]` (monotone there, `fa`
+/// and `p(b)` of opposite signs): Newton from the midpoint, falling back
+/// to bisection whenever a step leaves the bracket
+/// ([`safeguarded_newton`]), until the bracket or the step is `precision`
+/// wide relative to `max(1, |u|)` (`u = tan(psi / 2)`, so that is the
+/// precision of `psi` near 0 too); at most 200 evaluations.
+fn bracketed_root(
+    p: &[f64; 5],
+    slope: &[f64; 5],
+    (a, b): (f64, f64),
+    fa: f64,
+    precision: f64,
+) -> f64 {
     let newton = Newton {
         tolerance: Tolerance {
             absolute: precision,
@@ -177,6 +185,6 @@ fn bracketed_root(p: &[f64], a: f64, b: f64, fa: f64, precision: f64) -> f64 {
         steps: 200,
         stall: 0.0,
     };
-    let f = |u: f64| (evaluate(p, u), evaluate_slope(p, u));
+    let f = |u: f64| (evaluate(p, u), evaluate(slope, u));
     safeguarded_newton(f, (a, b), fa, 0.5 * (a + b), &newton)
 }
