@@ -16,6 +16,9 @@
 #                                        name), for speed; repeat --tests
 #                                        for several filters (a test runs
 #                                        when its name contains any)
+#   scripts/mutants.sh --skip FILTER     leave out the tests whose names
+#                                        contain FILTER (repeatable; e.g.
+#                                        ones that hold only in release)
 #   scripts/mutants.sh --lib ...         the library's unit tests only (no
 #                                        integration crate: one link step
 #                                        less per mutant)
@@ -30,6 +33,7 @@ cd "$(dirname "$0")/.."
 base=main
 files=()
 tests=()
+skips=()
 lib_only=""
 extra=()
 while (($#)); do
@@ -37,6 +41,7 @@ while (($#)); do
         --base) base="$2"; shift 2 ;;
         --file) files+=("$2"); shift 2 ;;
         --tests) tests+=("$2"); shift 2 ;;
+        --skip) skips+=("$2"); shift 2 ;;
         --lib) lib_only=1; shift ;;
         *) extra+=("$1"); shift ;;
     esac
@@ -76,10 +81,13 @@ if [[ -n "$lib_only" ]]; then
         exit 2
     }
 fi
-if ((${#tests[@]})); then
+if ((${#tests[@]} + ${#skips[@]})); then
     filters=""
     for filter in "${tests[@]}"; do
         filters+=", \"$filter\""
+    done
+    for filter in "${skips[@]}"; do
+        filters+=", \"--skip\", \"$filter\""
     done
     sed -i "s|^additional_cargo_test_args = \[\(.*\)\]|additional_cargo_test_args = [\1, \"--\"$filters]|" "$scoped"
 fi
