@@ -13,7 +13,12 @@
 #                                        contain FILTER (e.g. `mpc::`; the
 #                                        library's unit tests and the
 #                                        integration crate use the module's
-#                                        name), for speed
+#                                        name), for speed; repeat --tests
+#                                        for several filters (a test runs
+#                                        when its name contains any)
+#   scripts/mutants.sh --skip FILTER     leave out the tests whose names
+#                                        contain FILTER (repeatable; e.g.
+#                                        ones that hold only in release)
 #   scripts/mutants.sh --lib ...         the library's unit tests only (no
 #                                        integration crate: one link step
 #                                        less per mutant)
@@ -27,14 +32,16 @@ cd "$(dirname "$0")/.."
 
 base=main
 files=()
-tests=""
+tests=()
+skips=()
 lib_only=""
 extra=()
 while (($#)); do
     case "$1" in
         --base) base="$2"; shift 2 ;;
         --file) files+=("$2"); shift 2 ;;
-        --tests) tests="$2"; shift 2 ;;
+        --tests) tests+=("$2"); shift 2 ;;
+        --skip) skips+=("$2"); shift 2 ;;
         --lib) lib_only=1; shift ;;
         *) extra+=("$1"); shift ;;
     esac
@@ -74,8 +81,15 @@ if [[ -n "$lib_only" ]]; then
         exit 2
     }
 fi
-if [[ -n "$tests" ]]; then
-    sed -i "s|^additional_cargo_test_args = \[\(.*\)\]|additional_cargo_test_args = [\1, \"--\", \"$tests\"]|" "$scoped"
+if ((${#tests[@]} + ${#skips[@]})); then
+    filters=""
+    for filter in "${tests[@]}"; do
+        filters+=", \"$filter\""
+    done
+    for filter in "${skips[@]}"; do
+        filters+=", \"--skip\", \"$filter\""
+    done
+    sed -i "s|^additional_cargo_test_args = \[\(.*\)\]|additional_cargo_test_args = [\1, \"--\"$filters]|" "$scoped"
 fi
 # A release build of armkit takes minutes on a loaded 2-core machine; a
 # multiple of the baseline's build time is no bound (the baseline may find

@@ -70,4 +70,18 @@ mod tests {
         assert_eq!(condition_number(&j), f64::INFINITY);
         assert_eq!(manipulability(&j), 0.0);
     }
+
+    /// A Jacobian with no rank at all (every singular value zero) is
+    /// infinitely ill-conditioned, as one singular value at zero is: the
+    /// ratio `0 / 0` is not a condition number.
+    #[test]
+    fn a_zero_jacobian_has_an_infinite_condition_number() {
+        for columns in [1, 3, 6, 7] {
+            let j = Matrix6xX::zeros(columns);
+            assert_eq!(singular_values(&j), vec![0.0; columns.min(6)]);
+            assert_eq!(condition_number(&j), f64::INFINITY, "6 x {columns}");
+            assert_eq!(manipulability(&j), 0.0);
+            assert_eq!(smallest_singular_value(&j), 0.0);
+        }
+    }
 }

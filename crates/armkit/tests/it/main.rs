@@ -6,6 +6,7 @@ mod seed000_common;
 
 mod beam;
 mod build_features;
+mod coupling;
 mod description;
 mod dynamics;
 mod dynamics_coupled;

@@ -1,0 +1,102 @@
+//! Additive couplings attached to a built model (`Model::with_coupling`):
+//! each index, the target's kind and the target's drive are checked, the
+//! error naming what is wrong; and the law's one-line description.
+
+use armkit::beam::CarriageDeflection;
+use armkit::model::{CouplingCurve, CouplingLaw, JointCoupling};
+use armkit::Model;
+use std::sync::Arc;
+
+fn beam_coupling(source: usize, target: usize) -> JointCoupling {
+    JointCoupling {
+        source,
+        target,
+        law: CouplingLaw::Additive(Arc::new(CarriageDeflection::seed000())),
+    }
+}
+
+/// The error `model.with_coupling` gives for `coupling`, as text.
+fn refused(model: &Model, coupling: JointCoupling) -> String {
+    let err = model.with_coupling(Some(coupling)).unwrap_err().to_string();
+    assert!(err.contains("coupling"), "{err}");
+    err
+}
+
+/// gantry9: three prismatic joints (0, 1, 2), then six revolute (3 to 8),
+/// nine on the chain and in the configuration.
+#[test]
+fn an_additive_coupling_needs_indices_in_range_and_a_distinct_prismatic_target() {
+    let gantry = armkit::robots::gantry9().unwrap();
+    assert_eq!((gantry.dof(), gantry.chain_joints().len()), (9, 9));
+    // Accepted: any source in range, the last one included, onto a
+    // prismatic joint other than the source.
+    for (source, target) in [(1, 2), (8, 2), (0, 1), (2, 0)] {
+        let coupled = gantry.with_coupling(Some(beam_coupling(source, target)));
+        let coupled = coupled.unwrap_or_else(|e| panic!("{source} -> {target}: {e}"));
+        assert_eq!(coupled.couplings().len(), 1);
+        assert_eq!(
+            (coupled.couplings()[0].source, coupled.couplings()[0].target),
+            (source, target)
+        );
+    }
+    // A source one past the configuration, alone out of range.
+    let err = refused(&gantry, beam_coupling(9, 2));
+    assert!(
+        err.contains("must index the model's 9 independent joints"),
+        "{err}"
+    );
+    // A target one past the chain, alone out of range (not reported as a
+    // revolute or missing joint: the index is checked first).
+    let err = refused(&gantry, beam_coupling(1, 9));
+    assert!(err.contains("its 9 chain joints"), "{err}");
+    // Source and target the same prismatic joint.
+    let err = refused(&gantry, beam_coupling(2, 2));
+    assert!(err.contains("different joints"), "{err}");
+    // A revolute target, the first and the last.
+    for target in [3, 8] {
+        let err = refused(&gantry, beam_coupling(1, target));
+        assert!(
+            err.contains(&format!("target joint {target} must be prismatic")),
+            "{err}"
+        );
+    }
+}
+
+/// On a chain with mimic joints the target indexes the chain (9 joints)
+/// and the source the configuration (7): a mimic joint cannot be a target,
+/// and a source past the configuration is refused even where the chain is
+/// longer.
+#[test]
+fn an_additive_coupling_cannot_drive_a_mimic_joint_and_its_source_is_a_configuration_index() {
+    let finger = armkit::urdf::load(
+        crate::common::data_path("urdf/mimicbot.urdf"),
+        &armkit::urdf::ChainSelection::between("base", "fingertip"),
+    )
+    .unwrap();
+    assert_eq!((finger.dof(), finger.chain_joints().len()), (7, 9));
+    for target in [7, 8] {
+        let err = refused(&finger, beam_coupling(0, target));
+        assert!(
+            err.contains(&format!("target joint {target} is a mimic joint")),
+            "{err}"
+        );
+    }
+    let err = refused(&finger, beam_coupling(7, 8));
+    assert!(
+        err.contains("must index the model's 7 independent joints"),
+        "{err}"
+    );
+}
+
+#[test]
+fn a_coupling_law_describes_itself_in_one_line() {
+    let mimic = CouplingLaw::Mimic {
+        multiplier: -0.5,
+        offset: 0.25,
+    };
+    assert_eq!(mimic.describe(), "mimic: multiplier -0.5, offset 0.25");
+    let curve = CarriageDeflection::seed000();
+    let additive = CouplingLaw::Additive(Arc::new(curve));
+    assert_eq!(additive.describe(), format!("adds {}", curve.describe()));
+    assert!(!curve.describe().is_empty());
+}
