@@ -133,7 +133,9 @@ fn quadratic_roots(p: &[f64]) -> ([f64; MAX_ROOTS], usize) {
 }
 
 /// Fujiwara's bound, a little widened: every root has `|u| < 2 max_i
-/// |p[n - i] / p[n]|^(1 / i)` (the last term halved first).
+/// |p[n - i] / p[n]|^(1 / i)` (the last term halved first), with the cube
+/// root `r^(1/3)` bounded by `max(r^(1/2), r^(1/4))` (no library call; the
+/// Newton starts move a little, the roots do not).
 fn root_bound(p: &[f64]) -> f64 {
     let n = p.len() - 1;
     let mut bound = 0.0_f64;
@@ -146,7 +148,7 @@ fn root_bound(p: &[f64]) -> f64 {
             1 => ratio,
             2 => ratio.sqrt(),
             4 => ratio.sqrt().sqrt(),
-            _ => ratio.cbrt(),
+            _ => ratio.sqrt().max(ratio.sqrt().sqrt()),
         };
         bound = bound.max(term);
     }
