@@ -100,3 +100,48 @@ fn a_coupling_law_describes_itself_in_one_line() {
     assert_eq!(additive.describe(), format!("adds {}", curve.describe()));
     assert!(!curve.describe().is_empty());
 }
+
+/// A curve that gives only its value and slope.
+#[derive(Debug)]
+struct LinearSag;
+
+impl CouplingCurve for LinearSag {
+    fn value_and_slope(&self, x: f64) -> (f64, f64) {
+        (-1e-3 * x, -1e-3)
+    }
+
+    fn describe(&self) -> String {
+        "a sag of 1 mm per metre".into()
+    }
+}
+
+/// A curve that does not give its second derivative has none anywhere and
+/// no parameters to check; it couples the kinematics, and the dynamics,
+/// which need the curvature, refuse the model and name the curve.
+#[test]
+fn a_curve_without_a_second_derivative_couples_kinematics_but_not_dynamics() {
+    for x in [-1.0, 0.0, 0.5, 3.0, f64::NAN] {
+        assert_eq!(LinearSag.second_derivative(x), None);
+    }
+    assert!(LinearSag.validate().is_ok());
+    let gantry = armkit::robots::gantry9().unwrap();
+    armkit::dynamics::check_dynamics_model(&gantry).unwrap();
+    let coupling = JointCoupling {
+        source: 1,
+        target: 2,
+        law: CouplingLaw::Additive(Arc::new(LinearSag)),
+    };
+    let sagging = gantry.with_coupling(Some(coupling)).unwrap();
+    let q = [0.5, 2.0, 0.3, 0.1, -0.4, 0.7, 0.2, 0.9, -0.3];
+    let mut chain = [0.0; 9];
+    sagging.chain_positions(&q, &mut chain).unwrap();
+    assert_eq!(chain[2], 0.3 - 2e-3);
+    let err = armkit::dynamics::check_dynamics_model(&sagging)
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("no second derivative"), "{err}");
+    assert!(err.contains("a sag of 1 mm per metre"), "{err}");
+    // The beam's curve gives it: the flexible gantry has dynamics.
+    let flex = armkit::robots::by_name("gantry9-flex").unwrap();
+    armkit::dynamics::check_dynamics_model(&flex).unwrap();
+}
