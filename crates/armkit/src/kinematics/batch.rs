@@ -9,9 +9,14 @@
 //! per configuration), and run the single call's steps (`frame.rs`, the
 //! same source) on the four lanes at once. Where the processor has AVX2 and
 //! FMA (detected at run time, as [`crate::dynamics::mass_matrix`] does) one
-//! 256-bit instruction advances the four lanes; elsewhere the same code runs
-//! in 128-bit halves. The lanes never mix, so each configuration's result
-//! is the single call's, rounding for rounding.
+//! 256-bit instruction advances the four lanes, the multiply-adds fused,
+//! the placements' coefficients kept in lanes (vector operands) and the
+//! sine-cosine the fused one ([`crate::math::sin_cos_x4_fused`]); the
+//! results then differ from the single call's in the last bits (the tests
+//! bound them by 1e-14). Elsewhere the same code runs in 128-bit halves
+//! and each configuration's result is the single call's, rounding for
+//! rounding. Each block reads its rows of the input once and writes each
+//! output row as a 4 x 4 transpose of the lanes.
 //!
 //! The caller owns every buffer: configurations in, poses or Jacobians out,
 //! row-major (the layout of NumPy's `(N, dof)`, `(N, 4, 4)` and
@@ -22,7 +27,7 @@ use super::frame::Frame;
 use super::JacobianFrame;
 use crate::error::{Error, Result};
 use crate::math::{sin_cos_x4_fused, F64x4, Lane, Lanes4, LANES};
-use crate::model::Model;
+use crate::model::{Model, PlacementForm};
 
 /// Which instructions the kinematics kernels use (the single calls' chain,
 /// through [`super::Data::with_instruction_set`], and the batched kernels).
@@ -43,9 +48,12 @@ pub enum InstructionSet {
 pub struct BatchData {
     dof: usize,
     instruction_set: InstructionSet,
-    /// Chain joint positions, one per chain joint.
+    /// Chain joint positions, one per chain joint (coupled models).
     positions: Vec<F64x4>,
-    sin_cos: Vec<(F64x4, F64x4)>,
+    /// One per chain joint: its placement and motion for the block.
+    joints: Vec<LaneJoint>,
+    /// The end effector's placement, coefficients in four lanes.
+    end_form: PlacementForm<F64x4>,
     /// Each chain joint's axis (z column) and origin, for the Jacobian.
     axes: Vec<[F64x4; 3]>,
     origins: Vec<[F64x4; 3]>,
@@ -55,6 +63,20 @@ pub struct BatchData {
     columns: Vec<[F64x4; 6]>,
     /// One configuration's chain positions (coupled models).
     expanded: Vec<f64>,
+}
+
+/// A chain joint as the chain's loop reads it, all in one place (one
+/// pointer to advance): its placement with every coefficient in four lanes
+/// (rewritten by each call from the model; the products take them as
+/// vector operands, no broadcast), and its motion for the current block.
+#[derive(Clone, Debug)]
+struct LaneJoint {
+    form: PlacementForm<F64x4>,
+    rotational: bool,
+    /// The sine of the four positions (rotational), or the positions (m).
+    first: F64x4,
+    /// The cosine of the four positions (rotational).
+    second: F64x4,
 }
 
 impl BatchData {
@@ -71,7 +93,18 @@ impl BatchData {
             dof,
             instruction_set,
             positions: vec![F64x4::default(); chain],
-            sin_cos: vec![(F64x4::default(), F64x4::default()); chain],
+            joints: model
+                .placement_forms()
+                .iter()
+                .zip(model.chain_kinds())
+                .map(|(form, kind)| LaneJoint {
+                    form: form.map(F64x4::splat),
+                    rotational: kind.is_rotational(),
+                    first: F64x4::default(),
+                    second: F64x4::default(),
+                })
+                .collect(),
+            end_form: model.end_effector_form().map(F64x4::splat),
             axes: vec![[F64x4::default(); 3]; chain],
             origins: vec![[F64x4::default(); 3]; chain],
             chain_columns: vec![[F64x4::default(); 6]; chain],
@@ -234,59 +267,46 @@ fn kernel<L: Lanes4>(
     }
     let map = model.joint_map();
     let identity = map.is_identity() && map.additive().is_empty();
-    let forms = model.placement_forms();
+    let sources = model.placement_forms().iter().zip(model.chain_kinds());
+    for (joint, (form, kind)) in data.joints.iter_mut().zip(sources) {
+        joint.form = form.map(F64x4::splat);
+        joint.rotational = kind.is_rotational();
+    }
+    data.end_form = model.end_effector_form().map(F64x4::splat);
     let kinds = model.chain_kinds();
     let keep_joints = matches!(output, Output::Jacobians(..));
     let mut start = 0;
     while start < count {
         let lanes = LANES.min(count - start);
-        let rows: [&[f64]; LANES] = std::array::from_fn(|l| {
+        let q_rows: [&[f64]; LANES] = std::array::from_fn(|l| {
             let row = start + l.min(lanes - 1);
             &q[row * dof..(row + 1) * dof]
         });
         if identity {
             let joints = data
-                .positions
+                .joints
                 .iter_mut()
-                .zip(data.sin_cos.iter_mut())
-                .zip(rows[0].iter().zip(rows[1]).zip(rows[2].iter().zip(rows[3])));
-            for ((position, sc), ((&a, &b), (&c, &d))) in joints {
-                let angle = L::from_array([a, b, c, d]);
-                *position = F64x4(angle.to_array());
-                let (s, c) = sin_cos_x4_fused(angle);
-                *sc = (F64x4(s.to_array()), F64x4(c.to_array()));
+                .zip(q_rows[0].iter().zip(q_rows[1]))
+                .zip(q_rows[2].iter().zip(q_rows[3]));
+            for ((joint, (&a, &b)), (&c, &d)) in joints {
+                set_motion(joint, L::from_array([a, b, c, d]));
             }
         } else {
-            for (l, row) in rows.iter().enumerate() {
+            for (l, row) in q_rows.iter().enumerate() {
                 map.expand(row, &mut data.expanded);
                 for (position, &value) in data.positions.iter_mut().zip(&data.expanded) {
                     position.0[l] = value;
                 }
             }
-            for (sc, position) in data.sin_cos.iter_mut().zip(&data.positions) {
-                let (s, c) = sin_cos_x4_fused(L::from_array(position.0));
-                *sc = (F64x4(s.to_array()), F64x4(c.to_array()));
+            for (joint, position) in data.joints.iter_mut().zip(&data.positions) {
+                set_motion(joint, L::from_array(position.0));
             }
         }
-        let mut frame = Frame::<L>::identity();
-        let joints = forms
-            .iter()
-            .zip(kinds)
-            .zip(data.sin_cos.iter().zip(&data.positions))
-            .zip(data.axes.iter_mut().zip(data.origins.iter_mut()));
-        for (((form, kind), (&(s, c), &position)), (axis, origin)) in joints {
-            frame.place(form);
-            if kind.is_rotational() {
-                frame.rotate_about_z(L::from_array(s.0), L::from_array(c.0));
-            } else {
-                frame.translate_along_z(L::from_array(position.0));
-            }
-            if keep_joints {
-                *axis = store(&frame.z);
-                *origin = store(&frame.t);
-            }
-        }
-        frame.place(model.end_effector_form());
+        let frame = if keep_joints {
+            chain::<L, true>(data)
+        } else {
+            chain::<L, false>(data)
+        };
         check_finite_lanes(&frame.t, start, lanes)?;
         match &mut output {
             Output::Poses(poses) => write_poses(&frame, &mut poses[start * POSE_VALUES..], lanes),
@@ -296,7 +316,7 @@ fn kernel<L: Lanes4>(
                 let columns = if identity {
                     &mut data.chain_columns
                 } else {
-                    map.fold_lane_columns(&rows, &data.chain_columns, &mut data.columns);
+                    map.fold_lane_columns(&q_rows, &data.chain_columns, &mut data.columns);
                     &mut data.columns
                 };
                 if *jacobian_frame == JacobianFrame::EndEffector {
@@ -310,6 +330,54 @@ fn kernel<L: Lanes4>(
         start += lanes;
     }
     Ok(())
+}
+
+/// A joint's motion for the block from its four positions: their
+/// sine-cosine ([`sin_cos_x4_fused`]) or, prismatic, the positions.
+#[inline(always)]
+fn set_motion<L: Lanes4>(joint: &mut LaneJoint, position: L) {
+    if joint.rotational {
+        let (s, c) = sin_cos_x4_fused(position);
+        joint.first = F64x4(s.to_array());
+        joint.second = F64x4(c.to_array());
+    } else {
+        joint.first = F64x4(position.to_array());
+    }
+}
+
+/// The block's end-effector frame, base to tip; with `KEEP`, each joint's
+/// axis and origin into the workspace (the Jacobian).
+#[inline(always)]
+fn chain<L: Lanes4, const KEEP: bool>(data: &mut BatchData) -> Frame<L> {
+    let mut frame = Frame::<L>::identity();
+    if KEEP {
+        let joints = data
+            .joints
+            .iter()
+            .zip(data.axes.iter_mut().zip(data.origins.iter_mut()));
+        for (joint, (axis, origin)) in joints {
+            joint_step(joint, &mut frame);
+            *axis = store(&frame.z);
+            *origin = store(&frame.t);
+        }
+    } else {
+        for joint in &data.joints {
+            joint_step(joint, &mut frame);
+        }
+    }
+    frame.place(&data.end_form);
+    frame
+}
+
+/// The frame through one joint: its placement, then its motion.
+#[inline(always)]
+fn joint_step<L: Lanes4>(joint: &LaneJoint, frame: &mut Frame<L>) {
+    frame.place(&joint.form);
+    if joint.rotational {
+        frame.rotate_about_z(L::from_array(joint.first.0), L::from_array(joint.second.0));
+    } else {
+        frame.translate_along_z(L::from_array(joint.first.0));
+    }
 }
 
 /// Whether every value of `q` is finite: `v * 0` is zero for a finite `v`

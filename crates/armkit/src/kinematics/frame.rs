@@ -3,9 +3,11 @@
 //! call and the batched kernels take the same steps. The sums are written
 //! with [`Lane::mul_add`] in the order of the plain `a * b + c` (addition
 //! commutes bit for bit), so `f64` and `F64x4` round as the plain products
-//! do, and the AVX lanes fuse each multiply-add.
+//! do, and the AVX lanes fuse each multiply-add. Loops rather than
+//! `from_fn` closures: a closure that is not inlined runs without the AVX
+//! kernels' target features.
 
-use crate::math::{Lane, Pose};
+use crate::math::{F64x4, Lane, Lanes4, Pose};
 use crate::model::PlacementForm;
 
 /// A rigid frame: rotation columns `x`, `y`, `z` and origin `t`, in the
@@ -18,17 +20,45 @@ pub(super) struct Frame<L> {
     pub(super) t: [L; 3],
 }
 
+/// A placement's coefficient as lanes: an `f64` splat into every lane, or
+/// four lanes kept side by side (one vector operand, no broadcast).
+pub(super) trait Coefficient<L> {
+    fn lanes(&self) -> L;
+}
+
+impl<L: Lane> Coefficient<L> for f64 {
+    #[inline(always)]
+    fn lanes(&self) -> L {
+        L::splat(*self)
+    }
+}
+
+impl<L: Lanes4> Coefficient<L> for F64x4 {
+    #[inline(always)]
+    fn lanes(&self) -> L {
+        L::from_array(self.0)
+    }
+}
+
 /// `a * ka + b * kb`, lane-wise on 3-vectors.
 #[inline(always)]
 fn mix<L: Lane>(a: &[L; 3], ka: L, b: &[L; 3], kb: L) -> [L; 3] {
-    std::array::from_fn(|i| a[i].mul_add(ka, b[i] * kb))
+    let mut out = *a;
+    for (o, (&a, &b)) in out.iter_mut().zip(a.iter().zip(b)) {
+        *o = a.mul_add(ka, b * kb);
+    }
+    out
 }
 
-/// `a * ka + b * kb + c * kc` with constant coefficients.
+/// `a * ka + b * kb + c * kc` with the placement's coefficients.
 #[inline(always)]
-fn combine<L: Lane>(a: &[L; 3], b: &[L; 3], c: &[L; 3], k: &[f64; 3]) -> [L; 3] {
-    let k: [L; 3] = std::array::from_fn(|i| L::splat(k[i]));
-    std::array::from_fn(|i| c[i].mul_add(k[2], a[i].mul_add(k[0], b[i] * k[1])))
+fn combine<L: Lane, K: Coefficient<L>>(a: &[L; 3], b: &[L; 3], c: &[L; 3], k: &[K; 3]) -> [L; 3] {
+    let k: [L; 3] = [k[0].lanes(), k[1].lanes(), k[2].lanes()];
+    let mut out = *a;
+    for (o, ((&a, &b), &c)) in out.iter_mut().zip(a.iter().zip(b).zip(c)) {
+        *o = c.mul_add(k[2], a.mul_add(k[0], b * k[1]));
+    }
+    out
 }
 
 impl<L: Lane> Frame<L> {
@@ -47,7 +77,7 @@ impl<L: Lane> Frame<L> {
     /// `self = self * placement`, multiplying only by what the placement's
     /// form leaves non-zero (see `model::PlacementForm`).
     #[inline(always)]
-    pub(super) fn place(&mut self, form: &PlacementForm) {
+    pub(super) fn place<K: Coefficient<L>>(&mut self, form: &PlacementForm<K>) {
         match form {
             PlacementForm::Translation { p } => {
                 self.t = add(&self.t, &combine(&self.x, &self.y, &self.z, p));
@@ -55,8 +85,8 @@ impl<L: Lane> Frame<L> {
             PlacementForm::AboutX { block, p } => {
                 self.t = add(&self.t, &combine(&self.x, &self.y, &self.z, p));
                 let (y, z) = (self.y, self.z);
-                self.y = mix(&y, L::splat(block[0][0]), &z, L::splat(block[0][1]));
-                self.z = mix(&y, L::splat(block[1][0]), &z, L::splat(block[1][1]));
+                self.y = mix(&y, block[0][0].lanes(), &z, block[0][1].lanes());
+                self.z = mix(&y, block[1][0].lanes(), &z, block[1][1].lanes());
             }
             PlacementForm::General { r, p } => {
                 self.t = add(&self.t, &combine(&self.x, &self.y, &self.z, p));
@@ -79,8 +109,9 @@ impl<L: Lane> Frame<L> {
     /// `self = self * Tz(distance)`: the origin moved along the z column.
     #[inline(always)]
     pub(super) fn translate_along_z(&mut self, distance: L) {
-        let (t, z) = (self.t, self.z);
-        self.t = std::array::from_fn(|i| z[i].mul_add(distance, t[i]));
+        for (t, &z) in self.t.iter_mut().zip(&self.z) {
+            *t = z.mul_add(distance, *t);
+        }
     }
 }
 
@@ -101,5 +132,9 @@ impl Frame<f64> {
 
 #[inline(always)]
 fn add<L: Lane>(a: &[L; 3], b: &[L; 3]) -> [L; 3] {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+    let mut out = *a;
+    for (o, &b) in out.iter_mut().zip(b) {
+        *o = *o + b;
+    }
+    out
 }

@@ -12,32 +12,34 @@
 
 use crate::math::Pose;
 
-/// How a placement's rotation acts on the running frame's columns.
+/// How a placement's rotation acts on the running frame's columns; its
+/// coefficients `K` are `f64`, or four lanes of each (the batched kinematics
+/// keep them so, one vector operand each).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) enum PlacementForm {
+pub(crate) enum PlacementForm<K = f64> {
     /// `R = I`: only the translation moves the frame.
     Translation {
         /// `p`, in the running frame's axes (m).
-        p: [f64; 3],
+        p: [K; 3],
     },
     /// `R = [1 0 0; 0 a b; 0 c d]`: the new y column is `a y + c z`, the new
     /// z column `b y + d z`; x stays.
     AboutX {
         /// `[[a, c], [b, d]]`: the y and z columns of `R`'s lower-right block.
-        block: [[f64; 2]; 2],
+        block: [[K; 2]; 2],
         /// `p` (m).
-        p: [f64; 3],
+        p: [K; 3],
     },
     /// Any rotation.
     General {
         /// The columns of `R`.
-        r: [[f64; 3]; 3],
+        r: [[K; 3]; 3],
         /// `p` (m).
-        p: [f64; 3],
+        p: [K; 3],
     },
 }
 
-impl PlacementForm {
+impl PlacementForm<f64> {
     /// The form of `placement`, from the exact zeros and ones of its rotation.
     pub(crate) fn of(placement: &Pose) -> Self {
         let r = &placement.rotation;
@@ -67,6 +69,25 @@ impl PlacementForm {
                 ],
                 p,
             }
+        }
+    }
+
+    /// The same form with every coefficient through `f` (`K` = `f64` here).
+    pub(crate) fn map<K>(&self, f: impl Fn(f64) -> K) -> PlacementForm<K> {
+        let f3 = |v: &[f64; 3]| [f(v[0]), f(v[1]), f(v[2])];
+        match self {
+            PlacementForm::Translation { p } => PlacementForm::Translation { p: f3(p) },
+            PlacementForm::AboutX { block, p } => PlacementForm::AboutX {
+                block: [
+                    [f(block[0][0]), f(block[0][1])],
+                    [f(block[1][0]), f(block[1][1])],
+                ],
+                p: f3(p),
+            },
+            PlacementForm::General { r, p } => PlacementForm::General {
+                r: [f3(&r[0]), f3(&r[1]), f3(&r[2])],
+                p: f3(p),
+            },
         }
     }
 }

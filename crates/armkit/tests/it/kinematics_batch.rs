@@ -204,3 +204,61 @@ fn an_overflowing_configuration_is_an_error_naming_it() {
     q[2 * 5] = 0.0;
     forward_kinematics_batch(&model, &mut batch, &q, &mut poses).unwrap();
 }
+
+/// The batched FK of `q` against the single call, configuration by
+/// configuration, in both instruction sets.
+fn assert_batch_equals_single(model: &Model, batch: &mut BatchData, q: &[f64]) {
+    let mut data = Data::new(model);
+    let count = q.len() / model.dof();
+    let mut poses = vec![f64::NAN; count * POSE_VALUES];
+    forward_kinematics_batch(model, batch, q, &mut poses).unwrap();
+    for (row, pose) in q.chunks(model.dof()).zip(poses.chunks(POSE_VALUES)) {
+        let m = forward_kinematics(model, &mut data, row)
+            .unwrap()
+            .to_matrix4();
+        let expected: Vec<f64> = (0..16).map(|k| m[(k / 4, k % 4)]).collect();
+        let d = common::max_abs_difference(pose, &expected);
+        assert!(d <= TOLERANCE, "{} at {row:?}: {d:e}", model.name());
+    }
+}
+
+#[test]
+fn angles_beyond_the_fast_reduction_take_the_checked_path_in_their_block() {
+    // Lanes at 1e5 rad and beyond (and one just below) beside ordinary
+    // ones: the block's sine-cosine goes lane by lane through the checked
+    // routine, the other blocks stay on the vector one.
+    let model = armkit::robots::by_name("ur5").unwrap();
+    let mut q = configurations(&model, 10, 17);
+    q[6 * 2 + 1] = 1e5;
+    q[6 * 3 + 4] = -3.5e7;
+    q[6 * 9] = 99_999.9;
+    for set in [InstructionSet::Detected, InstructionSet::Baseline] {
+        assert_batch_equals_single(
+            &model,
+            &mut BatchData::with_instruction_set(&model, set),
+            &q,
+        );
+    }
+}
+
+#[test]
+fn a_workspace_follows_the_model_it_is_called_with() {
+    // The workspace keeps the placements in lanes; each call takes them
+    // from the model given, so a workspace of another model of the same
+    // size computes that model's poses.
+    let ur5 = armkit::robots::by_name("ur5").unwrap();
+    let other = models()
+        .into_iter()
+        .find(|m| {
+            m.dof() == 6
+                && m.chain_joints().len() == 6
+                && m.name() != ur5.name()
+                && !m.has_mimic_joints()
+                && m.coupling().is_none()
+        })
+        .expect("another 6-joint model");
+    let mut batch = BatchData::new(&ur5);
+    assert_batch_equals_single(&ur5, &mut batch, &configurations(&ur5, 5, 1));
+    assert_batch_equals_single(&other, &mut batch, &configurations(&other, 5, 2));
+    assert_batch_equals_single(&ur5, &mut batch, &configurations(&ur5, 5, 3));
+}
