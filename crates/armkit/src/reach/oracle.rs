@@ -18,9 +18,10 @@ use crate::model::Model;
 /// solutions count as one: the analytic branches meet at singular poses.
 const SAME_SOLUTION: f64 = 1e-6;
 
-/// Numeric restarts per pose on the numeric route: seeded, no time budget,
-/// so a pose's answer does not depend on the machine.
-pub(crate) const NUMERIC_RESTARTS: usize = 20;
+/// Numeric IK restarts per pose of the map builders' oracle where the arm
+/// takes the numeric route: seeded, no time budget, so a pose's answer does
+/// not depend on the machine.
+pub const NUMERIC_RESTARTS: usize = 20;
 
 /// What one pose gave.
 #[derive(Clone, Copy, Debug, PartialEq)]

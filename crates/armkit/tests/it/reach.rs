@@ -475,3 +475,84 @@ fn diagnose_disagreement_on_request() {
         wrong[0], wrong[1], wrong[2], wrong[3]
     );
 }
+
+/// What snapping a pose to its bin costs, without building a map:
+/// `ARMKIT_REACH_SNAP="robot resolution poses directions rolls"`. Per
+/// random pose in the map's box, the truth at the pose against the truth
+/// at its cell's centre (position snapping), at its bin's orientation
+/// (orientation snapping, `directions x rolls`), at both, and at the pose
+/// turned by a random roll about the tool axis; and the map's oracle (its
+/// restarts) against the truth at the bin.
+#[test]
+fn snapping_cost_on_request() {
+    let Ok(request) = std::env::var("ARMKIT_REACH_SNAP") else {
+        return;
+    };
+    let words: Vec<&str> = request.split_whitespace().collect();
+    let model = robot(words[0]);
+    let number = |i: usize| words[i].parse::<f64>().unwrap();
+    let spec = MapSpec {
+        approach_directions: number(3) as usize,
+        rolls: number(4) as usize,
+        ..ik_spec(number(1), 1)
+    };
+    let layout = MapLayout::new(&model, &spec).unwrap();
+    let (origin, dims, r) = (layout.origin(), layout.dims(), layout.resolution());
+    let (mut truth_solver, mut map_solver) = (truth_solver(&model), {
+        let options = IkOptions {
+            max_restarts: reach::NUMERIC_RESTARTS,
+            time_budget: None,
+            ..IkOptions::default()
+        };
+        AutoSolver::new(&model, options).unwrap()
+    });
+    let start = model.neutral_configuration();
+    let mut rng = ChaCha8Rng::seed_from_u64(7);
+    let (mut poses, mut changed) = (0usize, [0usize; 5]);
+    for _ in 0..number(2) as usize {
+        let p = Vector3::from_fn(|i, _| origin[i] + rng.gen_range(0.0..dims[i] as f64 * r));
+        let rotation = random_rotation(&mut rng);
+        let roll = rng.gen_range(0.0..std::f64::consts::TAU);
+        let Some(cell) = layout.cell_of([p.x, p.y, p.z]) else {
+            continue;
+        };
+        poses += 1;
+        let centre = Vector3::from(layout.cell_center(cell));
+        let snapped = layout
+            .orientation(layout.orientation_of(&rotation))
+            .into_inner();
+        let rolled = rotation * Rotation3::from_axis_angle(&Vector3::z_axis(), roll).into_inner();
+        let mut at =
+            |solver: &mut AutoSolver, rotation: Matrix3<f64>, translation: Vector3<f64>| {
+                truth(
+                    solver,
+                    &start,
+                    &Pose {
+                        rotation,
+                        translation,
+                    },
+                )
+            };
+        let is = at(&mut truth_solver, rotation, p);
+        let bin = at(&mut truth_solver, snapped, centre);
+        let answers = [
+            at(&mut truth_solver, rotation, centre) != is,
+            at(&mut truth_solver, snapped, p) != is,
+            bin != is,
+            at(&mut truth_solver, rolled, p) != is,
+            at(&mut map_solver, snapped, centre) != bin,
+        ];
+        for (count, differs) in changed.iter_mut().zip(answers) {
+            *count += differs as usize;
+        }
+    }
+    let share = |k: usize| 100.0 * changed[k] as f64 / poses.max(1) as f64;
+    eprintln!(
+        "{request}: {poses} poses; the answer changes by position snapping at {:.2} %, orientation snapping {:.2} %, both {:.2} %, a random roll {:.2} %; the map's oracle against the truth at the bin {:.2} %",
+        share(0),
+        share(1),
+        share(2),
+        share(3),
+        share(4)
+    );
+}
