@@ -233,17 +233,26 @@ fn kernel_avx2_fma(
     kernel::<crate::math::Avx4>(model, data, q, count, output)
 }
 
-/// Storage lanes to computing lanes (`from_fn`, not `map`: `map`'s
-/// `try_map` stays a call in the AVX2 build).
+/// Storage lanes to computing lanes. Loops, not `from_fn` or `map`: a
+/// closure the compiler leaves out of line runs without the AVX kernel's
+/// target features (see `frame.rs`), which halved the kernel's speed.
 #[inline(always)]
 fn load<L: Lanes4, const N: usize>(values: &[F64x4; N]) -> [L; N] {
-    std::array::from_fn(|i| L::from_array(values[i].0))
+    let mut out = [L::splat(0.0); N];
+    for (lane, value) in out.iter_mut().zip(values) {
+        *lane = L::from_array(value.0);
+    }
+    out
 }
 
-/// Computing lanes to storage lanes.
+/// Computing lanes to storage lanes (a loop, as [`load`]).
 #[inline(always)]
 fn store<L: Lanes4, const N: usize>(values: &[L; N]) -> [F64x4; N] {
-    std::array::from_fn(|i| F64x4(values[i].to_array()))
+    let mut out = [F64x4::default(); N];
+    for (stored, value) in out.iter_mut().zip(values) {
+        *stored = F64x4(value.to_array());
+    }
+    out
 }
 
 /// The blocks of four configurations, base to tip on each, computed on
@@ -278,10 +287,11 @@ fn kernel<L: Lanes4>(
     let mut start = 0;
     while start < count {
         let lanes = LANES.min(count - start);
-        let q_rows: [&[f64]; LANES] = std::array::from_fn(|l| {
+        let mut q_rows: [&[f64]; LANES] = [&[]; LANES];
+        for (l, rows) in q_rows.iter_mut().enumerate() {
             let row = start + l.min(lanes - 1);
-            &q[row * dof..(row + 1) * dof]
-        });
+            *rows = &q[row * dof..(row + 1) * dof];
+        }
         if identity {
             let joints = data
                 .joints
@@ -482,8 +492,10 @@ fn check_finite_lanes<L: Lanes4>(t: &[L; 3], start: usize, lanes: usize) -> Resu
 /// those four values gives the four lanes' rows, each one store.
 #[inline(always)]
 fn write_poses<L: Lanes4>(frame: &Frame<L>, out: &mut [f64], lanes: usize) {
-    let rows: [[L; LANES]; 3] =
-        std::array::from_fn(|i| L::transpose([frame.x[i], frame.y[i], frame.z[i], frame.t[i]]));
+    let mut rows = [[L::splat(0.0); LANES]; 3];
+    for (i, row) in rows.iter_mut().enumerate() {
+        *row = L::transpose([frame.x[i], frame.y[i], frame.z[i], frame.t[i]]);
+    }
     for (pose, l) in out.chunks_exact_mut(POSE_VALUES).zip(0..LANES).take(lanes) {
         for (i, row) in rows.iter().enumerate() {
             pose[4 * i..4 * i + 4].copy_from_slice(&row[l].to_array());
@@ -501,11 +513,10 @@ fn write_jacobians<L: Lanes4>(columns: &[[F64x4; 6]], out: &mut [f64], lanes: us
     for (g, group) in columns.chunks(LANES).enumerate() {
         let first = g * LANES;
         for r in 0..6 {
-            let values: [L; LANES] = std::array::from_fn(|k| {
-                group
-                    .get(k)
-                    .map_or(L::splat(0.0), |column| L::from_array(column[r].0))
-            });
+            let mut values = [L::splat(0.0); LANES];
+            for (value, column) in values.iter_mut().zip(group) {
+                *value = L::from_array(column[r].0);
+            }
             let lane_values = L::transpose(values);
             let at = r * dof + first;
             for (jacobian, l) in out.chunks_exact_mut(6 * dof).zip(0..LANES).take(lanes) {
