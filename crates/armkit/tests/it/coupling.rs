@@ -145,3 +145,45 @@ fn a_curve_without_a_second_derivative_couples_kinematics_but_not_dynamics() {
     let flex = armkit::robots::by_name("gantry9-flex").unwrap();
     armkit::dynamics::check_dynamics_model(&flex).unwrap();
 }
+
+/// A mimic law's contribution is the whole target position `m x + o` and
+/// its slope `m`: on the finger (a mimic of a mimic included) each mimic
+/// coupling's law, at its source's position, gives the position forward
+/// kinematics evaluates the chain at.
+#[test]
+fn a_mimic_laws_offset_and_slope_give_the_chain_positions() {
+    let law = CouplingLaw::Mimic {
+        multiplier: -1.5,
+        offset: 0.25,
+    };
+    for x in [-2.0, -0.5, 0.0, 0.75, 3.0] {
+        assert_eq!(law.offset_and_slope(x), (-1.5 * x + 0.25, -1.5));
+    }
+    let finger = armkit::urdf::load(
+        crate::common::data_path("urdf/mimicbot.urdf"),
+        &armkit::urdf::ChainSelection::between("base", "fingertip"),
+    )
+    .unwrap();
+    let mut data = armkit::kinematics::Data::new(&finger);
+    let mut rng = crate::common::rng(41);
+    let mut mimics = 0;
+    for _ in 0..20 {
+        let q = crate::common::random_configuration(&finger, &mut rng);
+        armkit::kinematics::forward_kinematics(&finger, &mut data, &q).unwrap();
+        for coupling in finger.couplings() {
+            let CouplingLaw::Mimic { multiplier, .. } = coupling.law else {
+                continue;
+            };
+            mimics += 1;
+            let (position, slope) = coupling.law.offset_and_slope(q[coupling.source]);
+            assert_eq!(slope, multiplier);
+            assert!(
+                (position - data.effective_positions()[coupling.target]).abs() < 1e-15,
+                "joint {}: {position} vs {}",
+                coupling.target,
+                data.effective_positions()[coupling.target]
+            );
+        }
+    }
+    assert_eq!(mimics, 40);
+}
