@@ -522,17 +522,16 @@ fn snapping_cost_on_request() {
             .orientation(layout.orientation_of(&rotation))
             .into_inner();
         let rolled = rotation * Rotation3::from_axis_angle(&Vector3::z_axis(), roll).into_inner();
-        let mut at =
-            |solver: &mut AutoSolver, rotation: Matrix3<f64>, translation: Vector3<f64>| {
-                truth(
-                    solver,
-                    &start,
-                    &Pose {
-                        rotation,
-                        translation,
-                    },
-                )
-            };
+        let at = |solver: &mut AutoSolver, rotation: Matrix3<f64>, translation: Vector3<f64>| {
+            truth(
+                solver,
+                &start,
+                &Pose {
+                    rotation,
+                    translation,
+                },
+            )
+        };
         let is = at(&mut truth_solver, rotation, p);
         let bin = at(&mut truth_solver, snapped, centre);
         let answers = [
