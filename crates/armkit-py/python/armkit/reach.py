@@ -251,7 +251,7 @@ def _build_on_dask(
         return merged
     # Arrays from the wire may sit misaligned in their frames: copied.
     parts = [
-        {k: np.require(v, requirements="CA") if isinstance(v, np.ndarray) else v for k, v in part.items()}
+        {k: np.require(v, requirements=["C", "A"]) if isinstance(v, np.ndarray) else v for k, v in part.items()}
         for part in client.gather(refinements)
     ]
     return _reach.apply_refinement(merged, parts)
