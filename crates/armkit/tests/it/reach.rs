@@ -3,6 +3,7 @@
 
 use armkit::ik::{AutoSolver, IkOptions};
 use armkit::math::{Matrix3, Pose, Rotation3, Vector3};
+use armkit::model::DhLink;
 use armkit::reach::{self, build_chunk, Builder, MapLayout, MapSpec, ReachMap};
 use armkit::Model;
 use rand::{Rng, SeedableRng};
@@ -204,6 +205,44 @@ fn arms_whose_roll_changes_nothing_get_directions_only() {
         Model::from_dh_with_transforms("ur5-cut", convention, &links, *ur5.base(), *ur5.tool())
             .unwrap();
     assert!(!reach::roll_free(&cut) && !reach::one_roll_suffices(&cut));
+}
+
+/// The UR5 with its last link replaced by `last` and its tool placement
+/// followed by `tool_change` (flange frame).
+fn ur5_variant(last: Option<DhLink>, tool_change: Pose) -> Model {
+    let ur5 = robot("ur5");
+    let (convention, links) = ur5.dh_table().unwrap();
+    let mut links = links.to_vec();
+    if let Some(last) = last {
+        links[5] = last;
+    }
+    let tool = *ur5.tool() * tool_change;
+    Model::from_dh_with_transforms("ur5-variant", convention, &links, *ur5.base(), tool).unwrap()
+}
+
+#[test]
+fn roll_freedom_needs_a_whole_turn_about_the_tool_axis_through_its_origin() {
+    let ur5 = robot("ur5");
+    let last = ur5.dh_table().unwrap().1[5];
+    let pi = std::f64::consts::PI;
+    // Exactly one turn is enough; a micro-radian less is not.
+    let turn = |lower: f64, upper: f64| Some(last.with_limits(lower, upper));
+    assert!(reach::roll_free(&ur5_variant(
+        turn(-pi, pi),
+        Pose::identity()
+    )));
+    assert!(!reach::roll_free(&ur5_variant(
+        turn(-pi, pi - 1e-6),
+        Pose::identity()
+    )));
+    // A tool beside the last axis, or tilted off it, rolls by more than
+    // the last joint.
+    assert!(!reach::roll_free(&ur5_variant(None, Pose::trans_x(0.05))));
+    assert!(!reach::roll_free(&ur5_variant(None, Pose::rot_x(0.3))));
+    // A prismatic last joint does not roll the tool, whatever its travel.
+    let slide = DhLink::prismatic(0.0, last.a, last.alpha).with_limits(0.0, 7.0);
+    let slider = ur5_variant(Some(slide), Pose::identity());
+    assert!(!reach::roll_free(&slider) && !reach::one_roll_suffices(&slider));
 }
 
 /// Why one roll per direction suffices on the Panda: turning the tool about
