@@ -197,13 +197,9 @@ fn arms_whose_roll_changes_nothing_get_directions_only() {
     assert_eq!((spec.approach_directions, spec.rolls), (25, 8));
     // A 6-joint arm needs the whole turn: the UR5 with its last joint cut
     // to 300 degrees keeps the rolls.
-    let (convention, links) = ur5.dh_table().unwrap();
-    let mut links = links.to_vec();
     let half = reach::REDUNDANT_ROLL_RANGE / 2.0;
-    links[5] = links[5].with_limits(-half, half);
-    let cut =
-        Model::from_dh_with_transforms("ur5-cut", convention, &links, *ur5.base(), *ur5.tool())
-            .unwrap();
+    let last = ur5.dh_table().unwrap().1[5].with_limits(-half, half);
+    let cut = ur5_variant(Some(last), Pose::identity());
     assert!(!reach::roll_free(&cut) && !reach::one_roll_suffices(&cut));
 }
 
