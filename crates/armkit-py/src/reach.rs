@@ -281,6 +281,18 @@ fn item_vec<T: numpy::Element + Copy>(
     Ok(array.to_vec()?)
 }
 
+/// Item `key` of a result dict, or `T`'s default where the dict has none.
+fn item_or_default<'py, T>(dict: &Bound<'py, PyDict>, key: &str) -> PyResult<T>
+where
+    T: for<'a> FromPyObject<'a, 'py, Error = PyErr> + Default,
+{
+    Ok(dict
+        .get_item(key)?
+        .map(|value| value.extract())
+        .transpose()?
+        .unwrap_or_default())
+}
+
 fn chunk_from_dict(dict: &Bound<'_, PyDict>) -> PyResult<ChunkResult> {
     let range = |key: &str| -> PyResult<(u64, u64)> {
         dict.get_item(key)?
@@ -292,11 +304,7 @@ fn chunk_from_dict(dict: &Bound<'_, PyDict>) -> PyResult<ChunkResult> {
     };
     let cells = range("cells")?;
     let samples = range("samples")?;
-    let calls: u64 = dict
-        .get_item("calls")?
-        .map(|c| c.extract())
-        .transpose()?
-        .unwrap_or(0);
+    let calls = item_or_default(dict, "calls")?;
     Ok(ChunkResult {
         cells: cells.0 as usize..cells.1 as usize,
         samples: samples.0..samples.1,
@@ -361,6 +369,34 @@ pub fn refine_chunk<'py>(
     Ok(dict)
 }
 
+/// One dict as `refine_chunk` returns it, read back.
+fn refinement_from_dict(dict: &Bound<'_, PyDict>) -> PyResult<Refinement> {
+    let bins = item_vec::<u64>(dict, "parts", "bin")?;
+    let axes = item_vec::<u8>(dict, "parts", "axis")?;
+    let at = item_vec::<f32>(dict, "parts", "at")?;
+    if bins.len() != axes.len() || bins.len() != at.len() {
+        return Err(Error::invalid_argument(
+            "parts",
+            format!(
+                "a refinement part's `bin`, `axis` and `at` differ in length ({}, {}, {})",
+                bins.len(),
+                axes.len(),
+                at.len()
+            ),
+        )
+        .into_py());
+    }
+    let cells: (usize, usize) = item_or_default(dict, "cells")?;
+    let crossings = (bins.into_iter().zip(axes).zip(at))
+        .map(|((bin, axis), at)| Crossing { bin, axis, at })
+        .collect();
+    Ok(Refinement {
+        cells: cells.0..cells.1,
+        crossings,
+        calls: item_or_default(dict, "calls")?,
+    })
+}
+
 /// `map` with the crossings of `parts` (dicts as `refine_chunk` returns,
 /// any order and partition of the cells) applied
 /// (`reach::apply_refinement`): the distributed refinement's merge.
@@ -368,43 +404,7 @@ pub fn refine_chunk<'py>(
 pub fn apply_refinement(py: Python<'_>, map: &Map, parts: Vec<Bound<'_, PyDict>>) -> PyResult<Map> {
     let parts = parts
         .iter()
-        .map(|dict| {
-            let (bins, axes, at) = (
-                item_vec::<u64>(dict, "parts", "bin")?,
-                item_vec::<u8>(dict, "parts", "axis")?,
-                item_vec::<f32>(dict, "parts", "at")?,
-            );
-            if bins.len() != axes.len() || bins.len() != at.len() {
-                return Err(Error::invalid_argument(
-                    "parts",
-                    format!(
-                        "a refinement part's `bin`, `axis` and `at` differ in length ({}, {}, {})",
-                        bins.len(),
-                        axes.len(),
-                        at.len()
-                    ),
-                )
-                .into_py());
-            }
-            let cells: (usize, usize) = dict
-                .get_item("cells")?
-                .map(|c| c.extract())
-                .transpose()?
-                .unwrap_or((0, 0));
-            let calls: u64 = dict
-                .get_item("calls")?
-                .map(|c| c.extract())
-                .transpose()?
-                .unwrap_or(0);
-            let crossings = (bins.into_iter().zip(axes).zip(at))
-                .map(|((bin, axis), at)| Crossing { bin, axis, at })
-                .collect();
-            Ok(Refinement {
-                cells: cells.0..cells.1,
-                crossings,
-                calls,
-            })
-        })
+        .map(refinement_from_dict)
         .collect::<PyResult<Vec<_>>>()?;
     let map = map.map.clone();
     let map = py
